@@ -1,0 +1,46 @@
+// Pass 3 (run twice: SSLR_BLUR_AXIS = ivec2(1,0) then ivec2(0,1)): separable bilateral blur of
+// the reflection over listed tiles. The radius comes from the centre pixel's alpha (the cone
+// footprint written by the trace); neighbours count only if they are traced pixels on a similar
+// surface (depth and normal weights), so reflections do not bleed across edges.
+layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
+
+#include "common/gbuffer.glsl"
+#include "common/tiles.glsl"
+
+layout(binding = 3) uniform sampler2D uBlurInput;
+layout(binding = 0, rgba16f) uniform writeonly image2D uBlurOutput;
+
+void main() {
+  ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
+  if (!sslrInside(px)) return;
+  vec4 center = texelFetch(uBlurInput, px, 0);
+  float radius = center.a * frame.trace.blurMaxRadiusPx;
+  if (!(radius >= 0.5f)) {
+    imageStore(uBlurOutput, px, center);
+    return;
+  }
+  float depth0 = texelFetch(uDepth, px, 0).r;
+  vec3 n0;
+  sslrDecodeNormal(frame.surface, texelFetch(uNormal, px, 0), n0);
+  float z0 = abs(sslrViewAtPixel(px, depth0).z);
+  float sigma = max(radius * 0.5f, 0.5f);
+  float depthScale = 1.0f / max(frame.trace.blurDepthSigma * z0, 1e-6f);
+  int taps = int(ceil(radius));
+  vec3 sum = center.rgb;
+  float weightSum = 1.0f;
+  for (int i = -taps; i <= taps; ++i) {
+    ivec2 q = px + SSLR_BLUR_AXIS * i;
+    if (i == 0 || !sslrInside(q)) continue;
+    float depth1 = texelFetch(uDepth, q, 0).r;
+    vec4 packed1 = texelFetch(uNormal, q, 0);
+    if (!sslrShouldTrace(frame.surface, frame.trace, depth1, packed1)) continue;
+    vec3 n1;
+    sslrDecodeNormal(frame.surface, packed1, n1);
+    float z1 = abs(sslrViewAtPixel(q, depth1).z);
+    float w = exp(-0.5f * float(i * i) / (sigma * sigma)) * exp(-abs(z1 - z0) * depthScale) *
+              pow(max(dot(n0, n1), 0.0f), frame.trace.blurNormalPower);
+    sum += texelFetch(uBlurInput, q, 0).rgb * w;
+    weightSum += w;
+  }
+  imageStore(uBlurOutput, px, vec4(sum / weightSum, center.a));
+}

@@ -1,0 +1,18 @@
+// The host's G-buffer as the passes see it (sampler objects of sslr's own are bound with them,
+// so the host's texture parameters do not matter).
+#include "sslr_shared.h"
+
+layout(binding = 0) uniform sampler2D uDepth;   // raw window depth (nearest)
+layout(binding = 1) uniform sampler2D uNormal;  // packed normal + material (nearest)
+layout(binding = 2) uniform sampler2D uColor;   // lit colour (bilinear, clamped)
+
+vec2 sslrSizePx() { return vec2(frame.surface.width, frame.surface.height); }
+
+bool sslrInside(ivec2 px) {
+  return px.x >= 0 && px.y >= 0 && px.x < int(frame.surface.width) && px.y < int(frame.surface.height);
+}
+
+// View-space position of a pixel from its depth (caller checked sslrIsGeometryDepth).
+vec3 sslrViewAtPixel(ivec2 px, float depth) {
+  return sslrViewFromUvDepth(frame.proj, sslrUvFromPixel(px, sslrSizePx()), depth);
+}

@@ -1,0 +1,330 @@
+// sslr_shared.h - the one source of truth shared by C++ and GLSL.
+//
+// It holds the uniform block layout (std140) and the pure math of the effect: depth <-> view
+// reconstruction, projection, normal packing, Fresnel and fade terms, blur footprint. C++ includes
+// it with GLM standing in for GLSL's types, so CPU tests run the very formulas the GPU runs.
+//
+// Naming: a prefix says the space. vs = view space (right-handed, camera looks down -z),
+// ndc = normalized device coordinates, uv = [0,1]^2 texture coordinates with the origin at the
+// lower left (GL), px = pixel coordinates (pixel i covers [i, i+1), its centre is i + 0.5).
+// Matrices are named destination-from-source: clipFromView maps view space to clip space.
+//
+// Only the subset common to C++20 and GLSL 4.50 may be used below: no constructors with
+// braces, no references except through SSLR_INOUT/SSLR_OUT, float literals with an f suffix.
+#ifndef SSLR_SHARED_H
+#define SSLR_SHARED_H
+
+#ifdef __cplusplus
+#include <glm/glm.hpp>
+#include <glm/gtc/packing.hpp>
+#include <cstddef>
+#include <cstdint>
+namespace sslr::shared {
+using glm::ivec2;
+using glm::ivec4;
+using glm::uvec2;
+using glm::vec2;
+using glm::vec3;
+using glm::vec4;
+using uint = std::uint32_t;
+using glm::abs;
+using glm::clamp;
+using glm::dot;
+using glm::floor;
+using glm::isinf;
+using glm::isnan;
+using glm::length;
+using glm::max;
+using glm::min;
+using glm::mix;
+using glm::normalize;
+using glm::reflect;
+using glm::sign;
+using glm::smoothstep;
+using glm::sqrt;
+#define SSLR_FN inline
+#define SSLR_INOUT(T) T&
+#define SSLR_OUT(T) T&
+#else
+#define SSLR_FN
+#define SSLR_INOUT(T) inout T
+#define SSLR_OUT(T) out T
+#endif
+
+// ---- Enumerations (plain #defines so both languages and #if can use them) -------------------
+#define SSLR_NORMALS_OCTAHEDRAL 0  // RG (unorm) = octahedral encoding of the view-space normal
+#define SSLR_NORMALS_XYZ_UNORM 1   // RGB (unorm) = n * 0.5 + 0.5, the article's packing
+
+#define SSLR_FRESNEL_CLASSIC 0  // the article: 2.8 (1 - cos)^2, with its error term 1 - sat(L k)
+#define SSLR_FRESNEL_SCHLICK 1  // F0 + (1 - F0) (1 - cos)^5 with F0 = material reflectance
+
+#define SSLR_STATUS_NOT_TRACED 0  // background, not reflective, too rough, back-facing normal
+#define SSLR_STATUS_HIT 1         // converged and validated (confidence may still be faded)
+#define SSLR_STATUS_OFF_SCREEN 2  // the probe left the screen or crossed the near plane
+#define SSLR_STATUS_MISS 3        // ran into the background, or the hit failed validation
+
+#define SSLR_TILE_SIZE 8  // compute work-group edge and classification tile edge, in pixels
+
+// Texture / image / buffer binding points used by the passes (they are restored afterwards).
+#define SSLR_BINDING_FRAME_UBO 0
+#define SSLR_BINDING_TILE_SSBO 0
+#define SSLR_BINDING_STATS_SSBO 1
+
+// ---- Uniform block structs (std140: every member 4 bytes, every struct a multiple of 16) ----
+
+// A projection reduced to the six numbers that a perspective or orthographic matrix without skew
+// can hold (GL column-major notation P[col][row]):
+//   perspective:  xScale = P[0][0], yScale = P[1][1], xOffset = P[2][0], yOffset = P[2][1],
+//                 zScale = P[2][2], zOffset = P[3][2]   (P[2][3] = -1, P[3][3] = 0)
+//   orthographic: xScale = P[0][0], yScale = P[1][1], xOffset = P[3][0], yOffset = P[3][1],
+//                 zScale = P[2][2], zOffset = P[3][2]   (P[2][3] = 0, P[3][3] = 1)
+// Off-centre and jittered frusta live in the offsets. The C++ side extracts these in double from
+// the host's matrix and rejects any matrix that is not of this form.
+struct SslrProjection {
+  float xScale;
+  float yScale;
+  float xOffset;
+  float yOffset;
+  float zScale;
+  float zOffset;
+  int orthographic;  // 0 = perspective, 1 = orthographic
+  int ndcZeroToOne;  // 1: window depth = ndc z (glClipControl ZERO_TO_ONE); 0: = ndc z * 0.5 + 0.5
+};
+
+struct SslrSurface {
+  int normalEncoding;        // SSLR_NORMALS_*
+  int roughnessChannel;      // channel of the normal texture holding roughness; -1 = constant
+  int reflectanceChannel;    // channel holding reflectance (F0); -1 = constant
+  int reversedZ;             // 1: near = 1, background = 0; 0: near = 0, background = 1
+  float constantRoughness;   // used when roughnessChannel = -1
+  float constantReflectance; // used when reflectanceChannel = -1
+  float width;               // viewport size in pixels
+  float height;
+};
+
+struct SslrTraceParams {
+  float initialLengthPixels;  // first guess of L, as a length in pixels at the surface's depth
+  float convergenceEps;       // stop once |L_new - L| <= eps * L
+  float errorK;               // the article's "LDelmiter": error = 1 - saturate(L * k)
+  float maxDistance;          // reflections longer than this (view units) get zero confidence
+  float thicknessRelative;    // hit tolerance: this fraction of the hit's view distance ...
+  float thicknessPixels;      // ... plus this many pixel footprints (scaled by surface slope)
+  float edgeFade;             // fade width at the screen border, fraction of the screen [0,0.5]
+  float cameraFadeStart;      // rays with dot(R, toCamera) above start fade out ...
+  float cameraFadeEnd;        // ... and are gone at end
+  float roughnessCutoff;      // pixels rougher than this are not traced
+  float minReflectance;       // pixels with reflectance at or below this are not traced
+  float blurMaxRadiusPx;      // blur radius (pixels) that alpha = 1 stands for
+  float blurConeScale;        // cone tan(half angle) = roughness^2 * blurConeScale
+  float blurDepthSigma;       // bilateral: weight exp(-|dz| / (sigma * z))
+  float blurNormalPower;      // bilateral: weight max(0, dot(n0, n1))^power
+  int maxIterations;          // adaptive-L iteration cap
+  int fresnelMode;            // SSLR_FRESNEL_*
+  int countFetches;           // 1: count depth fetches into the stats buffer
+  int pad0;
+  int pad1;
+};
+
+#ifdef __cplusplus
+#define SSLR_FRAME_BLOCK_BEGIN struct SslrFrame {
+#define SSLR_FRAME_BLOCK_END };
+#else
+#define SSLR_FRAME_BLOCK_BEGIN layout(std140, binding = SSLR_BINDING_FRAME_UBO) uniform SslrFrameBlock {
+#define SSLR_FRAME_BLOCK_END } frame;
+#endif
+
+SSLR_FRAME_BLOCK_BEGIN
+  SslrProjection proj;
+  SslrSurface surface;
+  SslrTraceParams trace;
+SSLR_FRAME_BLOCK_END
+
+#ifdef __cplusplus
+static_assert(sizeof(SslrProjection) == 32, "std140 mirror");
+static_assert(sizeof(SslrSurface) == 32, "std140 mirror");
+static_assert(sizeof(SslrTraceParams) == 80, "std140 mirror");
+static_assert(offsetof(SslrFrame, surface) == 32, "std140 mirror");
+static_assert(offsetof(SslrFrame, trace) == 64, "std140 mirror");
+static_assert(sizeof(SslrFrame) == 144, "std140 mirror");
+#endif
+
+// ---- Pure math ----------------------------------------------------------------------------
+
+SSLR_FN float sslrSaturate(float x) { return clamp(x, 0.0f, 1.0f); }
+
+// Window depth -> ndc z, and back.
+SSLR_FN float sslrNdcZFromDepth(SslrProjection p, float depth) {
+  return p.ndcZeroToOne != 0 ? depth : depth * 2.0f - 1.0f;
+}
+SSLR_FN float sslrDepthFromNdcZ(SslrProjection p, float ndcZ) {
+  return p.ndcZeroToOne != 0 ? ndcZ : ndcZ * 0.5f + 0.5f;
+}
+
+// A depth sample that holds geometry: finite, inside [0,1] and not the clear value. NaN fails
+// every comparison and so counts as background (poisoned input never reaches the tracer).
+SSLR_FN bool sslrIsGeometryDepth(SslrSurface s, float depth) {
+  bool inRange = depth >= 0.0f && depth <= 1.0f;
+  return inRange && (s.reversedZ != 0 ? depth > 0.0f : depth < 1.0f);
+}
+
+SSLR_FN vec2 sslrNdcFromUv(vec2 uv) { return uv * 2.0f - 1.0f; }
+SSLR_FN vec2 sslrUvFromNdc(vec2 ndc) { return ndc * 0.5f + 0.5f; }
+SSLR_FN vec2 sslrUvFromPixel(ivec2 px, vec2 sizePx) { return (vec2(px) + 0.5f) / sizePx; }
+SSLR_FN ivec2 sslrPixelFromUv(vec2 uv, vec2 sizePx) {
+  return clamp(ivec2(floor(uv * sizePx)), ivec2(0), ivec2(sizePx) - 1);
+}
+
+// View-space position from ndc, exact for both projection kinds (see SslrProjection).
+// Perspective: dist = zOffset / (ndcZ + zScale) is the view distance along -z; x and y follow.
+SSLR_FN vec3 sslrViewFromNdc(SslrProjection p, vec2 ndcXY, float ndcZ) {
+  if (p.orthographic != 0) {
+    return vec3((ndcXY.x - p.xOffset) / p.xScale, (ndcXY.y - p.yOffset) / p.yScale,
+                (ndcZ - p.zOffset) / p.zScale);
+  }
+  float dist = p.zOffset / (ndcZ + p.zScale);
+  return vec3(dist * (ndcXY.x + p.xOffset) / p.xScale, dist * (ndcXY.y + p.yOffset) / p.yScale,
+              -dist);
+}
+
+SSLR_FN vec3 sslrViewFromUvDepth(SslrProjection p, vec2 uv, float depth) {
+  return sslrViewFromNdc(p, sslrNdcFromUv(uv), sslrNdcZFromDepth(p, depth));
+}
+
+// Clip w of a view-space point: the view distance (perspective) or 1 (orthographic).
+SSLR_FN float sslrClipW(SslrProjection p, vec3 vsPos) {
+  return p.orthographic != 0 ? 1.0f : -vsPos.z;
+}
+
+// View space -> ndc (x, y, z). The caller must have checked sslrClipW > 0.
+SSLR_FN vec3 sslrNdcFromView(SslrProjection p, vec3 vsPos) {
+  if (p.orthographic != 0) {
+    return vec3(p.xScale * vsPos.x + p.xOffset, p.yScale * vsPos.y + p.yOffset,
+                p.zScale * vsPos.z + p.zOffset);
+  }
+  float w = -vsPos.z;
+  return vec3((p.xScale * vsPos.x + p.xOffset * vsPos.z) / w,
+              (p.yScale * vsPos.y + p.yOffset * vsPos.z) / w,
+              (p.zScale * vsPos.z + p.zOffset) / w);
+}
+
+// Unit direction from the camera towards a view-space point (orthographic: constant -z).
+SSLR_FN vec3 sslrViewDirection(SslrProjection p, vec3 vsPos) {
+  return p.orthographic != 0 ? vec3(0.0f, 0.0f, -1.0f) : normalize(vsPos);
+}
+
+// Distance used for pixel footprints and relative tolerances.
+SSLR_FN float sslrViewDistance(SslrProjection p, vec3 vsPos) {
+  return p.orthographic != 0 ? 1.0f : max(-vsPos.z, 0.0f);
+}
+
+// Size (view units) of one pixel at a given view distance.
+SSLR_FN float sslrPixelFootprint(SslrProjection p, float heightPx, float dist) {
+  return 2.0f * dist / (abs(p.yScale) * heightPx);
+}
+
+// ---- Normals ------------------------------------------------------------------------------
+// Octahedral mapping (Meyer et al. 2010 / Cigolle et al. 2014) into [0,1]^2.
+SSLR_FN vec2 sslrOctWrap(vec2 v) {
+  return (1.0f - abs(vec2(v.y, v.x))) * vec2(v.x >= 0.0f ? 1.0f : -1.0f, v.y >= 0.0f ? 1.0f : -1.0f);
+}
+SSLR_FN vec2 sslrOctEncode(vec3 n) {
+  n /= (abs(n.x) + abs(n.y) + abs(n.z));
+  vec2 e = n.z >= 0.0f ? vec2(n.x, n.y) : sslrOctWrap(vec2(n.x, n.y));
+  return e * 0.5f + 0.5f;
+}
+SSLR_FN vec3 sslrOctDecode(vec2 e01) {
+  vec2 f = e01 * 2.0f - 1.0f;
+  vec3 n = vec3(f.x, f.y, 1.0f - abs(f.x) - abs(f.y));
+  float t = max(-n.z, 0.0f);
+  n.x += n.x >= 0.0f ? -t : t;
+  n.y += n.y >= 0.0f ? -t : t;
+  return normalize(n);
+}
+
+// Decodes the host's packed normal. Returns false for a normal that cannot be trusted (zero,
+// NaN/Inf, or far from unit length for the xyz packing): such pixels are not traced.
+SSLR_FN bool sslrDecodeNormal(SslrSurface s, vec4 packed, SSLR_OUT(vec3) vsNormal) {
+  vec3 n;
+  if (s.normalEncoding == SSLR_NORMALS_OCTAHEDRAL) {
+    vec2 e = clamp(vec2(packed.x, packed.y), vec2(0.0f), vec2(1.0f));
+    n = sslrOctDecode(e);
+  } else {
+    n = vec3(packed.x, packed.y, packed.z) * 2.0f - 1.0f;
+    float len2 = dot(n, n);
+    // 8-bit packing of a unit vector keeps |n| within ~1.5%; zero or garbage fails this.
+    if (!(len2 > 0.8f && len2 < 1.2f)) {
+      vsNormal = vec3(0.0f, 0.0f, 1.0f);
+      return false;
+    }
+    n = normalize(n);
+  }
+  bool finite = !(isnan(n.x) || isnan(n.y) || isnan(n.z) || isinf(n.x) || isinf(n.y) || isinf(n.z));
+  vsNormal = finite ? n : vec3(0.0f, 0.0f, 1.0f);
+  return finite;
+}
+
+SSLR_FN float sslrChannel(vec4 v, int channel) {
+  return channel == 0 ? v.x : (channel == 1 ? v.y : (channel == 2 ? v.z : v.w));
+}
+SSLR_FN float sslrRoughness(SslrSurface s, vec4 packed) {
+  return s.roughnessChannel < 0 ? s.constantRoughness : sslrChannel(packed, s.roughnessChannel);
+}
+SSLR_FN float sslrReflectance(SslrSurface s, vec4 packed) {
+  return s.reflectanceChannel < 0 ? s.constantReflectance : sslrChannel(packed, s.reflectanceChannel);
+}
+
+// The per-pixel test shared by classification, tracing and the blur's neighbour test: geometry
+// (not background), reflective enough, smooth enough, and a normal that decodes.
+SSLR_FN bool sslrShouldTrace(SslrSurface s, SslrTraceParams t, float depth, vec4 packedNormal) {
+  if (!sslrIsGeometryDepth(s, depth)) return false;
+  float reflectance = sslrReflectance(s, packedNormal);
+  float roughness = sslrRoughness(s, packedNormal);
+  vec3 n;
+  // Written so that NaN material values fail.
+  return reflectance > t.minReflectance && roughness <= t.roughnessCutoff &&
+         sslrDecodeNormal(s, packedNormal, n);
+}
+
+// ---- Weights ------------------------------------------------------------------------------
+// cosVN = dot(-V, N) = cosine of the angle between the normal and the direction to the camera.
+// The article writes 2.8 * pow(1 + dot(V, N), 2) with V pointing into the surface: the same.
+SSLR_FN float sslrFresnelClassic(float cosVN) {
+  float x = 1.0f - sslrSaturate(cosVN);
+  return sslrSaturate(2.8f * x * x);
+}
+SSLR_FN float sslrFresnelSchlick(float f0, float cosVN) {
+  float x = 1.0f - sslrSaturate(cosVN);
+  float x2 = x * x;
+  return f0 + (1.0f - f0) * x2 * x2 * x;
+}
+// The article's error term: long reflections fade out.
+SSLR_FN float sslrErrorWeight(float L, float k) { return 1.0f - sslrSaturate(L * k); }
+
+// 1 inside, falling linearly to 0 over `width` (fraction of the screen) at each border.
+SSLR_FN float sslrEdgeFade(vec2 uv, float width) {
+  if (width <= 0.0f) return (uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f) ? 1.0f : 0.0f;
+  vec2 d = min(uv, 1.0f - uv) / width;
+  return sslrSaturate(min(d.x, d.y));
+}
+
+// Rays heading back towards the camera see the back of what the screen shows: fade them.
+SSLR_FN float sslrCameraFacingFade(vec3 vsR, vec3 vsV, float start, float end) {
+  float towardsCamera = dot(vsR, -vsV);
+  return 1.0f - smoothstep(start, max(end, start + 1e-4f), towardsCamera);
+}
+
+// Blur radius in pixels for a reflection of length L seen from a surface at view distance
+// `dist`: a cone of tan(half angle) = roughness^2 * coneScale spreads to L * tan at the hit,
+// which the camera sees at the mirror image's distance dist + L.
+SSLR_FN float sslrBlurRadiusPx(SslrProjection p, float heightPx, float dist, float L,
+                               float roughness, float coneScale) {
+  float spread = L * roughness * roughness * coneScale;
+  float imageDist = p.orthographic != 0 ? 1.0f : dist + L;
+  return spread / sslrPixelFootprint(p, heightPx, imageDist);
+}
+
+#ifdef __cplusplus
+}  // namespace sslr::shared
+#endif
+
+#endif  // SSLR_SHARED_H

@@ -1,0 +1,185 @@
+// sslr - Screen Space Local Reflections for OpenGL 4.5 deferred renderers (depth-only variant).
+//
+// Quick start (docs/integration.md has the full checklist and the input table):
+//   auto ctx = sslr::Context::create({width, height, eglGetProcAddress});   // once
+//   if (!ctx) log(ctx.error());
+//   sslr::FrameInputs in{colorTex, normalTex, depthTex, clipFromView};        // per frame
+//   if (auto st = ctx.value()->dispatch(in, sslr::Settings::preset(sslr::Preset::High)); !st)
+//     log(st.message());
+//   ctx.value()->composite(hostFramebuffer);   // adds the resolved reflection to what is there
+//
+// The library loads its own GL function table from the host's getProcAddress (no global gl*
+// symbols, no loader clash), owns only the objects it creates, and restores every piece of GL
+// state it touches (see docs/integration.md, "GL state").
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include <glm/glm.hpp>
+
+namespace sslr {
+
+using GLProc = void (*)();
+using GetProcAddress = GLProc (*)(const char* name);  // eglGetProcAddress, glfwGetProcAddress
+using GLName = std::uint32_t;                          // a GLuint texture / framebuffer name
+
+// ---- Results ---------------------------------------------------------------------------------
+class Status {
+ public:
+  Status() = default;
+  static Status error(std::string message) { return Status(std::move(message)); }
+  bool ok() const { return !failed_; }
+  explicit operator bool() const { return ok(); }
+  const std::string& message() const { return message_; }
+
+ private:
+  explicit Status(std::string message) : message_(std::move(message)), failed_(true) {}
+  std::string message_;
+  bool failed_ = false;
+};
+
+template <typename T>
+class Expected {
+ public:
+  Expected(T value) : value_(std::move(value)) {}
+  Expected(Status error) : error_(std::move(error)) {}
+  bool ok() const { return value_.has_value(); }
+  explicit operator bool() const { return ok(); }
+  T& value() { return *value_; }
+  const T& value() const { return *value_; }
+  const std::string& error() const { return error_.message(); }
+
+ private:
+  std::optional<T> value_;
+  Status error_;
+};
+
+// ---- Inputs ----------------------------------------------------------------------------------
+enum class DepthRange {
+  NegativeOneToOne,  // GL's default clip space: window depth = ndc z * 0.5 + 0.5
+  ZeroToOne,         // glClipControl(..., GL_ZERO_TO_ONE): window depth = ndc z
+};
+
+struct DepthConvention {
+  DepthRange range = DepthRange::ZeroToOne;
+  bool reversedZ = true;  // near plane at depth 1, background (clear value) 0
+  // Infinite far planes need no flag: they are a property of clipFromView.
+
+  static constexpr DepthConvention glDefault() { return {DepthRange::NegativeOneToOne, false}; }
+  static constexpr DepthConvention zeroToOne() { return {DepthRange::ZeroToOne, false}; }
+  static constexpr DepthConvention reversed() { return {DepthRange::ZeroToOne, true}; }
+};
+
+enum class NormalEncoding {
+  Octahedral,  // channels R,G (unorm or float in [0,1]) = octahedral view-space normal
+  XyzUnorm,    // channels R,G,B = view-space normal * 0.5 + 0.5 (the article's packing)
+};
+
+// Where the material bits live in the host's normal texture.
+struct SurfaceLayout {
+  NormalEncoding normals = NormalEncoding::Octahedral;
+  int roughnessChannel = 2;         // 0..3 of the normal texture, or -1: constantRoughness
+  int reflectanceChannel = 3;       // 0..3 (F0 in [0,1]), or -1: constantReflectance
+  float constantRoughness = 0.0f;
+  float constantReflectance = 1.0f;
+};
+
+struct FrameInputs {
+  GLName colorTexture = 0;   // lit colour (any float/unorm colour format), sampled bilinearly
+  GLName normalTexture = 0;  // packed view-space normal + material, see SurfaceLayout
+  GLName depthTexture = 0;   // the hardware depth buffer the G-buffer was rasterized with
+  glm::dmat4 clipFromView{1.0};  // the exact projection that rasterized the depth (jitter incl.)
+  DepthConvention depth{};
+  SurfaceLayout surface{};
+};
+
+// ---- Settings --------------------------------------------------------------------------------
+enum class FresnelMode {
+  Classic,  // the article: reflectance * saturate(2.8 (1 - cos)^2) * (1 - saturate(L * errorK))
+  Schlick,  // F0 + (1 - F0)(1 - cos)^5 with F0 = the pixel's reflectance
+};
+
+enum class Preset { Low, Medium, High, Ultra };
+
+struct Settings {
+  FresnelMode fresnel = FresnelMode::Classic;
+  int maxIterations = 16;            // adaptive-L iterations (each one depth fetch); article: 10
+  float convergenceEps = 0.002f;     // stop when |L_new - L| <= eps * L
+  float initialLengthPixels = 4.0f;  // first L, as pixels of footprint at the surface's depth
+  float errorK = 0.02f;              // the article's LDelmiter (Classic only): fade ~ L * k
+  float maxDistance = 1.0e30f;       // longer reflections are dropped (view units)
+  float thicknessRelative = 0.002f;  // hit tolerance: fraction of the hit's view distance ...
+  float thicknessPixels = 1.5f;      // ... plus pixel footprints, stretched by surface slope
+  float edgeFade = 0.03f;            // fade width at the screen border (fraction of screen)
+  float cameraFadeStart = 0.1f;      // dot(R, to-camera) where camera-facing rays begin to fade
+  float cameraFadeEnd = 0.5f;        // ... and where they are gone
+  float roughnessCutoff = 0.5f;      // rougher pixels are not traced
+  float minReflectance = 0.01f;      // pixels with reflectance <= this are not traced
+  bool blur = true;                  // run the roughness blur (else resolved = raw reflection)
+  float blurMaxRadiusPx = 8.0f;      // blur radius that alpha = 1 stands for
+  float blurConeScale = 1.0f;        // cone tan(half angle) = roughness^2 * scale
+  float blurDepthSigma = 0.02f;      // bilateral depth weight exp(-|dz| / (sigma z))
+  float blurNormalPower = 16.0f;     // bilateral normal weight max(0, n0.n1)^power
+  bool debugOutputs = false;         // also write hitTexture() and iterationsTexture()
+  bool collectStats = false;         // count tiles, traced pixels and depth fetches (stalls)
+
+  static Settings preset(Preset preset);
+};
+
+// Settings -> why they are invalid ("" when fine). dispatch() calls it too.
+std::string validate(const Settings& settings);
+
+// ---- Context ---------------------------------------------------------------------------------
+enum class LogLevel { Info, Warning, Error };
+using LogCallback = std::function<void(LogLevel, const std::string&)>;
+
+struct ContextDesc {
+  int width = 0;
+  int height = 0;
+  GetProcAddress getProcAddress = nullptr;
+  LogCallback log;  // optional: shader compile logs, warnings
+};
+
+struct FrameStats {  // filled when Settings::collectStats is set
+  std::uint32_t tiles = 0;          // classified tiles that were traced
+  std::uint32_t tracedPixels = 0;   // pixels that ran the tracer
+  std::uint32_t depthFetches = 0;   // depth texels read by the tracer (the GPU's real cost)
+};
+
+class Context {
+ public:
+  static Expected<std::unique_ptr<Context>> create(const ContextDesc& desc);
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  Status resize(int width, int height);
+  int width() const;
+  int height() const;
+
+  // Traces, blurs and resolves one frame. The inputs stay the host's; sizes must match.
+  Status dispatch(const FrameInputs& inputs, const Settings& settings);
+
+  // Adds the resolved reflection to the colour attachment(s) of `framebuffer` (0 = default)
+  // over the viewport (0, 0, width, height): final = existing colour + resolved.rgb.
+  Status composite(GLName framebuffer);
+
+  GLName reflectionTexture() const;  // RGBA16F: rgb = weighted reflection, a = blur weight
+  GLName resolvedTexture() const;    // RGBA16F: after the roughness blur (what composite adds)
+  GLName hitTexture() const;         // RGBA32F (debugOutputs): uvHit, confidence, L
+  GLName iterationsTexture() const;  // R32F (debugOutputs): adaptive-L iterations run
+  FrameStats lastStats() const;
+
+  struct Impl;
+
+ private:
+  explicit Context(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sslr

@@ -1,0 +1,95 @@
+// Private GL function table: loaded from the host's getProcAddress, so sslr defines no global
+// gl* symbols and never fights the host's loader (glad, epoxy, GLEW...). glcorearb.h is included
+// without GL_GLEXT_PROTOTYPES: it gives the types and PFN typedefs only.
+#pragma once
+
+#include <GL/glcorearb.h>
+
+#include <string>
+
+#include "sslr/sslr.hpp"
+
+namespace sslr::detail {
+
+// X(type, name): every GL 4.5 entry point sslr calls, and nothing else.
+#define SSLR_GL_FUNCTIONS(X)                                                     \
+  X(PFNGLGETERRORPROC, GetError)                                                 \
+  X(PFNGLGETINTEGERVPROC, GetIntegerv)                                           \
+  X(PFNGLGETINTEGERI_VPROC, GetIntegeri_v)                                       \
+  X(PFNGLGETINTEGER64I_VPROC, GetInteger64i_v)                                   \
+  X(PFNGLGETBOOLEANI_VPROC, GetBooleani_v)                                       \
+  X(PFNGLGETSTRINGPROC, GetString)                                               \
+  X(PFNGLISENABLEDPROC, IsEnabled)                                               \
+  X(PFNGLISENABLEDIPROC, IsEnabledi)                                             \
+  X(PFNGLENABLEPROC, Enable)                                                     \
+  X(PFNGLDISABLEPROC, Disable)                                                   \
+  X(PFNGLENABLEIPROC, Enablei)                                                   \
+  X(PFNGLDISABLEIPROC, Disablei)                                                 \
+  X(PFNGLGETBOOLEANVPROC, GetBooleanv)                                           \
+  X(PFNGLCOLORMASKIPROC, ColorMaski)                                             \
+  X(PFNGLDEPTHMASKPROC, DepthMask)                                               \
+  X(PFNGLBLENDFUNCSEPARATEIPROC, BlendFuncSeparatei)                             \
+  X(PFNGLBLENDEQUATIONSEPARATEIPROC, BlendEquationSeparatei)                     \
+  X(PFNGLVIEWPORTPROC, Viewport)                                                 \
+  X(PFNGLGETFLOATVPROC, GetFloatv)                                               \
+  X(PFNGLISTEXTUREPROC, IsTexture)                                               \
+  X(PFNGLISFRAMEBUFFERPROC, IsFramebuffer)                                       \
+  X(PFNGLCREATETEXTURESPROC, CreateTextures)                                     \
+  X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                     \
+  X(PFNGLTEXTURESTORAGE2DPROC, TextureStorage2D)                                 \
+  X(PFNGLGETTEXTUREPARAMETERIVPROC, GetTextureParameteriv)                       \
+  X(PFNGLGETTEXTURELEVELPARAMETERIVPROC, GetTextureLevelParameteriv)             \
+  X(PFNGLCLEARTEXIMAGEPROC, ClearTexImage)                                       \
+  X(PFNGLCOPYIMAGESUBDATAPROC, CopyImageSubData)                                 \
+  X(PFNGLBINDTEXTUREUNITPROC, BindTextureUnit)                                   \
+  X(PFNGLBINDTEXTUREPROC, BindTexture)                                           \
+  X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                                       \
+  X(PFNGLBINDIMAGETEXTUREPROC, BindImageTexture)                                 \
+  X(PFNGLCREATESAMPLERSPROC, CreateSamplers)                                     \
+  X(PFNGLDELETESAMPLERSPROC, DeleteSamplers)                                     \
+  X(PFNGLSAMPLERPARAMETERIPROC, SamplerParameteri)                               \
+  X(PFNGLBINDSAMPLERPROC, BindSampler)                                           \
+  X(PFNGLCREATEBUFFERSPROC, CreateBuffers)                                       \
+  X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                                       \
+  X(PFNGLNAMEDBUFFERSTORAGEPROC, NamedBufferStorage)                             \
+  X(PFNGLNAMEDBUFFERSUBDATAPROC, NamedBufferSubData)                             \
+  X(PFNGLGETNAMEDBUFFERSUBDATAPROC, GetNamedBufferSubData)                       \
+  X(PFNGLBINDBUFFERPROC, BindBuffer)                                             \
+  X(PFNGLBINDBUFFERRANGEPROC, BindBufferRange)                                   \
+  X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                                     \
+  X(PFNGLCREATEVERTEXARRAYSPROC, CreateVertexArrays)                             \
+  X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                             \
+  X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                                   \
+  X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                                   \
+  X(PFNGLCHECKNAMEDFRAMEBUFFERSTATUSPROC, CheckNamedFramebufferStatus)           \
+  X(PFNGLCREATESHADERPROC, CreateShader)                                         \
+  X(PFNGLDELETESHADERPROC, DeleteShader)                                         \
+  X(PFNGLSHADERSOURCEPROC, ShaderSource)                                         \
+  X(PFNGLCOMPILESHADERPROC, CompileShader)                                       \
+  X(PFNGLGETSHADERIVPROC, GetShaderiv)                                           \
+  X(PFNGLGETSHADERINFOLOGPROC, GetShaderInfoLog)                                 \
+  X(PFNGLCREATEPROGRAMPROC, CreateProgram)                                       \
+  X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                                       \
+  X(PFNGLATTACHSHADERPROC, AttachShader)                                         \
+  X(PFNGLLINKPROGRAMPROC, LinkProgram)                                           \
+  X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                                         \
+  X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)                               \
+  X(PFNGLUSEPROGRAMPROC, UseProgram)                                             \
+  X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                                   \
+  X(PFNGLDISPATCHCOMPUTEINDIRECTPROC, DispatchComputeIndirect)                   \
+  X(PFNGLDRAWARRAYSINDIRECTPROC, DrawArraysIndirect)                             \
+  X(PFNGLMEMORYBARRIERPROC, MemoryBarrier)                                       \
+  X(PFNGLOBJECTLABELPROC, ObjectLabel)                                           \
+  X(PFNGLPUSHDEBUGGROUPPROC, PushDebugGroup)                                     \
+  X(PFNGLPOPDEBUGGROUPPROC, PopDebugGroup)
+
+struct Gl {
+#define SSLR_GL_DECLARE(type, name) type name = nullptr;
+  SSLR_GL_FUNCTIONS(SSLR_GL_DECLARE)
+#undef SSLR_GL_DECLARE
+
+  // Loads every entry point; on failure returns the names that could not be found.
+  Status load(GetProcAddress getProcAddress);
+};
+
+}  // namespace sslr::detail

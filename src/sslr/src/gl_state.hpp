@@ -1,0 +1,54 @@
+// Saves the GL state an sslr call touches and restores it on destruction (RAII), so the host's
+// state is exactly as it left it. The list is the contract documented in docs/integration.md.
+#pragma once
+
+#include <array>
+
+#include "gl_functions.hpp"
+
+namespace sslr::detail {
+
+// Texture units, image units and buffer binding points sslr binds during a call.
+inline constexpr int kTextureUnits = 5;  // 0 depth, 1 normal, 2 colour, 3 blur input, 4 resolved
+inline constexpr int kImageUnits = 3;    // 0 reflection / blur output, 1 hit, 2 iterations
+inline constexpr int kSsboBindings = 2;  // 0 tile list, 1 stats
+inline constexpr int kUboBindings = 1;   // 0 frame constants
+
+class StateGuard {
+ public:
+  // `forDraw` additionally saves what the composite draw touches.
+  StateGuard(const Gl& gl, bool forDraw);
+  ~StateGuard();
+  StateGuard(const StateGuard&) = delete;
+  StateGuard& operator=(const StateGuard&) = delete;
+
+ private:
+  struct IndexedBuffer {
+    GLint name = 0;
+    GLint64 start = 0;
+    GLint64 size = 0;
+  };
+  struct ImageBinding {
+    GLint name = 0, level = 0, layered = 0, layer = 0, access = GL_READ_ONLY, format = GL_R8;
+  };
+  const Gl& gl_;
+  bool forDraw_;
+  GLint program_ = 0, activeTexture_ = GL_TEXTURE0;
+  std::array<GLint, kTextureUnits> textures_{}, samplers_{};
+  std::array<ImageBinding, kImageUnits> images_{};
+  std::array<IndexedBuffer, kSsboBindings> ssbos_{};
+  std::array<IndexedBuffer, kUboBindings> ubos_{};
+  GLint genericSsbo_ = 0, genericUbo_ = 0, dispatchIndirect_ = 0;
+  // Draw state (composite only).
+  GLint drawIndirect_ = 0, vao_ = 0, drawFramebuffer_ = 0;
+  GLint viewport_[4] = {};
+  GLboolean depthTest_ = 0, stencilTest_ = 0, cullFace_ = 0, scissorTest_ = 0, discard_ = 0;
+  GLboolean blend0_ = 0;
+  GLint blendSrcRgb_ = 0, blendDstRgb_ = 0, blendSrcAlpha_ = 0, blendDstAlpha_ = 0;
+  GLint blendEqRgb_ = 0, blendEqAlpha_ = 0;
+  static constexpr int kMaxMasks = 8;
+  int drawBuffers_ = 0;
+  std::array<std::array<GLboolean, 4>, kMaxMasks> colorMasks_{};
+};
+
+}  // namespace sslr::detail

@@ -1,0 +1,71 @@
+#include "projection.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace sslr::detail {
+
+namespace {
+std::string entry(int col, int row, double v) {
+  std::ostringstream s;
+  s << "clipFromView[" << col << "][" << row << "] = " << v;
+  return s.str();
+}
+}  // namespace
+
+Expected<shared::SslrProjection> reduceProjection(const glm::dmat4& m, const DepthConvention& depth) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r]))
+        return Status::error("sslr: projection is not finite: " + entry(c, r, m[c][r]));
+
+  const bool ortho = m[2][3] == 0.0 && m[3][3] == 1.0;
+  const bool persp = m[2][3] == -1.0 && m[3][3] == 0.0;
+  if (!ortho && !persp)
+    return Status::error(
+        "sslr: clipFromView is neither a GL perspective (column 2 row 3 = -1, [3][3] = 0) nor an "
+        "orthographic ([2][3] = 0, [3][3] = 1) projection: " + entry(2, 3, m[2][3]) + ", " +
+        entry(3, 3, m[3][3]));
+  // Entries that must be zero for the reduced form (no skew, no rotation, no oblique clipping).
+  const int zeroEntries[][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 0}, {1, 2}, {1, 3}, {2, 0}, {2, 1},
+                                {3, 0}, {3, 1}, {3, 3}};
+  for (const auto& ij : zeroEntries) {
+    const int c = ij[0], r = ij[1];
+    const bool offsetSlot = (c == 2 && r < 2 && persp) || (c == 3 && r < 2 && ortho);
+    const bool wSlot = (c == 3 && r == 3);
+    if (offsetSlot || wSlot) continue;  // off-centre / jitter offsets, or w handled above
+    if (m[c][r] != 0.0)
+      return Status::error("sslr: clipFromView has skew or oblique terms sslr does not support: " +
+                           entry(c, r, m[c][r]));
+  }
+  const double xScale = m[0][0], yScale = m[1][1], zScale = m[2][2], zOffset = m[3][2];
+  if (xScale == 0.0 || yScale == 0.0)
+    return Status::error("sslr: clipFromView is singular (x or y scale is 0)");
+  // Depth direction: d(ndc z)/d(view distance). Perspective: ndcZ = -zScale + zOffset / dist,
+  // so it falls with distance iff zOffset > 0. Orthographic: ndcZ = -zScale * dist + zOffset.
+  double slope = persp ? -zOffset : -zScale;
+  if (slope == 0.0 || (ortho && zScale == 0.0))
+    return Status::error("sslr: clipFromView maps every distance to the same depth (singular: "
+                         "near == far or zero depth scale)");
+  const bool reversedMatrix = slope < 0.0;
+  if (reversedMatrix != depth.reversedZ)
+    return Status::error(std::string("sslr: depth convention mismatch: DepthConvention::reversedZ = ") +
+                         (depth.reversedZ ? "true" : "false") + " but clipFromView maps nearer points to " +
+                         (reversedMatrix ? "larger" : "smaller") + " depth");
+
+  shared::SslrProjection p{};
+  p.xScale = static_cast<float>(xScale);
+  p.yScale = static_cast<float>(yScale);
+  p.xOffset = static_cast<float>(persp ? m[2][0] : m[3][0]);
+  p.yOffset = static_cast<float>(persp ? m[2][1] : m[3][1]);
+  p.zScale = static_cast<float>(zScale);
+  p.zOffset = static_cast<float>(zOffset);
+  p.orthographic = ortho ? 1 : 0;
+  p.ndcZeroToOne = depth.range == DepthRange::ZeroToOne ? 1 : 0;
+  if (!std::isfinite(p.xScale) || !std::isfinite(p.yScale) || !std::isfinite(p.zScale) ||
+      !std::isfinite(p.zOffset) || p.xScale == 0.0f || p.yScale == 0.0f)
+    return Status::error("sslr: clipFromView entries overflow or underflow single precision");
+  return p;
+}
+
+}  // namespace sslr::detail
