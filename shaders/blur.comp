@@ -2,10 +2,10 @@
 // the reflection over listed tiles. The radius comes from the centre pixel's alpha (the cone
 // footprint written by the trace); neighbours count only if they are traced pixels on a similar
 // surface (depth and normal weights), so reflections do not bleed across edges.
-layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
-
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
+
+layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 
 layout(binding = 3) uniform sampler2D uBlurInput;
 layout(binding = 0, rgba16f) uniform writeonly image2D uBlurOutput;

@@ -1,10 +1,10 @@
 // Pass 1: tile classification. One work group per 8x8 tile: a tile with at least one pixel that
 // needs tracing is appended to the tile list; all later passes run over listed tiles only, so a
 // frame without reflective pixels costs this one cheap pass.
-layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
-
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
+
+layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 
 shared uint sAnyTraced;
 

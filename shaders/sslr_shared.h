@@ -140,6 +140,21 @@ SSLR_FRAME_BLOCK_BEGIN
 SSLR_FRAME_BLOCK_END
 
 #ifdef __cplusplus
+// The reduced form of a projection matrix (C++ only; the library validates the matrix first,
+// see src/sslr/src/projection.cpp).
+inline SslrProjection sslrProjectionFromMatrix(const glm::dmat4& clipFromView, bool ndcZeroToOne) {
+  const bool ortho = clipFromView[3][3] == 1.0 && clipFromView[2][3] == 0.0;
+  SslrProjection p{};
+  p.xScale = static_cast<float>(clipFromView[0][0]);
+  p.yScale = static_cast<float>(clipFromView[1][1]);
+  p.xOffset = static_cast<float>(ortho ? clipFromView[3][0] : clipFromView[2][0]);
+  p.yOffset = static_cast<float>(ortho ? clipFromView[3][1] : clipFromView[2][1]);
+  p.zScale = static_cast<float>(clipFromView[2][2]);
+  p.zOffset = static_cast<float>(clipFromView[3][2]);
+  p.orthographic = ortho ? 1 : 0;
+  p.ndcZeroToOne = ndcZeroToOne ? 1 : 0;
+  return p;
+}
 static_assert(sizeof(SslrProjection) == 32, "std140 mirror");
 static_assert(sizeof(SslrSurface) == 32, "std140 mirror");
 static_assert(sizeof(SslrTraceParams) == 80, "std140 mirror");
@@ -241,15 +256,15 @@ SSLR_FN vec3 sslrOctDecode(vec2 e01) {
   return normalize(n);
 }
 
-// Decodes the host's packed normal. Returns false for a normal that cannot be trusted (zero,
+// Decodes the host's texel normal. Returns false for a normal that cannot be trusted (zero,
 // NaN/Inf, or far from unit length for the xyz packing): such pixels are not traced.
-SSLR_FN bool sslrDecodeNormal(SslrSurface s, vec4 packed, SSLR_OUT(vec3) vsNormal) {
+SSLR_FN bool sslrDecodeNormal(SslrSurface s, vec4 texel, SSLR_OUT(vec3) vsNormal) {
   vec3 n;
   if (s.normalEncoding == SSLR_NORMALS_OCTAHEDRAL) {
-    vec2 e = clamp(vec2(packed.x, packed.y), vec2(0.0f), vec2(1.0f));
+    vec2 e = clamp(vec2(texel.x, texel.y), vec2(0.0f), vec2(1.0f));
     n = sslrOctDecode(e);
   } else {
-    n = vec3(packed.x, packed.y, packed.z) * 2.0f - 1.0f;
+    n = vec3(texel.x, texel.y, texel.z) * 2.0f - 1.0f;
     float len2 = dot(n, n);
     // 8-bit packing of a unit vector keeps |n| within ~1.5%; zero or garbage fails this.
     if (!(len2 > 0.8f && len2 < 1.2f)) {
@@ -266,11 +281,11 @@ SSLR_FN bool sslrDecodeNormal(SslrSurface s, vec4 packed, SSLR_OUT(vec3) vsNorma
 SSLR_FN float sslrChannel(vec4 v, int channel) {
   return channel == 0 ? v.x : (channel == 1 ? v.y : (channel == 2 ? v.z : v.w));
 }
-SSLR_FN float sslrRoughness(SslrSurface s, vec4 packed) {
-  return s.roughnessChannel < 0 ? s.constantRoughness : sslrChannel(packed, s.roughnessChannel);
+SSLR_FN float sslrRoughness(SslrSurface s, vec4 texel) {
+  return s.roughnessChannel < 0 ? s.constantRoughness : sslrChannel(texel, s.roughnessChannel);
 }
-SSLR_FN float sslrReflectance(SslrSurface s, vec4 packed) {
-  return s.reflectanceChannel < 0 ? s.constantReflectance : sslrChannel(packed, s.reflectanceChannel);
+SSLR_FN float sslrReflectance(SslrSurface s, vec4 texel) {
+  return s.reflectanceChannel < 0 ? s.constantReflectance : sslrChannel(texel, s.reflectanceChannel);
 }
 
 // The per-pixel test shared by classification, tracing and the blur's neighbour test: geometry

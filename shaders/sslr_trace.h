@@ -2,7 +2,7 @@
 //
 // Before including this file the includer defines two loaders over its G-buffer:
 //   float sslrLoadDepth(ivec2 px);   // raw window depth at pixel px
-//   vec4  sslrLoadNormal(ivec2 px);  // the packed normal/material texel at px
+//   vec4  sslrLoadNormal(ivec2 px);  // the texel normal/material texel at px
 // The GLSL pass reads textures (and counts fetches); the C++ tests read arrays.
 #ifndef SSLR_TRACE_H
 #define SSLR_TRACE_H

@@ -1,9 +1,9 @@
 // Pass 2: the adaptive-L trace over listed tiles. Writes the reflection (rgb = hit colour x
 // weights, a = blur weight) and, with SSLR_DEBUG_OUTPUTS, the hit and iteration images.
-layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
-
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
+
+layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 
 layout(binding = 0, rgba16f) uniform writeonly image2D uReflection;
 #ifdef SSLR_DEBUG_OUTPUTS

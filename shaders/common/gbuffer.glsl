@@ -3,7 +3,7 @@
 #include "sslr_shared.h"
 
 layout(binding = 0) uniform sampler2D uDepth;   // raw window depth (nearest)
-layout(binding = 1) uniform sampler2D uNormal;  // packed normal + material (nearest)
+layout(binding = 1) uniform sampler2D uNormal;  // texel normal + material (nearest)
 layout(binding = 2) uniform sampler2D uColor;   // lit colour (bilinear, clamped)
 
 vec2 sslrSizePx() { return vec2(frame.surface.width, frame.surface.height); }

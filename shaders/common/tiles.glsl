@@ -16,6 +16,6 @@ layout(std430, binding = SSLR_BINDING_TILE_SSBO) buffer SslrTiles {
 } tiles;
 
 ivec2 sslrTileOrigin(uint index) {
-  uint packed = tiles.tileCoords[index];
-  return ivec2(int(packed & 0xffffu), int(packed >> 16)) * SSLR_TILE_SIZE;
+  uint texel = tiles.tileCoords[index];
+  return ivec2(int(texel & 0xffffu), int(texel >> 16)) * SSLR_TILE_SIZE;
 }

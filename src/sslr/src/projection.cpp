@@ -53,15 +53,8 @@ Expected<shared::SslrProjection> reduceProjection(const glm::dmat4& m, const Dep
                          (depth.reversedZ ? "true" : "false") + " but clipFromView maps nearer points to " +
                          (reversedMatrix ? "larger" : "smaller") + " depth");
 
-  shared::SslrProjection p{};
-  p.xScale = static_cast<float>(xScale);
-  p.yScale = static_cast<float>(yScale);
-  p.xOffset = static_cast<float>(persp ? m[2][0] : m[3][0]);
-  p.yOffset = static_cast<float>(persp ? m[2][1] : m[3][1]);
-  p.zScale = static_cast<float>(zScale);
-  p.zOffset = static_cast<float>(zOffset);
-  p.orthographic = ortho ? 1 : 0;
-  p.ndcZeroToOne = depth.range == DepthRange::ZeroToOne ? 1 : 0;
+  const shared::SslrProjection p =
+      shared::sslrProjectionFromMatrix(m, depth.range == DepthRange::ZeroToOne);
   if (!std::isfinite(p.xScale) || !std::isfinite(p.yScale) || !std::isfinite(p.zScale) ||
       !std::isfinite(p.zOffset) || p.xScale == 0.0f || p.yScale == 0.0f)
     return Status::error("sslr: clipFromView entries overflow or underflow single precision");

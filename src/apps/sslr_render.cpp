@@ -1,0 +1,240 @@
+// sslr-render: headless render of a scene with Screen Space Local Reflections.
+//   sslr-render [--scene NAME|FILE] [--size WxH] [--out DIR] [--dump] ...
+// Exit codes: 0 success, 1 rendering/GL failure, 2 bad command line or input file.
+#include <cxxopts.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "sslr_host/egl_context.hpp"
+#include "sslr_host/frame_renderer.hpp"
+#include "sslr_host/gbuffer.hpp"
+#include "sslr_host/image_io.hpp"
+#include "sslr_host/scene.hpp"
+
+namespace fs = std::filesystem;
+using namespace sslr;
+using namespace sslr::host;
+
+namespace {
+
+constexpr int kExitFailure = 1;
+constexpr int kExitUsage = 2;
+
+struct UsageError {
+  std::string message;
+};
+
+glm::dvec3 parseVec3(const std::string& option, const std::string& text) {
+  glm::dvec3 v;
+  char c1 = 0, c2 = 0;
+  std::istringstream in(text);
+  if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !in.eof() ||
+      !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+    throw UsageError{"--" + option + " expects three finite numbers x,y,z (got '" + text + "')"};
+  return v;
+}
+
+double parsePositive(const std::string& option, const std::string& text) {
+  std::istringstream in(text);
+  double v = 0.0;
+  if (!(in >> v) || !in.eof() || !(v > 0.0) || !std::isfinite(v))
+    throw UsageError{"--" + option + " expects a positive number (got '" + text + "')"};
+  return v;
+}
+
+void parseSize(const std::string& text, int& w, int& h) {
+  std::istringstream in(text);
+  char x = 0;
+  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !in.eof() || w < 1 || h < 1 || w > 16384 || h > 16384)
+    throw UsageError{"--size expects WxH with 1..16384 each (got '" + text + "')"};
+}
+
+Settings parseSettings(const cxxopts::ParseResult& args) {
+  const std::string preset = args["preset"].as<std::string>();
+  Settings s;
+  if (preset == "low") s = Settings::preset(Preset::Low);
+  else if (preset == "medium") s = Settings::preset(Preset::Medium);
+  else if (preset == "high") s = Settings::preset(Preset::High);
+  else if (preset == "ultra") s = Settings::preset(Preset::Ultra);
+  else throw UsageError{"--preset must be low, medium, high or ultra (got '" + preset + "')"};
+  const std::string fresnel = args["fresnel"].as<std::string>();
+  if (fresnel == "classic") s.fresnel = FresnelMode::Classic;
+  else if (fresnel == "schlick") s.fresnel = FresnelMode::Schlick;
+  else throw UsageError{"--fresnel must be classic or schlick (got '" + fresnel + "')"};
+  if (args.count("no-blur")) s.blur = false;
+  if (args.count("iterations")) s.maxIterations = args["iterations"].as<int>();
+  if (std::string why = validate(s); !why.empty()) throw UsageError{why};
+  return s;
+}
+
+int run(int argc, char** argv) {
+  cxxopts::Options options("sslr-render", "Headless render with Screen Space Local Reflections (depth-only SSLR).");
+  std::string sceneHelp = "built-in scene (";
+  for (const auto& n : builtinSceneNames()) sceneHelp += n + (n == builtinSceneNames().back() ? "" : ", ");
+  sceneHelp += ") or a .gltf/.glb file";
+  options.add_options()
+      ("scene", sceneHelp, cxxopts::value<std::string>()->default_value("mirror-room"))
+      ("size", "output size WxH", cxxopts::value<std::string>()->default_value("960x540"))
+      ("out", "output directory", cxxopts::value<std::string>()->default_value("out"))
+      ("dump", "also write every buffer as EXR (color, normal, depth, position, hit, reflection, iterations, resolved)")
+      ("method", "tracer: adaptive-l, or none (no reflections)", cxxopts::value<std::string>()->default_value("adaptive-l"))
+      ("preset", "quality preset: low, medium, high, ultra", cxxopts::value<std::string>()->default_value("high"))
+      ("fresnel", "weighting: classic (the article) or schlick", cxxopts::value<std::string>()->default_value("classic"))
+      ("iterations", "override the preset's adaptive-L iteration cap", cxxopts::value<int>())
+      ("no-blur", "skip the roughness blur")
+      ("depth", "depth convention: reversed, reversed-infinite, zero-to-one, gl-default",
+       cxxopts::value<std::string>()->default_value("reversed"))
+      ("normals", "normal packing: octahedral (RGBA16) or xyz (RGBA8, the article's)",
+       cxxopts::value<std::string>()->default_value("octahedral"))
+      ("eye", "camera position x,y,z", cxxopts::value<std::string>())
+      ("target", "camera target x,y,z", cxxopts::value<std::string>())
+      ("up", "camera up x,y,z", cxxopts::value<std::string>())
+      ("fovy", "vertical field of view, degrees", cxxopts::value<std::string>())
+      ("near", "near plane distance", cxxopts::value<std::string>())
+      ("far", "far plane distance", cxxopts::value<std::string>())
+      ("ortho", "orthographic camera with this view height", cxxopts::value<std::string>())
+      ("device", "EGL device: auto, hardware, software, surfaceless or an index (default $SSLR_EGL_DEVICE or auto)",
+       cxxopts::value<std::string>()->default_value(""))
+      ("stats", "print traced pixels and depth fetches")
+      ("h,help", "show this help");
+  cxxopts::ParseResult args;
+  try {
+    args = options.parse(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "sslr-render: " << e.what() << "\nTry 'sslr-render --help'.\n";
+    return kExitUsage;
+  }
+  if (args.count("help")) {
+    std::cout << options.help() << "\n"
+              << "Writes DIR/final.png; --dump adds DIR/{color,normal,depth,position,hit,reflection,\n"
+              << "iterations,resolved}.exr. Exit codes: 0 ok, 1 rendering failed, 2 bad arguments or input.\n";
+    return 0;
+  }
+  if (!args.unmatched().empty()) {
+    std::cerr << "sslr-render: unexpected argument '" << args.unmatched().front() << "'\n";
+    return kExitUsage;
+  }
+
+  GBufferOptions gopt;
+  Settings settings;
+  bool reflections = true;
+  Camera camera;
+  Scene scene;
+  const fs::path outDir = args["out"].as<std::string>();
+  const bool dump = args.count("dump") > 0;
+  try {
+    parseSize(args["size"].as<std::string>(), gopt.width, gopt.height);
+    if (!parseDepthMode(args["depth"].as<std::string>(), gopt.depth))
+      throw UsageError{"--depth must be reversed, reversed-infinite, zero-to-one or gl-default (got '" +
+                       args["depth"].as<std::string>() + "')"};
+    const std::string normals = args["normals"].as<std::string>();
+    if (normals == "octahedral") gopt.normals = NormalEncoding::Octahedral;
+    else if (normals == "xyz") gopt.normals = NormalEncoding::XyzUnorm;
+    else throw UsageError{"--normals must be octahedral or xyz (got '" + normals + "')"};
+    const std::string method = args["method"].as<std::string>();
+    if (method == "none") reflections = false;
+    else if (method != "adaptive-l") throw UsageError{"--method must be adaptive-l or none (got '" + method + "')"};
+    settings = parseSettings(args);
+    settings.debugOutputs = dump;
+    settings.collectStats = args.count("stats") > 0;
+
+    auto loaded = loadScene(args["scene"].as<std::string>());
+    if (!loaded) throw UsageError{loaded.error()};
+    scene = std::move(loaded.value());
+    for (const auto& w : scene.warnings) std::cerr << "sslr-render: warning: " << w << "\n";
+    camera = scene.camera ? *scene.camera : scene.defaultCamera();
+    if (args.count("eye")) camera.eye = parseVec3("eye", args["eye"].as<std::string>());
+    if (args.count("target")) camera.target = parseVec3("target", args["target"].as<std::string>());
+    if (args.count("up")) camera.up = parseVec3("up", args["up"].as<std::string>());
+    if (args.count("fovy")) camera.fovyDegrees = parsePositive("fovy", args["fovy"].as<std::string>());
+    if (args.count("near")) camera.nearPlane = parsePositive("near", args["near"].as<std::string>());
+    if (args.count("far")) camera.farPlane = parsePositive("far", args["far"].as<std::string>());
+    if (args.count("ortho")) {
+      camera.orthographic = true;
+      camera.orthoHeight = parsePositive("ortho", args["ortho"].as<std::string>());
+    }
+    if (std::string why = camera.validate(); !why.empty()) throw UsageError{"camera: " + why};
+  } catch (const UsageError& e) {
+    std::cerr << "sslr-render: " << e.message << "\n";
+    return kExitUsage;
+  } catch (const std::exception& e) {  // cxxopts type errors (e.g. --iterations abc)
+    std::cerr << "sslr-render: " << e.what() << "\n";
+    return kExitUsage;
+  }
+
+  EglOptions eopt;
+  eopt.device = args["device"].as<std::string>();
+  auto gl = HeadlessContext::create(eopt);
+  if (!gl) {
+    std::cerr << "sslr-render: cannot create a headless OpenGL 4.5 context: " << gl.error() << "\n";
+    return kExitFailure;
+  }
+  auto renderer = FrameRenderer::create(gopt);
+  if (!renderer) {
+    std::cerr << "sslr-render: " << renderer.error() << "\n";
+    return kExitFailure;
+  }
+  FrameRenderer& r = *renderer.value();
+  GpuScene gpuScene(scene);
+  if (Status s = r.render(gpuScene, camera, reflections ? &settings : nullptr); !s) {
+    std::cerr << "sslr-render: " << s.message() << "\n";
+    return kExitFailure;
+  }
+  std::vector<std::pair<std::string, std::pair<Image, std::vector<std::string>>>> files;
+  files.push_back({"final.png", {r.readFinal(), {}}});
+  if (dump) {
+    GBuffer& g = r.gbuffer();
+    const Image depth = g.readDepth();
+    files.push_back({"color.exr", {g.readColor(), {"R", "G", "B"}}});
+    files.push_back({"normal.exr", {decodeNormals(g.readNormalPacked(), gopt.normals), {"R", "G", "B"}}});
+    files.push_back({"depth.exr", {depth, {"Z"}}});
+    files.push_back({"position.exr",
+                     {reconstructPositions(depth, g.clipFromView(), depthConvention(gopt.depth)), {"R", "G", "B", "A"}}});
+    if (reflections) {
+      files.push_back({"hit.exr", {r.readHit(), {"R", "G", "B", "A"}}});
+      files.push_back({"reflection.exr", {r.readReflection(), {"R", "G", "B", "A"}}});
+      files.push_back({"iterations.exr", {r.readIterations(), {"Y"}}});
+      files.push_back({"resolved.exr", {r.readResolved(), {"R", "G", "B", "A"}}});
+    }
+  }
+  if (gl.value()->glErrorCount() > 0) {
+    std::cerr << "sslr-render: " << gl.value()->glErrorCount() << " GL error(s) were reported; no output written\n";
+    return kExitFailure;
+  }
+  std::error_code ec;
+  fs::create_directories(outDir, ec);
+  if (ec) {
+    std::cerr << "sslr-render: cannot create output directory " << outDir << ": " << ec.message() << "\n";
+    return kExitFailure;
+  }
+  for (const auto& [name, image] : files) {
+    if (Status s = writeImage((outDir / name).string(), image.first, image.second); !s) {
+      std::cerr << "sslr-render: " << s.message() << "\n";
+      return kExitFailure;
+    }
+  }
+  std::cout << "sslr-render: " << scene.name << " " << gopt.width << "x" << gopt.height << " ("
+            << toString(gopt.depth) << " depth, " << scene.triangleCount() << " triangles) -> "
+            << (outDir / "final.png").string() << (dump ? " + buffers" : "") << "\n";
+  if (settings.collectStats && reflections) {
+    const FrameStats st = r.sslr().lastStats();
+    std::cout << "  tiles " << st.tiles << ", traced pixels " << st.tracedPixels << ", depth fetches "
+              << st.depthFetches << " (" << (st.tracedPixels ? double(st.depthFetches) / st.tracedPixels : 0.0)
+              << " per traced pixel)\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "sslr-render: unexpected error: " << e.what() << "\n";
+    return kExitFailure;
+  }
+}

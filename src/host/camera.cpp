@@ -1,0 +1,116 @@
+#include "sslr_host/camera.hpp"
+
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace sslr::host {
+
+const char* toString(DepthMode mode) {
+  switch (mode) {
+    case DepthMode::GlDefault: return "gl-default";
+    case DepthMode::ZeroToOne: return "zero-to-one";
+    case DepthMode::Reversed: return "reversed";
+    case DepthMode::ReversedInfinite: return "reversed-infinite";
+  }
+  return "?";
+}
+
+bool parseDepthMode(const std::string& text, DepthMode& mode) {
+  for (DepthMode m : {DepthMode::GlDefault, DepthMode::ZeroToOne, DepthMode::Reversed,
+                      DepthMode::ReversedInfinite})
+    if (text == toString(m)) {
+      mode = m;
+      return true;
+    }
+  return false;
+}
+
+DepthConvention depthConvention(DepthMode mode) {
+  switch (mode) {
+    case DepthMode::GlDefault: return DepthConvention::glDefault();
+    case DepthMode::ZeroToOne: return DepthConvention::zeroToOne();
+    case DepthMode::Reversed:
+    case DepthMode::ReversedInfinite: return DepthConvention::reversed();
+  }
+  return {};
+}
+
+glm::dmat4 Camera::viewFromWorld() const { return glm::lookAtRH(eye, target, up); }
+
+glm::dmat4 Camera::clipFromView(DepthMode mode, double aspect, glm::dvec2 offsetPx,
+                                glm::dvec2 sizePx) const {
+  const double n = nearPlane, f = farPlane;
+  glm::dmat4 p(0.0);
+  double xScale, yScale;
+  if (orthographic) {
+    yScale = 2.0 / orthoHeight;
+    xScale = yScale / aspect;
+    p[0][0] = xScale;
+    p[1][1] = yScale;
+    p[3][3] = 1.0;
+    switch (mode) {
+      case DepthMode::GlDefault:  // z_ndc = -2/(f-n) z - (f+n)/(f-n)
+        p[2][2] = -2.0 / (f - n);
+        p[3][2] = -(f + n) / (f - n);
+        break;
+      case DepthMode::ZeroToOne:  // z_ndc = -z/(f-n) - n/(f-n)
+        p[2][2] = -1.0 / (f - n);
+        p[3][2] = -n / (f - n);
+        break;
+      case DepthMode::Reversed:
+      case DepthMode::ReversedInfinite:  // z_ndc = z/(f-n) + f/(f-n)
+        p[2][2] = 1.0 / (f - n);
+        p[3][2] = f / (f - n);
+        break;
+    }
+    // Offsets (in ndc) go to the translation column for orthographic projections.
+    p[3][0] = 2.0 * offsetPx.x / sizePx.x;
+    p[3][1] = 2.0 * offsetPx.y / sizePx.y;
+    return p;
+  }
+  yScale = 1.0 / std::tan(glm::radians(fovyDegrees) * 0.5);
+  xScale = yScale / aspect;
+  p[0][0] = xScale;
+  p[1][1] = yScale;
+  p[2][3] = -1.0;
+  switch (mode) {
+    case DepthMode::GlDefault:
+      p[2][2] = -(f + n) / (f - n);
+      p[3][2] = -2.0 * f * n / (f - n);
+      break;
+    case DepthMode::ZeroToOne:
+      p[2][2] = -f / (f - n);
+      p[3][2] = -f * n / (f - n);
+      break;
+    case DepthMode::Reversed:
+      p[2][2] = n / (f - n);
+      p[3][2] = f * n / (f - n);
+      break;
+    case DepthMode::ReversedInfinite:
+      p[2][2] = 0.0;
+      p[3][2] = n;
+      break;
+  }
+  // A pixel offset shifts clip x by offset * 2/size * w, with w = -z: it goes to column 2.
+  p[2][0] = -2.0 * offsetPx.x / sizePx.x;
+  p[2][1] = -2.0 * offsetPx.y / sizePx.y;
+  return p;
+}
+
+std::string Camera::validate() const {
+  auto finite3 = [](glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+  if (!finite3(eye) || !finite3(target) || !finite3(up)) return "camera eye/target/up must be finite";
+  if (glm::length(target - eye) <= 0.0) return "camera eye and target coincide";
+  if (glm::length(glm::cross(glm::normalize(target - eye), up)) < 1e-9)
+    return "camera up is parallel to the view direction (or zero)";
+  if (!(nearPlane > 0.0)) return "near plane must be > 0";
+  if (!(farPlane > nearPlane) || !std::isfinite(farPlane)) return "far plane must be finite and > near";
+  if (orthographic) {
+    if (!(orthoHeight > 0.0) || !std::isfinite(orthoHeight)) return "orthographic height must be > 0";
+  } else if (!(fovyDegrees > 0.0 && fovyDegrees < 180.0)) {
+    return "vertical field of view must be in (0, 180) degrees";
+  }
+  return "";
+}
+
+}  // namespace sslr::host

@@ -1,0 +1,59 @@
+#include "sslr_host/frame_renderer.hpp"
+
+#include "sslr_host/egl_context.hpp"
+
+namespace sslr::host {
+
+Expected<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const GBufferOptions& options) {
+  auto gbuffer = GBuffer::create(options);
+  if (!gbuffer) return Status::error(gbuffer.error());
+  auto r = std::unique_ptr<FrameRenderer>(new FrameRenderer());
+  r->gbuffer_ = std::move(gbuffer.value());
+  ContextDesc desc;
+  desc.width = options.width;
+  desc.height = options.height;
+  desc.getProcAddress = HeadlessContext::getProcAddress();
+  auto ctx = Context::create(desc);
+  if (!ctx) return Status::error(ctx.error());
+  r->sslr_ = std::move(ctx.value());
+  glCreateTextures(GL_TEXTURE_2D, 1, &r->final_);
+  glTextureStorage2D(r->final_, 1, GL_RGBA16F, options.width, options.height);
+  glObjectLabel(GL_TEXTURE, r->final_, -1, "host.final");
+  glCreateFramebuffers(1, &r->finalFbo_);
+  glNamedFramebufferTexture(r->finalFbo_, GL_COLOR_ATTACHMENT0, r->final_, 0);
+  return r;
+}
+
+FrameRenderer::~FrameRenderer() {
+  glDeleteFramebuffers(1, &finalFbo_);
+  glDeleteTextures(1, &final_);
+}
+
+Status FrameRenderer::render(const GpuScene& scene, const Camera& camera, const Settings* settings,
+                             glm::dvec2 jitterPx) {
+  if (Status s = gbuffer_->render(scene, camera, jitterPx); !s) return s;
+  // final = lit colour, then sslr adds the resolved reflection on top (additive composite).
+  const int w = gbuffer_->width(), h = gbuffer_->height();
+  glNamedFramebufferReadBuffer(gbuffer_->framebuffer(), GL_COLOR_ATTACHMENT0);
+  glBlitNamedFramebuffer(gbuffer_->framebuffer(), finalFbo_, 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT,
+                         GL_NEAREST);
+  if (settings == nullptr) return {};
+  if (Status s = sslr_->dispatch(gbuffer_->frameInputs(), *settings); !s) return s;
+  return sslr_->composite(finalFbo_);
+}
+
+Image FrameRenderer::readFinal() const { return readTexture(final_, gbuffer_->width(), gbuffer_->height(), 3); }
+Image FrameRenderer::readReflection() const {
+  return readTexture(sslr_->reflectionTexture(), gbuffer_->width(), gbuffer_->height(), 4);
+}
+Image FrameRenderer::readResolved() const {
+  return readTexture(sslr_->resolvedTexture(), gbuffer_->width(), gbuffer_->height(), 4);
+}
+Image FrameRenderer::readHit() const {
+  return readTexture(sslr_->hitTexture(), gbuffer_->width(), gbuffer_->height(), 4);
+}
+Image FrameRenderer::readIterations() const {
+  return readTexture(sslr_->iterationsTexture(), gbuffer_->width(), gbuffer_->height(), 1);
+}
+
+}  // namespace sslr::host

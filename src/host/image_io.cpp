@@ -1,0 +1,114 @@
+#include "sslr_host/image_io.hpp"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sslr::host {
+
+namespace {
+float linearToSrgb(float v) {
+  if (!(v > 0.0f)) return 0.0f;  // NaN and negatives -> 0
+  if (v >= 1.0f) return 1.0f;
+  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+}
+bool endsWith(const std::string& s, const std::string& suffix) {
+  if (s.size() < suffix.size()) return false;
+  for (size_t i = 0; i < suffix.size(); ++i)
+    if (std::tolower(s[s.size() - suffix.size() + i]) != suffix[i]) return false;
+  return true;
+}
+}  // namespace
+
+Status writeImage(const std::string& path, const Image& image, const std::vector<std::string>& channelNames) {
+  if (image.width <= 0 || image.height <= 0 || image.channels <= 0 ||
+      image.pixels.size() != static_cast<size_t>(image.width) * image.height * image.channels)
+    return Status::error(path + ": refusing to write an empty or inconsistent image");
+  const bool png = endsWith(path, ".png");
+  const bool exr = endsWith(path, ".exr");
+  if (!png && !exr) return Status::error(path + ": unsupported image extension (use .png or .exr)");
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) return Status::error(path + ": cannot create image writer: " + OIIO::geterror());
+  OIIO::ImageSpec spec(image.width, image.height, image.channels, png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
+  if (exr && channelNames.size() == static_cast<size_t>(image.channels)) spec.channelnames = channelNames;
+  if (exr) spec.attribute("compression", "zip");
+  if (!out->open(path, spec)) return Status::error(path + ": cannot open for writing: " + out->geterror());
+  const size_t row = static_cast<size_t>(image.width) * image.channels;
+  bool ok = true;
+  if (png) {
+    std::vector<unsigned char> bytes(row * image.height);
+    for (int y = 0; y < image.height; ++y)
+      for (size_t i = 0; i < row; ++i) {
+        float v = image.pixels[static_cast<size_t>(image.height - 1 - y) * row + i];
+        const bool alpha = image.channels == 4 && i % 4 == 3;
+        v = alpha ? std::clamp(std::isfinite(v) ? v : 0.0f, 0.0f, 1.0f) : linearToSrgb(v);
+        bytes[static_cast<size_t>(y) * row + i] = static_cast<unsigned char>(std::lround(v * 255.0f));
+      }
+    ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+  } else {
+    // Flip rows so the file's first row is the top of the picture (negative y stride).
+    const auto stride = static_cast<OIIO::stride_t>(row * sizeof(float));
+    ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data() + row * (image.height - 1),
+                          OIIO::AutoStride, -stride);
+  }
+  if (!ok) {
+    std::string err = out->geterror();
+    out->close();
+    return Status::error(path + ": write failed: " + err);
+  }
+  if (!out->close()) return Status::error(path + ": closing failed: " + out->geterror());
+  return {};
+}
+
+Expected<Image> readImage(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return Status::error(path + ": cannot open image: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  Image image;
+  image.width = spec.width;
+  image.height = spec.height;
+  image.channels = spec.nchannels;
+  const size_t row = static_cast<size_t>(image.width) * image.channels;
+  image.pixels.resize(row * image.height);
+  const auto stride = static_cast<OIIO::stride_t>(row * sizeof(float));
+  if (!in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT,
+                      image.pixels.data() + row * (image.height - 1), OIIO::AutoStride, -stride))
+    return Status::error(path + ": read failed: " + in->geterror());
+  return image;
+}
+
+ImageDiff compareImages(const Image& a, const Image& b, float threshold) {
+  ImageDiff d;
+  if (a.width != b.width || a.height != b.height || a.channels != b.channels) {
+    d.maxAbs = INFINITY;
+    d.pixelsOver = static_cast<size_t>(std::max(a.width * a.height, b.width * b.height));
+    return d;
+  }
+  double sum = 0.0;
+  for (size_t p = 0; p < static_cast<size_t>(a.width) * a.height; ++p) {
+    bool over = false;
+    for (int c = 0; c < a.channels; ++c) {
+      const double diff = std::abs(static_cast<double>(a.pixels[p * a.channels + c]) - b.pixels[p * a.channels + c]);
+      const double v = std::isfinite(diff) ? diff : INFINITY;
+      d.maxAbs = std::max(d.maxAbs, v);
+      sum += std::isfinite(v) ? v : 0.0;
+      over = over || !(v <= threshold);
+    }
+    d.pixelsOver += over ? 1 : 0;
+  }
+  d.meanAbs = sum / (static_cast<double>(a.width) * a.height * a.channels);
+  return d;
+}
+
+size_t countNonFinite(const Image& image) {
+  size_t n = 0;
+  for (size_t p = 0; p < static_cast<size_t>(image.width) * image.height; ++p) {
+    bool bad = false;
+    for (int c = 0; c < image.channels; ++c) bad = bad || !std::isfinite(image.pixels[p * image.channels + c]);
+    n += bad ? 1 : 0;
+  }
+  return n;
+}
+
+}  // namespace sslr::host

@@ -1,0 +1,37 @@
+// One frame of the tools' pipeline: G-buffer -> sslr dispatch -> composite into a final image.
+// This is the integration a host renderer does, written once for sslr-render, tests and bench.
+#pragma once
+
+#include <memory>
+
+#include "sslr/sslr.hpp"
+#include "sslr_host/gbuffer.hpp"
+
+namespace sslr::host {
+
+class FrameRenderer {
+ public:
+  static Expected<std::unique_ptr<FrameRenderer>> create(const GBufferOptions& options);
+  ~FrameRenderer();
+
+  // Rasterizes the G-buffer; with `settings` also traces and composites (else final = colour).
+  Status render(const GpuScene& scene, const Camera& camera, const Settings* settings,
+                glm::dvec2 jitterPx = {0.0, 0.0});
+
+  GBuffer& gbuffer() { return *gbuffer_; }
+  Context& sslr() { return *sslr_; }
+  GLuint finalTexture() const { return final_; }
+  Image readFinal() const;                  // RGB, linear
+  Image readReflection() const;             // RGBA16F as RGBA float
+  Image readResolved() const;
+  Image readHit() const;                    // needs Settings::debugOutputs
+  Image readIterations() const;             // needs Settings::debugOutputs
+
+ private:
+  FrameRenderer() = default;
+  std::unique_ptr<GBuffer> gbuffer_;
+  std::unique_ptr<Context> sslr_;
+  GLuint final_ = 0, finalFbo_ = 0;
+};
+
+}  // namespace sslr::host

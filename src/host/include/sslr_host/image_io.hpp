@@ -1,0 +1,37 @@
+// Images on the host side: float pixels in GL row order (row 0 = bottom), read and written
+// through OpenImageIO. Files are stored top row first, as every viewer expects.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sslr/sslr.hpp"
+
+namespace sslr::host {
+
+struct Image {
+  int width = 0, height = 0, channels = 0;
+  std::vector<float> pixels;  // width * height * channels, row 0 = bottom (GL)
+
+  float& at(int x, int y, int c) { return pixels[(static_cast<size_t>(y) * width + x) * channels + c]; }
+  float at(int x, int y, int c) const { return pixels[(static_cast<size_t>(y) * width + x) * channels + c]; }
+};
+
+// .exr: 32-bit float, values as they are. .png: 8-bit, linear -> sRGB, clamped to [0,1].
+// `channelNames` (optional) name the EXR channels, e.g. {"R","G","B","A"}.
+Status writeImage(const std::string& path, const Image& image,
+                  const std::vector<std::string>& channelNames = {});
+Expected<Image> readImage(const std::string& path);
+
+// Per-channel statistics of the difference of two images (same size and channels).
+struct ImageDiff {
+  double maxAbs = 0.0;
+  double meanAbs = 0.0;
+  size_t pixelsOver = 0;  // pixels with any channel above the threshold
+};
+ImageDiff compareImages(const Image& a, const Image& b, float threshold);
+
+// Pixels with any NaN or Inf channel.
+size_t countNonFinite(const Image& image);
+
+}  // namespace sslr::host

@@ -1,0 +1,75 @@
+// Scenes the tools render: triangle meshes with metallic-roughness materials, a camera, a light.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "sslr/sslr.hpp"
+#include "sslr_host/camera.hpp"
+
+namespace sslr::host {
+
+struct Texture {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgba8;  // sRGB base colour, rows in file order (glTF uv v=0 = first row)
+};
+
+struct Material {
+  glm::vec3 baseColor{0.8f};  // linear
+  float metallic = 0.0f;
+  float roughness = 0.8f;
+  int baseColorTexture = -1;  // index into Scene::textures
+  float emissive = 0.0f;      // adds baseColor * emissive to the lit colour
+};
+
+struct Mesh {
+  std::vector<glm::vec3> positions;  // model space
+  std::vector<glm::vec3> normals;    // model space, unit
+  std::vector<glm::vec2> uvs;        // may be empty
+  std::vector<std::uint32_t> indices;  // triangles
+  int material = 0;
+  glm::dmat4 worldFromModel{1.0};
+};
+
+struct Bounds {
+  glm::dvec3 min{1e300}, max{-1e300};
+  void add(glm::dvec3 p) { min = glm::min(min, p); max = glm::max(max, p); }
+  bool empty() const { return min.x > max.x; }
+};
+
+struct Scene {
+  std::string name;
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  std::vector<Texture> textures;
+  std::optional<Camera> camera;
+  glm::vec3 lightDirection = glm::normalize(glm::vec3(-0.4f, -1.0f, -0.3f));  // world, travel dir
+  glm::vec3 background{0.0f};  // colour of background pixels in the lit colour buffer
+  std::vector<std::string> warnings;  // non-fatal problems met while loading
+
+  Bounds worldBounds() const;
+  // A camera framing the bounds from the front (+z), slightly above: for scenes without one.
+  Camera defaultCamera() const;
+  size_t triangleCount() const;
+};
+
+// F0 the G-buffer stores for a material: 0.04 for dielectrics, base colour for metals.
+float reflectance(const Material& m);
+
+// Built-in procedural scenes: mirror-room (default), grazing-plane, thin-objects, sky-heavy,
+// and the analytic test scenes mirror-box, tilted-mirror.
+std::vector<std::string> builtinSceneNames();
+Expected<Scene> makeBuiltinScene(const std::string& name);
+
+// A scene by built-in name or glTF path (.gltf/.glb).
+Expected<Scene> loadScene(const std::string& nameOrPath);
+
+// Mesh building helpers (also used by tests).
+Mesh makeBox(glm::dvec3 center, glm::dvec3 size, int material, double rotationYDegrees = 0.0);
+Mesh makeQuad(glm::dvec3 center, glm::dvec2 size, glm::dvec3 normal, int material);
+
+}  // namespace sslr::host
