@@ -89,6 +89,14 @@ struct SslrProjection {
   float zOffset;
   int orthographic;  // 0 = perspective, 1 = orthographic
   int ndcZeroToOne;  // 1: window depth = ndc z (glClipControl ZERO_TO_ONE); 0: = ndc z * 0.5 + 0.5
+  // Perspective only: the window depth of the point at infinity, d_inf = hi + lo, split in double
+  // on the CPU (hi = 0 or 1). Reconstruction divides by (depth - hi) - lo instead of
+  // ndcZ + zScale: for a standard (non-reversed) depth buffer, depth - 1 is exact and the
+  // cancellation near the far plane no longer loses the bits float rounding of zScale costs.
+  float infDepthHi;
+  float infDepthLo;
+  float pad0;
+  float pad1;
 };
 
 struct SslrSurface {
@@ -153,14 +161,22 @@ inline SslrProjection sslrProjectionFromMatrix(const glm::dmat4& clipFromView, b
   p.zOffset = static_cast<float>(clipFromView[3][2]);
   p.orthographic = ortho ? 1 : 0;
   p.ndcZeroToOne = ndcZeroToOne ? 1 : 0;
+  if (!ortho) {
+    // ndcZ = -zScale at infinite distance; window depth of that point, split hi + lo.
+    const double ndcInf = -clipFromView[2][2];
+    const double depthInf = ndcZeroToOne ? ndcInf : ndcInf * 0.5 + 0.5;
+    const double hi = depthInf > 0.5 ? 1.0 : 0.0;
+    p.infDepthHi = static_cast<float>(hi);
+    p.infDepthLo = static_cast<float>(depthInf - hi);
+  }
   return p;
 }
-static_assert(sizeof(SslrProjection) == 32, "std140 mirror");
+static_assert(sizeof(SslrProjection) == 48, "std140 mirror");
 static_assert(sizeof(SslrSurface) == 32, "std140 mirror");
 static_assert(sizeof(SslrTraceParams) == 80, "std140 mirror");
-static_assert(offsetof(SslrFrame, surface) == 32, "std140 mirror");
-static_assert(offsetof(SslrFrame, trace) == 64, "std140 mirror");
-static_assert(sizeof(SslrFrame) == 144, "std140 mirror");
+static_assert(offsetof(SslrFrame, surface) == 48, "std140 mirror");
+static_assert(offsetof(SslrFrame, trace) == 80, "std140 mirror");
+static_assert(sizeof(SslrFrame) == 160, "std140 mirror");
 #endif
 
 // ---- Pure math ----------------------------------------------------------------------------
@@ -196,7 +212,10 @@ SSLR_FN vec3 sslrViewFromNdc(SslrProjection p, vec2 ndcXY, float ndcZ) {
     return vec3((ndcXY.x - p.xOffset) / p.xScale, (ndcXY.y - p.yOffset) / p.yScale,
                 (ndcZ - p.zOffset) / p.zScale);
   }
-  float dist = p.zOffset / (ndcZ + p.zScale);
+  float depth = sslrDepthFromNdcZ(p, ndcZ);
+  float ndcScale = p.ndcZeroToOne != 0 ? 1.0f : 2.0f;
+  // ndcZ + zScale = ndcScale * (depth - d_inf), see SslrProjection::infDepthHi.
+  float dist = p.zOffset / (ndcScale * ((depth - p.infDepthHi) - p.infDepthLo));
   return vec3(dist * (ndcXY.x + p.xOffset) / p.xScale, dist * (ndcXY.y + p.yOffset) / p.yScale,
               -dist);
 }

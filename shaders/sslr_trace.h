@@ -13,9 +13,18 @@
 namespace sslr::shared {
 #endif
 
+// Largest factor by which L may grow in one step before a bracket exists.
+#ifndef SSLR_MAX_GROWTH
+#define SSLR_MAX_GROWTH 2.0f
+#endif
+// Steps back after a probe left the screen or met the sky, before giving up.
+#ifndef SSLR_MAX_RETREATS
+#define SSLR_MAX_RETREATS 3
+#endif
+
 struct SslrHit {
   vec2 uvHit;        // continuous uv of the final probe (texel centres at (i + 0.5) / size)
-  float confidence;  // hit validation x edge fade x camera-facing fade, in [0,1]
+  float confidence;  // hit validation x camera-facing fade, in [0,1] (edge fade: in the weight)
   float L;           // reflected ray length from P to the hit, view units
   int iterations;    // adaptive-L iterations run (each is one depth fetch)
   int status;        // SSLR_STATUS_*
@@ -26,13 +35,10 @@ struct SslrHit {
 // stretched by the surface slope (pixel snapping on a steep surface moves P' along the view ray).
 // Also rejects the back of surfaces and hits on the reflecting pixel itself.
 SSLR_FN float sslrHitValidation(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsQ,
-                                vec3 vsSurface, vec3 vsR, ivec2 pxSurface, ivec2 pxOrigin) {
-  if (pxSurface.x == pxOrigin.x && pxSurface.y == pxOrigin.y) return 0.0f;
-  vec3 vsHitNormal;
-  if (!sslrDecodeNormal(s, sslrLoadNormal(pxSurface), vsHitNormal)) return 0.0f;
-  if (dot(vsHitNormal, vsR) >= 0.0f) return 0.0f;  // the ray would hit the surface's back side
+                                vec3 vsSurface, vec3 vsSurfaceNormal, vec3 vsR) {
+  if (dot(vsSurfaceNormal, vsR) >= 0.0f) return 0.0f;  // the ray would hit the surface's back
   vec3 vsViewAtHit = sslrViewDirection(p, vsSurface);
-  float cosView = abs(dot(vsHitNormal, vsViewAtHit));
+  float cosView = abs(dot(vsSurfaceNormal, vsViewAtHit));
   // tan(angle) of the surface seen from the camera, capped: a surface seen edge-on has no depth.
   float tanView = min(sqrt(max(1.0f - cosView * cosView, 0.0f)) / max(cosView, 0.0625f), 16.0f);
   float dist = sslrViewDistance(p, vsSurface);
@@ -43,10 +49,34 @@ SSLR_FN float sslrHitValidation(SslrProjection p, SslrSurface s, SslrTraceParams
   return 1.0f - smoothstep(tolerance, 2.0f * tolerance, miss);
 }
 
+// Sub-pixel refinement (not in the article): the converged L is quantized by the pixel whose
+// centre gave P'. Intersecting the ray with the tangent plane of that pixel (P', N') gives the
+// exact hit on planar surfaces; it is used when it stays within the validated neighbourhood.
+SSLR_FN float sslrRefineOnPlane(vec3 vsP, vec3 vsR, vec3 vsSurface, vec3 vsSurfaceNormal, float L) {
+  float denom = dot(vsR, vsSurfaceNormal);
+  if (!(denom < -0.05f)) return L;  // grazing or back-facing: the plane says little
+  float tPlane = dot(vsSurface - vsP, vsSurfaceNormal) / denom;
+  return (tPlane > 0.0f && abs(tPlane - L) <= 0.25f * L) ? tPlane : L;
+}
+
 // The article's adaptive-L iteration: Q = P + R L, project Q, read the depth there, rebuild P',
 // L = |P' - P|. It is a fixed-point iteration that settles where the ray meets the depth surface.
-// Guards added: off-screen / behind-near-plane / background exits, a convergence exit, and
-// validation of the final point (the article has none and always returns something).
+// Guards added (docs/algorithm.md): off-screen / behind-near-plane / background exits, a
+// convergence exit, a bracket safeguard, and validation of the final point (the article has none
+// and always returns something).
+//
+// What is added to the article's update, all driven by the same one depth fetch per iteration:
+// - Exit on a hit: Q lies on the surface its pixel shows (not merely |P' - P| settled).
+// - Bracket: every probe tells on which side of the depth surface Q lies (in front: L too
+//   short; behind: L too long). Inside a bracket [lo, hi] the article's step is taken when it
+//   lands inside, else regula falsi on the signed gap.
+// - Before a bracket exists the step grows L by at most SSLR_MAX_GROWTH (the article jumps to
+//   whatever far surface the probe's pixel shows and overshoots nearer hits); where the
+//   article's update collapses (L -> 0 onto the reflecting surface itself), settles on a
+//   spurious fixed point, or crawls, a secant on the gap of the last two free samples steps on.
+// - A probe that overshoots the screen from free space steps back before giving up.
+// This keeps the article's fast steps where they work and converges where they oscillate or
+// stall, e.g. for rays that come back towards the camera (docs/algorithm.md has the numbers).
 SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTraceParams t,
                                    ivec2 pxOrigin, vec3 vsP, vec3 vsV, vec3 vsR) {
   SslrHit hit;
@@ -58,22 +88,50 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
 
   vec2 sizePx = vec2(s.width, s.height);
   float distP = p.orthographic != 0 ? 1.0f : sslrViewDistance(p, vsP);
-  float L = max(t.initialLengthPixels, 0.5f) * sslrPixelFootprint(p, s.height, distP);
+  // First L: long enough to move the probe initialLengthPixels on screen. A ray heading away
+  // from (or towards) the camera moves slowly on screen, so its first step is longer in view
+  // units (capped at 4x the surface's distance).
+  float footprintP = sslrPixelFootprint(p, s.height, distP);
+  float delta = 0.01f * max(distP, footprintP);
+  vec3 ndcP0 = sslrNdcFromView(p, vsP);
+  vec3 vsP1 = vsP + vsR * delta;
+  float pxPerUnit = 0.0f;
+  if (sslrClipW(p, vsP1) > 0.0f) {
+    vec3 ndcP1 = sslrNdcFromView(p, vsP1);
+    pxPerUnit = length((vec2(ndcP1.x, ndcP1.y) - vec2(ndcP0.x, ndcP0.y)) * 0.5f * sizePx) / delta;
+  }
+  float L = max(t.initialLengthPixels, 0.5f) *
+            (pxPerUnit > 0.0f ? min(1.0f / pxPerUnit, 4.0f * max(distP, footprintP) / max(t.initialLengthPixels, 0.5f))
+                              : footprintP);
+  float lo = 0.0f;   // longest L seen in front of the depth surface
+  float hi = -1.0f;  // shortest L seen behind it (< 0: none yet)
+  float gapLo = 0.0f, gapHi = 0.0f;  // signed view gaps measured at lo and hi
+  float prevLo = 0.0f, prevGapLo = 0.0f;  // the free sample before lo, for the secant
+  float limit = 1e30f;  // a length known to leave the screen or to look at the sky
+  int retreats = 0;
   vec3 vsSurface = vsP;
   ivec2 pxSurface = pxOrigin;
   for (int i = 0; i < t.maxIterations; ++i) {
     vec3 vsQ = vsP + vsR * L;
-    if (sslrClipW(p, vsQ) <= 0.0f) {
-      hit.status = SSLR_STATUS_OFF_SCREEN;
-      return hit;
-    }
-    vec3 ndcQ = sslrNdcFromView(p, vsQ);
+    // Behind the camera plane: treated like leaving the screen (the projection would flip).
+    float wQ = sslrClipW(p, vsQ);
+    vec3 ndcQ = wQ > 0.0f ? sslrNdcFromView(p, vsQ) : vec3(2.0f);
     vec2 uvQ = sslrUvFromNdc(vec2(ndcQ.x, ndcQ.y));
     float depthQ = sslrDepthFromNdcZ(p, ndcQ.z);
     // Written so that NaN fails: a probe outside the screen or the depth range (behind the
     // near plane, beyond a finite far plane) has nothing to read.
     if (!(uvQ.x >= 0.0f && uvQ.x <= 1.0f && uvQ.y >= 0.0f && uvQ.y <= 1.0f && depthQ >= 0.0f &&
           depthQ <= 1.0f)) {
+      // A step that overshot the screen from free space may have jumped over the hit: step
+      // back towards lo (bounded by the iteration cap) before giving up.
+      // A step that overshot the screen from free space may have jumped over the hit: step
+      // back towards lo a few times (SSLR_MAX_RETREATS) before giving up.
+      if (lo > 0.0f && hi < 0.0f && L > 1.05f * lo && retreats < SSLR_MAX_RETREATS) {
+        ++retreats;
+        limit = L;
+        L = 0.5f * (lo + L);
+        continue;
+      }
       hit.status = SSLR_STATUS_OFF_SCREEN;
       return hit;
     }
@@ -81,19 +139,91 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
     float depth = sslrLoadDepth(px);
     hit.iterations = i + 1;
     if (!sslrIsGeometryDepth(s, depth)) {
-      hit.status = SSLR_STATUS_MISS;  // the probe looks at the sky: nothing to reflect
+      // The probe looks at the sky. Right after a long step from free space it may have jumped
+      // over the hit (like leaving the screen); otherwise there is nothing to reflect.
+      if (lo > 0.0f && hi < 0.0f && L > 1.05f * lo && retreats < SSLR_MAX_RETREATS) {
+        ++retreats;
+        limit = L;
+        L = 0.5f * (lo + L);
+        continue;
+      }
+      hit.status = SSLR_STATUS_MISS;
       return hit;
     }
     vsSurface = sslrViewFromUvDepth(p, sslrUvFromPixel(px, sizePx), depth);
     pxSurface = px;
-    float newL = length(vsSurface - vsP);
-    bool converged = abs(newL - L) <= t.convergenceEps * L;
+    // Signed gap along the view: > 0 when Q is farther from the camera than what its pixel shows.
+    // The reflecting pixel itself says nothing (it shows P): it never closes the bracket.
+    float gap = vsSurface.z - vsQ.z;
+    bool ownPixel = px.x == pxOrigin.x && px.y == pxOrigin.y;
+    if (gap > 0.0f && !ownPixel) {
+      if (hi < 0.0f || L < hi) {
+        hi = L;
+        gapHi = gap;
+      }
+    } else if (gap <= 0.0f && L > lo) {
+      prevLo = lo;
+      prevGapLo = gapLo;
+      lo = L;
+      gapLo = gap;
+    }
+    float articleL = length(vsSurface - vsP);
+    // Done when Q lies on the surface its pixel shows (within the hit tolerance, without the
+    // slope term; the final validation and the plane refinement below do the rest).
+    float distS = p.orthographic != 0 ? abs(vsSurface.z) : -vsSurface.z;
+    float onSurfaceTolerance =
+        t.thicknessRelative * distS +
+        t.thicknessPixels * sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : distS);
+    if (length(vsQ - vsSurface) <= onSurfaceTolerance) break;
+    // The article's update has settled (|P' - P| = L) but Q is not on the surface: a spurious
+    // fixed point (the sphere of radius L around P meets the surface elsewhere). Not a hit:
+    // move on with the bracket instead.
+    bool articleStuck = abs(articleL - L) <= t.convergenceEps * L;
+    if (articleStuck) articleL = -1.0f;
+    float newL;
+    if (hi < 0.0f) {
+      // No upper end yet. Two estimates of the hit, each capped at SSLR_MAX_GROWTH x L (a jump
+      // to whatever far surface the probe's pixel shows overshoots nearer hits): the article's
+      // step, and a secant on the gap of the last two free samples (it closes in on a surface
+      // the article only crawls towards). Neither usable: double L.
+      float grow = SSLR_MAX_GROWTH * L;
+      float article = articleL > lo ? min(articleL, grow) : -1.0f;
+      float secant = -1.0f;
+      if (prevLo > 0.0f && gapLo > prevGapLo)
+        secant = min(lo - gapLo * (lo - prevLo) / (gapLo - prevGapLo), grow);
+      // The article's step first; the secant only where the article is stuck or crawls
+      // (less than 25% growth), and then at most 1.5 x the article's step.
+      newL = article > 0.0f
+                 ? ((article < 1.25f * L && secant > article) ? min(secant, 1.5f * article) : article)
+                 : secant;
+      if (!(newL > L)) newL = 2.0f * L;
+      if (newL >= limit) newL = 0.5f * (L + limit);
+    } else if (articleL > lo && articleL < hi) {
+      newL = articleL;
+    } else {
+      // Regula falsi on the signed gap inside the bracket (midpoint if the gaps are degenerate).
+      float denom = gapHi - gapLo;
+      float f = denom > 0.0f ? clamp(-gapLo / denom, 0.1f, 0.9f) : 0.5f;
+      newL = mix(lo, hi, f);
+    }
+#ifdef SSLR_TRACE_DEBUG_HOOK
+    SSLR_TRACE_DEBUG_HOOK(i, L, lo, hi, articleL, newL, vsQ, vsSurface);
+#endif
+    bool bracketClosed = hi > 0.0f && hi - lo <= t.convergenceEps * hi;
     L = newL;
-    if (converged) break;
+    if (bracketClosed) break;
   }
   if (hit.iterations == 0) return hit;
 
   vec3 vsQ = vsP + vsR * L;
+  vec3 vsSurfaceNormal;
+  bool normalOk = sslrDecodeNormal(s, sslrLoadNormal(pxSurface), vsSurfaceNormal);
+  bool selfHit = pxSurface.x == pxOrigin.x && pxSurface.y == pxOrigin.y;
+  float valid = (normalOk && !selfHit && L <= t.maxDistance)
+                    ? sslrHitValidation(p, s, t, vsQ, vsSurface, vsSurfaceNormal, vsR)
+                    : 0.0f;
+  if (valid > 0.0f) L = sslrRefineOnPlane(vsP, vsR, vsSurface, vsSurfaceNormal, L);
+  vsQ = vsP + vsR * L;
   if (sslrClipW(p, vsQ) <= 0.0f) {
     hit.status = SSLR_STATUS_OFF_SCREEN;
     return hit;
@@ -101,19 +231,25 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
   vec3 ndcQ = sslrNdcFromView(p, vsQ);
   hit.uvHit = sslrUvFromNdc(vec2(ndcQ.x, ndcQ.y));
   hit.L = L;
-  float valid = L <= t.maxDistance
-                    ? sslrHitValidation(p, s, t, vsQ, vsSurface, vsR, pxSurface, pxOrigin)
-                    : 0.0f;
-  float fades = sslrEdgeFade(hit.uvHit, t.edgeFade) *
-                sslrCameraFacingFade(vsR, vsV, t.cameraFadeStart, t.cameraFadeEnd);
-  hit.confidence = sslrSaturate(valid * fades);
+  // The refined hit may lie just outside the screen (its pixel was the border one): no colour.
+  if (!(hit.uvHit.x >= 0.0f && hit.uvHit.x <= 1.0f && hit.uvHit.y >= 0.0f && hit.uvHit.y <= 1.0f)) {
+    hit.uvHit = clamp(hit.uvHit, vec2(0.0f), vec2(1.0f));
+    hit.status = SSLR_STATUS_OFF_SCREEN;
+    return hit;
+  }
+  // Confidence = how sure the hit is right: validation x camera-facing fade (rays coming back
+  // towards the camera see what the screen hides). The screen-edge fade is presentation, not
+  // doubt, and is applied to the weight in sslrReflectionWeights.
+  hit.confidence =
+      sslrSaturate(valid * sslrCameraFacingFade(vsR, vsV, t.cameraFadeStart, t.cameraFadeEnd));
   hit.status = hit.confidence > 0.0f ? SSLR_STATUS_HIT : SSLR_STATUS_MISS;
   return hit;
 }
 
 // Everything the pass does per pixel besides fetching: returns rgb weight (applied to the hit's
 // colour) in .x and the blur alpha in .y, given the traced hit and the pixel's material.
-// classic: reflectance * article Fresnel * article error term; schlick: Schlick(F0 = reflectance).
+// weight = Fresnel term x confidence x screen-edge fade, with the Fresnel term
+//   classic: reflectance * article Fresnel * article error term; schlick: Schlick(F0 = reflectance).
 SSLR_FN vec2 sslrReflectionWeights(SslrProjection p, SslrSurface s, SslrTraceParams t, SslrHit hit,
                                    float cosVN, float reflectance, float roughness, float distP) {
   float fresnel = t.fresnelMode == SSLR_FRESNEL_CLASSIC
@@ -121,7 +257,7 @@ SSLR_FN vec2 sslrReflectionWeights(SslrProjection p, SslrSurface s, SslrTracePar
                       : sslrFresnelSchlick(reflectance, cosVN);
   float radius = sslrBlurRadiusPx(p, s.height, distP, hit.L, roughness, t.blurConeScale);
   float alpha = t.blurMaxRadiusPx > 0.0f ? sslrSaturate(radius / t.blurMaxRadiusPx) : 0.0f;
-  return vec2(fresnel * hit.confidence, alpha);
+  return vec2(fresnel * hit.confidence * sslrEdgeFade(hit.uvHit, t.edgeFade), alpha);
 }
 
 #ifdef __cplusplus

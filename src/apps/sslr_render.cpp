@@ -65,7 +65,12 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
   else if (fresnel == "schlick") s.fresnel = FresnelMode::Schlick;
   else throw UsageError{"--fresnel must be classic or schlick (got '" + fresnel + "')"};
   if (args.count("no-blur")) s.blur = false;
-  if (args.count("iterations")) s.maxIterations = args["iterations"].as<int>();
+  if (args.count("iterations")) {
+    const std::string text = args["iterations"].as<std::string>();
+    std::istringstream in(text);
+    if (!(in >> s.maxIterations) || !in.eof())
+      throw UsageError{"--iterations expects an integer (got '" + text + "')"};
+  }
   if (std::string why = validate(s); !why.empty()) throw UsageError{why};
   return s;
 }
@@ -83,7 +88,7 @@ int run(int argc, char** argv) {
       ("method", "tracer: adaptive-l, or none (no reflections)", cxxopts::value<std::string>()->default_value("adaptive-l"))
       ("preset", "quality preset: low, medium, high, ultra", cxxopts::value<std::string>()->default_value("high"))
       ("fresnel", "weighting: classic (the article) or schlick", cxxopts::value<std::string>()->default_value("classic"))
-      ("iterations", "override the preset's adaptive-L iteration cap", cxxopts::value<int>())
+      ("iterations", "override the preset's adaptive-L iteration cap", cxxopts::value<std::string>())
       ("no-blur", "skip the roughness blur")
       ("depth", "depth convention: reversed, reversed-infinite, zero-to-one, gl-default",
        cxxopts::value<std::string>()->default_value("reversed"))

@@ -224,8 +224,8 @@ Scene tiltedMirror() {
   const int wall = addMaterial(s, glm::vec3(0.2f, 0.7f, 0.4f), 0.0f, 1.0f, 0.3f);
   s.meshes.push_back(makeQuad({0, 0, 0}, {12, 12}, {0, 1, 0}, floor));
   s.meshes.push_back(makeQuad({0, 3, -6}, {12, 6}, {0, 0, 1}, wall));
-  // A mirror leaning back by 30 degrees, facing the camera and the floor in front of it.
-  s.meshes.push_back(makeQuad({0, 1.5, -3}, {5, 3}, {0.0, std::sin(glm::radians(30.0)),
+  // A mirror leaning forward by 30 degrees: it faces the camera and the floor in front of it.
+  s.meshes.push_back(makeQuad({0, 1.5, -3}, {5, 3}, {0.0, -std::sin(glm::radians(30.0)),
                                                     std::cos(glm::radians(30.0))}, mirror));
   Camera c;
   c.eye = {1.0, 2.5, 4.0};

@@ -116,8 +116,8 @@ struct Settings {
   float thicknessRelative = 0.002f;  // hit tolerance: fraction of the hit's view distance ...
   float thicknessPixels = 1.5f;      // ... plus pixel footprints, stretched by surface slope
   float edgeFade = 0.03f;            // fade width at the screen border (fraction of screen)
-  float cameraFadeStart = 0.1f;      // dot(R, to-camera) where camera-facing rays begin to fade
-  float cameraFadeEnd = 0.5f;        // ... and where they are gone
+  float cameraFadeStart = 0.6f;      // dot(R, to-camera) where camera-facing rays begin to fade
+  float cameraFadeEnd = 0.9f;        // ... and where they are gone
   float roughnessCutoff = 0.5f;      // rougher pixels are not traced
   float minReflectance = 0.01f;      // pixels with reflectance <= this are not traced
   bool blur = true;                  // run the roughness blur (else resolved = raw reflection)

@@ -1,0 +1,232 @@
+#include "sslr_host/ground_truth.hpp"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "sslr_shared.h"
+
+namespace sslr::host {
+
+size_t GroundTruth::count(TruthClass c) const {
+  return static_cast<size_t>(std::count_if(pixels.begin(), pixels.end(), [c](const TruthPixel& p) { return p.cls == c; }));
+}
+
+struct RayTracer::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  // Per geometry: view-space vertex normals and indices, for interpolation.
+  std::vector<std::vector<glm::vec3>> normals;
+  std::vector<std::vector<std::uint32_t>> indices;
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
+Expected<std::unique_ptr<RayTracer>> RayTracer::create(const Scene& scene, const glm::dmat4& viewFromWorld) {
+  auto rt = std::unique_ptr<RayTracer>(new RayTracer());
+  rt->impl_ = std::make_unique<Impl>();
+  Impl& im = *rt->impl_;
+  im.device = rtcNewDevice(nullptr);
+  if (im.device == nullptr) return Status::error("Embree: rtcNewDevice failed");
+  im.scene = rtcNewScene(im.device);
+  rtcSetSceneFlags(im.scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(im.scene, RTC_BUILD_QUALITY_HIGH);
+  for (const Mesh& m : scene.meshes) {
+    const glm::dmat4 viewFromModel = viewFromWorld * m.worldFromModel;
+    const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(viewFromModel)));
+    RTCGeometry geom = rtcNewGeometry(im.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), m.positions.size()));
+    std::vector<glm::vec3> vsNormals(m.positions.size());
+    for (size_t i = 0; i < m.positions.size(); ++i) {
+      const glm::dvec3 p = glm::dvec3(viewFromModel * glm::dvec4(glm::dvec3(m.positions[i]), 1.0));
+      v[3 * i] = static_cast<float>(p.x);
+      v[3 * i + 1] = static_cast<float>(p.y);
+      v[3 * i + 2] = static_cast<float>(p.z);
+      const glm::dvec3 n = i < m.normals.size() ? glm::dvec3(m.normals[i]) : glm::dvec3(0, 0, 1);
+      vsNormals[i] = glm::vec3(normalMatrix * n);
+    }
+    auto* idx = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                    3 * sizeof(std::uint32_t), m.indices.size() / 3));
+    std::copy(m.indices.begin(), m.indices.end(), idx);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(im.scene, geom);
+    rtcReleaseGeometry(geom);
+    im.normals.push_back(std::move(vsNormals));
+    im.indices.push_back(m.indices);
+  }
+  rtcCommitScene(im.scene);
+  if (rtcGetDeviceError(im.device) != RTC_ERROR_NONE) return Status::error("Embree: building the scene failed");
+  return rt;
+}
+
+RayTracer::~RayTracer() = default;
+
+RayTracer::Hit RayTracer::intersect(glm::vec3 o, glm::vec3 d, float tFar) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRayHit rh{};
+  rh.ray.org_x = o.x; rh.ray.org_y = o.y; rh.ray.org_z = o.z;
+  rh.ray.dir_x = d.x; rh.ray.dir_y = d.y; rh.ray.dir_z = d.z;
+  rh.ray.tnear = 0.0f;
+  rh.ray.tfar = tFar;
+  rh.ray.mask = 0xffffffffu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->scene, &ctx, &rh);
+  Hit h;
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
+  h.hit = true;
+  h.t = rh.ray.tfar;
+  h.vsPosition = o + d * h.t;
+  const auto& idx = impl_->indices[rh.hit.geomID];
+  const auto& nrm = impl_->normals[rh.hit.geomID];
+  const std::uint32_t* tri = &idx[3 * static_cast<size_t>(rh.hit.primID)];
+  const float u = rh.hit.u, v = rh.hit.v;
+  glm::vec3 n = nrm[tri[0]] * (1.0f - u - v) + nrm[tri[1]] * u + nrm[tri[2]] * v;
+  n = glm::normalize(n);
+  if (glm::dot(n, d) > 0.0f) n = -n;  // two-sided, like the G-buffer pass
+  h.vsNormal = n;
+  return h;
+}
+
+bool RayTracer::occluded(glm::vec3 o, glm::vec3 d, float tFar) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  RTCRay ray{};
+  ray.org_x = o.x; ray.org_y = o.y; ray.org_z = o.z;
+  ray.dir_x = d.x; ray.dir_y = d.y; ray.dir_z = d.z;
+  ray.tnear = 0.0f;
+  ray.tfar = tFar;
+  ray.mask = 0xffffffffu;
+  rtcOccluded1(impl_->scene, &ctx, &ray);
+  return ray.tfar < 0.0f;  // Embree sets tfar = -inf on a hit
+}
+
+std::vector<std::uint8_t> reflectiveMask(const Image& depth, const Image& normalPacked, const FrameInputs& in,
+                                         const Settings& settings) {
+  shared::SslrSurface s{};
+  s.normalEncoding = in.surface.normals == NormalEncoding::Octahedral ? SSLR_NORMALS_OCTAHEDRAL : SSLR_NORMALS_XYZ_UNORM;
+  s.roughnessChannel = in.surface.roughnessChannel;
+  s.reflectanceChannel = in.surface.reflectanceChannel;
+  s.reversedZ = in.depth.reversedZ ? 1 : 0;
+  s.constantRoughness = in.surface.constantRoughness;
+  s.constantReflectance = in.surface.constantReflectance;
+  shared::SslrTraceParams t{};
+  t.roughnessCutoff = settings.roughnessCutoff;
+  t.minReflectance = settings.minReflectance;
+  std::vector<std::uint8_t> mask(static_cast<size_t>(depth.width) * depth.height, 0);
+  for (size_t p = 0; p < mask.size(); ++p) {
+    const float* n = &normalPacked.pixels[p * normalPacked.channels];
+    mask[p] = shared::sslrShouldTrace(s, t, depth.pixels[p], glm::vec4(n[0], n[1], n[2], n[3])) ? 1 : 0;
+  }
+  return mask;
+}
+
+GroundTruth computeGroundTruth(const RayTracer& tracer, const glm::dmat4& clipFromView, int width, int height,
+                               const std::vector<std::uint8_t>& reflective) {
+  GroundTruth gt;
+  gt.width = width;
+  gt.height = height;
+  gt.pixels.resize(static_cast<size_t>(width) * height);
+  const bool ortho = clipFromView[3][3] == 1.0;
+  const glm::dmat4 viewFromClip = glm::inverse(clipFromView);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const size_t p = static_cast<size_t>(y) * width + x;
+      if (!reflective[p]) continue;
+      // Primary ray through the pixel centre, built in double from the exact matrix.
+      const glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0, (y + 0.5) / height * 2.0 - 1.0);
+      glm::dvec4 nearPt = viewFromClip * glm::dvec4(ndc, -1.0, 1.0);
+      glm::dvec4 farPt = viewFromClip * glm::dvec4(ndc, 0.5, 1.0);
+      nearPt /= nearPt.w;
+      farPt /= farPt.w;
+      const glm::dvec3 origin = ortho ? glm::dvec3(nearPt.x, nearPt.y, 0.0) : glm::dvec3(0.0);
+      const glm::dvec3 dir = ortho ? glm::dvec3(0, 0, -1) : glm::normalize(glm::dvec3(farPt));
+      const RayTracer::Hit primary = tracer.intersect(glm::vec3(origin), glm::vec3(dir));
+      TruthPixel& tp = gt.pixels[p];
+      if (!primary.hit) {
+        tp.cls = TruthClass::Escaped;  // the G-buffer saw geometry the tracer missed (edge pixel)
+        continue;
+      }
+      const glm::vec3 V(dir);
+      const glm::vec3 N = primary.vsNormal;
+      const glm::vec3 R = glm::normalize(glm::reflect(V, N));
+      // Offset along the normal against self-intersection (relative to the distance).
+      const glm::vec3 start = primary.vsPosition + N * (1e-5f * std::max(1.0f, glm::length(primary.vsPosition)));
+      const RayTracer::Hit refl = tracer.intersect(start, R);
+      if (!refl.hit) {
+        tp.cls = TruthClass::Escaped;
+        continue;
+      }
+      tp.length = glm::length(refl.vsPosition - primary.vsPosition);
+      const glm::dvec4 clip = clipFromView * glm::dvec4(glm::dvec3(refl.vsPosition), 1.0);
+      if (!(clip.w > 0.0)) {
+        tp.cls = TruthClass::OffScreen;
+        continue;
+      }
+      const glm::dvec3 ndcHit = glm::dvec3(clip) / clip.w;
+      const glm::dvec2 uv = glm::dvec2(ndcHit) * 0.5 + 0.5;
+      const bool inDepth = ndcHit.z >= -1.0 - 1e-9 && ndcHit.z <= 1.0 + 1e-9;  // within near..far (either range)
+      if (uv.x < 0.0 || uv.x > 1.0 || uv.y < 0.0 || uv.y > 1.0 || !inDepth) {
+        tp.cls = TruthClass::OffScreen;
+        continue;
+      }
+      tp.uvHit = glm::vec2(uv);
+      // Visible if nothing lies between the camera and the hit point.
+      const glm::vec3 camOrigin = ortho ? glm::vec3(refl.vsPosition.x, refl.vsPosition.y, 0.0f) : glm::vec3(0.0f);
+      const glm::vec3 toHit = refl.vsPosition - camOrigin;
+      const float dist = glm::length(toHit);
+      const bool hidden = tracer.occluded(camOrigin, toHit / dist, dist * (1.0f - 1e-4f));
+      tp.cls = hidden ? TruthClass::Occluded : TruthClass::Visible;
+    }
+  return gt;
+}
+
+HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float threshold) {
+  HitMetrics m;
+  std::vector<double> errors;
+  size_t within1 = 0, within2 = 0, within4 = 0, falseHits = 0;
+  for (size_t p = 0; p < truth.pixels.size(); ++p) {
+    const float* h = &hit.pixels[p * hit.channels];
+    bool finite = true;
+    for (int c = 0; c < hit.channels; ++c) finite = finite && std::isfinite(h[c]);
+    m.nonFinite += finite ? 0 : 1;
+    const TruthPixel& t = truth.pixels[p];
+    const bool reported = finite && h[2] > threshold;
+    switch (t.cls) {
+      case TruthClass::NotReflective: break;
+      case TruthClass::Visible: {
+        ++m.visible;
+        if (!reported) break;
+        const double ex = (h[0] - t.uvHit.x) * truth.width, ey = (h[1] - t.uvHit.y) * truth.height;
+        const double e = std::sqrt(ex * ex + ey * ey);
+        errors.push_back(e);
+        within1 += e <= 1.0;
+        within2 += e <= 2.0;
+        within4 += e <= 4.0;
+        break;
+      }
+      case TruthClass::Occluded: ++m.occluded; falseHits += reported; break;
+      case TruthClass::OffScreen: ++m.offScreen; falseHits += reported; break;
+      case TruthClass::Escaped: ++m.escaped; falseHits += reported; break;
+    }
+  }
+  if (m.visible > 0) {
+    m.recall1px = double(within1) / m.visible;
+    m.recall2px = double(within2) / m.visible;
+    m.recall4px = double(within4) / m.visible;
+  }
+  if (!errors.empty()) {
+    std::sort(errors.begin(), errors.end());
+    m.medianErrorPx = errors[errors.size() / 2];
+    m.p95ErrorPx = errors[std::min(errors.size() - 1, static_cast<size_t>(std::ceil(0.95 * errors.size())) - 1)];
+  }
+  const size_t negatives = m.occluded + m.offScreen + m.escaped;
+  m.falseHitRate = negatives > 0 ? double(falseHits) / negatives : 0.0;
+  return m;
+}
+
+}  // namespace sslr::host

@@ -1,0 +1,78 @@
+// Ray-traced ground truth (Embree 3 on the CPU) for reflections, and the error metrics that
+// compare a screen-space trace against it. Same triangles, same camera, pixel centres.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "sslr/sslr.hpp"
+#include "sslr_host/image_io.hpp"
+#include "sslr_host/scene.hpp"
+
+namespace sslr::host {
+
+// Classes of a reflective pixel's true reflection (docs/results.md, measuring protocol).
+enum class TruthClass : std::uint8_t {
+  NotReflective = 0,  // not traced by the SSR pass (background, rough, not reflective)
+  Visible = 1,        // A: hits geometry on screen and visible there
+  Occluded = 2,       // B: hits geometry on screen, hidden behind something else
+  OffScreen = 3,      // C: hits geometry off screen or behind the camera
+  Escaped = 4,        // D: hits nothing (background)
+};
+
+struct TruthPixel {
+  TruthClass cls = TruthClass::NotReflective;
+  glm::vec2 uvHit{0.0f};   // true hit projected to uv (classes A, B)
+  float length = 0.0f;     // reflected ray length to the hit (view units)
+};
+
+struct GroundTruth {
+  int width = 0, height = 0;
+  std::vector<TruthPixel> pixels;  // GL row order
+  size_t count(TruthClass c) const;
+};
+
+// Embree scene of the triangles in view space (view space keeps precision far from the origin).
+class RayTracer {
+ public:
+  static Expected<std::unique_ptr<RayTracer>> create(const Scene& scene, const glm::dmat4& viewFromWorld);
+  ~RayTracer();
+  RayTracer(const RayTracer&) = delete;
+  RayTracer& operator=(const RayTracer&) = delete;
+
+  struct Hit {
+    bool hit = false;
+    float t = 0.0f;
+    glm::vec3 vsPosition{0.0f};
+    glm::vec3 vsNormal{0.0f};  // interpolated vertex normal (facing the ray origin side)
+  };
+  Hit intersect(glm::vec3 vsOrigin, glm::vec3 vsDirection, float tFar = 1e30f) const;
+  bool occluded(glm::vec3 vsOrigin, glm::vec3 vsDirection, float tFar) const;
+
+ private:
+  RayTracer() = default;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Which pixels the SSR pass traces (sslrShouldTrace on the read-back G-buffer).
+std::vector<std::uint8_t> reflectiveMask(const Image& depth, const Image& normalPacked, const FrameInputs& in,
+                                         const Settings& settings);
+
+// Traces the exact reflection of every reflective pixel (primary ray through the pixel centre,
+// interpolated normal) and classifies it.
+GroundTruth computeGroundTruth(const RayTracer& tracer, const glm::dmat4& clipFromView, int width, int height,
+                               const std::vector<std::uint8_t>& reflective);
+
+// Error of a traced hit image (RG = uvHit, B = confidence) against the ground truth.
+struct HitMetrics {
+  size_t visible = 0, occluded = 0, offScreen = 0, escaped = 0;
+  double recall1px = 0, recall2px = 0, recall4px = 0;  // A pixels reported within N px
+  double medianErrorPx = 0, p95ErrorPx = 0;            // over A pixels that reported a hit
+  double falseHitRate = 0;                             // B+C+D pixels reporting a hit
+  size_t nonFinite = 0;                                // NaN/Inf pixels in the hit image
+};
+HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float confidenceThreshold = 0.5f);
+
+}  // namespace sslr::host

@@ -1,0 +1,112 @@
+// Ground truth (Embree) against analytic ray-plane and ray-box hits, the four reflection
+// classes, and the hit metrics on synthetic inputs with known answers.
+#include <gtest/gtest.h>
+
+#include "sslr_host/ground_truth.hpp"
+
+using namespace sslr;
+using namespace sslr::host;
+
+namespace {
+
+Scene planeAndBox() {
+  Scene s;
+  s.materials.push_back(Material{});
+  s.meshes.push_back(makeQuad({0, 0, 0}, {10, 10}, {0, 1, 0}, 0));
+  s.meshes.push_back(makeBox({0, 1, -3}, {2, 2, 2}, 0));
+  return s;
+}
+
+TEST(RayTracer, MatchesAnalyticPlaneAndBoxHits) {
+  auto rt = RayTracer::create(planeAndBox(), glm::dmat4(1.0));  // view = world
+  ASSERT_TRUE(rt) << rt.error();
+  // Straight down onto the plane from (1, 2, 1): t = 2, normal +y.
+  auto h = rt.value()->intersect({1, 2, 1}, {0, -1, 0});
+  ASSERT_TRUE(h.hit);
+  EXPECT_NEAR(h.t, 2.0f, 1e-5f);
+  EXPECT_NEAR(h.vsNormal.y, 1.0f, 1e-5f);
+  // Towards -z at height 1: the box's front face at z = -2, t = 2 + 2 = 4 from z = 2.
+  h = rt.value()->intersect({0.3f, 1.0f, 2.0f}, {0, 0, -1});
+  ASSERT_TRUE(h.hit);
+  EXPECT_NEAR(h.t, 4.0f, 1e-5f);
+  EXPECT_NEAR(h.vsNormal.z, 1.0f, 1e-5f);
+  // Upwards: nothing.
+  EXPECT_FALSE(rt.value()->intersect({0, 1, 5}, {0, 1, 0}).hit);
+  // Occlusion up to tFar.
+  EXPECT_TRUE(rt.value()->occluded({0.3f, 1.0f, 2.0f}, {0, 0, -1}, 10.0f));
+  EXPECT_FALSE(rt.value()->occluded({0.3f, 1.0f, 2.0f}, {0, 0, -1}, 3.9f));
+}
+
+TEST(GroundTruth, ClassifiesVisibleOccludedOffScreenAndEscaped) {
+  // Camera at the origin looking down -z over a mirror floor at y = -1 with a box ahead.
+  Scene s;
+  s.materials.push_back(Material{});
+  s.meshes.push_back(makeQuad({0, -1, -10}, {40, 40}, {0, 1, 0}, 0));
+  s.meshes.push_back(makeBox({0, 0, -8}, {2, 2, 2}, 0));         // in view: reflections visible
+  s.meshes.push_back(makeBox({0, -0.5, -4}, {0.6, 0.5, 0.6}, 0));  // low box occluding the big box
+  auto rt = RayTracer::create(s, glm::dmat4(1.0));
+  ASSERT_TRUE(rt);
+  Camera cam;
+  cam.eye = {0, 0, 0};
+  cam.target = {0, -0.2, -1};
+  cam.fovyDegrees = 60;
+  const int w = 64, h = 48;
+  auto rtView = RayTracer::create(s, cam.viewFromWorld());
+  ASSERT_TRUE(rtView);
+  const glm::dmat4 P = cam.clipFromView(DepthMode::Reversed, double(w) / h);
+  std::vector<std::uint8_t> all(static_cast<size_t>(w) * h, 1);
+  const GroundTruth gt = computeGroundTruth(*rtView.value(), P, w, h, all);
+  EXPECT_GT(gt.count(TruthClass::Visible), 0u);
+  EXPECT_GT(gt.count(TruthClass::Occluded), 0u) << "the low box hides part of the big box's reflection";
+  EXPECT_GT(gt.count(TruthClass::Escaped), 0u) << "floor far away reflects the empty sky";
+  EXPECT_GT(gt.count(TruthClass::OffScreen), 0u) << "the box's top reflects out of the frame";
+  // A floor pixel straight below the box: its reflection hits the box's front face on screen.
+  // Pick the pixel whose primary ray hits the floor at z = -6.5 under the box centre.
+  for (const TruthPixel& p : gt.pixels)
+    if (p.cls == TruthClass::Visible) {
+      EXPECT_GE(p.uvHit.x, 0.0f);
+      EXPECT_LE(p.uvHit.x, 1.0f);
+      EXPECT_GT(p.length, 0.0f);
+    }
+}
+
+TEST(HitMetrics, KnownAnswers) {
+  GroundTruth gt;
+  gt.width = 10;
+  gt.height = 1;
+  gt.pixels.resize(10);
+  Image hit;
+  hit.width = 10;
+  hit.height = 1;
+  hit.channels = 4;
+  hit.pixels.assign(40, 0.0f);
+  // 4 visible pixels: errors 0, 0.5, 1.5, 3 px (x only) -> recall1 = 0.5, recall2 = 0.75, recall4 = 1.
+  const float errs[4] = {0.0f, 0.5f, 1.5f, 3.0f};
+  for (int i = 0; i < 4; ++i) {
+    gt.pixels[i].cls = TruthClass::Visible;
+    gt.pixels[i].uvHit = {0.5f, 0.5f};
+    hit.pixels[i * 4 + 0] = 0.5f + errs[i] / 10.0f;
+    hit.pixels[i * 4 + 1] = 0.5f;
+    hit.pixels[i * 4 + 2] = 1.0f;
+  }
+  // 4 negatives, one of which reports a hit -> false-hit rate 0.25.
+  gt.pixels[4].cls = TruthClass::Occluded;
+  gt.pixels[5].cls = TruthClass::OffScreen;
+  gt.pixels[6].cls = TruthClass::Escaped;
+  gt.pixels[7].cls = TruthClass::Escaped;
+  hit.pixels[6 * 4 + 2] = 0.9f;
+  hit.pixels[7 * 4 + 2] = 0.4f;  // below the 0.5 threshold: not a reported hit
+  // One NaN pixel outside any class still counts as non-finite output.
+  hit.pixels[9 * 4 + 0] = NAN;
+  const HitMetrics m = compareHits(gt, hit);
+  EXPECT_EQ(m.visible, 4u);
+  EXPECT_DOUBLE_EQ(m.recall1px, 0.5);
+  EXPECT_DOUBLE_EQ(m.recall2px, 0.75);
+  EXPECT_DOUBLE_EQ(m.recall4px, 1.0);
+  EXPECT_NEAR(m.medianErrorPx, 1.5, 1e-5);
+  EXPECT_NEAR(m.p95ErrorPx, 3.0, 1e-5);
+  EXPECT_DOUBLE_EQ(m.falseHitRate, 0.25);
+  EXPECT_EQ(m.nonFinite, 1u);
+}
+
+}  // namespace

@@ -1,0 +1,191 @@
+// Projection and reconstruction: the shared header's float formulas against double precision,
+// for every depth convention, perspective and orthographic, centred and off-centre.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "projection.hpp"
+#include "sslr_host/camera.hpp"
+#include "sslr_shared.h"
+
+using namespace sslr;
+using namespace sslr::host;
+using namespace sslr::shared;
+
+namespace {
+
+const DepthMode kModes[] = {DepthMode::GlDefault, DepthMode::ZeroToOne, DepthMode::Reversed,
+                            DepthMode::ReversedInfinite};
+
+// Window depth as the depth buffer stores it: D24 rounds to 24-bit fixed point, D32F to float.
+double quantize(double depth, DepthMode mode) {
+  if (mode == DepthMode::GlDefault) {
+    const double scale = 16777215.0;
+    return std::round(depth * scale) / scale;
+  }
+  return static_cast<double>(static_cast<float>(depth));
+}
+
+double windowDepth(const glm::dmat4& clipFromView, DepthConvention conv, glm::dvec3 vs) {
+  const glm::dvec4 clip = clipFromView * glm::dvec4(vs, 1.0);
+  const double ndcZ = clip.z / clip.w;
+  return conv.range == DepthRange::ZeroToOne ? ndcZ : ndcZ * 0.5 + 0.5;
+}
+
+// View depth (along -z) rebuilt in double from a window depth: the reference.
+double exactDist(const glm::dmat4& p, DepthConvention conv, double depth) {
+  const double ndcZ = conv.range == DepthRange::ZeroToOne ? depth : depth * 2.0 - 1.0;
+  if (p[3][3] == 1.0) return -(ndcZ - p[3][2]) / p[2][2];
+  return p[3][2] / (ndcZ + p[2][2]);
+}
+
+struct Case {
+  DepthMode mode;
+  bool ortho;
+  glm::dvec2 offsetPx;
+};
+
+class Reconstruction : public ::testing::TestWithParam<Case> {};
+
+TEST_P(Reconstruction, RoundTripWithinTheDepthFormatBound) {
+  const Case c = GetParam();
+  Camera cam;
+  cam.nearPlane = 0.1;
+  cam.farPlane = 1000.0;
+  cam.orthographic = c.ortho;
+  cam.orthoHeight = 20.0;
+  const glm::dvec2 size(256.0, 128.0);
+  const glm::dmat4 P = cam.clipFromView(c.mode, size.x / size.y, c.offsetPx, size);
+  const DepthConvention conv = depthConvention(c.mode);
+  auto reduced = sslr::detail::reduceProjection(P, conv);
+  ASSERT_TRUE(reduced) << reduced.error();
+  const SslrProjection proj = reduced.value();
+  for (double dist : {0.101, 0.5, 1.0, 10.0, 100.0, 500.0, 990.0}) {
+    for (glm::dvec2 uv : {glm::dvec2(0.5, 0.5), glm::dvec2(0.01, 0.99), glm::dvec2(0.9, 0.2)}) {
+      // The view point seen at uv at this distance, built in double.
+      const glm::dvec2 ndc = uv * 2.0 - 1.0;
+      glm::dvec3 vs;
+      if (c.ortho) {
+        vs = {(ndc.x - P[3][0]) / P[0][0], (ndc.y - P[3][1]) / P[1][1], -dist};
+      } else {
+        vs = {dist * (ndc.x + P[2][0]) / P[0][0], dist * (ndc.y + P[2][1]) / P[1][1], -dist};
+      }
+      const double d = quantize(windowDepth(P, conv, vs), c.mode);
+      // Analytic bound: |d(dist)/d(depth)| times half a depth step, plus float arithmetic.
+      const double step = c.mode == DepthMode::GlDefault ? 1.0 / 16777215.0 : std::max(std::abs(d), 1e-30) * 0x1p-24;
+      const double slope = std::abs(exactDist(P, conv, d + 1e-7 * step) - exactDist(P, conv, d - 1e-7 * step)) /
+                           (2e-7 * step);
+      const double quantBound = slope * step * 0.5;
+      const double reference = exactDist(P, conv, d);  // exact distance for the stored depth
+      const vec3 rebuilt = sslrViewFromUvDepth(proj, vec2(uv), static_cast<float>(d));
+      // Float arithmetic on the stored depth: a few ulp relative (reversed D32F measures ~1e-7).
+      // Float arithmetic: a few ulp of the distance, plus (orthographic) ulps of the depth range.
+      const double arith = 6e-7 * dist + (c.ortho ? 4e-7 * cam.farPlane : 0.0);
+      EXPECT_NEAR(-rebuilt.z, reference, arith + 1e-12)
+          << toString(c.mode) << (c.ortho ? " ortho" : " persp") << " dist " << dist;
+      // And against the true distance: within twice the format's analytic bound.
+      EXPECT_NEAR(-rebuilt.z, dist, 2.0 * quantBound + arith)
+          << toString(c.mode) << (c.ortho ? " ortho" : " persp") << " dist " << dist;
+      if (c.mode != DepthMode::GlDefault && !c.ortho && (c.mode == DepthMode::Reversed || c.mode == DepthMode::ReversedInfinite)) {
+        EXPECT_LE(std::abs(-rebuilt.z - dist) / dist, 1e-6) << "reversed D32F relative error, dist " << dist;
+      }
+      // x and y follow z exactly.
+      const double scale = c.ortho ? 1.0 : -rebuilt.z / dist;
+      EXPECT_NEAR(rebuilt.x, vs.x * scale, 1e-5 * std::max(1.0, std::abs(vs.x)) + 1e-6 * dist);
+      EXPECT_NEAR(rebuilt.y, vs.y * scale, 1e-5 * std::max(1.0, std::abs(vs.y)) + 1e-6 * dist);
+      // Projecting back lands on the same uv.
+      const vec3 ndcBack = sslrNdcFromView(proj, vec3(vs));
+      EXPECT_NEAR(ndcBack.x, ndc.x, 1e-5);
+      EXPECT_NEAR(ndcBack.y, ndc.y, 1e-5);
+    }
+  }
+}
+
+std::vector<Case> allCases() {
+  std::vector<Case> cases;
+  for (DepthMode m : kModes)
+    for (bool ortho : {false, true})
+      for (glm::dvec2 off : {glm::dvec2(0.0), glm::dvec2(0.37, -0.25)}) cases.push_back({m, ortho, off});
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(AllConventions, Reconstruction, ::testing::ValuesIn(allCases()),
+                         [](const ::testing::TestParamInfo<Case>& info) {
+                           std::string name = toString(info.param.mode);
+                           for (char& ch : name) if (ch == '-') ch = '_';
+                           return name + (info.param.ortho ? "_ortho" : "_persp") +
+                                  (info.param.offsetPx.x != 0.0 ? "_offcentre" : "");
+                         });
+
+TEST(Projection, RejectsNonFiniteSingularAndSkewedMatrices) {
+  Camera cam;
+  const glm::dmat4 good = cam.clipFromView(DepthMode::Reversed, 1.5);
+  ASSERT_TRUE(sslr::detail::reduceProjection(good, DepthConvention::reversed()));
+
+  glm::dmat4 nan = good;
+  nan[0][0] = std::nan("");
+  auto r = sslr::detail::reduceProjection(nan, DepthConvention::reversed());
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().find("not finite"), std::string::npos) << r.error();
+
+  glm::dmat4 singular = good;
+  singular[1][1] = 0.0;
+  r = sslr::detail::reduceProjection(singular, DepthConvention::reversed());
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().find("singular"), std::string::npos) << r.error();
+
+  glm::dmat4 skew = good;
+  skew[1][0] = 0.2;
+  r = sslr::detail::reduceProjection(skew, DepthConvention::reversed());
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().find("skew"), std::string::npos) << r.error();
+
+  // The identity is an orthographic projection whose depth grows towards the camera: reversed.
+  EXPECT_TRUE(sslr::detail::reduceProjection(glm::dmat4(1.0), DepthConvention::reversed()));
+  r = sslr::detail::reduceProjection(glm::dmat4(1.0), DepthConvention::glDefault());
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().find("mismatch"), std::string::npos) << r.error();
+
+  r = sslr::detail::reduceProjection(glm::dmat4(0.0), DepthConvention::reversed());
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().find("neither"), std::string::npos) << r.error();
+}
+
+TEST(Projection, RejectsNearEqualsFarAndConventionMismatch) {
+  Camera cam;
+  cam.nearPlane = cam.farPlane = 5.0;
+  // n == f: the standard matrix divides by zero (inf entries), the reversed one has zero slope.
+  EXPECT_FALSE(sslr::detail::reduceProjection(cam.clipFromView(DepthMode::ZeroToOne, 1.0), DepthConvention::zeroToOne()));
+  Camera ok;
+  auto r = sslr::detail::reduceProjection(ok.clipFromView(DepthMode::ZeroToOne, 1.0), DepthConvention::reversed());
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().find("mismatch"), std::string::npos) << r.error();
+  r = sslr::detail::reduceProjection(ok.clipFromView(DepthMode::Reversed, 1.0), DepthConvention::glDefault());
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().find("mismatch"), std::string::npos) << r.error();
+}
+
+TEST(Projection, DepthFromNdcInvertsNdcFromDepth) {
+  for (int zeroToOne : {0, 1}) {
+    SslrProjection p{};
+    p.ndcZeroToOne = zeroToOne;
+    for (float d : {0.0f, 0.25f, 0.5f, 1.0f})
+      EXPECT_FLOAT_EQ(sslrDepthFromNdcZ(p, sslrNdcZFromDepth(p, d)), d);
+  }
+}
+
+TEST(Projection, BackgroundDepthIsNotGeometry) {
+  SslrSurface standard{}, reversed{};
+  reversed.reversedZ = 1;
+  EXPECT_FALSE(sslrIsGeometryDepth(standard, 1.0f));
+  EXPECT_TRUE(sslrIsGeometryDepth(standard, 0.5f));
+  EXPECT_FALSE(sslrIsGeometryDepth(reversed, 0.0f));
+  EXPECT_TRUE(sslrIsGeometryDepth(reversed, 1e-30f));  // denormal-ish depth: far but real
+  EXPECT_FALSE(sslrIsGeometryDepth(reversed, std::nanf("")));
+  EXPECT_FALSE(sslrIsGeometryDepth(standard, std::nanf("")));
+  EXPECT_FALSE(sslrIsGeometryDepth(standard, -0.5f));
+  EXPECT_FALSE(sslrIsGeometryDepth(reversed, 1.5f));
+  EXPECT_FALSE(sslrIsGeometryDepth(reversed, INFINITY));
+}
+
+}  // namespace

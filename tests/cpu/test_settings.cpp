@@ -1,0 +1,56 @@
+// Settings: presets are valid and ordered by effort; every invalid field is named.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "sslr/sslr.hpp"
+
+using namespace sslr;
+
+TEST(Settings, DefaultsAndPresetsAreValid) {
+  EXPECT_EQ(validate(Settings{}), "");
+  for (Preset p : {Preset::Low, Preset::Medium, Preset::High, Preset::Ultra}) EXPECT_EQ(validate(Settings::preset(p)), "");
+}
+
+TEST(Settings, PresetsGrowInEffort) {
+  const Settings low = Settings::preset(Preset::Low), med = Settings::preset(Preset::Medium),
+                 high = Settings::preset(Preset::High), ultra = Settings::preset(Preset::Ultra);
+  EXPECT_LT(low.maxIterations, med.maxIterations);
+  EXPECT_LT(med.maxIterations, high.maxIterations);
+  EXPECT_LT(high.maxIterations, ultra.maxIterations);
+  EXPECT_EQ(med.maxIterations, 10) << "medium is the article's fixed iteration count";
+  EXPECT_GT(low.convergenceEps, ultra.convergenceEps);
+}
+
+TEST(Settings, EveryInvalidFieldIsNamed) {
+  struct Bad {
+    const char* field;
+    void (*apply)(Settings&);
+  };
+  const Bad cases[] = {
+      {"maxIterations", [](Settings& s) { s.maxIterations = 0; }},
+      {"maxIterations", [](Settings& s) { s.maxIterations = 100000; }},
+      {"convergenceEps", [](Settings& s) { s.convergenceEps = -1.0f; }},
+      {"initialLengthPixels", [](Settings& s) { s.initialLengthPixels = 0.0f; }},
+      {"errorK", [](Settings& s) { s.errorK = NAN; }},
+      {"maxDistance", [](Settings& s) { s.maxDistance = 0.0f; }},
+      {"maxDistance", [](Settings& s) { s.maxDistance = NAN; }},
+      {"thicknessRelative", [](Settings& s) { s.thicknessRelative = -0.1f; }},
+      {"thicknessPixels", [](Settings& s) { s.thicknessPixels = INFINITY; }},
+      {"both 0", [](Settings& s) { s.thicknessPixels = 0.0f; s.thicknessRelative = 0.0f; }},
+      {"edgeFade", [](Settings& s) { s.edgeFade = 0.7f; }},
+      {"cameraFadeStart", [](Settings& s) { s.cameraFadeStart = 0.9f; s.cameraFadeEnd = 0.1f; }},
+      {"roughnessCutoff", [](Settings& s) { s.roughnessCutoff = NAN; }},
+      {"minReflectance", [](Settings& s) { s.minReflectance = INFINITY; }},
+      {"blurMaxRadiusPx", [](Settings& s) { s.blurMaxRadiusPx = 100.0f; }},
+      {"blurConeScale", [](Settings& s) { s.blurConeScale = -1.0f; }},
+      {"blurDepthSigma", [](Settings& s) { s.blurDepthSigma = 0.0f; }},
+      {"blurNormalPower", [](Settings& s) { s.blurNormalPower = NAN; }},
+  };
+  for (const Bad& b : cases) {
+    Settings s;
+    b.apply(s);
+    const std::string why = validate(s);
+    EXPECT_NE(why.find(b.field), std::string::npos) << b.field << " -> '" << why << "'";
+  }
+}

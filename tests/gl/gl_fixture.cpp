@@ -1,0 +1,47 @@
+#include "gl/gl_fixture.hpp"
+
+#include <cstdlib>
+#include <memory>
+
+namespace sslr::test {
+
+namespace {
+std::unique_ptr<sslr::host::HeadlessContext> gContext;
+std::string gError;
+}  // namespace
+
+sslr::host::HeadlessContext* glContext() { return gContext.get(); }
+const std::string& glContextError() { return gError; }
+
+void GlTest::SetUp() {
+  if (gContext) {
+    gContext->resetGlErrorCount();
+    return;
+  }
+  const char* require = std::getenv("SSLR_REQUIRE_GL");
+  if (require != nullptr && std::string(require) == "1")
+    FAIL() << "no OpenGL 4.5 context (SSLR_REQUIRE_GL=1): " << gError;
+  GTEST_SKIP() << "no OpenGL 4.5 context: " << gError;
+}
+
+void GlTest::TearDown() {
+  if (gContext) EXPECT_EQ(gContext->glErrorCount(), 0) << "GL errors were reported during the test";
+}
+
+}  // namespace sslr::test
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  sslr::host::EglOptions options;
+  options.quiet = true;
+  auto ctx = sslr::host::HeadlessContext::create(options);
+  if (ctx) {
+    sslr::test::gContext = std::move(ctx.value());
+    std::printf("GL_RENDERER: %s\n", sslr::test::gContext->renderer().c_str());
+  } else {
+    sslr::test::gError = ctx.error();
+  }
+  const int rc = RUN_ALL_TESTS();
+  sslr::test::gContext.reset();
+  return rc;
+}

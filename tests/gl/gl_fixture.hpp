@@ -1,0 +1,22 @@
+// Shared GL test setup: one headless context for the whole executable. Without a context the
+// tests skip with the reason, unless SSLR_REQUIRE_GL=1 (CI) makes that a failure. Every test
+// ends by checking that no GL error was reported through KHR_debug.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include "sslr_host/egl_context.hpp"
+#include "sslr_host/gl.hpp"
+
+namespace sslr::test {
+
+sslr::host::HeadlessContext* glContext();     // nullptr if none could be created
+const std::string& glContextError();
+
+class GlTest : public ::testing::Test {
+ protected:
+  void SetUp() override;
+  void TearDown() override;
+};
+
+}  // namespace sslr::test

@@ -1,0 +1,374 @@
+// The drop-in API: creation, every invalid input rejected with a message (and no GL error),
+// GL state restored, poisoned G-buffers never producing NaN/Inf, empty frames doing no work.
+#include <cmath>
+#include <cstring>
+
+#include "gl/gl_fixture.hpp"
+#include "sslr/sslr.hpp"
+#include "sslr_host/frame_renderer.hpp"
+#include "sslr_host/gbuffer.hpp"
+
+using namespace sslr;
+using namespace sslr::host;
+
+namespace {
+
+constexpr int W = 64, H = 48;
+
+std::unique_ptr<Context> makeContext(int w = W, int h = H) {
+  ContextDesc d;
+  d.width = w;
+  d.height = h;
+  d.getProcAddress = HeadlessContext::getProcAddress();
+  auto c = Context::create(d);
+  EXPECT_TRUE(c) << c.error();
+  return c ? std::move(c.value()) : nullptr;
+}
+
+GLuint makeTexture(GLenum format, int w = W, int h = H) {
+  GLuint t = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &t);
+  glTextureStorage2D(t, 1, format, w, h);
+  return t;
+}
+
+// A small G-buffer of the analytic mirror scene, rendered by the host pass.
+struct Frame {
+  std::unique_ptr<GBuffer> gbuffer;
+  std::unique_ptr<GpuScene> scene;
+  Frame(DepthMode mode = DepthMode::Reversed, NormalEncoding normals = NormalEncoding::Octahedral) {
+    GBufferOptions o;
+    o.width = W;
+    o.height = H;
+    o.depth = mode;
+    o.normals = normals;
+    auto g = GBuffer::create(o);
+    EXPECT_TRUE(g) << g.error();
+    gbuffer = std::move(g.value());
+    auto s = makeBuiltinScene("mirror-box");
+    scene = std::make_unique<GpuScene>(s.value());
+    EXPECT_TRUE(gbuffer->render(*scene, *s.value().camera));
+  }
+};
+
+class Api : public sslr::test::GlTest {};
+
+TEST_F(Api, CreateRejectsBadDescriptions) {
+  ContextDesc d;
+  d.width = 0;
+  d.height = 10;
+  d.getProcAddress = HeadlessContext::getProcAddress();
+  auto c = Context::create(d);
+  ASSERT_FALSE(c);
+  EXPECT_NE(c.error().find("0x10"), std::string::npos) << c.error();
+  d.width = 10;
+  d.getProcAddress = nullptr;
+  c = Context::create(d);
+  ASSERT_FALSE(c);
+  EXPECT_NE(c.error().find("getProcAddress"), std::string::npos) << c.error();
+  d.getProcAddress = [](const char*) -> GLProc { return nullptr; };
+  c = Context::create(d);
+  ASSERT_FALSE(c);
+  EXPECT_NE(c.error().find("glCreateTextures"), std::string::npos) << "names the missing entry points: " << c.error();
+}
+
+TEST_F(Api, DispatchRejectsEveryBadInputWithAMessage) {
+  auto ctx = makeContext();
+  Frame f;
+  const FrameInputs good = f.gbuffer->frameInputs();
+  const Settings s;
+  ASSERT_TRUE(ctx->dispatch(good, s)) << ctx->dispatch(good, s).message();
+
+  const GLuint wrongSize = makeTexture(GL_RGBA16F, W + 1, H);
+  const GLuint integerTex = makeTexture(GL_RGBA16UI);
+  const GLuint oneChannel = makeTexture(GL_R16);
+  const GLuint depthAsColor = makeTexture(GL_DEPTH_COMPONENT32F);
+  GLuint notTexture = 0;
+  glCreateBuffers(1, &notTexture);  // a buffer name, not a texture
+  struct Bad {
+    const char* expect;
+    std::function<void(FrameInputs&)> edit;
+  };
+  const std::vector<Bad> cases = {
+      {"depthTexture (texture 0) is 0", [](FrameInputs& in) { in.depthTexture = 0; }},
+      {"colorTexture", [](FrameInputs& in) { in.colorTexture = 0; }},
+      {"normalTexture", [](FrameInputs& in) { in.normalTexture = 0; }},
+      {"is not a texture name", [&](FrameInputs& in) { in.colorTexture = 987654; }},
+      {"but the context is 64x48", [&](FrameInputs& in) { in.colorTexture = wrongSize; }},
+      {"expected a float or unorm colour format", [&](FrameInputs& in) { in.normalTexture = integerTex; }},
+      {"expected a depth format", [&](FrameInputs& in) { in.depthTexture = good.colorTexture; }},
+      {"expected a float or unorm colour format", [&](FrameInputs& in) { in.colorTexture = depthAsColor; }},
+      {"needs 2", [&](FrameInputs& in) { in.normalTexture = oneChannel; }},
+      {"roughnessChannel = 7", [](FrameInputs& in) { in.surface.roughnessChannel = 7; }},
+      {"overlaps the normal", [](FrameInputs& in) { in.surface.reflectanceChannel = 1; }},
+      {"not finite", [](FrameInputs& in) { in.clipFromView[2][2] = NAN; }},
+      {"singular", [](FrameInputs& in) { in.clipFromView[0][0] = 0.0; }},
+      {"neither", [](FrameInputs& in) { in.clipFromView = glm::dmat4(0.0); }},
+      {"mismatch", [](FrameInputs& in) { in.depth = DepthConvention::glDefault(); }},
+      {"finite", [](FrameInputs& in) { in.surface.constantReflectance = INFINITY; }},
+  };
+  for (const Bad& b : cases) {
+    FrameInputs in = good;
+    b.edit(in);
+    const Status st = ctx->dispatch(in, s);
+    ASSERT_FALSE(st) << b.expect;
+    EXPECT_NE(st.message().find(b.expect), std::string::npos) << "got: " << st.message();
+    EXPECT_EQ(sslr::test::glContext()->glErrorCount(), 0) << "after: " << b.expect;
+  }
+  Settings bad;
+  bad.maxIterations = -3;
+  const Status st = ctx->dispatch(good, bad);
+  ASSERT_FALSE(st);
+  EXPECT_NE(st.message().find("maxIterations"), std::string::npos) << st.message();
+  // A failed dispatch leaves nothing to composite.
+  EXPECT_FALSE(ctx->composite(0));
+  // Bad framebuffer names are refused.
+  ASSERT_TRUE(ctx->dispatch(good, s));
+  EXPECT_FALSE(ctx->composite(424242));
+  const GLuint textures[] = {wrongSize, integerTex, oneChannel, depthAsColor};
+  glDeleteTextures(4, textures);
+  glDeleteBuffers(1, &notTexture);
+}
+
+TEST_F(Api, CompositeBeforeDispatchIsAnError) {
+  auto ctx = makeContext();
+  const Status st = ctx->composite(0);
+  ASSERT_FALSE(st);
+  EXPECT_NE(st.message().find("dispatch"), std::string::npos);
+}
+
+// Every piece of state the library documents as touched, captured as plain numbers.
+struct Snapshot {
+  std::vector<GLint64> values;
+  static Snapshot take() {
+    Snapshot s;
+    auto i = [&](GLenum e) { GLint v = 0; glGetIntegerv(e, &v); s.values.push_back(v); };
+    auto ii = [&](GLenum e, GLuint k) { GLint64 v = 0; glGetInteger64i_v(e, k, &v); s.values.push_back(v); };
+    i(GL_CURRENT_PROGRAM);
+    i(GL_ACTIVE_TEXTURE);
+    GLint active = 0;
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+    for (int u = 0; u < 8; ++u) {
+      glActiveTexture(GL_TEXTURE0 + u);
+      i(GL_TEXTURE_BINDING_2D);
+      i(GL_SAMPLER_BINDING);
+    }
+    glActiveTexture(static_cast<GLenum>(active));
+    for (GLuint k = 0; k < 4; ++k) {
+      ii(GL_IMAGE_BINDING_NAME, k); ii(GL_IMAGE_BINDING_FORMAT, k); ii(GL_IMAGE_BINDING_ACCESS, k);
+      ii(GL_SHADER_STORAGE_BUFFER_BINDING, k); ii(GL_SHADER_STORAGE_BUFFER_START, k); ii(GL_SHADER_STORAGE_BUFFER_SIZE, k);
+      ii(GL_UNIFORM_BUFFER_BINDING, k); ii(GL_UNIFORM_BUFFER_START, k); ii(GL_UNIFORM_BUFFER_SIZE, k);
+    }
+    for (GLenum e : {GL_SHADER_STORAGE_BUFFER_BINDING, GL_UNIFORM_BUFFER_BINDING, GL_DISPATCH_INDIRECT_BUFFER_BINDING,
+                     GL_DRAW_INDIRECT_BUFFER_BINDING, GL_VERTEX_ARRAY_BINDING, GL_DRAW_FRAMEBUFFER_BINDING,
+                     GL_READ_FRAMEBUFFER_BINDING, GL_BLEND_SRC_RGB, GL_BLEND_DST_RGB, GL_BLEND_SRC_ALPHA,
+                     GL_BLEND_DST_ALPHA, GL_BLEND_EQUATION_RGB, GL_BLEND_EQUATION_ALPHA, GL_DEPTH_FUNC,
+                     GL_ARRAY_BUFFER_BINDING, GL_PIXEL_PACK_BUFFER_BINDING})
+      i(e);
+    GLint vp[4];
+    glGetIntegerv(GL_VIEWPORT, vp);
+    s.values.insert(s.values.end(), vp, vp + 4);
+    for (GLenum cap : {GL_DEPTH_TEST, GL_STENCIL_TEST, GL_CULL_FACE, GL_SCISSOR_TEST, GL_BLEND, GL_RASTERIZER_DISCARD})
+      s.values.push_back(glIsEnabled(cap));
+    for (GLuint k = 0; k < 4; ++k) {
+      GLboolean m[4];
+      glGetBooleani_v(GL_COLOR_WRITEMASK, k, m);
+      s.values.insert(s.values.end(), m, m + 4);
+    }
+    GLboolean depthMask = 0;
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &depthMask);
+    s.values.push_back(depthMask);
+    return s;
+  }
+};
+
+TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
+  auto ctx = makeContext();
+  Frame f;
+  // Host state that sslr must not disturb: unusual values everywhere.
+  GLuint hostTex[3], hostSampler = 0, hostBuf[3], hostVao = 0, hostFbo = 0;
+  glCreateTextures(GL_TEXTURE_2D, 3, hostTex);
+  for (GLuint t : hostTex) glTextureStorage2D(t, 1, GL_RGBA8, 4, 4);
+  glCreateSamplers(1, &hostSampler);
+  glCreateBuffers(3, hostBuf);
+  for (GLuint b : hostBuf) glNamedBufferStorage(b, 1024, nullptr, 0);
+  glCreateVertexArrays(1, &hostVao);
+  GLuint fboTex = makeTexture(GL_RGBA16F);
+  glCreateFramebuffers(1, &hostFbo);
+  glNamedFramebufferTexture(hostFbo, GL_COLOR_ATTACHMENT0, fboTex, 0);
+  for (int u = 0; u < 6; ++u) {
+    glBindTextureUnit(u, hostTex[u % 3]);
+    glBindSampler(u, hostSampler);
+  }
+  glActiveTexture(GL_TEXTURE3);
+  glBindImageTexture(0, hostTex[1], 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA8);
+  glBindImageTexture(2, hostTex[2], 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
+  glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, hostBuf[0], 256, 512);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, hostBuf[1]);
+  glBindBufferRange(GL_UNIFORM_BUFFER, 0, hostBuf[2], 0, 256);
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, hostBuf[2]);
+  glBindBuffer(GL_UNIFORM_BUFFER, hostBuf[0]);
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, hostBuf[1]);
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, hostBuf[2]);
+  glBindVertexArray(hostVao);
+  glBindFramebuffer(GL_FRAMEBUFFER, hostFbo);
+  glViewport(3, 4, 20, 10);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GEQUAL);
+  glEnable(GL_CULL_FACE);
+  glEnable(GL_SCISSOR_TEST);
+  glEnable(GL_BLEND);
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ZERO);
+  glBlendEquationSeparate(GL_FUNC_SUBTRACT, GL_MAX);
+  glColorMaski(0, GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
+  glColorMaski(1, GL_FALSE, GL_TRUE, GL_FALSE, GL_TRUE);
+  glDepthMask(GL_FALSE);
+  GLuint hostProgram = glCreateProgram();  // any valid program name works as "current"
+  (void)hostProgram;
+
+  const Snapshot before = Snapshot::take();
+  Settings s;
+  s.debugOutputs = true;
+  s.collectStats = true;
+  ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), s));
+  EXPECT_EQ(Snapshot::take().values, before.values) << "dispatch changed GL state";
+  ASSERT_TRUE(ctx->composite(hostFbo));
+  EXPECT_EQ(Snapshot::take().values, before.values) << "composite changed GL state";
+
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glBindVertexArray(0);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_BLEND);
+  glDepthMask(GL_TRUE);
+  glColorMaski(0, 1, 1, 1, 1);
+  glColorMaski(1, 1, 1, 1, 1);
+  glDepthFunc(GL_LESS);
+  glBindSampler(0, 0);
+  glDeleteProgram(hostProgram);
+  glDeleteFramebuffers(1, &hostFbo);
+  glDeleteTextures(3, hostTex);
+  glDeleteTextures(1, &fboTex);
+  glDeleteSamplers(1, &hostSampler);
+  glDeleteBuffers(3, hostBuf);
+  glDeleteVertexArrays(1, &hostVao);
+  for (int u = 0; u < 8; ++u) {
+    glBindTextureUnit(u, 0);
+    glBindSampler(u, 0);
+  }
+  glActiveTexture(GL_TEXTURE0);
+}
+
+Image readAll(GLuint tex, int channels) { return readTexture(tex, W, H, channels); }
+
+TEST_F(Api, PoisonedGBufferNeverProducesNanOrInf) {
+  auto ctx = makeContext();
+  // Host-made textures filled with garbage: NaN/Inf colour, zero, non-unit and NaN normals,
+  // depth at the clear value, the near value, denormals, NaN and random bits.
+  const GLuint color = makeTexture(GL_RGBA16F), normal = makeTexture(GL_RGBA16F), depth = makeTexture(GL_DEPTH_COMPONENT32F);
+  std::vector<float> c(W * H * 4), n(W * H * 4), d(W * H);
+  std::uint32_t seed = 1234567u;
+  auto rnd = [&]() { seed = seed * 1664525u + 1013904223u; return seed; };
+  for (int p = 0; p < W * H; ++p) {
+    const int kind = p % 8;
+    const float specials[8] = {NAN, INFINITY, -INFINITY, 1e30f, -1.0f, 0.5f, 65504.0f, 0.0f};
+    for (int k = 0; k < 4; ++k) c[p * 4 + k] = specials[(kind + k) % 8];
+    const glm::vec4 normals[8] = {{0.5f, 0.5f, 0.0f, 1.0f}, {NAN, 0.5f, 0.0f, 1.0f}, {0.0f, 0.0f, 0.0f, 1.0f},
+                                  {1.0f, 1.0f, 0.0f, 1.0f}, {0.5f, 1.0f, 0.0f, INFINITY}, {0.5f, 0.75f, NAN, 1.0f},
+                                  {0.3f, 0.9f, 0.0f, 0.9f}, {-5.0f, 9.0f, 0.0f, 1.0f}};
+    std::memcpy(&n[p * 4], &normals[(kind + p / 8) % 8], 16);
+    std::uint32_t bits = rnd();
+    float randomFloat;
+    std::memcpy(&randomFloat, &bits, 4);
+    const float depths[8] = {0.0f, 1.0f, 1e-40f, 0.5f, 0.999999f, randomFloat, 1e-8f, 0.25f};
+    d[p] = depths[(kind * 3 + p / 5) % 8];
+  }
+  glTextureSubImage2D(color, 0, 0, 0, W, H, GL_RGBA, GL_FLOAT, c.data());
+  glTextureSubImage2D(normal, 0, 0, 0, W, H, GL_RGBA, GL_FLOAT, n.data());
+  glTextureSubImage2D(depth, 0, 0, 0, W, H, GL_DEPTH_COMPONENT, GL_FLOAT, d.data());
+  Camera cam;
+  for (DepthMode mode : {DepthMode::Reversed, DepthMode::ReversedInfinite, DepthMode::GlDefault}) {
+    FrameInputs in;
+    in.colorTexture = color;
+    in.normalTexture = normal;
+    in.depthTexture = depth;
+    in.clipFromView = cam.clipFromView(mode, double(W) / H);
+    in.depth = depthConvention(mode);
+    for (NormalEncoding enc : {NormalEncoding::Octahedral, NormalEncoding::XyzUnorm}) {
+      in.surface.normals = enc;
+      in.surface.roughnessChannel = enc == NormalEncoding::Octahedral ? 2 : -1;
+      Settings s;
+      s.debugOutputs = true;
+      ASSERT_TRUE(ctx->dispatch(in, s));
+      for (auto [tex, ch] : {std::pair{ctx->reflectionTexture(), 4}, {ctx->resolvedTexture(), 4},
+                             {ctx->hitTexture(), 4}, {ctx->iterationsTexture(), 1}})
+        EXPECT_EQ(countNonFinite(readAll(tex, ch)), 0u) << toString(mode);
+      const Image iterations = readAll(ctx->iterationsTexture(), 1);
+      for (float it : iterations.pixels) ASSERT_LE(it, float(s.maxIterations)) << "loop count bounded";
+    }
+  }
+  const GLuint t[3] = {color, normal, depth};
+  glDeleteTextures(3, t);
+}
+
+TEST_F(Api, EmptyFrameTracesNothing) {
+  auto ctx = makeContext();
+  Frame f;
+  FrameInputs in = f.gbuffer->frameInputs();
+  // Reflectance 0 everywhere (constant): no pixel is reflective.
+  in.surface.reflectanceChannel = -1;
+  in.surface.constantReflectance = 0.0f;
+  Settings s;
+  s.collectStats = true;
+  ASSERT_TRUE(ctx->dispatch(in, s));
+  EXPECT_EQ(ctx->lastStats().tiles, 0u);
+  EXPECT_EQ(ctx->lastStats().tracedPixels, 0u);
+  EXPECT_EQ(ctx->lastStats().depthFetches, 0u);
+  const Image resolved = readAll(ctx->resolvedTexture(), 4);
+  for (float v : resolved.pixels) ASSERT_EQ(v, 0.0f);
+  // The same frame with reflectance traces and reports its work.
+  ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), s));
+  EXPECT_GT(ctx->lastStats().tiles, 0u);
+  EXPECT_GT(ctx->lastStats().tracedPixels, 0u);
+  EXPECT_GE(ctx->lastStats().depthFetches, ctx->lastStats().tracedPixels);
+}
+
+TEST_F(Api, ArticleXyzNormalsGiveTheSameHitsAsOctahedral) {
+  auto ctx = makeContext();
+  Settings s;
+  s.debugOutputs = true;
+  Frame oct(DepthMode::Reversed, NormalEncoding::Octahedral);
+  ASSERT_TRUE(ctx->dispatch(oct.gbuffer->frameInputs(), s));
+  const Image hitOct = readAll(ctx->hitTexture(), 4);
+  Frame xyz(DepthMode::Reversed, NormalEncoding::XyzUnorm);
+  ASSERT_TRUE(ctx->dispatch(xyz.gbuffer->frameInputs(), s));
+  const Image hitXyz = readAll(ctx->hitTexture(), 4);
+  size_t both = 0, close = 0;
+  for (int p = 0; p < W * H; ++p) {
+    if (hitOct.pixels[p * 4 + 2] > 0.5f && hitXyz.pixels[p * 4 + 2] > 0.5f) {
+      ++both;
+      const float du = (hitOct.pixels[p * 4] - hitXyz.pixels[p * 4]) * W;
+      const float dv = (hitOct.pixels[p * 4 + 1] - hitXyz.pixels[p * 4 + 1]) * H;
+      close += std::hypot(du, dv) <= 1.0f;
+    }
+  }
+  ASSERT_GT(both, 100u);
+  // 8-bit xyz normals err by up to 0.39 deg (0.78 deg reflected): a few hits may move a pixel.
+  EXPECT_GE(double(close) / both, 0.95);
+}
+
+TEST_F(Api, ResizeFollowsTheHost) {
+  auto ctx = makeContext();
+  EXPECT_FALSE(ctx->resize(0, 5));
+  ASSERT_TRUE(ctx->resize(32, 16));
+  EXPECT_EQ(ctx->width(), 32);
+  Frame f;  // 64x48 textures no longer match
+  const Status st = ctx->dispatch(f.gbuffer->frameInputs(), Settings{});
+  ASSERT_FALSE(st);
+  EXPECT_NE(st.message().find("32x16"), std::string::npos) << st.message();
+  ASSERT_TRUE(ctx->resize(W, H));
+  EXPECT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), Settings{}));
+}
+
+}  // namespace

@@ -1,0 +1,136 @@
+// sslr-render as a user runs it: help, exit codes, messages, files written (or not).
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "gl/gl_fixture.hpp"
+#include "sslr_host/image_io.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int exitCode = -1;
+  std::string output;
+};
+
+Result run(const std::string& args) {
+  const std::string cmd = std::string(SSLR_RENDER_EXE) + " " + args + " 2>&1";
+  Result r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (pipe == nullptr) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
+  const int status = pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+fs::path freshDir(const std::string& name) {
+  const fs::path p = fs::path(SSLR_TEST_TMP) / "cli" / name;
+  fs::remove_all(p);
+  return p;
+}
+
+class RenderCli : public sslr::test::GlTest {};
+
+TEST(RenderCliNoGl, HelpExitsZero) {
+  const Result r = run("--help");
+  EXPECT_EQ(r.exitCode, 0);
+  EXPECT_NE(r.output.find("--scene"), std::string::npos);
+  EXPECT_NE(r.output.find("--dump"), std::string::npos);
+}
+
+TEST(RenderCliNoGl, BadArgumentsExitTwoWithAMessageAndWriteNothing) {
+  const struct {
+    const char* args;
+    const char* message;
+  } cases[] = {
+      {"--size 10by10", "--size expects WxH"},
+      {"--size 0x10", "--size expects WxH"},
+      {"--scene no-such-scene", "unknown scene 'no-such-scene'"},
+      {"--scene /nonexistent/file.gltf", "/nonexistent/file.gltf: file not found"},
+      {"--preset extreme", "--preset must be"},
+      {"--depth sideways", "--depth must be"},
+      {"--eye 1,2", "--eye expects three finite numbers"},
+      {"--fovy -5", "--fovy expects a positive number"},
+      {"--eye 0,1,0 --target 0,1,0", "camera eye and target coincide"},
+      {"--near 10 --far 1", "far plane must be"},
+      {"--iterations 0", "maxIterations"},
+      {"--iterations abc", "iterations"},
+      {"--no-such-option", "no-such-option"},
+      {"--method raymarch", "--method must be"},
+  };
+  for (const auto& c : cases) {
+    const fs::path out = freshDir("bad");
+    const Result r = run(std::string(c.args) + " --out " + out.string());
+    EXPECT_EQ(r.exitCode, 2) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(out)) << c.args << ": nothing may be written";
+  }
+}
+
+TEST_F(RenderCli, MalformedGltfExitsTwoAndWritesNothing) {
+  const fs::path dir = fs::path(SSLR_TEST_TMP) / "cli";
+  fs::create_directories(dir);
+  const fs::path bad = dir / "broken.gltf";
+  std::ofstream(bad) << R"({"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":5}}]}],)"
+                     << R"("nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}]})";
+  const fs::path out = freshDir("broken");
+  const Result r = run("--scene " + bad.string() + " --out " + out.string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find(bad.string()), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(RenderCli, DumpWritesEveryNamedBuffer) {
+  const fs::path out = freshDir("dump");
+  const Result r = run("--size 64x40 --dump --out " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* name : {"final.png", "color.exr", "normal.exr", "depth.exr", "position.exr", "hit.exr",
+                           "reflection.exr", "iterations.exr", "resolved.exr"}) {
+    ASSERT_TRUE(fs::exists(out / name)) << name;
+    auto img = sslr::host::readImage((out / name).string());
+    ASSERT_TRUE(img) << img.error();
+    EXPECT_EQ(img.value().width, 64) << name;
+    EXPECT_EQ(img.value().height, 40) << name;
+    if (std::string(name) != "final.png") EXPECT_EQ(sslr::host::countNonFinite(img.value()), 0u) << name;
+  }
+  // hit.exr: uv in [0,1] and confidence in [0,1]; some pixels must have hits on the default scene.
+  auto hit = sslr::host::readImage((out / "hit.exr").string());
+  size_t hits = 0;
+  for (size_t p = 0; p < hit.value().pixels.size() / 4; ++p) {
+    const float* h = &hit.value().pixels[p * 4];
+    ASSERT_GE(h[2], 0.0f);
+    ASSERT_LE(h[2], 1.0f);
+    if (h[2] > 0.0f) {
+      ++hits;
+      ASSERT_GE(h[0], 0.0f);
+      ASSERT_LE(h[0], 1.0f);
+    }
+  }
+  EXPECT_GT(hits, 100u);
+  // Without reflections the reflection buffers are not written.
+  const fs::path plain = freshDir("plain");
+  const Result r2 = run("--size 32x20 --method none --dump --out " + plain.string());
+  ASSERT_EQ(r2.exitCode, 0) << r2.output;
+  EXPECT_TRUE(fs::exists(plain / "depth.exr"));
+  EXPECT_FALSE(fs::exists(plain / "hit.exr"));
+}
+
+TEST_F(RenderCli, EveryBuiltinSceneAndDepthConventionRenders) {
+  for (const char* scene : {"mirror-room", "grazing-plane", "thin-objects", "sky-heavy"})
+    for (const char* depth : {"reversed", "gl-default"}) {
+      const fs::path out = freshDir(std::string(scene) + depth);
+      const Result r = run(std::string("--size 48x32 --scene ") + scene + " --depth " + depth + " --out " + out.string());
+      EXPECT_EQ(r.exitCode, 0) << scene << " " << depth << "\n" << r.output;
+      EXPECT_TRUE(fs::exists(out / "final.png"));
+    }
+}
+
+}  // namespace

@@ -1,0 +1,136 @@
+// The tracer against ray-traced truth on analytic scenes (mirror floor + box, tilted mirror,
+// orthographic camera, reversed-Z and GL-default depth), and the default scene's golden image.
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "gl/gl_fixture.hpp"
+#include "sslr_host/frame_renderer.hpp"
+#include "sslr_host/ground_truth.hpp"
+
+using namespace sslr;
+using namespace sslr::host;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TraceCase {
+  const char* scene;
+  DepthMode depth;
+  bool ortho;
+};
+
+struct Traced {
+  HitMetrics metrics;
+  size_t nonFiniteOutputs = 0;
+};
+
+Traced traceAndCompare(const TraceCase& c, int w, int h) {
+  auto scene = makeBuiltinScene(c.scene);
+  EXPECT_TRUE(scene);
+  Camera cam = *scene.value().camera;
+  if (c.ortho) {
+    cam.orthographic = true;
+    cam.orthoHeight = 7.0;
+  }
+  GBufferOptions o;
+  o.width = w;
+  o.height = h;
+  o.depth = c.depth;
+  auto r = FrameRenderer::create(o);
+  EXPECT_TRUE(r) << r.error();
+  GpuScene gpu(scene.value());
+  Settings s = Settings::preset(Preset::High);
+  s.debugOutputs = true;
+  if (const char* e = std::getenv("DIAG_FADE")) { s.cameraFadeStart = 0.95f; s.cameraFadeEnd = 1.0f; (void)e; }
+  if (const char* e = std::getenv("DIAG_ITERS")) s.maxIterations = std::atoi(e);
+  if (const char* e = std::getenv("DIAG_THICK")) s.thicknessPixels = float(std::atof(e));
+  const Status st = r.value()->render(gpu, cam, &s);
+  EXPECT_TRUE(st) << st.message();
+  GBuffer& g = r.value()->gbuffer();
+  const Image hit = r.value()->readHit();
+  auto rt = RayTracer::create(scene.value(), g.viewFromWorld());
+  EXPECT_TRUE(rt);
+  const auto mask = reflectiveMask(g.readDepth(), g.readNormalPacked(), g.frameInputs(), s);
+  const GroundTruth gt = computeGroundTruth(*rt.value(), g.clipFromView(), w, h, mask);
+  Traced t;
+  t.metrics = compareHits(gt, hit);
+  t.nonFiniteOutputs = countNonFinite(r.value()->readReflection()) + countNonFinite(r.value()->readResolved()) +
+                       countNonFinite(r.value()->readFinal()) + countNonFinite(hit);
+  return t;
+}
+
+class TraceAnalytic : public sslr::test::GlTest, public ::testing::WithParamInterface<TraceCase> {};
+
+TEST_P(TraceAnalytic, HitsWithinOnePixelAndNoFalseHits) {
+  const TraceCase c = GetParam();
+  const Traced t = traceAndCompare(c, 160, 120);
+  const HitMetrics& m = t.metrics;
+  std::printf("%s %s%s: A=%zu B=%zu C=%zu D=%zu recall@1px %.4f @2px %.4f median %.3f px p95 %.3f px false hits %.4f\n",
+              c.scene, toString(c.depth), c.ortho ? " ortho" : "", m.visible, m.occluded, m.offScreen, m.escaped,
+              m.recall1px, m.recall2px, m.medianErrorPx, m.p95ErrorPx, m.falseHitRate);
+  ASSERT_GT(m.visible, 1000u) << "the scene must show visible reflections";
+  EXPECT_GE(m.recall1px, 0.95);
+  EXPECT_LE(m.falseHitRate, 0.01);
+  EXPECT_EQ(m.nonFinite, 0u);
+  EXPECT_EQ(t.nonFiniteOutputs, 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Scenes, TraceAnalytic,
+    ::testing::Values(TraceCase{"mirror-box", DepthMode::Reversed, false},
+                      TraceCase{"mirror-box", DepthMode::GlDefault, false},
+                      TraceCase{"mirror-box", DepthMode::ReversedInfinite, false},
+                      TraceCase{"tilted-mirror", DepthMode::Reversed, false},
+                      TraceCase{"tilted-mirror", DepthMode::GlDefault, false},
+                      TraceCase{"mirror-box", DepthMode::Reversed, true},
+                      TraceCase{"tilted-mirror", DepthMode::ZeroToOne, true}),
+    [](const ::testing::TestParamInfo<TraceCase>& info) {
+      std::string n = std::string(info.param.scene) + "_" + toString(info.param.depth) + (info.param.ortho ? "_ortho" : "");
+      for (char& ch : n) if (ch == '-') ch = '_';
+      return n;
+    });
+
+// Golden image of the default scene on llvmpipe. Re-bless with tests/golden/bless.sh (it sets
+// SSLR_BLESS=1). The renderer string is stored beside the image: another renderer (a GPU, another
+// Mesa) is compared with a looser tolerance, since rasterization and float rounding differ.
+class Golden : public sslr::test::GlTest {};
+
+TEST_F(Golden, DefaultSceneMatchesStoredImage) {
+  auto scene = makeBuiltinScene("mirror-room");
+  ASSERT_TRUE(scene);
+  GBufferOptions o;
+  o.width = 192;
+  o.height = 108;
+  auto r = FrameRenderer::create(o);
+  ASSERT_TRUE(r);
+  GpuScene gpu(scene.value());
+  const Settings s;
+  ASSERT_TRUE(r.value()->render(gpu, *scene.value().camera, &s));
+  Image final = r.value()->readFinal();
+  const fs::path image = fs::path(SSLR_GOLDEN_DIR) / "mirror-room.exr";
+  const fs::path rendererFile = fs::path(SSLR_GOLDEN_DIR) / "mirror-room.renderer.txt";
+  const std::string renderer = sslr::test::glContext()->renderer() + " | " + sslr::test::glContext()->version();
+  const char* bless = std::getenv("SSLR_BLESS");
+  if (bless != nullptr && std::string(bless) == "1") {
+    ASSERT_TRUE(writeImage(image.string(), final, {"R", "G", "B"}));
+    std::ofstream(rendererFile) << renderer << "\n";
+    GTEST_SKIP() << "blessed " << image;
+  }
+  auto golden = readImage(image.string());
+  ASSERT_TRUE(golden) << golden.error() << " (run tests/golden/bless.sh)";
+  std::string goldenRenderer;
+  std::getline(std::ifstream(rendererFile), goldenRenderer);
+  // Filament's renderdiff tolerance on Mesa: 5/255 per channel, at most 0.1% of pixels over.
+  // On the same renderer llvmpipe is deterministic, so that is generous; elsewhere allow 2%.
+  const bool sameRenderer = goldenRenderer == renderer;
+  const ImageDiff d = compareImages(final, golden.value(), 5.0f / 255.0f);
+  const double fraction = double(d.pixelsOver) / (o.width * o.height);
+  std::printf("golden: max abs diff %.5f, mean %.6f, %zu pixels over 5/255 (%s renderer)\n", d.maxAbs, d.meanAbs,
+              d.pixelsOver, sameRenderer ? "same" : "different");
+  EXPECT_LE(fraction, sameRenderer ? 0.001 : 0.02) << "golden renderer: " << goldenRenderer << "\nthis renderer: " << renderer;
+  EXPECT_EQ(countNonFinite(final), 0u);
+}
+
+}  // namespace
