@@ -133,6 +133,14 @@ struct SslrTraceParams {
   int pad1;
 };
 
+// The position-buffer comparison method ("3D Game Shaders For Beginners", SSR chapter).
+struct SslrPositionParams {
+  float maxDistance;  // ray length in view units (tutorial: 8)
+  float resolution;   // fraction of pixels visited by the coarse march, 0..1 (tutorial: 0.3)
+  float thickness;    // hit tolerance in view units (tutorial: 0.5)
+  int steps;          // binary refinement steps (tutorial: 5)
+};
+
 #ifdef __cplusplus
 #define SSLR_FRAME_BLOCK_BEGIN struct SslrFrame {
 #define SSLR_FRAME_BLOCK_END };
@@ -145,6 +153,7 @@ SSLR_FRAME_BLOCK_BEGIN
   SslrProjection proj;
   SslrSurface surface;
   SslrTraceParams trace;
+  SslrPositionParams positionBuffer;
 SSLR_FRAME_BLOCK_END
 
 #ifdef __cplusplus
@@ -176,7 +185,9 @@ static_assert(sizeof(SslrSurface) == 32, "std140 mirror");
 static_assert(sizeof(SslrTraceParams) == 80, "std140 mirror");
 static_assert(offsetof(SslrFrame, surface) == 48, "std140 mirror");
 static_assert(offsetof(SslrFrame, trace) == 80, "std140 mirror");
-static_assert(sizeof(SslrFrame) == 160, "std140 mirror");
+static_assert(sizeof(SslrPositionParams) == 16, "std140 mirror");
+static_assert(offsetof(SslrFrame, positionBuffer) == 160, "std140 mirror");
+static_assert(sizeof(SslrFrame) == 176, "std140 mirror");
 #endif
 
 // ---- Pure math ----------------------------------------------------------------------------
@@ -222,6 +233,18 @@ SSLR_FN vec3 sslrViewFromNdc(SslrProjection p, vec2 ndcXY, float ndcZ) {
 
 SSLR_FN vec3 sslrViewFromUvDepth(SslrProjection p, vec2 uv, float depth) {
   return sslrViewFromNdc(p, sslrNdcFromUv(uv), sslrNdcZFromDepth(p, depth));
+}
+
+// The surface a depth texel shows, as the tracer's sslrLoadSurface wants it: false for the
+// background (clear value, NaN, out of range), else the view position at the pixel centre.
+SSLR_FN bool sslrSurfaceFromDepth(SslrProjection p, SslrSurface s, ivec2 px, float depth,
+                                  SSLR_OUT(vec3) vsPos) {
+  if (!sslrIsGeometryDepth(s, depth)) {
+    vsPos = vec3(0.0f);
+    return false;
+  }
+  vsPos = sslrViewFromUvDepth(p, sslrUvFromPixel(px, vec2(s.width, s.height)), depth);
+  return true;
 }
 
 // Clip w of a view-space point: the view distance (perspective) or 1 (orthographic).

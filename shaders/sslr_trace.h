@@ -26,8 +26,9 @@ struct SslrHit {
   vec2 uvHit;        // continuous uv of the final probe (texel centres at (i + 0.5) / size)
   float confidence;  // hit validation x camera-facing fade, in [0,1] (edge fade: in the weight)
   float L;           // reflected ray length from P to the hit, view units
-  int iterations;    // adaptive-L iterations run (each is one depth fetch)
+  int iterations;    // iterations run (adaptive L: each is one depth fetch)
   int status;        // SSLR_STATUS_*
+  float fade;        // extra weight of the method (position buffer: the tutorial's fades), else 1
 };
 
 // Validates a candidate: the probe Q = P + R L must lie on the surface P' seen at its pixel,
@@ -85,6 +86,7 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
   hit.L = 0.0f;
   hit.iterations = 0;
   hit.status = SSLR_STATUS_MISS;
+  hit.fade = 1.0f;
 
   vec2 sizePx = vec2(s.width, s.height);
   float distP = p.orthographic != 0 ? 1.0f : sslrViewDistance(p, vsP);
@@ -136,9 +138,8 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
       return hit;
     }
     ivec2 px = sslrPixelFromUv(uvQ, sizePx);
-    float depth = sslrLoadDepth(px);
     hit.iterations = i + 1;
-    if (!sslrIsGeometryDepth(s, depth)) {
+    if (!sslrLoadSurface(px, vsSurface)) {
       // The probe looks at the sky. Right after a long step from free space it may have jumped
       // over the hit (like leaving the screen); otherwise there is nothing to reflect.
       if (lo > 0.0f && hi < 0.0f && L > 1.05f * lo && retreats < SSLR_MAX_RETREATS) {
@@ -150,7 +151,6 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
       hit.status = SSLR_STATUS_MISS;
       return hit;
     }
-    vsSurface = sslrViewFromUvDepth(p, sslrUvFromPixel(px, sizePx), depth);
     pxSurface = px;
     // Signed gap along the view: > 0 when Q is farther from the camera than what its pixel shows.
     // The reflecting pixel itself says nothing (it shows P): it never closes the bracket.
@@ -257,7 +257,7 @@ SSLR_FN vec2 sslrReflectionWeights(SslrProjection p, SslrSurface s, SslrTracePar
                       : sslrFresnelSchlick(reflectance, cosVN);
   float radius = sslrBlurRadiusPx(p, s.height, distP, hit.L, roughness, t.blurConeScale);
   float alpha = t.blurMaxRadiusPx > 0.0f ? sslrSaturate(radius / t.blurMaxRadiusPx) : 0.0f;
-  return vec2(fresnel * hit.confidence * sslrEdgeFade(hit.uvHit, t.edgeFade), alpha);
+  return vec2(fresnel * hit.confidence * hit.fade * sslrEdgeFade(hit.uvHit, t.edgeFade), alpha);
 }
 
 #ifdef __cplusplus

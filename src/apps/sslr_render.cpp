@@ -85,7 +85,7 @@ int run(int argc, char** argv) {
       ("size", "output size WxH", cxxopts::value<std::string>()->default_value("960x540"))
       ("out", "output directory", cxxopts::value<std::string>()->default_value("out"))
       ("dump", "also write every buffer as EXR (color, normal, depth, position, hit, reflection, iterations, resolved)")
-      ("method", "tracer: adaptive-l, or none (no reflections)", cxxopts::value<std::string>()->default_value("adaptive-l"))
+      ("method", "tracer: adaptive-l (depth-only SSLR), position-buffer (the tutorial's, for comparison), or none", cxxopts::value<std::string>()->default_value("adaptive-l"))
       ("preset", "quality preset: low, medium, high, ultra", cxxopts::value<std::string>()->default_value("high"))
       ("fresnel", "weighting: classic (the article) or schlick", cxxopts::value<std::string>()->default_value("classic"))
       ("iterations", "override the preset's adaptive-L iteration cap", cxxopts::value<std::string>())
@@ -140,9 +140,15 @@ int run(int argc, char** argv) {
     else if (normals == "xyz") gopt.normals = NormalEncoding::XyzUnorm;
     else throw UsageError{"--normals must be octahedral or xyz (got '" + normals + "')"};
     const std::string method = args["method"].as<std::string>();
-    if (method == "none") reflections = false;
-    else if (method != "adaptive-l") throw UsageError{"--method must be adaptive-l or none (got '" + method + "')"};
     settings = parseSettings(args);
+    if (method == "none") {
+      reflections = false;
+    } else if (method == "position-buffer") {
+      settings.method = Method::PositionBuffer;
+      gopt.withPosition = true;  // its G-buffer adds an RGBA32F view-space position texture
+    } else if (method != "adaptive-l") {
+      throw UsageError{"--method must be adaptive-l, position-buffer or none (got '" + method + "')"};
+    }
     settings.debugOutputs = dump;
     settings.collectStats = args.count("stats") > 0;
 
@@ -227,7 +233,7 @@ int run(int argc, char** argv) {
   if (settings.collectStats && reflections) {
     const FrameStats st = r.sslr().lastStats();
     std::cout << "  tiles " << st.tiles << ", traced pixels " << st.tracedPixels << ", depth fetches "
-              << st.depthFetches << " (" << (st.tracedPixels ? double(st.depthFetches) / st.tracedPixels : 0.0)
+              << st.fetches << " (" << (st.tracedPixels ? double(st.fetches) / st.tracedPixels : 0.0)
               << " per traced pixel)\n";
   }
   return 0;

@@ -2,9 +2,10 @@
 //
 //   embed_shaders <out.cpp> <namespace> <root> <entry>...
 //
-// Each entry is expanded: `#include "file"` lines are replaced by that file (each file at most
-// once per entry, so include guards are optional) and `#line <n> <file-index>` markers keep
-// compiler messages pointing at the original file and line. The generated source defines, in
+// Each entry is expanded: `#include "file"` lines are replaced by that file and `#line <n>
+// <file-index>` markers keep compiler messages pointing at the original file and line. Every
+// include is expanded where it stands (the preprocessor may skip it under #if), so headers need
+// include guards; a file including itself, directly or not, is an error. The generated source defines, in
 // the given namespace:
 //   const char* embeddedShader(std::string_view entry);   // nullptr if unknown
 //   std::string annotateShaderLog(std::string_view log);  // "0:12(3)" -> "trace.comp:12(3)"
@@ -33,8 +34,11 @@ struct Embedder {
   }
 
   // Returns false (after printing file:line: message) on a missing file or a bad include.
-  bool expand(const std::string& name, std::set<std::string>& seen, std::string& out) {
-    if (!seen.insert(name).second) return true;
+  bool expand(const std::string& name, std::set<std::string>& active, std::string& out) {
+    if (!active.insert(name).second) {
+      std::cerr << (root / name).string() << ": error: recursive #include\n";
+      return false;
+    }
     std::ifstream in(root / name);
     if (!in) {
       std::cerr << (root / name).string() << ": error: cannot open shader file\n";
@@ -65,7 +69,7 @@ struct Embedder {
         const std::string target = line.substr(open + 1, close - open - 1);
         fs::path rel = fs::path(name).parent_path() / target;
         std::string incName = fs::exists(root / rel) ? rel.generic_string() : target;
-        if (!expand(incName, seen, out)) {
+        if (!expand(incName, active, out)) {
           std::cerr << "  included from " << (root / name).string() << ":" << lineNo << "\n";
           return false;
         }
@@ -75,6 +79,7 @@ struct Embedder {
       out += line;
       out += '\n';
     }
+    active.erase(name);
     return true;
   }
 };

@@ -218,6 +218,7 @@ FrameInputs GBuffer::frameInputs() const {
   in.colorTexture = color_;
   in.normalTexture = normal_;
   in.depthTexture = depth_;
+  in.positionTexture = position_;
   in.clipFromView = clipFromView_;
   in.depth = depthConvention(options_.depth);
   if (options_.normals == NormalEncoding::Octahedral) {

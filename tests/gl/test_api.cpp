@@ -324,14 +324,14 @@ TEST_F(Api, EmptyFrameTracesNothing) {
   ASSERT_TRUE(ctx->dispatch(in, s));
   EXPECT_EQ(ctx->lastStats().tiles, 0u);
   EXPECT_EQ(ctx->lastStats().tracedPixels, 0u);
-  EXPECT_EQ(ctx->lastStats().depthFetches, 0u);
+  EXPECT_EQ(ctx->lastStats().fetches, 0u);
   const Image resolved = readAll(ctx->resolvedTexture(), 4);
   for (float v : resolved.pixels) ASSERT_EQ(v, 0.0f);
   // The same frame with reflectance traces and reports its work.
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), s));
   EXPECT_GT(ctx->lastStats().tiles, 0u);
   EXPECT_GT(ctx->lastStats().tracedPixels, 0u);
-  EXPECT_GE(ctx->lastStats().depthFetches, ctx->lastStats().tracedPixels);
+  EXPECT_GE(ctx->lastStats().fetches, ctx->lastStats().tracedPixels);
 }
 
 TEST_F(Api, ArticleXyzNormalsGiveTheSameHitsAsOctahedral) {

@@ -115,6 +115,11 @@ TEST_F(RenderCli, DumpWritesEveryNamedBuffer) {
     }
   }
   EXPECT_GT(hits, 100u);
+  // The position-buffer comparison method renders through the same pipeline.
+  const fs::path pb = freshDir("pb");
+  const Result r3 = run("--size 48x32 --method position-buffer --out " + pb.string());
+  ASSERT_EQ(r3.exitCode, 0) << r3.output;
+  EXPECT_TRUE(fs::exists(pb / "final.png"));
   // Without reflections the reflection buffers are not written.
   const fs::path plain = freshDir("plain");
   const Result r2 = run("--size 32x20 --method none --dump --out " + plain.string());

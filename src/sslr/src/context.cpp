@@ -79,6 +79,14 @@ std::string validate(const Settings& s) {
     why << "blurDepthSigma = " << s.blurDepthSigma << " (must be > 0); ";
   if (!finite(s.blurNormalPower) || s.blurNormalPower < 0.0f)
     why << "blurNormalPower = " << s.blurNormalPower << " (must be >= 0); ";
+  const PositionBufferSettings& pb = s.positionBuffer;
+  if (!(pb.maxDistance > 0.0f) || !finite(pb.maxDistance))
+    why << "positionBuffer.maxDistance = " << pb.maxDistance << " (must be > 0); ";
+  if (!(pb.resolution > 0.0f && pb.resolution <= 1.0f))
+    why << "positionBuffer.resolution = " << pb.resolution << " (must be in (0, 1]); ";
+  if (pb.steps < 0 || pb.steps > 64) why << "positionBuffer.steps = " << pb.steps << " (must be 0..64); ";
+  if (!(pb.thickness > 0.0f) || !finite(pb.thickness))
+    why << "positionBuffer.thickness = " << pb.thickness << " (must be > 0); ";
   std::string text = why.str();
   if (!text.empty()) text = "sslr: invalid Settings: " + text.substr(0, text.size() - 2);
   return text;
@@ -304,8 +312,12 @@ struct Context::Impl {
     return {};
   }
 
-  Status checkInputs(const FrameInputs& in) const {
+  Status checkInputs(const FrameInputs& in, Method method) const {
     if (Status s = checkTexture(in.depthTexture, "depthTexture", FormatInfo::Depth, 1); !s) return s;
+    if (method == Method::PositionBuffer) {
+      if (Status s = checkTexture(in.positionTexture, "positionTexture", FormatInfo::Color, 4); !s)
+        return Status::error(s.message() + " (Method::PositionBuffer needs a view-space position texture)");
+    }
     if (Status s = checkTexture(in.colorTexture, "colorTexture", FormatInfo::Color, 3); !s) return s;
     const int normalChannels = in.surface.normals == NormalEncoding::Octahedral ? 2 : 3;
     FormatInfo normalInfo;
@@ -386,6 +398,10 @@ shared::SslrFrame frameConstants(const shared::SslrProjection& proj, const Frame
   t.maxIterations = s.maxIterations;
   t.fresnelMode = s.fresnel == FresnelMode::Classic ? SSLR_FRESNEL_CLASSIC : SSLR_FRESNEL_SCHLICK;
   t.countFetches = s.collectStats ? 1 : 0;
+  f.positionBuffer.maxDistance = s.positionBuffer.maxDistance;
+  f.positionBuffer.resolution = s.positionBuffer.resolution;
+  f.positionBuffer.thickness = s.positionBuffer.thickness;
+  f.positionBuffer.steps = s.positionBuffer.steps;
   return f;
 }
 
@@ -396,14 +412,15 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   if (std::string why = validate(settings); !why.empty()) return Status::error(why);
   auto proj = detail::reduceProjection(in.clipFromView, in.depth);
   if (!proj) return Status::error(proj.error());
-  if (Status s = checkInputs(in); !s) return s;
+  if (Status s = checkInputs(in, settings.method); !s) return s;
 
   // Build every program this frame needs before touching any state.
   std::string traceDefines;
   if (settings.debugOutputs) traceDefines += "#define SSLR_DEBUG_OUTPUTS 1\n";
   if (settings.collectStats) traceDefines += "#define SSLR_COLLECT_STATS 1\n";
+  if (settings.method == Method::PositionBuffer) traceDefines += "#define SSLR_METHOD_POSITION_BUFFER 1\n";
   auto classify = computeProgram("classify.comp");
-  auto trace = computeProgram("trace_adaptive_l.comp", traceDefines);
+  auto trace = computeProgram("trace.comp", traceDefines);
   const bool blur = settings.blur && settings.blurMaxRadiusPx > 0.0f;
   Expected<GLuint> blurH = GLuint(0), blurV = GLuint(0);
   if (blur) {
@@ -435,6 +452,10 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_STATS_SSBO, statsBuffer);
   }
   bindInputs(in);
+  if (settings.method == Method::PositionBuffer) {
+    gl.BindTextureUnit(5, in.positionTexture);
+    gl.BindSampler(5, nearestSampler);
+  }
 
   // Classification covers the screen; everything after runs over the listed tiles only.
   gl.UseProgram(classify.value());
@@ -480,7 +501,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.GetNamedBufferSubData(statsBuffer, 0, sizeof(counters), counters);
     stats.tiles = tileCount;
     stats.tracedPixels = counters[0];
-    stats.depthFetches = counters[1];
+    stats.fetches = counters[1];
   }
   haveFrame = true;
   return {};

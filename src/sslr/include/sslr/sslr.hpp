@@ -93,6 +93,7 @@ struct FrameInputs {
   GLName colorTexture = 0;   // lit colour (any float/unorm colour format), sampled bilinearly
   GLName normalTexture = 0;  // packed view-space normal + material, see SurfaceLayout
   GLName depthTexture = 0;   // the hardware depth buffer the G-buffer was rasterized with
+  GLName positionTexture = 0;  // Method::PositionBuffer only: RGBA32F/RGBA16F view position, w = 1
   glm::dmat4 clipFromView{1.0};  // the exact projection that rasterized the depth (jitter incl.)
   DepthConvention depth{};
   SurfaceLayout surface{};
@@ -106,7 +107,22 @@ enum class FresnelMode {
 
 enum class Preset { Low, Medium, High, Ultra };
 
+enum class Method {
+  AdaptiveL,       // depth-only: the SSLR article's adaptive-L iteration (sslr's method)
+  PositionBuffer,  // comparison: "3D Game Shaders For Beginners" march on a position texture
+};
+
+// Parameters of Method::PositionBuffer, with the tutorial's demo values.
+struct PositionBufferSettings {
+  float maxDistance = 8.0f;  // ray length, view units
+  float resolution = 0.3f;   // fraction of pixels the coarse march visits (0..1]
+  int steps = 5;             // binary refinement steps
+  float thickness = 0.5f;    // hit tolerance, view units
+};
+
 struct Settings {
+  Method method = Method::AdaptiveL;
+  PositionBufferSettings positionBuffer;  // used by Method::PositionBuffer only
   FresnelMode fresnel = FresnelMode::Classic;
   int maxIterations = 16;            // adaptive-L iterations (each one depth fetch); article: 10
   float convergenceEps = 0.002f;     // stop when |L_new - L| <= eps * L
@@ -148,7 +164,7 @@ struct ContextDesc {
 struct FrameStats {  // filled when Settings::collectStats is set
   std::uint32_t tiles = 0;          // classified tiles that were traced
   std::uint32_t tracedPixels = 0;   // pixels that ran the tracer
-  std::uint32_t depthFetches = 0;   // depth texels read by the tracer (the GPU's real cost)
+  std::uint32_t fetches = 0;        // depth (or position) texels read by the trace pass
 };
 
 class Context {

@@ -1,5 +1,7 @@
-// Pass 2: the adaptive-L trace over listed tiles. Writes the reflection (rgb = hit colour x
-// weights, a = blur weight) and, with SSLR_DEBUG_OUTPUTS, the hit and iteration images.
+// Pass 2: trace over listed tiles. Writes the reflection (rgb = hit colour x weights, a = blur
+// weight) and, with SSLR_DEBUG_OUTPUTS, the hit and iteration images.
+// Tracer: the adaptive-L iteration on depth (default), or with SSLR_METHOD_POSITION_BUFFER the
+// position-buffer march of "3D Game Shaders For Beginners" on a stored position texture.
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
 
@@ -13,18 +15,31 @@ layout(binding = 2, r32f) uniform writeonly image2D uIterations;
 #ifdef SSLR_COLLECT_STATS
 layout(std430, binding = SSLR_BINDING_STATS_SSBO) buffer SslrStats {
   uint tracedPixels;
-  uint depthFetches;
+  uint fetches;
 } stats;
 #endif
 
-uint gDepthFetches = 0u;
+uint gFetches = 0u;  // depth (or position) texels read by this invocation (stats)
 float sslrLoadDepth(ivec2 px) {
-  gDepthFetches += 1u;
+  gFetches += 1u;
   return texelFetch(uDepth, px, 0).r;
+}
+bool sslrLoadSurface(ivec2 px, out vec3 vsPos) {
+  return sslrSurfaceFromDepth(frame.proj, frame.surface, px, sslrLoadDepth(px), vsPos);
 }
 vec4 sslrLoadNormal(ivec2 px) { return texelFetch(uNormal, px, 0); }
 
+#ifdef SSLR_METHOD_POSITION_BUFFER
+layout(binding = 5) uniform sampler2D uPosition;  // view-space position, w = 1 on geometry
+bool sslrLoadPosition(ivec2 px, out vec4 vsPosition) {
+  gFetches += 1u;
+  vsPosition = texelFetch(uPosition, px, 0);
+  return vsPosition.w > 0.0f;
+}
+#include "sslr_trace_position.h"
+#else
 #include "sslr_trace.h"
+#endif
 
 void main() {
   ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
@@ -36,24 +51,37 @@ void main() {
   hit.L = 0.0f;
   hit.iterations = 0;
   hit.status = SSLR_STATUS_NOT_TRACED;
+  hit.fade = 0.0f;
   vec4 reflection = vec4(0.0f);
 
+  vec4 texel = sslrLoadNormal(px);
   float depth = sslrLoadDepth(px);
-  vec4 packedNormal = sslrLoadNormal(px);
-  if (sslrShouldTrace(frame.surface, frame.trace, depth, packedNormal)) {
+  vec3 vsP;
+#ifdef SSLR_METHOD_POSITION_BUFFER
+  // The position-buffer method takes its position from the stored texture, as the tutorial.
+  vec4 stored;
+  bool geometry = sslrLoadPosition(px, stored);
+  vsP = stored.xyz;
+#else
+  bool geometry = sslrSurfaceFromDepth(frame.proj, frame.surface, px, depth, vsP);
+#endif
+  if (geometry && sslrShouldTrace(frame.surface, frame.trace, depth, texel)) {
     vec3 vsN;
-    sslrDecodeNormal(frame.surface, packedNormal, vsN);
-    vec3 vsP = sslrViewAtPixel(px, depth);
+    sslrDecodeNormal(frame.surface, texel, vsN);
     vec3 vsV = sslrViewDirection(frame.proj, vsP);
     float cosVN = dot(-vsV, vsN);
     if (cosVN > 0.0f) {  // a normal facing away from the camera has nothing to reflect
       vec3 vsR = reflect(vsV, vsN);
+#ifdef SSLR_METHOD_POSITION_BUFFER
+      hit = sslrTracePositionBuffer(frame.proj, frame.surface, frame.positionBuffer, vsP, vsV, vsR);
+#else
       hit = sslrTraceAdaptiveL(frame.proj, frame.surface, frame.trace, px, vsP, vsV, vsR);
+#endif
       if (hit.status == SSLR_STATUS_HIT) {
         float distP = sslrViewDistance(frame.proj, vsP);
         vec2 w = sslrReflectionWeights(frame.proj, frame.surface, frame.trace, hit, cosVN,
-                                       sslrReflectance(frame.surface, packedNormal),
-                                       sslrRoughness(frame.surface, packedNormal), distP);
+                                       sslrReflectance(frame.surface, texel),
+                                       sslrRoughness(frame.surface, texel), distP);
         vec3 color = textureLod(uColor, hit.uvHit, 0.0f).rgb;
         // Poisoned colour must not spread through the blur: NaN/Inf become 0, and the value is
         // kept inside RGBA16F's range.
@@ -70,6 +98,6 @@ void main() {
 #endif
 #ifdef SSLR_COLLECT_STATS
   if (hit.status != SSLR_STATUS_NOT_TRACED) atomicAdd(stats.tracedPixels, 1u);
-  atomicAdd(stats.depthFetches, gDepthFetches);
+  atomicAdd(stats.fetches, gFetches);
 #endif
 }
