@@ -1,17 +1,24 @@
 // Pass 3 (run twice: SSLR_BLUR_AXIS = ivec2(1,0) then ivec2(0,1)): separable bilateral blur of
-// the reflection over listed tiles. The radius comes from the centre pixel's alpha (the cone
-// footprint written by the trace); neighbours count only if they are traced pixels on a similar
-// surface (depth and normal weights), so reflections do not bleed across edges.
+// the reflection over the tiles the trace listed for blurring (tiles with a pixel whose radius
+// is at least half a pixel). The radius comes from the centre pixel's alpha (the cone footprint
+// written by the trace); neighbours count only if they are traced pixels on a similar surface
+// (depth and normal weights), so reflections do not bleed across edges.
+//
+// The vertical pass reads the horizontal result only where it exists: outside the blur tiles a
+// pixel's radius is below half a pixel, so its horizontal result equals the reflection itself.
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
 
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 
-layout(binding = 3) uniform sampler2D uBlurInput;
+layout(binding = 3) uniform sampler2D uBlurInput;   // reflection (H pass) or blurTemp (V pass)
+#ifdef SSLR_BLUR_VERTICAL
+layout(binding = 4) uniform sampler2D uReflectionIn;  // V pass: for neighbours outside blur tiles
+#endif
 layout(binding = 0, rgba16f) uniform writeonly image2D uBlurOutput;
 
 void main() {
-  ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
+  ivec2 px = sslrBlurTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
   if (!sslrInside(px)) return;
   vec4 center = texelFetch(uBlurInput, px, 0);
   float radius = center.a * frame.trace.blurMaxRadiusPx;
@@ -39,7 +46,14 @@ void main() {
     float z1 = abs(sslrViewAtPixel(q, depth1).z);
     float w = exp(-0.5f * float(i * i) / (sigma * sigma)) * exp(-abs(z1 - z0) * depthScale) *
               pow(max(dot(n0, n1), 0.0f), frame.trace.blurNormalPower);
-    sum += texelFetch(uBlurInput, q, 0).rgb * w;
+#ifdef SSLR_BLUR_VERTICAL
+    vec4 original = texelFetch(uReflectionIn, q, 0);
+    vec3 value = original.a * frame.trace.blurMaxRadiusPx >= 0.5f ? texelFetch(uBlurInput, q, 0).rgb
+                                                                  : original.rgb;
+#else
+    vec3 value = texelFetch(uBlurInput, q, 0).rgb;
+#endif
+    sum += value * w;
     weightSum += w;
   }
   imageStore(uBlurOutput, px, vec4(sum / weightSum, center.a));

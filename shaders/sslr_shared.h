@@ -129,7 +129,7 @@ struct SslrTraceParams {
   int maxIterations;          // adaptive-L iteration cap
   int fresnelMode;            // SSLR_FRESNEL_*
   int countFetches;           // 1: count depth fetches into the stats buffer
-  int pad0;
+  int frameIndex;             // increments per dispatch (never 0): per-tile "listed" stamps
   int pad1;
 };
 

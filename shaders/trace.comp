@@ -8,6 +8,9 @@
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 
 layout(binding = 0, rgba16f) uniform writeonly image2D uReflection;
+// The resolved image gets the reflection too: tiles without a pixel to blur are final here,
+// and the blur passes then run only over the tiles listed for them.
+layout(binding = 3, rgba16f) uniform writeonly image2D uResolved;
 #ifdef SSLR_DEBUG_OUTPUTS
 layout(binding = 1, rgba32f) uniform writeonly image2D uHit;
 layout(binding = 2, r32f) uniform writeonly image2D uIterations;
@@ -92,6 +95,7 @@ void main() {
     }
   }
   imageStore(uReflection, px, reflection);
+  imageStore(uResolved, px, reflection);
 #ifdef SSLR_DEBUG_OUTPUTS
   imageStore(uHit, px, vec4(hit.uvHit, hit.confidence, hit.L));
   imageStore(uIterations, px, vec4(float(hit.iterations)));
@@ -100,4 +104,7 @@ void main() {
   if (hit.status != SSLR_STATUS_NOT_TRACED) atomicAdd(stats.tracedPixels, 1u);
   atomicAdd(stats.fetches, gFetches);
 #endif
+  // The first pixel of a tile that needs blurring lists the tile (no group barrier: on CPU
+  // rasterizers barriers split the shader and cost more than this atomic).
+  if (reflection.a * frame.trace.blurMaxRadiusPx >= 0.5f) sslrListTileForBlur(px);
 }

@@ -11,11 +11,39 @@ layout(std430, binding = SSLR_BINDING_TILE_SSBO) buffer SslrTiles {
   uint drawInstances;
   uint drawFirst;
   uint drawBaseInstance;
-  uint reserved;
-  uint tileCoords[];  // tile x | tile y << 16
+  uint reserved0;
+  // DispatchIndirectCommand for the blur: x = number of tiles with a pixel to blur (the trace
+  // appends them to the second half of tileCoords).
+  uint blurDispatchX;
+  uint blurDispatchY;
+  uint blurDispatchZ;
+  uint reserved1;
+  // [0, tileCapacity): traced tiles; [tileCapacity, 2 tileCapacity): tiles to blur (each entry
+  // tile x | tile y << 16); [2 tileCapacity, 3 tileCapacity): per tile, the frame index in
+  // which it was last listed for blurring (no per-frame clear needed).
+  uint tileCoords[];
 } tiles;
 
-ivec2 sslrTileOrigin(uint index) {
-  uint texel = tiles.tileCoords[index];
-  return ivec2(int(texel & 0xffffu), int(texel >> 16)) * SSLR_TILE_SIZE;
+uint sslrTilesX() { return (uint(frame.surface.width) + uint(SSLR_TILE_SIZE) - 1u) / uint(SSLR_TILE_SIZE); }
+uint sslrTileCapacity() {
+  uint tilesY = (uint(frame.surface.height) + uint(SSLR_TILE_SIZE) - 1u) / uint(SSLR_TILE_SIZE);
+  return sslrTilesX() * tilesY;
+}
+
+ivec2 sslrTileOriginFromEntry(uint entry) {
+  return ivec2(int(entry & 0xffffu), int(entry >> 16)) * SSLR_TILE_SIZE;
+}
+ivec2 sslrTileOrigin(uint index) { return sslrTileOriginFromEntry(tiles.tileCoords[index]); }
+ivec2 sslrBlurTileOrigin(uint index) {
+  return sslrTileOriginFromEntry(tiles.tileCoords[sslrTileCapacity() + index]);
+}
+
+// Appends the tile holding px to the blur list, once per frame.
+void sslrListTileForBlur(ivec2 px) {
+  uvec2 tile = uvec2(px) / uint(SSLR_TILE_SIZE);
+  uint flag = 2u * sslrTileCapacity() + tile.y * sslrTilesX() + tile.x;
+  if (atomicExchange(tiles.tileCoords[flag], uint(frame.trace.frameIndex)) != uint(frame.trace.frameIndex)) {
+    uint slot = atomicAdd(tiles.blurDispatchX, 1u);
+    tiles.tileCoords[sslrTileCapacity() + slot] = tile.x | (tile.y << 16);
+  }
 }

@@ -185,8 +185,10 @@ GroundTruth computeGroundTruth(const RayTracer& tracer, const glm::dmat4& clipFr
   return gt;
 }
 
-HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float threshold) {
+HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float threshold, const Image* color) {
   HitMetrics m;
+  double sqErr = 0.0;
+  size_t sqCount = 0;
   std::vector<double> errors;
   size_t within1 = 0, within2 = 0, within4 = 0, falseHits = 0;
   for (size_t p = 0; p < truth.pixels.size(); ++p) {
@@ -200,6 +202,13 @@ HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float thresho
       case TruthClass::NotReflective: break;
       case TruthClass::Visible: {
         ++m.visible;
+        if (color != nullptr) {
+          const glm::vec3 ref = sampleBilinear(*color, t.uvHit);
+          const glm::vec3 got = reported ? sampleBilinear(*color, glm::vec2(h[0], h[1])) : glm::vec3(0.0f);
+          const glm::vec3 d = got - ref;
+          sqErr += glm::dot(d, d) / 3.0;
+          ++sqCount;
+        }
         if (!reported) break;
         const double ex = (h[0] - t.uvHit.x) * truth.width, ey = (h[1] - t.uvHit.y) * truth.height;
         const double e = std::sqrt(ex * ex + ey * ey);
@@ -223,6 +232,10 @@ HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float thresho
     std::sort(errors.begin(), errors.end());
     m.medianErrorPx = errors[errors.size() / 2];
     m.p95ErrorPx = errors[std::min(errors.size() - 1, static_cast<size_t>(std::ceil(0.95 * errors.size())) - 1)];
+  }
+  if (sqCount > 0) {
+    m.reflectionRmse = std::sqrt(sqErr / sqCount);
+    m.reflectionPsnr = m.reflectionRmse > 0 ? 20.0 * std::log10(1.0 / m.reflectionRmse) : 99.0;
   }
   const size_t negatives = m.occluded + m.offScreen + m.escaped;
   m.falseHitRate = negatives > 0 ? double(falseHits) / negatives : 0.0;

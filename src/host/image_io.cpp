@@ -101,6 +101,20 @@ ImageDiff compareImages(const Image& a, const Image& b, float threshold) {
   return d;
 }
 
+glm::vec3 sampleBilinear(const Image& image, glm::vec2 uv) {
+  const float fx = uv.x * image.width - 0.5f, fy = uv.y * image.height - 0.5f;
+  const int x0 = static_cast<int>(std::floor(fx)), y0 = static_cast<int>(std::floor(fy));
+  const float ax = fx - x0, ay = fy - y0;
+  auto texel = [&](int x, int y) {
+    x = std::clamp(x, 0, image.width - 1);
+    y = std::clamp(y, 0, image.height - 1);
+    glm::vec3 v(0.0f);
+    for (int c = 0; c < std::min(image.channels, 3); ++c) v[c] = image.at(x, y, c);
+    return v;
+  };
+  return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), ax), glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), ax), ay);
+}
+
 size_t countNonFinite(const Image& image) {
   size_t n = 0;
   for (size_t p = 0; p < static_cast<size_t>(image.width) * image.height; ++p) {

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "gl/gl_fixture.hpp"
+#include "sslr_host/cpu_tracer.hpp"
 #include "sslr_host/frame_renderer.hpp"
 #include "sslr_host/ground_truth.hpp"
 
@@ -132,5 +133,50 @@ TEST_F(Golden, DefaultSceneMatchesStoredImage) {
   EXPECT_LE(fraction, sameRenderer ? 0.001 : 0.02) << "golden renderer: " << goldenRenderer << "\nthis renderer: " << renderer;
   EXPECT_EQ(countNonFinite(final), 0u);
 }
+
+}  // namespace
+
+namespace {
+
+// One source of truth: the GPU pass and the CPU run of the same shared header agree.
+class CpuGpuAgreement : public sslr::test::GlTest, public ::testing::WithParamInterface<Method> {};
+
+TEST_P(CpuGpuAgreement, SameHitsOnTheSameGBuffer) {
+  auto scene = makeBuiltinScene("mirror-room");
+  ASSERT_TRUE(scene);
+  GBufferOptions o;
+  o.width = 96;
+  o.height = 64;
+  o.withPosition = true;
+  auto r = FrameRenderer::create(o);
+  ASSERT_TRUE(r);
+  GpuScene gpu(scene.value());
+  Settings s;
+  s.method = GetParam();
+  s.debugOutputs = true;
+  ASSERT_TRUE(r.value()->render(gpu, *scene.value().camera, &s));
+  const Image gpuHit = r.value()->readHit();
+  GBuffer& g = r.value()->gbuffer();
+  const Image depth = g.readDepth(), normal = g.readNormalPacked(), pos = g.readPosition();
+  const Image cpuHit = traceOnCpu({&depth, &normal, &pos}, g.frameInputs(), s);
+  size_t traced = 0, same = 0;
+  for (int p = 0; p < o.width * o.height; ++p) {
+    const float* a = &gpuHit.pixels[p * 4];
+    const float* b = &cpuHit.pixels[p * 4];
+    if (a[2] == 0.0f && b[2] == 0.0f) continue;
+    ++traced;
+    // Same decision and the same hit to a hundredth of a pixel (GPU and CPU float differ in
+    // fused multiply-adds and transcendental precision).
+    same += std::abs(a[2] - b[2]) < 0.02f && std::abs(a[0] - b[0]) * o.width < 0.01f &&
+            std::abs(a[1] - b[1]) * o.height < 0.01f;
+  }
+  ASSERT_GT(traced, 500u);
+  EXPECT_GE(double(same) / traced, 0.99) << same << " of " << traced;
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, CpuGpuAgreement, ::testing::Values(Method::AdaptiveL, Method::PositionBuffer),
+                         [](const ::testing::TestParamInfo<Method>& info) {
+                           return std::string(info.param == Method::AdaptiveL ? "AdaptiveL" : "PositionBuffer");
+                         });
 
 }  // namespace

@@ -96,6 +96,10 @@ std::string validate(const Settings& s) {
 
 namespace {
 
+constexpr GLsizeiptr kTileHeader = 12;               // uints before the tile lists
+constexpr GLintptr kDrawArgsOffset = 3 * 4;           // DrawArraysIndirectCommand (composite)
+constexpr GLintptr kBlurDispatchOffset = 8 * 4;       // DispatchIndirectCommand (blur)
+
 // What sslr needs to know of a host texture's internal format.
 struct FormatInfo {
   enum Kind { Unsupported, Color, Depth } kind = Unsupported;
@@ -150,6 +154,7 @@ struct Context::Impl {
   std::map<std::string, GLuint> programs;  // key: entry files + defines
   FrameStats stats;
   bool haveFrame = false;  // a dispatch filled the tile list, so composite has work to draw
+  int frameIndex = 0;      // per-dispatch stamp for the blur tile list (1, 2, ...)
 
   ~Impl() { destroy(); }
 
@@ -198,8 +203,11 @@ struct Context::Impl {
     iterations = makeTexture(GL_R32F, "sslr.iterations");
     const GLsizeiptr tiles = static_cast<GLsizeiptr>(tilesX()) * tilesY();
     gl.CreateBuffers(1, &tileBuffer);
-    gl.NamedBufferStorage(tileBuffer, static_cast<GLsizeiptr>((8 + tiles) * sizeof(GLuint)), nullptr,
-                          GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
+    // Header (12 uints, see common/tiles.glsl), traced tiles, tiles to blur, per-tile stamps
+    // (zero-initialized: frame indices start at 1).
+    const std::vector<GLuint> zeros(static_cast<size_t>(kTileHeader + 3 * tiles), 0u);
+    gl.NamedBufferStorage(tileBuffer, static_cast<GLsizeiptr>(zeros.size() * sizeof(GLuint)), zeros.data(),
+                          GL_DYNAMIC_STORAGE_BIT);
     label(GL_BUFFER, tileBuffer, "sslr.tiles");
   }
 
@@ -425,7 +433,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   Expected<GLuint> blurH = GLuint(0), blurV = GLuint(0);
   if (blur) {
     blurH = computeProgram("blur.comp", "#define SSLR_BLUR_AXIS ivec2(1, 0)\n");
-    blurV = computeProgram("blur.comp", "#define SSLR_BLUR_AXIS ivec2(0, 1)\n");
+    blurV = computeProgram("blur.comp", "#define SSLR_BLUR_AXIS ivec2(0, 1)\n#define SSLR_BLUR_VERTICAL 1\n");
   }
   for (const auto* p : {&classify, &trace, &blurH, &blurV})
     if (!*p) return Status::error(p->error());
@@ -433,10 +441,12 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   detail::StateGuard guard(gl, false);
   gl.PushDebugGroup(GL_DEBUG_SOURCE_THIRD_PARTY, 0, -1, "sslr.dispatch");
 
-  const shared::SslrFrame frame = frameConstants(proj.value(), in, settings, width, height);
+  shared::SslrFrame frame = frameConstants(proj.value(), in, settings, width, height);
+  frameIndex = frameIndex == 0x7fffffff ? 1 : frameIndex + 1;
+  frame.trace.frameIndex = frameIndex;
   gl.NamedBufferSubData(frameUbo, 0, sizeof(frame), &frame);
-  // Tile list header: dispatch (0, 1, 1), draw (6 vertices, 0 instances).
-  const GLuint header[8] = {0, 1, 1, 6, 0, 0, 0, 0};
+  // Tile list header: trace dispatch (0, 1, 1), draw (6 vertices, 0 instances), blur dispatch.
+  const GLuint header[kTileHeader] = {0, 1, 1, 6, 0, 0, 0, 0, 0, 1, 1, 0};
   gl.NamedBufferSubData(tileBuffer, 0, sizeof(header), header);
   // Outputs are only written inside listed tiles: clear so the rest reads as "no reflection".
   const float zero[4] = {0, 0, 0, 0};
@@ -464,30 +474,30 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
 
   gl.UseProgram(trace.value());
   gl.BindImageTexture(0, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  gl.BindImageTexture(3, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   if (settings.debugOutputs) {
     gl.BindImageTexture(1, hit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     gl.BindImageTexture(2, iterations, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
   }
   gl.DispatchComputeIndirect(0);
-  gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                   GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 
-  // Separable blur: reflection -> blurTemp (horizontal) -> resolved (vertical); without the
-  // blur, resolved is a copy of the reflection.
+  // The trace wrote resolved = reflection everywhere; the separable blur (reflection -> blurTemp
+  // -> resolved) runs only over the tiles the trace listed as having a pixel to blur.
   if (blur) {
     gl.BindSampler(3, nearestSampler);
+    gl.BindSampler(4, nearestSampler);
     gl.UseProgram(blurH.value());
     gl.BindTextureUnit(3, reflection);
     gl.BindImageTexture(0, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    gl.DispatchComputeIndirect(0);
+    gl.DispatchComputeIndirect(kBlurDispatchOffset);
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     gl.UseProgram(blurV.value());
     gl.BindTextureUnit(3, blurTemp);
+    gl.BindTextureUnit(4, reflection);
     gl.BindImageTexture(0, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    gl.DispatchComputeIndirect(0);
-  } else {
-    gl.MemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
-    gl.CopyImageSubData(reflection, GL_TEXTURE_2D, 0, 0, 0, 0, resolved, GL_TEXTURE_2D, 0, 0, 0, 0,
-                        width, height, 1);
+    gl.DispatchComputeIndirect(kBlurDispatchOffset);
   }
   // The host (and composite) may read the outputs in any way next: make all writes visible.
   gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
@@ -495,11 +505,12 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
 
   stats = {};
   if (settings.collectStats) {
-    GLuint tileCount = 0;
+    GLuint counts[kTileHeader] = {};
     GLuint counters[2] = {0, 0};
-    gl.GetNamedBufferSubData(tileBuffer, 0, sizeof(tileCount), &tileCount);
+    gl.GetNamedBufferSubData(tileBuffer, 0, sizeof(counts), counts);
     gl.GetNamedBufferSubData(statsBuffer, 0, sizeof(counters), counters);
-    stats.tiles = tileCount;
+    stats.tiles = counts[0];
+    stats.blurTiles = counts[8];
     stats.tracedPixels = counters[0];
     stats.fetches = counters[1];
   }
@@ -543,7 +554,7 @@ Status Context::Impl::composite(GLName framebuffer) {
   gl.GetIntegerv(GL_MAX_DRAW_BUFFERS, &maxDrawBuffers);
   for (GLint i = 1; i < std::min(maxDrawBuffers, 8); ++i) gl.ColorMaski(i, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   // 6 vertices per listed tile, instance count written by classification (offset 12 bytes).
-  gl.DrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(3 * sizeof(GLuint)));
+  gl.DrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(kDrawArgsOffset));
   gl.PopDebugGroup();
   return {};
 }

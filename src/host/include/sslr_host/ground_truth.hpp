@@ -72,7 +72,12 @@ struct HitMetrics {
   double medianErrorPx = 0, p95ErrorPx = 0;            // over A pixels that reported a hit
   double falseHitRate = 0;                             // B+C+D pixels reporting a hit
   size_t nonFinite = 0;                                // NaN/Inf pixels in the hit image
+  // Reflection on A pixels: the colour at the reported hit (0 if none) against the colour at the
+  // true hit, both sampled bilinearly from the lit colour buffer (linear RGB).
+  double reflectionRmse = 0, reflectionPsnr = 0;  // PSNR with peak 1.0
 };
-HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float confidenceThreshold = 0.5f);
+// `color` (optional) enables the reflection RMSE / PSNR.
+HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float confidenceThreshold = 0.5f,
+                       const Image* color = nullptr);
 
 }  // namespace sslr::host

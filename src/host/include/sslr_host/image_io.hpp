@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "sslr/sslr.hpp"
 
 namespace sslr::host {
@@ -30,6 +32,9 @@ struct ImageDiff {
   size_t pixelsOver = 0;  // pixels with any channel above the threshold
 };
 ImageDiff compareImages(const Image& a, const Image& b, float threshold);
+
+// Bilinear sample of the first three channels at uv (texel centres at (i + 0.5)/size, clamped).
+glm::vec3 sampleBilinear(const Image& image, glm::vec2 uv);
 
 // Pixels with any NaN or Inf channel.
 size_t countNonFinite(const Image& image);

@@ -163,6 +163,7 @@ struct ContextDesc {
 
 struct FrameStats {  // filled when Settings::collectStats is set
   std::uint32_t tiles = 0;          // classified tiles that were traced
+  std::uint32_t blurTiles = 0;      // tiles the roughness blur ran over
   std::uint32_t tracedPixels = 0;   // pixels that ran the tracer
   std::uint32_t fetches = 0;        // depth (or position) texels read by the trace pass
 };

@@ -1,0 +1,276 @@
+// sslr-bench output: results.json (one record per run), results.csv, report/index.html (static:
+// inline SVG plots of time against error with Pareto fronts, image strips, summary tables).
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "sslr_host/benchmark.hpp"
+
+namespace sslr::host {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+json settingsJson(const BenchConfig& c) {
+  const Settings& s = c.settings;
+  if (c.method == "position-buffer")
+    return {{"maxDistance", s.positionBuffer.maxDistance},
+            {"resolution", s.positionBuffer.resolution},
+            {"steps", s.positionBuffer.steps},
+            {"thickness", s.positionBuffer.thickness}};
+  if (c.method == "baseline") return json::object();
+  return {{"maxIterations", s.maxIterations},       {"convergenceEps", s.convergenceEps},
+          {"initialLengthPixels", s.initialLengthPixels}, {"thicknessRelative", s.thicknessRelative},
+          {"thicknessPixels", s.thicknessPixels},   {"blurMaxRadiusPx", s.blurMaxRadiusPx},
+          {"roughnessCutoff", s.roughnessCutoff},   {"fresnel", s.fresnel == FresnelMode::Classic ? "classic" : "schlick"}};
+}
+
+// NaN/Inf are not JSON: write null for "not applicable".
+json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json runJson(const RunRecord& r) {
+  const HitMetrics& m = r.metrics;
+  const bool traced = r.method != "baseline";
+  return {{"scene", r.scene},
+          {"method", r.method},
+          {"label", r.label},
+          {"default", r.config.isDefault},
+          {"parameters", settingsJson(r.config)},
+          {"width", r.width},
+          {"height", r.height},
+          {"renderer", r.renderer},
+          {"timingMethod", r.timingMethod},
+          {"timeMedianMs", num(r.timeMedianMs)},
+          {"timeMinMs", num(r.timeMinMs)},
+          {"timeMaxMs", num(r.timeMaxMs)},
+          {"frames", r.frames},
+          {"classes", {{"visible", m.visible}, {"occluded", m.occluded}, {"offScreen", m.offScreen}, {"escaped", m.escaped}}},
+          {"recall1px", traced ? num(m.recall1px) : json(nullptr)},
+          {"recall2px", traced ? num(m.recall2px) : json(nullptr)},
+          {"recall4px", traced ? num(m.recall4px) : json(nullptr)},
+          {"medianErrorPx", traced ? num(m.medianErrorPx) : json(nullptr)},
+          {"p95ErrorPx", traced ? num(m.p95ErrorPx) : json(nullptr)},
+          {"falseHitRate", traced ? num(m.falseHitRate) : json(nullptr)},
+          {"reflectionRmse", traced ? num(m.reflectionRmse) : json(nullptr)},
+          {"reflectionPsnr", traced ? num(m.reflectionPsnr) : json(nullptr)},
+          {"nonFiniteHitPixels", m.nonFinite},
+          {"nonFiniteOutputPixels", r.nonFiniteOutputs},
+          {"tracedPixels", r.tracedPixels},
+          {"fetches", r.fetches},
+          {"fetchesPerTracedPixel", traced ? num(r.fetchesPerTracedPixel) : json(nullptr)},
+          {"gbufferBytesPerPixel", r.gbufferBytesPerPixel},
+          {"extraBytesPerPixel", r.extraBytesPerPixel}};
+}
+
+std::string fmt(double v, int precision = 3) {
+  if (!std::isfinite(v)) return "–";
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(precision);
+  s << v;
+  return s.str();
+}
+
+std::string esc(const std::string& t) {
+  std::string o;
+  for (char c : t) o += c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '&' ? "&amp;" : std::string(1, c);
+  return o;
+}
+
+// Runs not dominated in (time, error): nothing is both faster and more accurate.
+std::vector<const RunRecord*> pareto(std::vector<const RunRecord*> runs) {
+  std::sort(runs.begin(), runs.end(), [](auto* a, auto* b) { return a->timeMedianMs < b->timeMedianMs; });
+  std::vector<const RunRecord*> front;
+  double best = INFINITY;
+  for (const RunRecord* r : runs)
+    if (r->metrics.reflectionRmse < best) {
+      front.push_back(r);
+      best = r->metrics.reflectionRmse;
+    }
+  return front;
+}
+
+std::string plotSvg(const std::vector<const RunRecord*>& runs, double baselineMs) {
+  const double W = 640, H = 360, L = 60, R = 20, T = 20, B = 50;
+  double maxT = baselineMs, maxE = 0;
+  for (auto* r : runs) {
+    maxT = std::max(maxT, r->timeMedianMs);
+    maxE = std::max(maxE, r->metrics.reflectionRmse);
+  }
+  maxT = maxT > 0 ? maxT * 1.1 : 1.0;
+  maxE = maxE > 0 ? maxE * 1.15 : 1.0;
+  auto X = [&](double t) { return L + (W - L - R) * t / maxT; };
+  auto Y = [&](double e) { return H - B - (H - T - B) * e / maxE; };
+  std::ostringstream s;
+  s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << W << "' height='" << H << "' font-family='sans-serif' font-size='11'>"
+    << "<rect width='100%' height='100%' fill='white'/>"
+    << "<line x1='" << L << "' y1='" << H - B << "' x2='" << W - R << "' y2='" << H - B << "' stroke='black'/>"
+    << "<line x1='" << L << "' y1='" << T << "' x2='" << L << "' y2='" << H - B << "' stroke='black'/>";
+  for (int i = 0; i <= 4; ++i) {
+    const double t = maxT * i / 4, e = maxE * i / 4;
+    s << "<text x='" << X(t) << "' y='" << H - B + 15 << "' text-anchor='middle'>" << fmt(t, 1) << "</text>"
+      << "<text x='" << L - 5 << "' y='" << Y(e) + 4 << "' text-anchor='end'>" << fmt(e, 3) << "</text>";
+  }
+  s << "<text x='" << (L + W - R) / 2 << "' y='" << H - 12 << "' text-anchor='middle'>median time per frame (ms)</text>"
+    << "<text transform='rotate(-90)' x='" << -(T + H - B) / 2 << "' y='14' text-anchor='middle'>reflection RMSE on visible reflections</text>";
+  if (baselineMs > 0)
+    s << "<line x1='" << X(baselineMs) << "' y1='" << T << "' x2='" << X(baselineMs) << "' y2='" << H - B
+      << "' stroke='gray' stroke-dasharray='4 3'/><text x='" << X(baselineMs) + 3 << "' y='" << T + 10
+      << "' fill='gray'>read+write baseline</text>";
+  const std::map<std::string, std::string> colors = {{"adaptive-l", "#1f77b4"}, {"position-buffer", "#ff7f0e"}};
+  for (const auto& [method, color] : colors) {
+    std::vector<const RunRecord*> mine;
+    for (auto* r : runs)
+      if (r->method == method) mine.push_back(r);
+    const auto front = pareto(mine);
+    if (front.size() > 1) {
+      s << "<polyline fill='none' stroke='" << color << "' stroke-width='1.5' points='";
+      for (auto* r : front) s << X(r->timeMedianMs) << "," << Y(r->metrics.reflectionRmse) << " ";
+      s << "'/>";
+    }
+    for (auto* r : mine)
+      s << "<circle cx='" << X(r->timeMedianMs) << "' cy='" << Y(r->metrics.reflectionRmse) << "' r='"
+        << (r->config.isDefault ? 6 : 4) << "' fill='" << color << "' fill-opacity='0.8'><title>" << esc(r->method) << " "
+        << esc(r->label) << ": " << fmt(r->timeMedianMs, 2) << " ms, RMSE " << fmt(r->metrics.reflectionRmse, 4)
+        << ", recall@1px " << fmt(r->metrics.recall1px, 3) << "</title></circle>";
+  }
+  s << "<circle cx='" << W - 170 << "' cy='" << T + 30 << "' r='5' fill='#1f77b4'/><text x='" << W - 160 << "' y='" << T + 34
+    << "'>adaptive-l (depth-only)</text><circle cx='" << W - 170 << "' cy='" << T + 48 << "' r='5' fill='#ff7f0e'/><text x='"
+    << W - 160 << "' y='" << T + 52 << "'>position-buffer</text></svg>";
+  return s.str();
+}
+
+}  // namespace
+
+Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
+  std::error_code ec;
+  fs::create_directories(fs::path(outDir) / "report", ec);
+  if (ec) return Status::error("cannot create " + outDir + "/report: " + ec.message());
+
+  json j;
+  j["renderer"] = result.renderer;
+  j["timingMethod"] = result.timingMethod;
+  j["grid"] = result.options.grid;
+  j["width"] = result.options.width;
+  j["height"] = result.options.height;
+  j["frames"] = result.options.frames;
+  j["warmup"] = result.options.warmup;
+  j["runs"] = json::array();
+  for (const RunRecord& r : result.runs) j["runs"].push_back(runJson(r));
+  j["scenes"] = json::array();
+  for (const SceneRecord& s : result.scenes)
+    j["scenes"].push_back({{"scene", s.scene},
+                           {"reflectivePixels", s.reflective},
+                           {"classes", {{"visible", s.visible}, {"occluded", s.occluded}, {"offScreen", s.offScreen}, {"escaped", s.escaped}}},
+                           {"positionErrorMedian", num(s.positionErrorMedian)},
+                           {"positionErrorMax", num(s.positionErrorMax)},
+                           {"positionErrorMaxRelative", num(s.positionErrorMaxRelative)},
+                           {"hitAgreementDepthVsStored", num(s.hitAgreement)},
+                           {"recall1pxDepth", num(s.recallDepth)},
+                           {"recall1pxStored", num(s.recallStored)}});
+  {
+    std::ofstream out(fs::path(outDir) / "results.json");
+    out << j.dump(2) << "\n";
+    if (!out) return Status::error(outDir + "/results.json: write failed");
+  }
+  {
+    std::ofstream out(fs::path(outDir) / "results.csv");
+    out << "scene,method,label,default,width,height,renderer,timingMethod,timeMedianMs,timeMinMs,timeMaxMs,frames,"
+           "visible,occluded,offScreen,escaped,recall1px,recall2px,recall4px,medianErrorPx,p95ErrorPx,falseHitRate,"
+           "reflectionRmse,reflectionPsnr,nonFiniteHitPixels,nonFiniteOutputPixels,tracedPixels,fetches,"
+           "fetchesPerTracedPixel,gbufferBytesPerPixel,extraBytesPerPixel,parameters\n";
+    for (const RunRecord& r : result.runs) {
+      const json rj = runJson(r);
+      auto v = [&](const char* k) { return rj[k].is_null() ? std::string() : rj[k].dump(); };
+      std::string params = rj["parameters"].dump();
+      std::string quoted = "\"";
+      for (char c : params) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+      quoted += "\"";
+      out << r.scene << "," << r.method << ",\"" << r.label << "\"," << (r.config.isDefault ? 1 : 0) << "," << r.width
+          << "," << r.height << ",\"" << r.renderer << "\",\"" << r.timingMethod << "\"," << v("timeMedianMs") << ","
+          << v("timeMinMs") << "," << v("timeMaxMs") << "," << r.frames << "," << r.metrics.visible << ","
+          << r.metrics.occluded << "," << r.metrics.offScreen << "," << r.metrics.escaped << "," << v("recall1px") << ","
+          << v("recall2px") << "," << v("recall4px") << "," << v("medianErrorPx") << "," << v("p95ErrorPx") << ","
+          << v("falseHitRate") << "," << v("reflectionRmse") << "," << v("reflectionPsnr") << "," << r.metrics.nonFinite
+          << "," << r.nonFiniteOutputs << "," << r.tracedPixels << "," << r.fetches << "," << v("fetchesPerTracedPixel")
+          << "," << r.gbufferBytesPerPixel << "," << r.extraBytesPerPixel << "," << quoted << "\n";
+    }
+    if (!out) return Status::error(outDir + "/results.csv: write failed");
+  }
+
+  std::ostringstream h;
+  h << "<!doctype html><html><head><meta charset='utf-8'><title>sslr benchmark</title><style>"
+       "body{font-family:sans-serif;margin:24px;max-width:1400px}table{border-collapse:collapse;margin:8px 0 24px}"
+       "td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}th{background:#f3f3f3}td:first-child,th:first-child"
+       "{text-align:left}.strip img{width:320px;image-rendering:pixelated;margin-right:6px}.strip figure{display:inline-block;"
+       "margin:0 8px 8px 0}.good{color:#080}.bad{color:#b00}</style></head><body>"
+    << "<h1>sslr: run time against error</h1><p>Renderer: <b>" << esc(result.renderer) << "</b>. Timing: <b>"
+    << esc(result.timingMethod) << "</b>, median of " << result.options.frames << " frames after " << result.options.warmup
+    << " warm-up, all configurations interleaved in one run (compare them as ratios). Grid: " << esc(result.options.grid)
+    << ", " << result.options.width << "x" << result.options.height
+    << ". Error: Embree ground truth; recall = visible (class A) reflections reported (confidence &gt; 0.5) within N px of "
+       "the true hit; false hits = occluded/off-screen/escaped reflections reported; RMSE = colour at the reported hit "
+       "(0 if none) vs colour at the true hit, over class A. Large dots: each method's default.</p>";
+  // Summary table: the defaults side by side per scene.
+  h << "<h2>Summary (defaults)</h2><table><tr><th>scene</th><th>method</th><th>time ms</th><th>time ratio</th>"
+       "<th>recall@1px</th><th>p95 px</th><th>false hits</th><th>RMSE</th><th>fetches/px</th><th>G-buffer B/px</th></tr>";
+  for (const SceneRecord& sc : result.scenes) {
+    const RunRecord *a = nullptr, *p = nullptr;
+    for (const RunRecord& r : result.runs)
+      if (r.scene == sc.scene && r.config.isDefault) (r.method == "adaptive-l" ? a : p) = &r;
+    for (const RunRecord* r : {a, p}) {
+      if (r == nullptr) continue;
+      const double ratio = (a && p && p->timeMedianMs > 0) ? r->timeMedianMs / p->timeMedianMs : NAN;
+      h << "<tr><td>" << esc(sc.scene) << "</td><td>" << esc(r->method) << " " << esc(r->label) << "</td><td>"
+        << fmt(r->timeMedianMs, 2) << "</td><td>" << fmt(ratio, 2) << "</td><td>" << fmt(r->metrics.recall1px, 4)
+        << "</td><td>" << fmt(r->metrics.p95ErrorPx, 3) << "</td><td>" << fmt(r->metrics.falseHitRate, 4) << "</td><td>"
+        << fmt(r->metrics.reflectionRmse, 4) << "</td><td>" << fmt(r->fetchesPerTracedPixel, 1) << "</td><td>"
+        << r->gbufferBytesPerPixel << "</td></tr>";
+    }
+  }
+  h << "</table>";
+  for (const SceneRecord& sc : result.scenes) {
+    std::vector<const RunRecord*> runs;
+    double baselineMs = 0;
+    for (const RunRecord& r : result.runs)
+      if (r.scene == sc.scene) {
+        if (r.method == "baseline") baselineMs = r.timeMedianMs;
+        else runs.push_back(&r);
+      }
+    h << "<h2>" << esc(sc.scene) << "</h2><p>Reflective pixels " << sc.reflective << ": visible " << sc.visible
+      << ", occluded " << sc.occluded << ", off screen " << sc.offScreen << ", escaped " << sc.escaped << ".</p>"
+      << plotSvg(runs, baselineMs) << "<div class='strip'>";
+    for (const std::string& img : sc.images) h << "<figure><img src='" << esc(img) << "'><figcaption>" << esc(img) << "</figcaption></figure>";
+    h << "</div><p>Error maps: black exact, green up to 1 px, yellow 2 px, red 4+ px, magenta visible but missed, "
+         "white false hit. Representations alone (same adaptive-L tracer, CPU): position rebuilt from depth vs stored "
+         "RGBA32F position: median error "
+      << fmt(sc.positionErrorMedian, 7) << ", max " << fmt(sc.positionErrorMax, 6) << " view units (max relative "
+      << fmt(sc.positionErrorMaxRelative, 7) << "); hit agreement " << fmt(sc.hitAgreement, 4) << "; recall@1px "
+      << fmt(sc.recallDepth, 4) << " (depth) vs " << fmt(sc.recallStored, 4) << " (stored).</p>"
+      << "<table><tr><th>method</th><th>config</th><th>time ms</th><th>recall@1/2/4px</th><th>median / p95 px</th>"
+         "<th>false hits</th><th>RMSE / PSNR</th><th>fetches/px</th><th>NaN/Inf</th></tr>";
+    for (const RunRecord* r : runs)
+      h << "<tr><td>" << esc(r->method) << "</td><td>" << esc(r->label) << "</td><td>" << fmt(r->timeMedianMs, 2)
+        << "</td><td>" << fmt(r->metrics.recall1px, 3) << " / " << fmt(r->metrics.recall2px, 3) << " / "
+        << fmt(r->metrics.recall4px, 3) << "</td><td>" << fmt(r->metrics.medianErrorPx, 3) << " / "
+        << fmt(r->metrics.p95ErrorPx, 3) << "</td><td>" << fmt(r->metrics.falseHitRate, 4) << "</td><td>"
+        << fmt(r->metrics.reflectionRmse, 4) << " / " << fmt(r->metrics.reflectionPsnr, 1) << " dB</td><td>"
+        << fmt(r->fetchesPerTracedPixel, 1) << "</td><td>" << r->metrics.nonFinite + r->nonFiniteOutputs << "</td></tr>";
+    h << "<tr><td>baseline</td><td>read G-buffer + write 1 texel</td><td>" << fmt(baselineMs, 2)
+      << "</td><td colspan='6'></td></tr></table>";
+  }
+  h << "</body></html>\n";
+  std::ofstream out(fs::path(outDir) / "report" / "index.html");
+  out << h.str();
+  if (!out) return Status::error(outDir + "/report/index.html: write failed");
+  return {};
+}
+
+}  // namespace sslr::host

@@ -1,0 +1,358 @@
+#include "sslr_host/benchmark.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "host_embedded_shaders.hpp"
+#include "sslr_host/cpu_tracer.hpp"
+#include "sslr_host/frame_renderer.hpp"
+
+namespace sslr::host {
+
+namespace fs = std::filesystem;
+
+std::vector<BenchConfig> benchGrid(const std::string& grid) {
+  std::vector<BenchConfig> configs;
+  const bool full = grid == "full";
+  // sslr's depth-only adaptive-L at each preset.
+  const std::pair<const char*, Preset> presets[] = {
+      {"low", Preset::Low}, {"medium", Preset::Medium}, {"high", Preset::High}, {"ultra", Preset::Ultra}};
+  for (const auto& [name, preset] : presets) {
+    if (!full && preset == Preset::Ultra) continue;
+    BenchConfig c{"adaptive-l", name, Settings::preset(preset), preset == Preset::High};
+    configs.push_back(c);
+  }
+  // The tutorial's method: its demo values first, then a sweep.
+  std::vector<float> resolutions = full ? std::vector<float>{0.1f, 0.3f, 0.6f, 1.0f} : std::vector<float>{0.3f, 1.0f};
+  std::vector<int> steps = full ? std::vector<int>{5, 10} : std::vector<int>{5};
+  std::vector<float> distances = full ? std::vector<float>{8.0f, 32.0f} : std::vector<float>{8.0f, 32.0f};
+  for (float dist : distances)
+    for (float res : resolutions)
+      for (int st : steps) {
+        Settings s;
+        s.method = Method::PositionBuffer;
+        s.positionBuffer.maxDistance = dist;
+        s.positionBuffer.resolution = res;
+        s.positionBuffer.steps = st;
+        std::ostringstream label;
+        label << "res" << res << "-steps" << st << "-dist" << dist;
+        const bool tutorial = dist == 8.0f && res == 0.3f && st == 5;
+        configs.push_back({"position-buffer", tutorial ? "tutorial (res0.3-steps5-dist8)" : label.str(), s, tutorial});
+      }
+  BenchConfig baseline{"baseline", "read G-buffer, write 1 texel", Settings{}, false};
+  configs.push_back(baseline);
+  return configs;
+}
+
+namespace {
+
+// The "physical limit" pass: reads depth, normal and colour once, writes one RGBA16F texel.
+class BaselinePass {
+ public:
+  explicit BaselinePass(int w, int h) : w_(w), h_(h) {
+    const char* body = embeddedShader("host/baseline.comp");
+    const char* sources[] = {"#version 450 core\n", body};
+    GLuint cs = glCreateShader(GL_COMPUTE_SHADER);
+    glShaderSource(cs, 2, sources, nullptr);
+    glCompileShader(cs);
+    program_ = glCreateProgram();
+    glAttachShader(program_, cs);
+    glLinkProgram(program_);
+    glDeleteShader(cs);
+    glCreateTextures(GL_TEXTURE_2D, 1, &out_);
+    glTextureStorage2D(out_, 1, GL_RGBA16F, w, h);
+    glCreateSamplers(1, &sampler_);
+    glSamplerParameteri(sampler_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glSamplerParameteri(sampler_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  }
+  ~BaselinePass() {
+    glDeleteProgram(program_);
+    glDeleteTextures(1, &out_);
+    glDeleteSamplers(1, &sampler_);
+  }
+  void run(const FrameInputs& in) {
+    glUseProgram(program_);
+    const GLuint textures[3] = {in.depthTexture, in.normalTexture, in.colorTexture};
+    for (GLuint u = 0; u < 3; ++u) {
+      glBindTextureUnit(u, textures[u]);
+      glBindSampler(u, sampler_);
+    }
+    glBindImageTexture(0, out_, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glDispatchCompute(static_cast<GLuint>((w_ + 7) / 8), static_cast<GLuint>((h_ + 7) / 8), 1);
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    for (GLuint u = 0; u < 3; ++u) glBindSampler(u, 0);
+    glUseProgram(0);
+  }
+
+ private:
+  int w_, h_;
+  GLuint program_ = 0, out_ = 0, sampler_ = 0;
+};
+
+// Times one call: wall clock around glFinish on software renderers (timer queries are
+// meaningless on llvmpipe), GL_TIME_ELAPSED on hardware.
+class Timer {
+ public:
+  explicit Timer(bool software) : software_(software) {
+    if (!software_) glCreateQueries(GL_TIME_ELAPSED, 1, &query_);
+  }
+  ~Timer() {
+    if (query_ != 0) glDeleteQueries(1, &query_);
+  }
+  std::string method() const {
+    return software_ ? "wall clock around glFinish (software renderer)" : "GL_TIME_ELAPSED";
+  }
+  template <typename Fn>
+  double timeMs(Fn&& fn) {
+    if (software_) {
+      glFinish();
+      const auto t0 = std::chrono::steady_clock::now();
+      fn();
+      glFinish();
+      return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    }
+    glBeginQuery(GL_TIME_ELAPSED, query_);
+    fn();
+    glEndQuery(GL_TIME_ELAPSED);
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(query_, GL_QUERY_RESULT, &ns);
+    return static_cast<double>(ns) * 1e-6;
+  }
+
+ private:
+  bool software_;
+  GLuint query_ = 0;
+};
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+std::string slug(std::string s) {
+  for (char& c : s)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '-';
+  return s;
+}
+
+// Image strips: the truth (colour at the true hit, classes tinted), each default method's
+// reflection (colour at its reported hit) and its error heatmap.
+Image truthImage(const GroundTruth& gt, const Image& color) {
+  Image img{gt.width, gt.height, 3, std::vector<float>(static_cast<size_t>(gt.width) * gt.height * 3, 0.0f)};
+  for (int y = 0; y < gt.height; ++y)
+    for (int x = 0; x < gt.width; ++x) {
+      const TruthPixel& t = gt.pixels[static_cast<size_t>(y) * gt.width + x];
+      glm::vec3 c(0.0f);
+      switch (t.cls) {
+        case TruthClass::Visible: c = sampleBilinear(color, t.uvHit); break;
+        case TruthClass::Occluded: c = {0.25f, 0.02f, 0.02f}; break;
+        case TruthClass::OffScreen: c = {0.02f, 0.02f, 0.25f}; break;
+        case TruthClass::Escaped: c = {0.06f, 0.06f, 0.06f}; break;
+        case TruthClass::NotReflective: break;
+      }
+      for (int k = 0; k < 3; ++k) img.at(x, y, k) = c[k];
+    }
+  return img;
+}
+
+Image methodImage(const GroundTruth& gt, const Image& hit, const Image& color) {
+  Image img{gt.width, gt.height, 3, std::vector<float>(static_cast<size_t>(gt.width) * gt.height * 3, 0.0f)};
+  for (int y = 0; y < gt.height; ++y)
+    for (int x = 0; x < gt.width; ++x) {
+      if (gt.pixels[static_cast<size_t>(y) * gt.width + x].cls == TruthClass::NotReflective) continue;
+      if (!(hit.at(x, y, 2) > 0.5f)) continue;
+      const glm::vec3 c = sampleBilinear(color, {hit.at(x, y, 0), hit.at(x, y, 1)});
+      for (int k = 0; k < 3; ++k) img.at(x, y, k) = c[k];
+    }
+  return img;
+}
+
+// Black = exact, green = 1 px, yellow = 2 px, red >= 4 px; magenta = visible but missed;
+// white = a false hit (B, C or D reported).
+Image errorImage(const GroundTruth& gt, const Image& hit) {
+  Image img{gt.width, gt.height, 3, std::vector<float>(static_cast<size_t>(gt.width) * gt.height * 3, 0.0f)};
+  for (int y = 0; y < gt.height; ++y)
+    for (int x = 0; x < gt.width; ++x) {
+      const TruthPixel& t = gt.pixels[static_cast<size_t>(y) * gt.width + x];
+      const bool reported = hit.at(x, y, 2) > 0.5f;
+      glm::vec3 c(0.0f);
+      if (t.cls == TruthClass::Visible) {
+        if (!reported) {
+          c = {0.8f, 0.0f, 0.8f};
+        } else {
+          const float e = glm::length((glm::vec2(hit.at(x, y, 0), hit.at(x, y, 1)) - t.uvHit) *
+                                      glm::vec2(gt.width, gt.height));
+          c = e <= 1.0f ? glm::vec3(0.0f, e, 0.0f) : e <= 2.0f ? glm::vec3(e - 1.0f, 1.0f, 0.0f)
+                                                              : glm::vec3(1.0f, std::max(0.0f, 1.0f - (e - 2.0f) / 2.0f), 0.0f);
+        }
+      } else if (t.cls != TruthClass::NotReflective && reported) {
+        c = {1.0f, 1.0f, 1.0f};
+      }
+      for (int k = 0; k < 3; ++k) img.at(x, y, k) = c[k];
+    }
+  return img;
+}
+
+}  // namespace
+
+Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, const std::string& renderer,
+                                   const std::string& reportDir,
+                                   const std::function<void(int, int, const std::string&)>& progress) {
+  BenchResult result;
+  result.options = options;
+  result.renderer = renderer;
+  std::vector<std::string> scenes = options.scenes;
+  if (scenes.empty()) scenes = {"mirror-room", "grazing-plane", "thin-objects", "sky-heavy"};
+  const std::vector<BenchConfig> grid = benchGrid(options.grid);
+  Timer timer(software);
+  result.timingMethod = timer.method();
+  std::error_code ec;
+  fs::create_directories(reportDir, ec);
+  if (ec) return Status::error("cannot create " + reportDir + ": " + ec.message());
+
+  const int total = static_cast<int>(scenes.size() * (grid.size() * (1 + options.frames + options.warmup) + 1));
+  int done = 0;
+  for (const std::string& sceneName : scenes) {
+    auto scene = loadScene(sceneName);
+    if (!scene) return Status::error(scene.error());
+    GBufferOptions g;
+    g.width = options.width;
+    g.height = options.height;
+    g.withPosition = true;  // the position-buffer method needs it; the depth-only one ignores it
+    auto renderer_ = FrameRenderer::create(g);
+    if (!renderer_) return Status::error(renderer_.error());
+    FrameRenderer& fr = *renderer_.value();
+    GpuScene gpu(scene.value());
+    const Camera camera = scene.value().camera ? *scene.value().camera : scene.value().defaultCamera();
+    if (Status s = fr.render(gpu, camera, nullptr); !s) return Status::error(s.message());
+    GBuffer& gb = fr.gbuffer();
+    const FrameInputs inputs = gb.frameInputs();
+    const Image depth = gb.readDepth(), normal = gb.readNormalPacked(), positions = gb.readPosition(),
+                color = gb.readColor();
+
+    // Ground truth (Embree), once per scene.
+    progress(done, total, sceneName + ": ground truth");
+    auto tracer = RayTracer::create(scene.value(), gb.viewFromWorld());
+    if (!tracer) return Status::error(tracer.error());
+    const Settings defaults;
+    const auto mask = reflectiveMask(depth, normal, inputs, defaults);
+    const GroundTruth gt = computeGroundTruth(*tracer.value(), gb.clipFromView(), g.width, g.height, mask);
+
+    SceneRecord sr;
+    sr.scene = sceneName;
+    sr.reflective = static_cast<size_t>(std::count(mask.begin(), mask.end(), 1));
+    sr.visible = gt.count(TruthClass::Visible);
+    sr.occluded = gt.count(TruthClass::Occluded);
+    sr.offScreen = gt.count(TruthClass::OffScreen);
+    sr.escaped = gt.count(TruthClass::Escaped);
+    // The two representations alone: reconstruction error, and one tracer on both.
+    {
+      const Image rebuilt = reconstructPositions(depth, gb.clipFromView(), inputs.depth);
+      std::vector<double> errs;
+      for (size_t p = 0; p < mask.size(); ++p) {
+        if (positions.pixels[p * 4 + 3] == 0.0f || rebuilt.pixels[p * 4 + 3] == 0.0f) continue;
+        const glm::vec3 a(rebuilt.pixels[p * 4], rebuilt.pixels[p * 4 + 1], rebuilt.pixels[p * 4 + 2]);
+        const glm::vec3 b(positions.pixels[p * 4], positions.pixels[p * 4 + 1], positions.pixels[p * 4 + 2]);
+        const double e = glm::length(a - b);
+        errs.push_back(e);
+        sr.positionErrorMaxRelative = std::max(sr.positionErrorMaxRelative, e / std::max(1e-6, double(glm::length(b))));
+      }
+      if (!errs.empty()) {
+        sr.positionErrorMax = *std::max_element(errs.begin(), errs.end());
+        sr.positionErrorMedian = median(errs);
+      }
+      const CpuGBuffer cg{&depth, &normal, &positions};
+      const Image hitDepth = traceOnCpu(cg, inputs, defaults, SurfaceSource::Depth);
+      const Image hitStored = traceOnCpu(cg, inputs, defaults, SurfaceSource::StoredPositions);
+      size_t traced = 0, agree = 0;
+      for (size_t p = 0; p < mask.size(); ++p) {
+        if (!mask[p]) continue;
+        ++traced;
+        const bool a = hitDepth.pixels[p * 4 + 2] > 0.5f, b = hitStored.pixels[p * 4 + 2] > 0.5f;
+        const float du = (hitDepth.pixels[p * 4] - hitStored.pixels[p * 4]) * g.width;
+        const float dv = (hitDepth.pixels[p * 4 + 1] - hitStored.pixels[p * 4 + 1]) * g.height;
+        agree += a == b && (!a || std::hypot(du, dv) <= 1.0f);
+      }
+      sr.hitAgreement = traced ? double(agree) / traced : 1.0;
+      sr.recallDepth = compareHits(gt, hitDepth).recall1px;
+      sr.recallStored = compareHits(gt, hitStored).recall1px;
+    }
+    const std::string prefix = slug(sceneName);
+    if (Status s = writeImage((fs::path(reportDir) / (prefix + "-truth.png")).string(), truthImage(gt, color)); !s)
+      return Status::error(s.message());
+    sr.images.push_back(prefix + "-truth.png");
+
+    // Quality pass per config (debug outputs + stats, untimed).
+    std::vector<RunRecord> runs;
+    BaselinePass baseline(g.width, g.height);
+    for (const BenchConfig& c : grid) {
+      RunRecord r;
+      r.scene = sceneName;
+      r.method = c.method;
+      r.label = c.label;
+      r.config = c;
+      r.width = g.width;
+      r.height = g.height;
+      r.renderer = renderer;
+      r.timingMethod = timer.method();
+      r.extraBytesPerPixel = c.method == "baseline" ? 8 : 24;  // 3 x RGBA16F
+      r.gbufferBytesPerPixel = gb.bytesPerPixel() + (c.method == "position-buffer" ? 16 : 0);
+      if (c.method != "baseline") {
+        Settings s = c.settings;
+        s.debugOutputs = true;
+        s.collectStats = true;
+        if (Status st = fr.sslr().dispatch(inputs, s); !st) return Status::error(st.message());
+        const Image hit = fr.readHit();
+        r.metrics = compareHits(gt, hit, 0.5f, &color);
+        const FrameStats stats = fr.sslr().lastStats();
+        r.tracedPixels = stats.tracedPixels;
+        r.fetches = stats.fetches;
+        r.fetchesPerTracedPixel = stats.tracedPixels ? double(stats.fetches) / stats.tracedPixels : 0.0;
+        r.nonFiniteOutputs = countNonFinite(fr.readReflection()) + countNonFinite(fr.readResolved());
+        if (c.isDefault) {
+          const std::string m = prefix + "-" + slug(c.method);
+          if (Status st = writeImage((fs::path(reportDir) / (m + ".png")).string(), methodImage(gt, hit, color)); !st)
+            return Status::error(st.message());
+          if (Status st = writeImage((fs::path(reportDir) / (m + "-error.png")).string(), errorImage(gt, hit)); !st)
+            return Status::error(st.message());
+          sr.images.push_back(m + ".png");
+          sr.images.push_back(m + "-error.png");
+        }
+      }
+      runs.push_back(r);
+      progress(++done, total, sceneName + ": quality " + c.method + " " + c.label);
+    }
+    // Timing: every config once per round, rounds interleaved (A B C A B C ...), so all
+    // configs see the same machine state; the first `warmup` rounds are dropped.
+    std::vector<std::vector<double>> times(grid.size());
+    for (int round = 0; round < options.warmup + options.frames; ++round)
+      for (size_t i = 0; i < grid.size(); ++i) {
+        const BenchConfig& c = grid[i];
+        double ms = 0.0;
+        if (c.method == "baseline") {
+          ms = timer.timeMs([&] { baseline.run(inputs); });
+        } else {
+          Status st;
+          ms = timer.timeMs([&] { st = fr.sslr().dispatch(inputs, c.settings); });
+          if (!st) return Status::error(st.message());
+        }
+        if (round >= options.warmup) times[i].push_back(ms);
+        progress(++done, total, sceneName + ": timing round " + std::to_string(round + 1));
+      }
+    for (size_t i = 0; i < grid.size(); ++i) {
+      runs[i].frames = static_cast<int>(times[i].size());
+      runs[i].timeMedianMs = median(times[i]);
+      runs[i].timeMinMs = times[i].empty() ? 0.0 : *std::min_element(times[i].begin(), times[i].end());
+      runs[i].timeMaxMs = times[i].empty() ? 0.0 : *std::max_element(times[i].begin(), times[i].end());
+    }
+    result.runs.insert(result.runs.end(), runs.begin(), runs.end());
+    result.scenes.push_back(sr);
+  }
+  return result;
+}
+
+}  // namespace sslr::host

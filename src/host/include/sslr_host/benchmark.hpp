@@ -1,0 +1,72 @@
+// sslr-bench's engine: methods x scenes x parameter grids, timed interleaved in one run, scored
+// against Embree ground truth; results as JSON/CSV and a static HTML report.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "sslr/sslr.hpp"
+#include "sslr_host/ground_truth.hpp"
+
+namespace sslr::host {
+
+struct BenchOptions {
+  std::string grid = "quick";       // "quick" (CI) or "full" (docs)
+  std::vector<std::string> scenes;  // empty: the four built-in scenes
+  int width = 320, height = 180;
+  int frames = 7;                   // timed frames per config (median reported)
+  int warmup = 1;
+};
+
+struct BenchConfig {
+  std::string method;  // "adaptive-l", "position-buffer" or "baseline"
+  std::string label;   // e.g. "high", "res0.3-steps5-dist8"
+  Settings settings;
+  bool isDefault = false;  // the method's default configuration (image strips, summary)
+};
+
+struct RunRecord {
+  std::string scene, method, label;
+  BenchConfig config;
+  int width = 0, height = 0;
+  std::string renderer, timingMethod;
+  double timeMedianMs = 0, timeMinMs = 0, timeMaxMs = 0;
+  int frames = 0;
+  HitMetrics metrics;
+  std::uint32_t tracedPixels = 0, fetches = 0;
+  double fetchesPerTracedPixel = 0;
+  int gbufferBytesPerPixel = 0;  // colour + normal + depth (+ position for the tutorial's method)
+  int extraBytesPerPixel = 0;    // sslr's own textures (reflection, blur temp, resolved)
+  size_t nonFiniteOutputs = 0;   // NaN/Inf pixels in reflection + resolved
+};
+
+struct SceneRecord {
+  std::string scene;
+  size_t reflective = 0, visible = 0, occluded = 0, offScreen = 0, escaped = 0;
+  // Depth-only vs stored positions: reconstruction error and the same tracer on both.
+  double positionErrorMedian = 0, positionErrorMax = 0, positionErrorMaxRelative = 0;
+  double hitAgreement = 0;  // pixels whose hit decision and uv (within 1 px) agree
+  double recallDepth = 0, recallStored = 0;
+  std::vector<std::string> images;  // image strip files, relative to the report folder
+};
+
+struct BenchResult {
+  BenchOptions options;
+  std::string renderer, timingMethod;
+  std::vector<RunRecord> runs;
+  std::vector<SceneRecord> scenes;
+};
+
+std::vector<BenchConfig> benchGrid(const std::string& grid);
+
+// Runs everything; `reportDir` receives the image strips while running. Needs a current GL
+// context (HeadlessContext). `progress(done, total, what)` is called as work proceeds.
+Expected<BenchResult> runBenchmark(const BenchOptions& options, bool isSoftwareRenderer, const std::string& renderer,
+                                   const std::string& reportDir,
+                                   const std::function<void(int, int, const std::string&)>& progress);
+
+// results.json, results.csv and report/index.html under outDir.
+Status writeBenchResults(const BenchResult& result, const std::string& outDir);
+
+}  // namespace sslr::host
