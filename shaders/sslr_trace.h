@@ -17,9 +17,10 @@ namespace sslr::shared {
 #ifndef SSLR_MAX_GROWTH
 #define SSLR_MAX_GROWTH 2.0f
 #endif
-// Steps back after a probe left the screen or met the sky, before giving up.
+// Steps back after a probe left the screen or met the sky, before giving up. Each retreat costs a
+// sky-bound ray one more iteration; a second one recovered almost no hits (docs/algorithm.md).
 #ifndef SSLR_MAX_RETREATS
-#define SSLR_MAX_RETREATS 3
+#define SSLR_MAX_RETREATS 1
 #endif
 
 struct SslrHit {

@@ -244,9 +244,12 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
         if (r.method == "baseline") baselineMs = r.timeMedianMs;
         else runs.push_back(&r);
       }
+    // Each plot also as a standalone SVG file (docs link to them).
+    const std::string svg = plotSvg(runs, baselineMs);
+    std::ofstream(fs::path(outDir) / "report" / ("plot-" + sc.scene + ".svg")) << svg << "\n";
     h << "<h2>" << esc(sc.scene) << "</h2><p>Reflective pixels " << sc.reflective << ": visible " << sc.visible
       << ", occluded " << sc.occluded << ", off screen " << sc.offScreen << ", escaped " << sc.escaped << ".</p>"
-      << plotSvg(runs, baselineMs) << "<div class='strip'>";
+      << svg << "<div class='strip'>";
     for (const std::string& img : sc.images) h << "<figure><img src='" << esc(img) << "'><figcaption>" << esc(img) << "</figcaption></figure>";
     h << "</div><p>Error maps: black exact, green up to 1 px, yellow 2 px, red 4+ px, magenta visible but missed, "
          "white false hit. Representations alone (same adaptive-L tracer, CPU): position rebuilt from depth vs stored "

@@ -1,0 +1,115 @@
+// sslr-bench end to end: the quick grid runs, every record has every field, the report exists
+// and references images that exist, and (where Chromium is installed) renders headless.
+#include <sys/wait.h>
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+
+#include "gl/gl_fixture.hpp"
+#include "sslr_host/image_io.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+int runCommand(const std::string& cmd, std::string* output = nullptr) {
+  FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return -1;
+  std::array<char, 4096> buf;
+  size_t n;
+  std::string out;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  if (output) *output = out;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+class Bench : public sslr::test::GlTest {};
+
+TEST_F(Bench, QuickGridWritesCompleteResultsAndReport) {
+  const fs::path out = fs::path(SSLR_TEST_TMP) / "bench";
+  fs::remove_all(out);
+  std::string log;
+  const int rc = runCommand(std::string(SSLR_BENCH_EXE) + " --grid quick --size 96x64 --frames 2 --out " + out.string(), &log);
+  ASSERT_EQ(rc, 0) << log;
+  std::ifstream in(out / "results.json");
+  ASSERT_TRUE(in) << "results.json missing";
+  const nlohmann::json j = nlohmann::json::parse(in);  // throws (fails the test) if invalid
+  for (const char* key : {"renderer", "timingMethod", "grid", "width", "height", "runs", "scenes"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  const char* runFields[] = {"scene", "method", "label", "default", "parameters", "width", "height", "renderer",
+                             "timingMethod", "timeMedianMs", "timeMinMs", "timeMaxMs", "frames", "classes",
+                             "recall1px", "recall2px", "recall4px", "medianErrorPx", "p95ErrorPx", "falseHitRate",
+                             "reflectionRmse", "reflectionPsnr", "nonFiniteHitPixels", "nonFiniteOutputPixels",
+                             "tracedPixels", "fetches", "fetchesPerTracedPixel", "gbufferBytesPerPixel",
+                             "extraBytesPerPixel"};
+  std::set<std::string> scenes, methods;
+  for (const auto& r : j["runs"]) {
+    for (const char* f : runFields) ASSERT_TRUE(r.contains(f)) << f << " missing in " << r.dump();
+    const std::string method = r["method"];
+    methods.insert(method);
+    scenes.insert(r["scene"].get<std::string>());
+    EXPECT_GT(r["timeMedianMs"].get<double>(), 0.0);
+    EXPECT_EQ(r["nonFiniteOutputPixels"].get<int>(), 0) << r.dump();
+    if (method != "baseline") {
+      // Metrics are numbers (null only where not applicable, i.e. the baseline).
+      for (const char* f : {"recall1px", "falseHitRate", "reflectionRmse", "fetchesPerTracedPixel"})
+        EXPECT_TRUE(r[f].is_number()) << f << " in " << r.dump();
+      EXPECT_LE(r["recall1px"].get<double>(), r["recall4px"].get<double>());
+    }
+  }
+  EXPECT_EQ(methods, (std::set<std::string>{"adaptive-l", "position-buffer", "baseline"}));
+  EXPECT_EQ(scenes.size(), 4u);
+  ASSERT_EQ(j["scenes"].size(), 4u);
+  for (const auto& s : j["scenes"]) EXPECT_TRUE(s["hitAgreementDepthVsStored"].is_number());
+  // The report and every image it references.
+  std::ifstream html(out / "report" / "index.html");
+  ASSERT_TRUE(html);
+  const std::string text((std::istreambuf_iterator<char>(html)), {});
+  EXPECT_NE(text.find("<svg"), std::string::npos);
+  const std::regex img("src='([^']+)'");
+  int images = 0;
+  for (std::sregex_iterator it(text.begin(), text.end(), img), end; it != end; ++it, ++images)
+    EXPECT_TRUE(fs::exists(out / "report" / (*it)[1].str())) << (*it)[1].str();
+  EXPECT_GE(images, 4 * 5);  // per scene: truth + 2 methods x (reflection, error map)
+  // CSV: a header and one line per run.
+  std::ifstream csv(out / "results.csv");
+  size_t lines = 0;
+  for (std::string line; std::getline(csv, line);) ++lines;
+  EXPECT_EQ(lines, j["runs"].size() + 1);
+}
+
+TEST_F(Bench, ReportRendersInHeadlessChromium) {
+  const char* chromium = "/usr/bin/chromium";
+  if (!fs::exists(chromium)) GTEST_SKIP() << "Debian's chromium is not installed (.ci/install-deps installs it)";
+  const fs::path out = fs::path(SSLR_TEST_TMP) / "bench-chromium";
+  fs::remove_all(out);
+  std::string log;
+  ASSERT_EQ(runCommand(std::string(SSLR_BENCH_EXE) + " --scenes sky-heavy --size 64x40 --frames 1 --out " + out.string(), &log), 0) << log;
+  const fs::path shot = out / "screenshot.png";
+  const fs::path profile = out / "chromium-profile";
+  const std::string cmd = std::string(chromium) +
+                          " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
+                          " --disable-background-networking --disable-component-update --disable-sync"
+                          " --user-data-dir=" + profile.string() + " --window-size=1280,1600 --screenshot=" +
+                          shot.string() + " file://" + fs::absolute(out / "report" / "index.html").string();
+  ASSERT_EQ(runCommand(cmd, &log), 0) << log;
+  auto img = sslr::host::readImage(shot.string());
+  ASSERT_TRUE(img) << img.error();
+  EXPECT_EQ(img.value().width, 1280);
+  // Not blank: the page draws text, plots and images, so pixel values vary.
+  float lo = 1e9f, hi = -1e9f;
+  for (float v : img.value().pixels) {
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  EXPECT_GT(hi - lo, 0.5f);
+}
+
+}  // namespace
