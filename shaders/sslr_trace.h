@@ -32,6 +32,18 @@ struct SslrHit {
   float fade;        // extra weight of the method (position buffer: the tutorial's fades), else 1
 };
 
+// A hit record that says "nothing": the starting state of every tracer.
+SSLR_FN SslrHit sslrNoHit(int status) {
+  SslrHit hit;
+  hit.uvHit = vec2(0.0f);
+  hit.confidence = 0.0f;
+  hit.L = 0.0f;
+  hit.iterations = 0;
+  hit.status = status;
+  hit.fade = 0.0f;
+  return hit;
+}
+
 // Validates a candidate: the probe Q = P + R L must lie on the surface P' seen at its pixel,
 // within a tolerance that grows with distance (depth precision) and with the pixel footprint
 // stretched by the surface slope (pixel snapping on a steep surface moves P' along the view ray).
@@ -81,12 +93,7 @@ SSLR_FN float sslrRefineOnPlane(vec3 vsP, vec3 vsR, vec3 vsSurface, vec3 vsSurfa
 // stall, e.g. for rays that come back towards the camera (docs/algorithm.md has the numbers).
 SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTraceParams t,
                                    ivec2 pxOrigin, vec3 vsP, vec3 vsV, vec3 vsR) {
-  SslrHit hit;
-  hit.uvHit = vec2(0.0f);
-  hit.confidence = 0.0f;
-  hit.L = 0.0f;
-  hit.iterations = 0;
-  hit.status = SSLR_STATUS_MISS;
+  SslrHit hit = sslrNoHit(SSLR_STATUS_MISS);
   hit.fade = 1.0f;
 
   vec2 sizePx = vec2(s.width, s.height);

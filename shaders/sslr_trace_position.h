@@ -15,6 +15,13 @@ namespace sslr::shared {
 // View distance along -z (both projections: the tutorial's "view distance" is its depth axis).
 SSLR_FN float sslrDepthAlongView(vec3 vsPos) { return -vsPos.z; }
 
+// The ray's view distance at fraction `search` of the screen-space segment: perspective-correct
+// (1/z is linear in screen space), or linear for orthographic projections.
+SSLR_FN float sslrRayDistanceAt(SslrProjection p, float startDist, float endDist, float search) {
+  return p.orthographic != 0 ? mix(startDist, endDist, search)
+                             : (startDist * endDist) / mix(endDist, startDist, search);
+}
+
 // Coarse march from the ray's start to its end (start + R maxDistance) along the larger screen
 // axis, `resolution` of the pixels, with perspective-correct depth; then `steps` of bisection
 // between the last miss and the hit. Guards not in the tutorial (they only stop it from reading
@@ -22,13 +29,7 @@ SSLR_FN float sslrDepthAlongView(vec3 vsPos) { return -vsPos.z; }
 // march stops at the screen border, and its step count is capped.
 SSLR_FN SslrHit sslrTracePositionBuffer(SslrProjection p, SslrSurface s, SslrPositionParams pb,
                                         vec3 vsP, vec3 vsV, vec3 vsR) {
-  SslrHit hit;
-  hit.uvHit = vec2(0.0f);
-  hit.confidence = 0.0f;
-  hit.L = 0.0f;
-  hit.iterations = 0;
-  hit.status = SSLR_STATUS_MISS;
-  hit.fade = 0.0f;
+  SslrHit hit = sslrNoHit(SSLR_STATUS_MISS);
 
   vec2 sizePx = vec2(s.width, s.height);
   vec3 startView = vsP;
@@ -70,10 +71,8 @@ SSLR_FN SslrHit sslrTracePositionBuffer(SslrProjection p, SslrSurface s, SslrPos
     hit.iterations += 1;
     search1 = useX ? (frag.x - startFrag.x) / deltaX : (frag.y - startFrag.y) / deltaY;
     search1 = clamp(search1, 0.0f, 1.0f);
-    float viewDistance = p.orthographic != 0
-                             ? mix(startDist, endDist, search1)
-                             : (startDist * endDist) / mix(endDist, startDist, search1);
-    depth = viewDistance - sslrDepthAlongView(vec3(positionTo.x, positionTo.y, positionTo.z));
+    depth = sslrRayDistanceAt(p, startDist, endDist, search1) -
+            sslrDepthAlongView(vec3(positionTo.x, positionTo.y, positionTo.z));
     if (positionTo.w > 0.0f && depth > 0.0f && depth < pb.thickness) {
       hit0 = 1;
       break;
@@ -87,10 +86,8 @@ SSLR_FN SslrHit sslrTracePositionBuffer(SslrProjection p, SslrSurface s, SslrPos
     frag = mix(startFrag, endFrag, search1);
     sslrLoadPosition(clamp(ivec2(floor(frag)), ivec2(0), ivec2(sizePx) - 1), positionTo);
     hit.iterations += 1;
-    float viewDistance = p.orthographic != 0
-                             ? mix(startDist, endDist, search1)
-                             : (startDist * endDist) / mix(endDist, startDist, search1);
-    depth = viewDistance - sslrDepthAlongView(vec3(positionTo.x, positionTo.y, positionTo.z));
+    depth = sslrRayDistanceAt(p, startDist, endDist, search1) -
+            sslrDepthAlongView(vec3(positionTo.x, positionTo.y, positionTo.z));
     if (positionTo.w > 0.0f && depth > 0.0f && depth < pb.thickness) {
       hit1 = 1;
       search1 = search0 + ((search1 - search0) / 2.0f);

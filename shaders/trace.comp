@@ -48,13 +48,7 @@ void main() {
   ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
   if (!sslrInside(px)) return;
 
-  SslrHit hit;
-  hit.uvHit = vec2(0.0f);
-  hit.confidence = 0.0f;
-  hit.L = 0.0f;
-  hit.iterations = 0;
-  hit.status = SSLR_STATUS_NOT_TRACED;
-  hit.fade = 0.0f;
+  SslrHit hit = sslrNoHit(SSLR_STATUS_NOT_TRACED);
   vec4 reflection = vec4(0.0f);
 
   vec4 texel = sslrLoadNormal(px);

@@ -1,5 +1,6 @@
 #include "sslr_host/cpu_tracer.hpp"
 
+#include "sslr/reference.hpp"
 #include "sslr_shared.h"
 
 // The loaders the shared tracers call, over the G-buffer of the current traceOnCpu call.
@@ -38,40 +39,21 @@ namespace sslr::host {
 Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& settings, SurfaceSource source) {
   using namespace sslr::shared;
   const int w = g.depth->width, h = g.depth->height;
-  SslrProjection proj = sslrProjectionFromMatrix(in.clipFromView, in.depth.range == DepthRange::ZeroToOne);
-  SslrSurface surf{};
-  surf.normalEncoding = in.surface.normals == NormalEncoding::Octahedral ? SSLR_NORMALS_OCTAHEDRAL : SSLR_NORMALS_XYZ_UNORM;
-  surf.roughnessChannel = in.surface.roughnessChannel;
-  surf.reflectanceChannel = in.surface.reflectanceChannel;
-  surf.reversedZ = in.depth.reversedZ ? 1 : 0;
-  surf.constantRoughness = in.surface.constantRoughness;
-  surf.constantReflectance = in.surface.constantReflectance;
-  surf.width = static_cast<float>(w);
-  surf.height = static_cast<float>(h);
-  SslrTraceParams t{};
-  t.initialLengthPixels = settings.initialLengthPixels;
-  t.convergenceEps = settings.convergenceEps;
-  t.errorK = settings.errorK;
-  t.maxDistance = settings.maxDistance;
-  t.thicknessRelative = settings.thicknessRelative;
-  t.thicknessPixels = settings.thicknessPixels;
-  t.edgeFade = settings.edgeFade;
-  t.cameraFadeStart = settings.cameraFadeStart;
-  t.cameraFadeEnd = settings.cameraFadeEnd;
-  t.roughnessCutoff = settings.roughnessCutoff;
-  t.minReflectance = settings.minReflectance;
-  t.maxIterations = settings.maxIterations;
-  SslrPositionParams pb{settings.positionBuffer.maxDistance, settings.positionBuffer.resolution,
-                        settings.positionBuffer.thickness, settings.positionBuffer.steps};
-  tG = &g;
-  tProj = proj;
-  tSurf = surf;
-  tStored = source == SurfaceSource::StoredPositions;
   Image hit;
   hit.width = w;
   hit.height = h;
   hit.channels = 4;
   hit.pixels.assign(static_cast<size_t>(w) * h * 4, 0.0f);
+  auto frame = frameConstants(in, settings, w, h);  // the block the GPU pass would read
+  if (!frame) return hit;
+  const SslrProjection proj = frame.value().proj;
+  const SslrSurface surf = frame.value().surface;
+  const SslrTraceParams t = frame.value().trace;
+  const SslrPositionParams pb = frame.value().positionBuffer;
+  tG = &g;
+  tProj = proj;
+  tSurf = surf;
+  tStored = source == SurfaceSource::StoredPositions;
   const bool positionMethod = settings.method == Method::PositionBuffer;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sslr/reference.hpp"
 #include "sslr_shared.h"
 
 namespace sslr::host {
@@ -107,16 +108,11 @@ bool RayTracer::occluded(glm::vec3 o, glm::vec3 d, float tFar) const {
 
 std::vector<std::uint8_t> reflectiveMask(const Image& depth, const Image& normalPacked, const FrameInputs& in,
                                          const Settings& settings) {
-  shared::SslrSurface s{};
-  s.normalEncoding = in.surface.normals == NormalEncoding::Octahedral ? SSLR_NORMALS_OCTAHEDRAL : SSLR_NORMALS_XYZ_UNORM;
-  s.roughnessChannel = in.surface.roughnessChannel;
-  s.reflectanceChannel = in.surface.reflectanceChannel;
-  s.reversedZ = in.depth.reversedZ ? 1 : 0;
-  s.constantRoughness = in.surface.constantRoughness;
-  s.constantReflectance = in.surface.constantReflectance;
-  shared::SslrTraceParams t{};
-  t.roughnessCutoff = settings.roughnessCutoff;
-  t.minReflectance = settings.minReflectance;
+  std::vector<std::uint8_t> none(static_cast<size_t>(depth.width) * depth.height, 0);
+  auto frame = frameConstants(in, settings, depth.width, depth.height);
+  if (!frame) return none;
+  const shared::SslrSurface s = frame.value().surface;
+  const shared::SslrTraceParams t = frame.value().trace;
   std::vector<std::uint8_t> mask(static_cast<size_t>(depth.width) * depth.height, 0);
   for (size_t p = 0; p < mask.size(); ++p) {
     const float* n = &normalPacked.pixels[p * normalPacked.channels];

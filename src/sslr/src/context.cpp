@@ -11,6 +11,7 @@
 #include "gl_functions.hpp"
 #include "gl_state.hpp"
 #include "projection.hpp"
+#include "sslr/reference.hpp"
 #include "sslr/sslr.hpp"
 #include "sslr_shared.h"
 
@@ -95,6 +96,16 @@ std::string validate(const Settings& s) {
 // ---- Implementation -----------------------------------------------------------------------
 
 namespace {
+
+// A shader's or program's info log, with source-string numbers replaced by file names.
+template <typename GetIv, typename GetLog>
+std::string infoLog(GLuint object, GetIv getIv, GetLog getLog) {
+  GLint length = 0;
+  getIv(object, GL_INFO_LOG_LENGTH, &length);
+  std::string text(static_cast<size_t>(std::max(length, 1)), '\0');
+  getLog(object, length, nullptr, text.data());
+  return detail::annotateShaderLog(text.c_str());
+}
 
 constexpr GLsizeiptr kTileHeader = 12;               // uints before the tile lists
 constexpr GLintptr kDrawArgsOffset = 3 * 4;           // DrawArraysIndirectCommand (composite)
@@ -226,13 +237,9 @@ struct Context::Impl {
     GLint ok = 0;
     gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
     if (!ok) {
-      GLint length = 0;
-      gl.GetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-      std::string infoLog(static_cast<size_t>(std::max(length, 1)), '\0');
-      gl.GetShaderInfoLog(shader, length, nullptr, infoLog.data());
+      const std::string errors = infoLog(shader, gl.GetShaderiv, gl.GetShaderInfoLog);
       gl.DeleteShader(shader);
-      return Status::error(std::string("sslr: compiling ") + entry + " failed:\n" +
-                           detail::annotateShaderLog(infoLog.c_str()));
+      return Status::error(std::string("sslr: compiling ") + entry + " failed:\n" + errors);
     }
     return shader;
   }
@@ -262,12 +269,9 @@ struct Context::Impl {
     GLint ok = 0;
     gl.GetProgramiv(prog, GL_LINK_STATUS, &ok);
     if (!ok) {
-      GLint length = 0;
-      gl.GetProgramiv(prog, GL_INFO_LOG_LENGTH, &length);
-      std::string infoLog(static_cast<size_t>(std::max(length, 1)), '\0');
-      gl.GetProgramInfoLog(prog, length, nullptr, infoLog.data());
+      const std::string errors = infoLog(prog, gl.GetProgramiv, gl.GetProgramInfoLog);
       gl.DeleteProgram(prog);
-      return Status::error("sslr: linking " + key + " failed:\n" + detail::annotateShaderLog(infoLog.c_str()));
+      return Status::error("sslr: linking " + key + " failed:\n" + errors);
     }
     std::string labelText = "sslr.program" + key;
     label(GL_PROGRAM, prog, labelText.c_str());
@@ -372,54 +376,11 @@ struct Context::Impl {
   Status composite(GLName framebuffer);
 };
 
-namespace {
-
-shared::SslrFrame frameConstants(const shared::SslrProjection& proj, const FrameInputs& in,
-                                 const Settings& s, int width, int height) {
-  shared::SslrFrame f{};
-  f.proj = proj;
-  f.surface.normalEncoding =
-      in.surface.normals == NormalEncoding::Octahedral ? SSLR_NORMALS_OCTAHEDRAL : SSLR_NORMALS_XYZ_UNORM;
-  f.surface.roughnessChannel = in.surface.roughnessChannel;
-  f.surface.reflectanceChannel = in.surface.reflectanceChannel;
-  f.surface.reversedZ = in.depth.reversedZ ? 1 : 0;
-  f.surface.constantRoughness = in.surface.constantRoughness;
-  f.surface.constantReflectance = in.surface.constantReflectance;
-  f.surface.width = static_cast<float>(width);
-  f.surface.height = static_cast<float>(height);
-  shared::SslrTraceParams& t = f.trace;
-  t.initialLengthPixels = s.initialLengthPixels;
-  t.convergenceEps = s.convergenceEps;
-  t.errorK = s.errorK;
-  t.maxDistance = s.maxDistance;
-  t.thicknessRelative = s.thicknessRelative;
-  t.thicknessPixels = s.thicknessPixels;
-  t.edgeFade = s.edgeFade;
-  t.cameraFadeStart = s.cameraFadeStart;
-  t.cameraFadeEnd = s.cameraFadeEnd;
-  t.roughnessCutoff = s.roughnessCutoff;
-  t.minReflectance = s.minReflectance;
-  t.blurMaxRadiusPx = s.blurMaxRadiusPx;
-  t.blurConeScale = s.blurConeScale;
-  t.blurDepthSigma = s.blurDepthSigma;
-  t.blurNormalPower = s.blurNormalPower;
-  t.maxIterations = s.maxIterations;
-  t.fresnelMode = s.fresnel == FresnelMode::Classic ? SSLR_FRESNEL_CLASSIC : SSLR_FRESNEL_SCHLICK;
-  t.countFetches = s.collectStats ? 1 : 0;
-  f.positionBuffer.maxDistance = s.positionBuffer.maxDistance;
-  f.positionBuffer.resolution = s.positionBuffer.resolution;
-  f.positionBuffer.thickness = s.positionBuffer.thickness;
-  f.positionBuffer.steps = s.positionBuffer.steps;
-  return f;
-}
-
-}  // namespace
 
 Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) {
   haveFrame = false;
-  if (std::string why = validate(settings); !why.empty()) return Status::error(why);
-  auto proj = detail::reduceProjection(in.clipFromView, in.depth);
-  if (!proj) return Status::error(proj.error());
+  auto constants = frameConstants(in, settings, width, height);  // validates settings + projection
+  if (!constants) return Status::error(constants.error());
   if (Status s = checkInputs(in, settings.method); !s) return s;
 
   // Build every program this frame needs before touching any state.
@@ -441,7 +402,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   detail::StateGuard guard(gl, false);
   gl.PushDebugGroup(GL_DEBUG_SOURCE_THIRD_PARTY, 0, -1, "sslr.dispatch");
 
-  shared::SslrFrame frame = frameConstants(proj.value(), in, settings, width, height);
+  shared::SslrFrame frame = constants.value();
   frameIndex = frameIndex == 0x7fffffff ? 1 : frameIndex + 1;
   frame.trace.frameIndex = frameIndex;
   gl.NamedBufferSubData(frameUbo, 0, sizeof(frame), &frame);

@@ -1,0 +1,15 @@
+// CPU reference runs: the exact uniform block dispatch() uploads, for code that runs the shared
+// C++/GLSL headers (sslr_shared.h, sslr_trace.h) on the CPU - tests, benchmarks, debug tools.
+#pragma once
+
+#include "sslr/sslr.hpp"
+#include "sslr_shared.h"
+
+namespace sslr {
+
+// Validates the projection/convention and the settings as dispatch() does (textures are not
+// looked at) and returns the SslrFrame block for a width x height target.
+Expected<shared::SslrFrame> frameConstants(const FrameInputs& inputs, const Settings& settings, int width,
+                                           int height);
+
+}  // namespace sslr

@@ -1,0 +1,49 @@
+// frameConstants: FrameInputs + Settings -> the std140 block the passes read (sslr_shared.h).
+#include "sslr/reference.hpp"
+
+#include "projection.hpp"
+
+namespace sslr {
+
+Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings& s, int width, int height) {
+  if (std::string why = validate(s); !why.empty()) return Status::error(why);
+  auto proj = detail::reduceProjection(in.clipFromView, in.depth);
+  if (!proj) return Status::error(proj.error());
+  shared::SslrFrame f{};
+  f.proj = proj.value();
+  f.surface.normalEncoding =
+      in.surface.normals == NormalEncoding::Octahedral ? SSLR_NORMALS_OCTAHEDRAL : SSLR_NORMALS_XYZ_UNORM;
+  f.surface.roughnessChannel = in.surface.roughnessChannel;
+  f.surface.reflectanceChannel = in.surface.reflectanceChannel;
+  f.surface.reversedZ = in.depth.reversedZ ? 1 : 0;
+  f.surface.constantRoughness = in.surface.constantRoughness;
+  f.surface.constantReflectance = in.surface.constantReflectance;
+  f.surface.width = static_cast<float>(width);
+  f.surface.height = static_cast<float>(height);
+  shared::SslrTraceParams& t = f.trace;
+  t.initialLengthPixels = s.initialLengthPixels;
+  t.convergenceEps = s.convergenceEps;
+  t.errorK = s.errorK;
+  t.maxDistance = s.maxDistance;
+  t.thicknessRelative = s.thicknessRelative;
+  t.thicknessPixels = s.thicknessPixels;
+  t.edgeFade = s.edgeFade;
+  t.cameraFadeStart = s.cameraFadeStart;
+  t.cameraFadeEnd = s.cameraFadeEnd;
+  t.roughnessCutoff = s.roughnessCutoff;
+  t.minReflectance = s.minReflectance;
+  t.blurMaxRadiusPx = s.blurMaxRadiusPx;
+  t.blurConeScale = s.blurConeScale;
+  t.blurDepthSigma = s.blurDepthSigma;
+  t.blurNormalPower = s.blurNormalPower;
+  t.maxIterations = s.maxIterations;
+  t.fresnelMode = s.fresnel == FresnelMode::Classic ? SSLR_FRESNEL_CLASSIC : SSLR_FRESNEL_SCHLICK;
+  t.countFetches = s.collectStats ? 1 : 0;
+  f.positionBuffer.maxDistance = s.positionBuffer.maxDistance;
+  f.positionBuffer.resolution = s.positionBuffer.resolution;
+  f.positionBuffer.thickness = s.positionBuffer.thickness;
+  f.positionBuffer.steps = s.positionBuffer.steps;
+  return f;
+}
+
+}  // namespace sslr
