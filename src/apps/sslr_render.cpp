@@ -103,7 +103,7 @@ int run(int argc, char** argv) {
       ("ortho", "orthographic camera with this view height", cxxopts::value<std::string>())
       ("device", "EGL device: auto, hardware, software, surfaceless or an index (default $SSLR_EGL_DEVICE or auto)",
        cxxopts::value<std::string>()->default_value(""))
-      ("stats", "print traced pixels and depth fetches")
+      ("stats", "print tiles, traced pixels and depth (or position) fetches")
       ("h,help", "show this help");
   cxxopts::ParseResult args;
   try {
@@ -232,7 +232,7 @@ int run(int argc, char** argv) {
             << (outDir / "final.png").string() << (dump ? " + buffers" : "") << "\n";
   if (settings.collectStats && reflections) {
     const FrameStats st = r.sslr().lastStats();
-    std::cout << "  tiles " << st.tiles << ", traced pixels " << st.tracedPixels << ", depth fetches "
+    std::cout << "  tiles " << st.tiles << " (blurred " << st.blurTiles << "), traced pixels " << st.tracedPixels << ", fetches "
               << st.fetches << " (" << (st.tracedPixels ? double(st.fetches) / st.tracedPixels : 0.0)
               << " per traced pixel)\n";
   }

@@ -142,7 +142,7 @@ struct Settings {
   float blurDepthSigma = 0.02f;      // bilateral depth weight exp(-|dz| / (sigma z))
   float blurNormalPower = 16.0f;     // bilateral normal weight max(0, n0.n1)^power
   bool debugOutputs = false;         // also write hitTexture() and iterationsTexture()
-  bool collectStats = false;         // count tiles, traced pixels and depth fetches (stalls)
+  bool collectStats = false;         // count tiles, traced pixels and fetches (reads back: stalls)
 
   static Settings preset(Preset preset);
 };
