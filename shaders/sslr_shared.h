@@ -111,7 +111,7 @@ struct SslrSurface {
 };
 
 struct SslrTraceParams {
-  float initialLengthPixels;  // first guess of L, as a length in pixels at the surface's depth
+  float initialLengthPixels;  // first L moves the probe this many pixels (Settings: fraction x height)
   float convergenceEps;       // stop once |L_new - L| <= eps * L
   float errorK;               // the article's "LDelmiter": error = 1 - saturate(L * k)
   float maxDistance;          // reflections longer than this (view units) get zero confidence

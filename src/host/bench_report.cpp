@@ -27,7 +27,7 @@ json settingsJson(const BenchConfig& c) {
             {"thickness", s.positionBuffer.thickness}};
   if (c.method == "baseline") return json::object();
   return {{"maxIterations", s.maxIterations},       {"convergenceEps", s.convergenceEps},
-          {"initialLengthPixels", s.initialLengthPixels}, {"thicknessRelative", s.thicknessRelative},
+          {"initialLengthScreen", s.initialLengthScreen}, {"thicknessRelative", s.thicknessRelative},
           {"thicknessPixels", s.thicknessPixels},   {"blurMaxRadiusPx", s.blurMaxRadiusPx},
           {"roughnessCutoff", s.roughnessCutoff},   {"fresnel", s.fresnel == FresnelMode::Classic ? "classic" : "schlick"}};
 }

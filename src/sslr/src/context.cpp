@@ -55,8 +55,8 @@ std::string validate(const Settings& s) {
     why << "maxIterations = " << s.maxIterations << " (must be 1..256); ";
   if (!finite(s.convergenceEps) || s.convergenceEps < 0.0f)
     why << "convergenceEps = " << s.convergenceEps << " (must be >= 0); ";
-  if (!finite(s.initialLengthPixels) || s.initialLengthPixels <= 0.0f)
-    why << "initialLengthPixels = " << s.initialLengthPixels << " (must be > 0); ";
+  if (!finite(s.initialLengthScreen) || s.initialLengthScreen <= 0.0f || s.initialLengthScreen > 1.0f)
+    why << "initialLengthScreen = " << s.initialLengthScreen << " (must be in (0, 1]); ";
   if (!finite(s.errorK) || s.errorK < 0.0f) why << "errorK = " << s.errorK << " (must be >= 0); ";
   if (!(s.maxDistance > 0.0f)) why << "maxDistance = " << s.maxDistance << " (must be > 0); ";
   if (!finite(s.thicknessRelative) || s.thicknessRelative < 0.0f)

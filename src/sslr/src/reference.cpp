@@ -21,7 +21,7 @@ Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings
   f.surface.width = static_cast<float>(width);
   f.surface.height = static_cast<float>(height);
   shared::SslrTraceParams& t = f.trace;
-  t.initialLengthPixels = s.initialLengthPixels;
+  t.initialLengthPixels = s.initialLengthScreen * static_cast<float>(height);
   t.convergenceEps = s.convergenceEps;
   t.errorK = s.errorK;
   t.maxDistance = s.maxDistance;
