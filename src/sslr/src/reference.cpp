@@ -1,6 +1,8 @@
 // frameConstants: FrameInputs + Settings -> the std140 block the passes read (sslr_shared.h).
 #include "sslr/reference.hpp"
 
+#include <algorithm>
+
 #include "projection.hpp"
 
 namespace sslr {
@@ -21,7 +23,9 @@ Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings
   f.surface.width = static_cast<float>(width);
   f.surface.height = static_cast<float>(height);
   shared::SslrTraceParams& t = f.trace;
-  t.initialLengthPixels = s.initialLengthScreen * static_cast<float>(height);
+  // At least 4 pixels: a shorter first step leaves the probe in or next to its own pixel, whose
+  // depth says nothing about the ray (measured: 64x48 frames lose a third of their hits).
+  t.initialLengthPixels = std::max(s.initialLengthScreen * static_cast<float>(height), 4.0f);
   t.convergenceEps = s.convergenceEps;
   t.errorK = s.errorK;
   t.maxDistance = s.maxDistance;

@@ -126,7 +126,7 @@ struct Settings {
   FresnelMode fresnel = FresnelMode::Classic;
   int maxIterations = 16;            // adaptive-L iterations (each one depth fetch); article: 10
   float convergenceEps = 0.002f;     // stop when |L_new - L| <= eps * L
-  float initialLengthScreen = 0.03f; // first L: moves the probe this fraction of the screen height
+  float initialLengthScreen = 0.03f; // first L moves the probe this fraction of the height (>= 4 px)
   float errorK = 0.02f;              // the article's LDelmiter (Classic only): fade ~ L * k
   float maxDistance = 1.0e30f;       // longer reflections are dropped (view units)
   float thicknessRelative = 0.002f;  // hit tolerance: fraction of the hit's view distance ...
