@@ -236,15 +236,14 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
 
     // Ground truth (Embree), once per scene.
     progress(done, total, sceneName + ": ground truth");
-    auto tracer = RayTracer::create(scene.value(), gb.viewFromWorld());
-    if (!tracer) return Status::error(tracer.error());
     const Settings defaults;
-    const auto mask = reflectiveMask(depth, normal, inputs, defaults);
-    const GroundTruth gt = computeGroundTruth(*tracer.value(), gb.clipFromView(), g.width, g.height, mask);
+    auto truth = groundTruthFor(scene.value(), gb, defaults);
+    if (!truth) return Status::error(truth.error());
+    const GroundTruth& gt = truth.value();
 
     SceneRecord sr;
     sr.scene = sceneName;
-    sr.reflective = static_cast<size_t>(std::count(mask.begin(), mask.end(), 1));
+    sr.reflective = gt.reflective();
     sr.visible = gt.count(TruthClass::Visible);
     sr.occluded = gt.count(TruthClass::Occluded);
     sr.offScreen = gt.count(TruthClass::OffScreen);
@@ -253,7 +252,7 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
     {
       const Image rebuilt = reconstructPositions(depth, gb.clipFromView(), inputs.depth);
       std::vector<double> errs;
-      for (size_t p = 0; p < mask.size(); ++p) {
+      for (size_t p = 0; p < gt.pixels.size(); ++p) {
         if (positions.pixels[p * 4 + 3] == 0.0f || rebuilt.pixels[p * 4 + 3] == 0.0f) continue;
         const glm::vec3 a(rebuilt.pixels[p * 4], rebuilt.pixels[p * 4 + 1], rebuilt.pixels[p * 4 + 2]);
         const glm::vec3 b(positions.pixels[p * 4], positions.pixels[p * 4 + 1], positions.pixels[p * 4 + 2]);
@@ -269,8 +268,8 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
       const Image hitDepth = traceOnCpu(cg, inputs, defaults, SurfaceSource::Depth);
       const Image hitStored = traceOnCpu(cg, inputs, defaults, SurfaceSource::StoredPositions);
       size_t traced = 0, agree = 0;
-      for (size_t p = 0; p < mask.size(); ++p) {
-        if (!mask[p]) continue;
+      for (size_t p = 0; p < gt.pixels.size(); ++p) {
+        if (gt.pixels[p].cls == TruthClass::NotReflective) continue;
         ++traced;
         const bool a = hitDepth.pixels[p * 4 + 2] > 0.5f, b = hitStored.pixels[p * 4 + 2] > 0.5f;
         const float du = (hitDepth.pixels[p * 4] - hitStored.pixels[p * 4]) * g.width;

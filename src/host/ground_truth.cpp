@@ -181,6 +181,13 @@ GroundTruth computeGroundTruth(const RayTracer& tracer, const glm::dmat4& clipFr
   return gt;
 }
 
+Expected<GroundTruth> groundTruthFor(const Scene& scene, const GBuffer& gbuffer, const Settings& settings) {
+  auto tracer = RayTracer::create(scene, gbuffer.viewFromWorld());
+  if (!tracer) return Status::error(tracer.error());
+  const auto mask = reflectiveMask(gbuffer.readDepth(), gbuffer.readNormalPacked(), gbuffer.frameInputs(), settings);
+  return computeGroundTruth(*tracer.value(), gbuffer.clipFromView(), gbuffer.width(), gbuffer.height(), mask);
+}
+
 HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float threshold, const Image* color) {
   HitMetrics m;
   double sqErr = 0.0;

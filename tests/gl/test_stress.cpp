@@ -93,12 +93,9 @@ TEST_F(Stress, HitsDoNotDependOnTheDistanceFromTheWorldOrigin) {
     const Scene scene = offsetScene(base.value(), {d, 0.5 * d, -d});
     GpuScene gpu(scene);
     ASSERT_TRUE(r.value()->render(gpu, *scene.camera, &s));
-    GBuffer& g = r.value()->gbuffer();
-    auto rt = RayTracer::create(scene, g.viewFromWorld());
-    ASSERT_TRUE(rt);
-    const auto mask = reflectiveMask(g.readDepth(), g.readNormalPacked(), g.frameInputs(), s);
-    const GroundTruth gt = computeGroundTruth(*rt.value(), g.clipFromView(), o.width, o.height, mask);
-    const HitMetrics m = compareHits(gt, r.value()->readHit());
+    auto gt = groundTruthFor(scene, r.value()->gbuffer(), s);
+    ASSERT_TRUE(gt) << gt.error();
+    const HitMetrics m = compareHits(gt.value(), r.value()->readHit());
     std::printf("offset %.0e: recall@1px %.4f p95 %.3f px false hits %.4f\n", d, m.recall1px, m.p95ErrorPx, m.falseHitRate);
     if (d == 0.0) recallAtOrigin = m.recall1px;
     // View-space reconstruction: nothing may degrade with the offset (matrices are composed in

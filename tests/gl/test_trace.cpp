@@ -44,19 +44,13 @@ Traced traceAndCompare(const TraceCase& c, int w, int h) {
   GpuScene gpu(scene.value());
   Settings s = Settings::preset(Preset::High);
   s.debugOutputs = true;
-  if (const char* e = std::getenv("DIAG_FADE")) { s.cameraFadeStart = 0.95f; s.cameraFadeEnd = 1.0f; (void)e; }
-  if (const char* e = std::getenv("DIAG_ITERS")) s.maxIterations = std::atoi(e);
-  if (const char* e = std::getenv("DIAG_THICK")) s.thicknessPixels = float(std::atof(e));
   const Status st = r.value()->render(gpu, cam, &s);
   EXPECT_TRUE(st) << st.message();
-  GBuffer& g = r.value()->gbuffer();
   const Image hit = r.value()->readHit();
-  auto rt = RayTracer::create(scene.value(), g.viewFromWorld());
-  EXPECT_TRUE(rt);
-  const auto mask = reflectiveMask(g.readDepth(), g.readNormalPacked(), g.frameInputs(), s);
-  const GroundTruth gt = computeGroundTruth(*rt.value(), g.clipFromView(), w, h, mask);
+  auto gt = groundTruthFor(scene.value(), r.value()->gbuffer(), s);
+  EXPECT_TRUE(gt) << gt.error();
   Traced t;
-  t.metrics = compareHits(gt, hit);
+  t.metrics = compareHits(gt.value(), hit);
   t.nonFiniteOutputs = countNonFinite(r.value()->readReflection()) + countNonFinite(r.value()->readResolved()) +
                        countNonFinite(r.value()->readFinal()) + countNonFinite(hit);
   return t;

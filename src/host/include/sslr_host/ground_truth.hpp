@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "sslr/sslr.hpp"
+#include "sslr_host/gbuffer.hpp"
 #include "sslr_host/image_io.hpp"
 #include "sslr_host/scene.hpp"
 
@@ -31,6 +32,7 @@ struct GroundTruth {
   int width = 0, height = 0;
   std::vector<TruthPixel> pixels;  // GL row order
   size_t count(TruthClass c) const;
+  size_t reflective() const { return pixels.size() - count(TruthClass::NotReflective); }
 };
 
 // Embree scene of the triangles in view space (view space keeps precision far from the origin).
@@ -64,6 +66,10 @@ std::vector<std::uint8_t> reflectiveMask(const Image& depth, const Image& normal
 // interpolated normal) and classifies it.
 GroundTruth computeGroundTruth(const RayTracer& tracer, const glm::dmat4& clipFromView, int width, int height,
                                const std::vector<std::uint8_t>& reflective);
+
+// The whole protocol for what `gbuffer` last rendered of `scene`: Embree over the same triangles
+// in the same view space, restricted to the pixels `settings` traces.
+Expected<GroundTruth> groundTruthFor(const Scene& scene, const GBuffer& gbuffer, const Settings& settings);
 
 // Error of a traced hit image (RG = uvHit, B = confidence) against the ground truth.
 struct HitMetrics {
