@@ -128,7 +128,7 @@ struct SslrTraceParams {
   float blurNormalPower;      // bilateral: weight max(0, dot(n0, n1))^power
   int maxIterations;          // adaptive-L iteration cap
   int fresnelMode;            // SSLR_FRESNEL_*
-  int countFetches;           // 1: stats requested (the pass counts under SSLR_COLLECT_STATS)
+  int pad0;
   int frameIndex;             // increments per dispatch (never 0): per-tile "listed" stamps
   int pad1;
 };

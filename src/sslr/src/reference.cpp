@@ -42,7 +42,6 @@ Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings
   t.blurNormalPower = s.blurNormalPower;
   t.maxIterations = s.maxIterations;
   t.fresnelMode = s.fresnel == FresnelMode::Classic ? SSLR_FRESNEL_CLASSIC : SSLR_FRESNEL_SCHLICK;
-  t.countFetches = s.collectStats ? 1 : 0;
   f.positionBuffer.maxDistance = s.positionBuffer.maxDistance;
   f.positionBuffer.resolution = s.positionBuffer.resolution;
   f.positionBuffer.thickness = s.positionBuffer.thickness;
