@@ -25,7 +25,7 @@ Settings Settings::preset(Preset preset) {
   Settings s;
   switch (preset) {
     case Preset::Low:
-      s.maxIterations = 6;
+      s.maxIterations = 8;  // 6 lost half the long reflections at 960x540 (docs/results.md)
       s.convergenceEps = 0.01f;
       s.blurMaxRadiusPx = 4.0f;
       s.roughnessCutoff = 0.3f;
