@@ -140,61 +140,52 @@ std::string slug(std::string s) {
 }
 
 // Image strips: the truth (colour at the true hit, classes tinted), each default method's
-// reflection (colour at its reported hit) and its error heatmap.
-Image truthImage(const GroundTruth& gt, const Image& color) {
+// reflection (colour at its reported hit) and its error heatmap; `colorOf` paints one pixel.
+template <typename ColorOf>
+Image paintImage(const GroundTruth& gt, ColorOf colorOf) {
   Image img{gt.width, gt.height, 3, std::vector<float>(static_cast<size_t>(gt.width) * gt.height * 3, 0.0f)};
   for (int y = 0; y < gt.height; ++y)
     for (int x = 0; x < gt.width; ++x) {
-      const TruthPixel& t = gt.pixels[static_cast<size_t>(y) * gt.width + x];
-      glm::vec3 c(0.0f);
-      switch (t.cls) {
-        case TruthClass::Visible: c = sampleBilinear(color, t.uvHit); break;
-        case TruthClass::Occluded: c = {0.25f, 0.02f, 0.02f}; break;
-        case TruthClass::OffScreen: c = {0.02f, 0.02f, 0.25f}; break;
-        case TruthClass::Escaped: c = {0.06f, 0.06f, 0.06f}; break;
-        case TruthClass::NotReflective: break;
-      }
+      const glm::vec3 c = colorOf(x, y, gt.pixels[static_cast<size_t>(y) * gt.width + x]);
       for (int k = 0; k < 3; ++k) img.at(x, y, k) = c[k];
     }
   return img;
 }
 
-Image methodImage(const GroundTruth& gt, const Image& hit, const Image& color) {
-  Image img{gt.width, gt.height, 3, std::vector<float>(static_cast<size_t>(gt.width) * gt.height * 3, 0.0f)};
-  for (int y = 0; y < gt.height; ++y)
-    for (int x = 0; x < gt.width; ++x) {
-      if (gt.pixels[static_cast<size_t>(y) * gt.width + x].cls == TruthClass::NotReflective) continue;
-      if (!(hit.at(x, y, 2) > 0.5f)) continue;
-      const glm::vec3 c = sampleBilinear(color, {hit.at(x, y, 0), hit.at(x, y, 1)});
-      for (int k = 0; k < 3; ++k) img.at(x, y, k) = c[k];
+Image truthImage(const GroundTruth& gt, const Image& color) {
+  return paintImage(gt, [&](int, int, const TruthPixel& t) -> glm::vec3 {
+    switch (t.cls) {
+      case TruthClass::Visible: return sampleBilinear(color, t.uvHit);
+      case TruthClass::Occluded: return {0.25f, 0.02f, 0.02f};
+      case TruthClass::OffScreen: return {0.02f, 0.02f, 0.25f};
+      case TruthClass::Escaped: return {0.06f, 0.06f, 0.06f};
+      case TruthClass::NotReflective: break;
     }
-  return img;
+    return glm::vec3(0.0f);
+  });
+}
+
+Image methodImage(const GroundTruth& gt, const Image& hit, const Image& color) {
+  return paintImage(gt, [&](int x, int y, const TruthPixel& t) -> glm::vec3 {
+    if (t.cls == TruthClass::NotReflective || !(hit.at(x, y, 2) > kReportedConfidence)) return glm::vec3(0.0f);
+    return sampleBilinear(color, {hit.at(x, y, 0), hit.at(x, y, 1)});
+  });
 }
 
 // Black = exact, green = 1 px, yellow = 2 px, red >= 4 px; magenta = visible but missed;
 // white = a false hit (B, C or D reported).
 Image errorImage(const GroundTruth& gt, const Image& hit) {
-  Image img{gt.width, gt.height, 3, std::vector<float>(static_cast<size_t>(gt.width) * gt.height * 3, 0.0f)};
-  for (int y = 0; y < gt.height; ++y)
-    for (int x = 0; x < gt.width; ++x) {
-      const TruthPixel& t = gt.pixels[static_cast<size_t>(y) * gt.width + x];
-      const bool reported = hit.at(x, y, 2) > 0.5f;
-      glm::vec3 c(0.0f);
-      if (t.cls == TruthClass::Visible) {
-        if (!reported) {
-          c = {0.8f, 0.0f, 0.8f};
-        } else {
-          const float e = glm::length((glm::vec2(hit.at(x, y, 0), hit.at(x, y, 1)) - t.uvHit) *
-                                      glm::vec2(gt.width, gt.height));
-          c = e <= 1.0f ? glm::vec3(0.0f, e, 0.0f) : e <= 2.0f ? glm::vec3(e - 1.0f, 1.0f, 0.0f)
-                                                              : glm::vec3(1.0f, std::max(0.0f, 1.0f - (e - 2.0f) / 2.0f), 0.0f);
-        }
-      } else if (t.cls != TruthClass::NotReflective && reported) {
-        c = {1.0f, 1.0f, 1.0f};
-      }
-      for (int k = 0; k < 3; ++k) img.at(x, y, k) = c[k];
+  return paintImage(gt, [&](int x, int y, const TruthPixel& t) -> glm::vec3 {
+    const bool reported = hit.at(x, y, 2) > kReportedConfidence;
+    if (t.cls == TruthClass::Visible) {
+      if (!reported) return {0.8f, 0.0f, 0.8f};
+      const float e = glm::length((glm::vec2(hit.at(x, y, 0), hit.at(x, y, 1)) - t.uvHit) * glm::vec2(gt.width, gt.height));
+      if (e <= 1.0f) return {0.0f, e, 0.0f};
+      if (e <= 2.0f) return {e - 1.0f, 1.0f, 0.0f};
+      return {1.0f, std::max(0.0f, 1.0f - (e - 2.0f) / 2.0f), 0.0f};
     }
-  return img;
+    return t.cls != TruthClass::NotReflective && reported ? glm::vec3(1.0f) : glm::vec3(0.0f);
+  });
 }
 
 }  // namespace
@@ -271,7 +262,8 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
       for (size_t p = 0; p < gt.pixels.size(); ++p) {
         if (gt.pixels[p].cls == TruthClass::NotReflective) continue;
         ++traced;
-        const bool a = hitDepth.pixels[p * 4 + 2] > 0.5f, b = hitStored.pixels[p * 4 + 2] > 0.5f;
+        const bool a = hitDepth.pixels[p * 4 + 2] > kReportedConfidence,
+                   b = hitStored.pixels[p * 4 + 2] > kReportedConfidence;
         const float du = (hitDepth.pixels[p * 4] - hitStored.pixels[p * 4]) * g.width;
         const float dv = (hitDepth.pixels[p * 4 + 1] - hitStored.pixels[p * 4 + 1]) * g.height;
         agree += a == b && (!a || std::hypot(du, dv) <= 1.0f);
@@ -306,7 +298,7 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
         s.collectStats = true;
         if (Status st = fr.sslr().dispatch(inputs, s); !st) return Status::error(st.message());
         const Image hit = fr.readHit();
-        r.metrics = compareHits(gt, hit, 0.5f, &color);
+        r.metrics = compareHits(gt, hit, kReportedConfidence, &color);
         const FrameStats stats = fr.sslr().lastStats();
         r.tracedPixels = stats.tracedPixels;
         r.fetches = stats.fetches;

@@ -98,6 +98,16 @@ int addMaterial(Scene& s, glm::vec3 color, float metallic, float roughness, floa
   return static_cast<int>(s.materials.size() - 1);
 }
 
+Camera perspectiveCamera(glm::dvec3 eye, glm::dvec3 target, double fovyDegrees, double nearPlane, double farPlane) {
+  Camera c;
+  c.eye = eye;
+  c.target = target;
+  c.fovyDegrees = fovyDegrees;
+  c.nearPlane = nearPlane;
+  c.farPlane = farPlane;
+  return c;
+}
+
 Scene mirrorRoom() {
   Scene s;
   s.name = "mirror-room";
@@ -118,13 +128,7 @@ Scene mirrorRoom() {
   s.meshes.push_back(makeBox({0.4, 1.25, -2.2}, {1.2, 2.5, 1.2}, green, -10.0));
   s.meshes.push_back(makeBox({2.4, 0.5, -0.4}, {1.0, 1.0, 1.0}, blue, 35.0));
   s.meshes.push_back(makeBox({-0.2, 0.3, 1.2}, {0.6, 0.6, 0.6}, yellow, 0.0));
-  Camera c;
-  c.eye = {0.0, 2.6, 7.5};
-  c.target = {0.0, 0.9, -1.0};
-  c.fovyDegrees = 55.0;
-  c.nearPlane = 0.1;
-  c.farPlane = 100.0;
-  s.camera = c;
+  s.camera = perspectiveCamera({0.0, 2.6, 7.5}, {0.0, 0.9, -1.0}, 55.0, 0.1, 100.0);
   s.background = glm::vec3(0.25f, 0.3f, 0.4f);
   return s;
 }
@@ -141,13 +145,7 @@ Scene grazingPlane() {
     const double x = (i % 2 == 0 ? -1.0 : 1.0) * (3.0 + i * 1.5);
     s.meshes.push_back(makeBox({x, 2.0 + i * 0.5, z}, {1.5, 4.0 + i, 1.5}, i % 3 == 0 ? red : stone));
   }
-  Camera c;
-  c.eye = {0.0, 0.6, 5.0};
-  c.target = {0.0, 0.9, -30.0};
-  c.fovyDegrees = 50.0;
-  c.nearPlane = 0.05;
-  c.farPlane = 3000.0;
-  s.camera = c;
+  s.camera = perspectiveCamera({0.0, 0.6, 5.0}, {0.0, 0.9, -30.0}, 50.0, 0.05, 3000.0);
   s.background = glm::vec3(0.45f, 0.55f, 0.7f);
   return s;
 }
@@ -167,13 +165,7 @@ Scene thinObjects() {
     s.meshes.push_back(makeBox({0.0, 0.4 + 0.45 * k, -4.5}, {9.0, 0.05, 0.05}, white));
   for (int i = 0; i < 19; ++i)  // fence pickets
     s.meshes.push_back(makeBox({-4.5 + 0.5 * i, 0.75, -4.5}, {0.04, 1.5, 0.04}, white));
-  Camera c;
-  c.eye = {0.0, 1.8, 5.0};
-  c.target = {0.0, 0.8, -3.0};
-  c.fovyDegrees = 50.0;
-  c.nearPlane = 0.1;
-  c.farPlane = 100.0;
-  s.camera = c;
+  s.camera = perspectiveCamera({0.0, 1.8, 5.0}, {0.0, 0.8, -3.0}, 50.0, 0.1, 100.0);
   s.background = glm::vec3(0.2f, 0.22f, 0.3f);
   return s;
 }
@@ -185,13 +177,7 @@ Scene skyHeavy() {
   const int teal = addMaterial(s, glm::vec3(0.1f, 0.6f, 0.6f), 0.0f, 0.7f, 0.2f);
   s.meshes.push_back(makeBox({0.0, 0.0, 0.0}, {2.0, 0.1, 2.0}, mirror));  // a small mirror slab
   s.meshes.push_back(makeBox({0.0, 0.7, -0.4}, {0.5, 1.2, 0.5}, teal, 30.0));
-  Camera c;
-  c.eye = {0.0, 1.2, 6.0};
-  c.target = {0.0, 2.0, 0.0};
-  c.fovyDegrees = 60.0;
-  c.nearPlane = 0.1;
-  c.farPlane = 100.0;
-  s.camera = c;
+  s.camera = perspectiveCamera({0.0, 1.2, 6.0}, {0.0, 2.0, 0.0}, 60.0, 0.1, 100.0);
   s.background = glm::vec3(0.5f, 0.65f, 0.85f);
   return s;
 }
@@ -206,13 +192,7 @@ Scene mirrorBox() {
   s.meshes.push_back(makeQuad({0, 0, 0}, {10, 10}, {0, 1, 0}, mirror));
   s.meshes.push_back(makeQuad({0, 2.5, -5}, {10, 5}, {0, 0, 1}, wall));
   s.meshes.push_back(makeBox({0.5, 0.75, -1.5}, {1.5, 1.5, 1.5}, red, 25.0));
-  Camera c;
-  c.eye = {0.0, 2.0, 5.0};
-  c.target = {0.0, 0.5, -1.0};
-  c.fovyDegrees = 50.0;
-  c.nearPlane = 0.1;
-  c.farPlane = 50.0;
-  s.camera = c;
+  s.camera = perspectiveCamera({0.0, 2.0, 5.0}, {0.0, 0.5, -1.0}, 50.0, 0.1, 50.0);
   return s;
 }
 
@@ -227,13 +207,7 @@ Scene tiltedMirror() {
   // A mirror leaning forward by 30 degrees: it faces the camera and the floor in front of it.
   s.meshes.push_back(makeQuad({0, 1.5, -3}, {5, 3}, {0.0, -std::sin(glm::radians(30.0)),
                                                     std::cos(glm::radians(30.0))}, mirror));
-  Camera c;
-  c.eye = {1.0, 2.5, 4.0};
-  c.target = {0.0, 1.2, -3.0};
-  c.fovyDegrees = 50.0;
-  c.nearPlane = 0.1;
-  c.farPlane = 50.0;
-  s.camera = c;
+  s.camera = perspectiveCamera({1.0, 2.5, 4.0}, {0.0, 1.2, -3.0}, 50.0, 0.1, 50.0);
   return s;
 }
 

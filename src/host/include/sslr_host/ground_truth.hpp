@@ -71,6 +71,9 @@ GroundTruth computeGroundTruth(const RayTracer& tracer, const glm::dmat4& clipFr
 // in the same view space, restricted to the pixels `settings` traces.
 Expected<GroundTruth> groundTruthFor(const Scene& scene, const GBuffer& gbuffer, const Settings& settings);
 
+// A hit counts as reported when its confidence exceeds this (the measuring protocol's 0.5).
+inline constexpr float kReportedConfidence = 0.5f;
+
 // Error of a traced hit image (RG = uvHit, B = confidence) against the ground truth.
 struct HitMetrics {
   size_t visible = 0, occluded = 0, offScreen = 0, escaped = 0;
@@ -83,7 +86,7 @@ struct HitMetrics {
   double reflectionRmse = 0, reflectionPsnr = 0;  // PSNR with peak 1.0
 };
 // `color` (optional) enables the reflection RMSE / PSNR.
-HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float confidenceThreshold = 0.5f,
+HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float confidenceThreshold = kReportedConfidence,
                        const Image* color = nullptr);
 
 }  // namespace sslr::host
