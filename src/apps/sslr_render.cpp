@@ -11,6 +11,7 @@
 #include "sslr_host/egl_context.hpp"
 #include "sslr_host/frame_renderer.hpp"
 #include "sslr_host/gbuffer.hpp"
+#include "sslr_host/ground_truth.hpp"
 #include "sslr_host/image_io.hpp"
 #include "sslr_host/scene.hpp"
 
@@ -104,6 +105,7 @@ int run(int argc, char** argv) {
       ("device", "EGL device: auto, hardware, software, surfaceless or an index (default $SSLR_EGL_DEVICE or auto)",
        cxxopts::value<std::string>()->default_value(""))
       ("stats", "print tiles, traced pixels and depth (or position) fetches")
+      ("score", "score the traced hits against Embree ground truth (recall, error, false hits) and print them")
       ("h,help", "show this help");
   cxxopts::ParseResult args;
   try {
@@ -149,7 +151,7 @@ int run(int argc, char** argv) {
     } else if (method != "adaptive-l") {
       throw UsageError{"--method must be adaptive-l, position-buffer or none (got '" + method + "')"};
     }
-    settings.debugOutputs = dump;
+    settings.debugOutputs = dump || args.count("score") > 0;
     settings.collectStats = args.count("stats") > 0;
 
     auto loaded = loadScene(args["scene"].as<std::string>());
@@ -235,6 +237,21 @@ int run(int argc, char** argv) {
     std::cout << "  tiles " << st.tiles << " (blurred " << st.blurTiles << "), traced pixels " << st.tracedPixels << ", fetches "
               << st.fetches << " (" << (st.tracedPixels ? double(st.fetches) / st.tracedPixels : 0.0)
               << " per traced pixel)\n";
+  }
+  if (args.count("score") && reflections) {
+    auto truth = groundTruthFor(scene, r.gbuffer(), settings);
+    if (!truth) {
+      std::cerr << "sslr-render: ground truth: " << truth.error() << "\n";
+      return kExitFailure;
+    }
+    const Image color = r.gbuffer().readColor();
+    const HitMetrics m = compareHits(truth.value(), r.readHit(), kReportedConfidence, &color);
+    std::printf("  truth: %zu visible (A), %zu occluded (B), %zu off screen (C), %zu escaped (D)\n", m.visible,
+                m.occluded, m.offScreen, m.escaped);
+    std::printf("  recall@1px %.4f @2px %.4f @4px %.4f  median %.3f px  p95 %.3f px  false hits %.4f  "
+                "reflection RMSE %.4f  non-finite %zu\n",
+                m.recall1px, m.recall2px, m.recall4px, m.medianErrorPx, m.p95ErrorPx, m.falseHitRate,
+                m.reflectionRmse, m.nonFinite);
   }
   return 0;
 }

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "sslr_host/gltf_loader.hpp"
@@ -84,6 +85,71 @@ Mesh makeBox(glm::dvec3 center, glm::dvec3 size, int material, double rotationYD
   box.worldFromModel = glm::rotate(glm::translate(glm::dmat4(1.0), center),
                                    glm::radians(rotationYDegrees), glm::dvec3(0, 1, 0));
   return box;
+}
+
+
+Mesh makeSphere(glm::dvec3 center, double radius, int material, int rings, int segments) {
+  Mesh m;
+  m.material = material;
+  for (int r = 0; r <= rings; ++r) {
+    const double theta = glm::pi<double>() * r / rings;  // from +y down
+    for (int sgm = 0; sgm <= segments; ++sgm) {
+      const double phi = 2.0 * glm::pi<double>() * sgm / segments;
+      const glm::dvec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), -std::sin(theta) * std::sin(phi));
+      m.positions.push_back(glm::vec3(n * radius));
+      m.normals.push_back(glm::vec3(n));
+      m.uvs.push_back(glm::vec2(float(sgm) / segments, 1.0f - float(r) / rings));
+    }
+  }
+  const auto row = static_cast<std::uint32_t>(segments + 1);
+  for (std::uint32_t r = 0; r < static_cast<std::uint32_t>(rings); ++r)
+    for (std::uint32_t sgm = 0; sgm < static_cast<std::uint32_t>(segments); ++sgm) {
+      const std::uint32_t a = r * row + sgm, b = a + row;
+      // Counter-clockwise seen from outside; the poles' degenerate triangles are skipped.
+      if (r != 0) m.indices.insert(m.indices.end(), {a, b, a + 1});
+      if (r + 1 != static_cast<std::uint32_t>(rings)) m.indices.insert(m.indices.end(), {a + 1, b, b + 1});
+    }
+  m.worldFromModel = glm::translate(glm::dmat4(1.0), center);
+  return m;
+}
+
+Mesh makeCylinder(glm::dvec3 baseCenter, double radius, double height, int material, int segments) {
+  Mesh m;
+  m.material = material;
+  // Side: smooth normals; caps: flat, with their own vertices.
+  for (int sgm = 0; sgm <= segments; ++sgm) {
+    const double phi = 2.0 * glm::pi<double>() * sgm / segments;
+    const glm::dvec3 n(std::cos(phi), 0.0, -std::sin(phi));
+    for (double y : {0.0, height}) {
+      m.positions.push_back(glm::vec3(n * radius + glm::dvec3(0, y, 0)));
+      m.normals.push_back(glm::vec3(n));
+      m.uvs.push_back(glm::vec2(float(sgm) / segments, float(y / height)));
+    }
+  }
+  for (std::uint32_t sgm = 0; sgm < static_cast<std::uint32_t>(segments); ++sgm) {
+    const std::uint32_t a = 2 * sgm;
+    m.indices.insert(m.indices.end(), {a, a + 2, a + 1, a + 1, a + 2, a + 3});
+  }
+  for (double y : {0.0, height}) {
+    const glm::vec3 n(0.0f, y > 0.0 ? 1.0f : -1.0f, 0.0f);
+    const auto centre = static_cast<std::uint32_t>(m.positions.size());
+    m.positions.push_back(glm::vec3(0.0f, float(y), 0.0f));
+    m.normals.push_back(n);
+    m.uvs.push_back(glm::vec2(0.5f));
+    for (int sgm = 0; sgm <= segments; ++sgm) {
+      const double phi = 2.0 * glm::pi<double>() * sgm / segments;
+      m.positions.push_back(glm::vec3(float(radius * std::cos(phi)), float(y), float(-radius * std::sin(phi))));
+      m.normals.push_back(n);
+      m.uvs.push_back(glm::vec2(0.5f));
+    }
+    for (std::uint32_t sgm = 0; sgm < static_cast<std::uint32_t>(segments); ++sgm) {
+      const std::uint32_t a = centre + 1 + sgm;
+      if (y > 0.0) m.indices.insert(m.indices.end(), {centre, a, a + 1});
+      else m.indices.insert(m.indices.end(), {centre, a + 1, a});
+    }
+  }
+  m.worldFromModel = glm::translate(glm::dmat4(1.0), baseCenter);
+  return m;
 }
 
 namespace {
@@ -211,10 +277,114 @@ Scene tiltedMirror() {
   return s;
 }
 
+
+// The scenes below were built to break the tracer (issue: robust tracing), not to show it off.
+
+// A mirror leaning 20 degrees towards a camera at eye height, its face to the viewer: its
+// reflected rays come back towards the camera and pass behind the boxes standing between the two.
+Scene facingMirror() {
+  Scene s;
+  s.name = "facing-mirror";
+  const int mirror = addMaterial(s, glm::vec3(0.95f), 1.0f, 0.0f);
+  const int floor = addMaterial(s, glm::vec3(0.55f, 0.5f, 0.42f), 0.0f, 0.9f, 0.1f);
+  const int wall = addMaterial(s, glm::vec3(0.6f, 0.62f, 0.66f), 0.0f, 0.9f, 0.05f);
+  const int red = addMaterial(s, glm::vec3(0.8f, 0.12f, 0.1f), 0.0f, 0.7f, 0.2f);
+  const int green = addMaterial(s, glm::vec3(0.12f, 0.7f, 0.2f), 0.0f, 0.7f, 0.2f);
+  const int blue = addMaterial(s, glm::vec3(0.12f, 0.25f, 0.85f), 0.0f, 0.7f, 0.2f);
+  s.meshes.push_back(makeQuad({0, 0, 0}, {20, 20}, {0, 1, 0}, floor));
+  s.meshes.push_back(makeQuad({0, 3, -7}, {20, 6}, {0, 0, 1}, wall));
+  const double lean = glm::radians(20.0);
+  s.meshes.push_back(makeQuad({0, 1.65, -4.5}, {5, 3}, {0, -std::sin(lean), std::cos(lean)}, mirror));
+  s.meshes.push_back(makeBox({-1.6, 0.5, -2.2}, {0.9, 1.0, 0.9}, red, 15.0));
+  s.meshes.push_back(makeBox({0.3, 0.35, -1.4}, {0.7, 0.7, 0.7}, green, -25.0));
+  s.meshes.push_back(makeBox({1.7, 0.7, -2.6}, {0.8, 1.4, 0.8}, blue, 40.0));
+  s.camera = perspectiveCamera({0.0, 1.6, 4.0}, {0.0, 1.3, -4.5}, 55.0, 0.1, 100.0);
+  s.background = glm::vec3(0.3f, 0.32f, 0.38f);
+  return s;
+}
+
+// Vertical mirror walls turned about the vertical axis so that their reflections run across the
+// screen, nearly parallel to the image plane, to the boxes and the other wall.
+Scene mirrorWalls() {
+  Scene s;
+  s.name = "mirror-walls";
+  const int mirror = addMaterial(s, glm::vec3(0.95f), 1.0f, 0.0f);
+  const int floor = addMaterial(s, glm::vec3(0.5f, 0.48f, 0.45f), 0.0f, 0.9f, 0.1f);
+  const int wall = addMaterial(s, glm::vec3(0.7f, 0.66f, 0.6f), 0.0f, 0.9f, 0.1f);
+  const int red = addMaterial(s, glm::vec3(0.8f, 0.12f, 0.1f), 0.0f, 0.7f, 0.2f);
+  const int green = addMaterial(s, glm::vec3(0.12f, 0.7f, 0.2f), 0.0f, 0.7f, 0.2f);
+  const int blue = addMaterial(s, glm::vec3(0.12f, 0.25f, 0.85f), 0.0f, 0.7f, 0.2f);
+  const int yellow = addMaterial(s, glm::vec3(0.9f, 0.75f, 0.1f), 0.0f, 0.7f, 0.2f);
+  s.meshes.push_back(makeQuad({0, 0, -4}, {14, 20}, {0, 1, 0}, floor));
+  s.meshes.push_back(makeQuad({0, 2.5, -12}, {14, 5}, {0, 0, 1}, wall));
+  // A wall normal along +x (left wall) or -x (right wall), turned towards the camera about +y.
+  auto yawed = [](double side, double degrees) {
+    const double a = glm::radians(degrees);
+    return glm::dvec3(side * std::cos(a), 0.0, std::sin(a));
+  };
+  // Left wall: a mirror turned 20 degrees towards the camera; right wall: 12 degrees. They face
+  // each other across the room: a corridor of two mirrors.
+  s.meshes.push_back(makeQuad({-3.2, 1.6, -5.5}, {9.0, 3.2}, yawed(1.0, 20.0), mirror));
+  s.meshes.push_back(makeQuad({3.4, 1.6, -6.0}, {10.0, 3.2}, yawed(-1.0, 12.0), mirror));
+  s.meshes.push_back(makeBox({-1.2, 0.6, -8.5}, {1.0, 1.2, 1.0}, red, 20.0));
+  s.meshes.push_back(makeBox({1.0, 0.9, -6.5}, {0.8, 1.8, 0.8}, green, -15.0));
+  s.meshes.push_back(makeBox({-0.6, 0.4, -3.5}, {0.8, 0.8, 0.8}, blue, 30.0));
+  s.meshes.push_back(makeBox({1.6, 0.3, -2.2}, {0.6, 0.6, 0.6}, yellow, 10.0));
+  s.camera = perspectiveCamera({0.2, 1.6, 4.0}, {0.0, 1.2, -8.0}, 60.0, 0.1, 100.0);
+  s.background = glm::vec3(0.3f, 0.33f, 0.4f);
+  return s;
+}
+
+// Curved mirrors: smooth vertex normals send reflected rays in every direction at once.
+Scene curvedMirror() {
+  Scene s;
+  s.name = "curved-mirror";
+  const int mirror = addMaterial(s, glm::vec3(0.95f), 1.0f, 0.0f);
+  const int floor = addMaterial(s, glm::vec3(0.5f, 0.5f, 0.46f), 0.0f, 0.9f, 0.1f);
+  const int wall = addMaterial(s, glm::vec3(0.55f, 0.6f, 0.68f), 0.0f, 0.9f, 0.1f);
+  const int red = addMaterial(s, glm::vec3(0.8f, 0.12f, 0.1f), 0.0f, 0.7f, 0.2f);
+  const int green = addMaterial(s, glm::vec3(0.12f, 0.7f, 0.2f), 0.0f, 0.7f, 0.2f);
+  const int yellow = addMaterial(s, glm::vec3(0.9f, 0.75f, 0.1f), 0.0f, 0.7f, 0.2f);
+  s.meshes.push_back(makeQuad({0, 0, -2}, {16, 16}, {0, 1, 0}, floor));
+  s.meshes.push_back(makeQuad({0, 3, -7}, {16, 6}, {0, 0, 1}, wall));
+  s.meshes.push_back(makeSphere({-1.2, 1.0, -2.0}, 1.0, mirror, 48, 96));
+  s.meshes.push_back(makeCylinder({1.6, 0.0, -2.8}, 0.6, 2.2, mirror, 96));
+  s.meshes.push_back(makeBox({-3.2, 0.6, -3.8}, {1.0, 1.2, 1.0}, red, 25.0));
+  s.meshes.push_back(makeBox({0.4, 0.35, -4.8}, {0.7, 0.7, 0.7}, green, -10.0));
+  s.meshes.push_back(makeBox({3.3, 0.5, -1.0}, {0.8, 1.0, 0.8}, yellow, 35.0));
+  s.camera = perspectiveCamera({0.0, 2.0, 4.5}, {0.0, 0.9, -2.5}, 55.0, 0.1, 100.0);
+  s.background = glm::vec3(0.3f, 0.33f, 0.4f);
+  return s;
+}
+
+// A row of floor panels from roughness 0 to 0.5 (the High preset's cutoff) under the same boxes.
+Scene glossy() {
+  Scene s;
+  s.name = "glossy";
+  const int wall = addMaterial(s, glm::vec3(0.6f, 0.6f, 0.62f), 0.0f, 0.9f, 0.1f);
+  const int red = addMaterial(s, glm::vec3(0.8f, 0.12f, 0.1f), 0.0f, 0.7f, 0.25f);
+  const int green = addMaterial(s, glm::vec3(0.12f, 0.7f, 0.2f), 0.0f, 0.7f, 0.25f);
+  const int blue = addMaterial(s, glm::vec3(0.12f, 0.25f, 0.85f), 0.0f, 0.7f, 0.25f);
+  const int panels = 6;
+  for (int i = 0; i < panels; ++i) {
+    const int m = addMaterial(s, glm::vec3(0.9f), 1.0f, 0.1f * i);
+    s.meshes.push_back(makeQuad({-5.0 + 2.0 * i, 0.0, -1.0}, {1.96, 8.0}, {0, 1, 0}, m));
+  }
+  s.meshes.push_back(makeQuad({0, 3, -5}, {14, 6}, {0, 0, 1}, wall));
+  for (int i = 0; i < panels; ++i) {
+    const int m = i % 3 == 0 ? red : (i % 3 == 1 ? green : blue);
+    s.meshes.push_back(makeBox({-5.0 + 2.0 * i, 0.6, -3.6}, {0.8, 1.2, 0.8}, m, 20.0 * i));
+  }
+  s.camera = perspectiveCamera({0.0, 2.2, 5.5}, {0.0, 0.6, -2.5}, 60.0, 0.1, 100.0);
+  s.background = glm::vec3(0.3f, 0.33f, 0.4f);
+  return s;
+}
+
 }  // namespace
 
 std::vector<std::string> builtinSceneNames() {
-  return {"mirror-room", "grazing-plane", "thin-objects", "sky-heavy", "mirror-box", "tilted-mirror"};
+  return {"mirror-room",   "grazing-plane", "thin-objects",  "sky-heavy", "mirror-box",
+          "tilted-mirror", "facing-mirror", "mirror-walls", "curved-mirror", "glossy"};
 }
 
 Expected<Scene> makeBuiltinScene(const std::string& name) {
@@ -224,6 +394,10 @@ Expected<Scene> makeBuiltinScene(const std::string& name) {
   if (name == "sky-heavy") return skyHeavy();
   if (name == "mirror-box") return mirrorBox();
   if (name == "tilted-mirror") return tiltedMirror();
+  if (name == "facing-mirror") return facingMirror();
+  if (name == "mirror-walls") return mirrorWalls();
+  if (name == "curved-mirror") return curvedMirror();
+  if (name == "glossy") return glossy();
   std::string known;
   for (const auto& n : builtinSceneNames()) known += (known.empty() ? "" : ", ") + n;
   return Status::error("unknown scene '" + name + "' (built-in scenes: " + known +

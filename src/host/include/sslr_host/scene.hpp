@@ -61,7 +61,8 @@ struct Scene {
 float reflectance(const Material& m);
 
 // Built-in procedural scenes: mirror-room (default), grazing-plane, thin-objects, sky-heavy,
-// and the analytic test scenes mirror-box, tilted-mirror.
+// the analytic test scenes mirror-box, tilted-mirror, and the scenes built to break the tracer:
+// facing-mirror, mirror-walls, curved-mirror, glossy.
 std::vector<std::string> builtinSceneNames();
 Expected<Scene> makeBuiltinScene(const std::string& name);
 
@@ -71,5 +72,8 @@ Expected<Scene> loadScene(const std::string& nameOrPath);
 // Mesh building helpers (also used by tests).
 Mesh makeBox(glm::dvec3 center, glm::dvec3 size, int material, double rotationYDegrees = 0.0);
 Mesh makeQuad(glm::dvec3 center, glm::dvec2 size, glm::dvec3 normal, int material);
+// Smooth (vertex-normal) sphere and capped cylinder standing on baseCenter along +y.
+Mesh makeSphere(glm::dvec3 center, double radius, int material, int rings = 32, int segments = 64);
+Mesh makeCylinder(glm::dvec3 baseCenter, double radius, double height, int material, int segments = 64);
 
 }  // namespace sslr::host
