@@ -63,6 +63,13 @@ using glm::sqrt;
 #define SSLR_STATUS_OFF_SCREEN 2  // the probe left the screen or crossed the near plane
 #define SSLR_STATUS_MISS 3        // ran into the background, or the hit failed validation
 
+#define SSLR_HIZ_OFF 0       // adaptive L alone (the article's method, made robust)
+#define SSLR_HIZ_FALLBACK 1  // adaptive L first; the hierarchical traversal where it finds no hit
+#define SSLR_HIZ_ONLY 2      // the hierarchical traversal alone (Method::HierarchicalDepth)
+
+// Most levels of the min-max depth pyramid above the depth buffer (level l: 2^l-pixel cells).
+#define SSLR_HIZ_MAX_LEVELS 8
+
 #define SSLR_TILE_SIZE 8  // compute work-group edge and classification tile edge, in pixels
 
 // Texture / image / buffer binding points used by the passes (they are restored afterwards).
@@ -128,9 +135,14 @@ struct SslrTraceParams {
   float blurNormalPower;      // bilateral: weight max(0, dot(n0, n1))^power
   int maxIterations;          // adaptive-L iteration cap
   int fresnelMode;            // SSLR_FRESNEL_*
-  int pad0;
+  int hizMode;                // SSLR_HIZ_* : hierarchical traversal off, as fallback, or alone
   int frameIndex;             // increments per dispatch (never 0): per-tile "listed" stamps
+  int hizMaxSteps;            // hierarchical traversal: cell visits (each one fetch) at most
+  int hizLevels;              // pyramid levels above the depth buffer (sslrHiZLevelCount)
+  float objectThickness;      // hierarchical: a ray less than this fraction of the view depth
+                              // behind a surface is inside the object (stops); farther: behind it
   int pad1;
+  int pad2;
 };
 
 // The position-buffer comparison method ("3D Game Shaders For Beginners", SSR chapter).
@@ -182,12 +194,12 @@ inline SslrProjection sslrProjectionFromMatrix(const glm::dmat4& clipFromView, b
 }
 static_assert(sizeof(SslrProjection) == 48, "std140 mirror");
 static_assert(sizeof(SslrSurface) == 32, "std140 mirror");
-static_assert(sizeof(SslrTraceParams) == 80, "std140 mirror");
+static_assert(sizeof(SslrTraceParams) == 96, "std140 mirror");
 static_assert(offsetof(SslrFrame, surface) == 48, "std140 mirror");
 static_assert(offsetof(SslrFrame, trace) == 80, "std140 mirror");
 static_assert(sizeof(SslrPositionParams) == 16, "std140 mirror");
-static_assert(offsetof(SslrFrame, positionBuffer) == 160, "std140 mirror");
-static_assert(sizeof(SslrFrame) == 176, "std140 mirror");
+static_assert(offsetof(SslrFrame, positionBuffer) == 176, "std140 mirror");
+static_assert(sizeof(SslrFrame) == 192, "std140 mirror");
 #endif
 
 // ---- Pure math ----------------------------------------------------------------------------
@@ -342,6 +354,38 @@ SSLR_FN bool sslrShouldTrace(SslrSurface s, SslrTraceParams t, float depth, vec4
          sslrDecodeNormal(s, packedNormal, n);
 }
 
+// ---- Min-max depth pyramid (hierarchical traversal) -----------------------------------------
+// Level l >= 1 holds, per 2^l x 2^l cell, the (min, max) of the raw window depth of its pixels;
+// level 0 is the depth buffer itself. Level l has ceil(size / 2^l) cells per axis, so cell c of
+// level l covers exactly pixels [c 2^l, (c + 1) 2^l) of the screen.
+
+// Levels worth building: the top level's cells are about an eighth of the larger screen side
+// (coarser cells would cover most of the screen and skip nothing).
+SSLR_FN int sslrHiZLevelCount(int width, int height) {
+  int side = max(max(width, height), 1);
+  int levels = 0;
+  while (levels < SSLR_HIZ_MAX_LEVELS && (side >> (levels + 1)) >= 8) ++levels;
+  return max(levels, 1);
+}
+
+// The pyramid's (min, max) for a cell without pixels (outside the screen): neutral in both.
+SSLR_FN vec2 sslrHiZEmpty() { return vec2(2.0f, -1.0f); }
+
+// One depth texel as the pyramid stores it: background, NaN and out-of-range depth all become the
+// clear value (the farthest depth), so nothing that is not geometry can stop a ray.
+SSLR_FN vec2 sslrHiZTexel(SslrSurface s, float depth) {
+  float d = sslrIsGeometryDepth(s, depth) ? depth : (s.reversedZ != 0 ? 0.0f : 1.0f);
+  return vec2(d, d);
+}
+
+SSLR_FN vec2 sslrHiZReduce(vec2 a, vec2 b) { return vec2(min(a.x, b.x), max(a.y, b.y)); }
+
+// View distance (or orthographic -z) of a window depth: the tolerance and "how far behind" tests
+// of the traversal work in view units, like the adaptive-L tracer's.
+SSLR_FN float sslrViewDepthFromDepth(SslrProjection p, float depth) {
+  return -sslrViewFromNdc(p, vec2(0.0f), sslrNdcZFromDepth(p, depth)).z;
+}
+
 // ---- Weights ------------------------------------------------------------------------------
 // cosVN = dot(-V, N) = cosine of the angle between the normal and the direction to the camera.
 // The article writes 2.8 * pow(1 + dot(V, N), 2) with V pointing into the surface: the same.
@@ -364,7 +408,8 @@ SSLR_FN float sslrEdgeFade(vec2 uv, float width) {
   return sslrSaturate(min(d.x, d.y));
 }
 
-// Rays heading back towards the camera see the back of what the screen shows: fade them.
+// Rays heading back towards the camera see the back of what the screen shows: fade them. The fade
+// is presentation (it weights the colour), never part of the hit decision or its confidence.
 SSLR_FN float sslrCameraFacingFade(vec3 vsR, vec3 vsV, float start, float end) {
   float towardsCamera = dot(vsR, -vsV);
   return 1.0f - smoothstep(start, max(end, start + 1e-4f), towardsCamera);

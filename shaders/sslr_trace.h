@@ -25,11 +25,12 @@ namespace sslr::shared {
 
 struct SslrHit {
   vec2 uvHit;        // continuous uv of the final probe (texel centres at (i + 0.5) / size)
-  float confidence;  // hit validation x camera-facing fade, in [0,1] (edge fade: in the weight)
+  float confidence;  // hit validation in [0,1] (the fades are in the weight, not here)
   float L;           // reflected ray length from P to the hit, view units
   int iterations;    // iterations run (adaptive L: each is one depth fetch)
   int status;        // SSLR_STATUS_*
   float fade;        // extra weight of the method (position buffer: the tutorial's fades), else 1
+  int hierarchical;  // 1 when the hierarchical traversal ran for this pixel (alone or as fallback)
 };
 
 // A hit record that says "nothing": the starting state of every tracer.
@@ -41,6 +42,7 @@ SSLR_FN SslrHit sslrNoHit(int status) {
   hit.iterations = 0;
   hit.status = status;
   hit.fade = 0.0f;
+  hit.hierarchical = 0;
   return hit;
 }
 
@@ -73,6 +75,46 @@ SSLR_FN float sslrRefineOnPlane(vec3 vsP, vec3 vsR, vec3 vsSurface, vec3 vsSurfa
   return (tPlane > 0.0f && abs(tPlane - L) <= 0.25f * L) ? tPlane : L;
 }
 
+// A window-space point: pixels and the depth key (window depth x keySign, -1 for reversed Z, so
+// that a larger key is farther from the camera).
+SSLR_FN vec3 sslrWindowFromView(SslrProjection p, vec2 sizePx, float keySign, vec3 vsPos) {
+  vec3 ndc = sslrNdcFromView(p, vsPos);
+  return vec3(sslrUvFromNdc(vec2(ndc.x, ndc.y)) * sizePx, keySign * sslrDepthFromNdcZ(p, ndc.z));
+}
+
+// The hit a candidate pixel stands for: where the ray meets the pixel's tangent plane, checked
+// against the pixel it lands in. A pixel holds one depth sample, so a ray running along a surface
+// seen at a grazing angle shows its crossing a few pixels late: the plane's hit is then re-planed
+// once on the pixel it lands in (at most 4 px away). A silhouette the ray passes behind meets its
+// plane far away: no hit. Returns the validation (sslrHitValidation) and L; the caller handles
+// planes seen nearly edge-on by the ray (dot(R, N) >= -0.05) itself.
+SSLR_FN float sslrPlaneHit(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP, vec3 vsR,
+                           ivec2 px, vec3 vsSurface, vec3 vsSurfaceNormal, SSLR_OUT(float) L) {
+  vec2 sizePx = vec2(s.width, s.height);
+  float keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
+  ivec2 pxPlane = px;
+  vec3 vsPlane = vsSurface;
+  vec3 vsPlaneNormal = vsSurfaceNormal;
+  L = 0.0f;
+  for (int k = 0; k < 2; ++k) {
+    float dn = dot(vsR, vsPlaneNormal);
+    L = dn < -0.05f ? dot(vsPlane - vsP, vsPlaneNormal) / dn : -1.0f;
+    vec3 vsQ = vsP + vsR * L;
+    if (!(L > 0.0f) || sslrClipW(p, vsQ) <= 0.0f) return 0.0f;
+    vec3 wQ = sslrWindowFromView(p, sizePx, keySign, vsQ);
+    ivec2 pxQ = ivec2(floor(vec2(wQ.x, wQ.y)));
+    ivec2 away = abs(pxQ - pxPlane);
+    if (max(away.x, away.y) == 0) break;
+    if (max(away.x, away.y) > 4 || pxQ.x < 0 || pxQ.y < 0 || pxQ.x >= int(sizePx.x) || pxQ.y >= int(sizePx.y) ||
+        (pxQ.x == pxOrigin.x && pxQ.y == pxOrigin.y))
+      return 0.0f;
+    pxPlane = pxQ;
+    if (!sslrLoadSurface(pxPlane, vsPlane) || !sslrDecodeNormal(s, sslrLoadNormal(pxPlane), vsPlaneNormal))
+      return 0.0f;
+  }
+  return sslrHitValidation(p, s, t, vsP + vsR * L, vsPlane, vsPlaneNormal, vsR);
+}
+
 // The article's adaptive-L iteration: Q = P + R L, project Q, read the depth there, rebuild P',
 // L = |P' - P|. It is a fixed-point iteration that settles where the ray meets the depth surface.
 // Guards added (docs/algorithm.md): off-screen / behind-near-plane / background exits, a
@@ -92,7 +134,7 @@ SSLR_FN float sslrRefineOnPlane(vec3 vsP, vec3 vsR, vec3 vsSurface, vec3 vsSurfa
 // This keeps the article's fast steps where they work and converges where they oscillate or
 // stall, e.g. for rays that come back towards the camera (docs/algorithm.md has the numbers).
 SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTraceParams t,
-                                   ivec2 pxOrigin, vec3 vsP, vec3 vsV, vec3 vsR) {
+                                   ivec2 pxOrigin, vec3 vsP, vec3 vsR) {
   SslrHit hit = sslrNoHit(SSLR_STATUS_MISS);
   hit.fade = 1.0f;
 
@@ -132,8 +174,6 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
     // near plane, beyond a finite far plane) has nothing to read.
     if (!(uvQ.x >= 0.0f && uvQ.x <= 1.0f && uvQ.y >= 0.0f && uvQ.y <= 1.0f && depthQ >= 0.0f &&
           depthQ <= 1.0f)) {
-      // A step that overshot the screen from free space may have jumped over the hit: step
-      // back towards lo (bounded by the iteration cap) before giving up.
       // A step that overshot the screen from free space may have jumped over the hit: step
       // back towards lo a few times (SSLR_MAX_RETREATS) before giving up.
       if (lo > 0.0f && hi < 0.0f && L > 1.05f * lo && retreats < SSLR_MAX_RETREATS) {
@@ -230,7 +270,16 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
   float valid = (normalOk && !selfHit && L <= t.maxDistance)
                     ? sslrHitValidation(p, s, t, vsQ, vsSurface, vsSurfaceNormal, vsR)
                     : 0.0f;
-  if (valid > 0.0f) L = sslrRefineOnPlane(vsP, vsR, vsSurface, vsSurfaceNormal, L);
+  if (valid > 0.0f && t.hizMode == SSLR_HIZ_FALLBACK && dot(vsR, vsSurfaceNormal) < -0.05f) {
+    // With the hierarchical traversal behind it, a hit must also pass the plane check: a
+    // rejected one gets its second chance there (measured: most false hits of adaptive L on
+    // facing-mirror and mirror-walls fail it, docs/algorithm.md).
+    float planeL;
+    valid = sslrPlaneHit(p, s, t, pxOrigin, vsP, vsR, pxSurface, vsSurface, vsSurfaceNormal, planeL);
+    if (valid > 0.0f) L = planeL;
+  } else if (valid > 0.0f) {
+    L = sslrRefineOnPlane(vsP, vsR, vsSurface, vsSurfaceNormal, L);
+  }
   vsQ = vsP + vsR * L;
   if (sslrClipW(p, vsQ) <= 0.0f) {
     hit.status = SSLR_STATUS_OFF_SCREEN;
@@ -245,27 +294,28 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
     hit.status = SSLR_STATUS_OFF_SCREEN;
     return hit;
   }
-  // Confidence = how sure the hit is right: validation x camera-facing fade (rays coming back
-  // towards the camera see what the screen hides). The screen-edge fade is presentation, not
-  // doubt, and is applied to the weight in sslrReflectionWeights.
-  hit.confidence =
-      sslrSaturate(valid * sslrCameraFacingFade(vsR, vsV, t.cameraFadeStart, t.cameraFadeEnd));
+  // Confidence = how sure the hit is right: the validation alone. The screen-edge and
+  // camera-facing fades are presentation, not doubt: sslrReflectionWeights applies them.
+  hit.confidence = sslrSaturate(valid);
   hit.status = hit.confidence > 0.0f ? SSLR_STATUS_HIT : SSLR_STATUS_MISS;
   return hit;
 }
 
 // Everything the pass does per pixel besides fetching: returns rgb weight (applied to the hit's
 // colour) in .x and the blur alpha in .y, given the traced hit and the pixel's material.
-// weight = Fresnel term x confidence x screen-edge fade, with the Fresnel term
+// weight = Fresnel term x confidence x screen-edge fade x camera-facing fade, with the Fresnel term
 //   classic: reflectance * article Fresnel * article error term; schlick: Schlick(F0 = reflectance).
 SSLR_FN vec2 sslrReflectionWeights(SslrProjection p, SslrSurface s, SslrTraceParams t, SslrHit hit,
-                                   float cosVN, float reflectance, float roughness, float distP) {
+                                   vec3 vsV, vec3 vsR, float cosVN, float reflectance, float roughness,
+                                   float distP) {
   float fresnel = t.fresnelMode == SSLR_FRESNEL_CLASSIC
                       ? reflectance * sslrFresnelClassic(cosVN) * sslrErrorWeight(hit.L, t.errorK)
                       : sslrFresnelSchlick(reflectance, cosVN);
   float radius = sslrBlurRadiusPx(p, s.height, distP, hit.L, roughness, t.blurConeScale);
   float alpha = t.blurMaxRadiusPx > 0.0f ? sslrSaturate(radius / t.blurMaxRadiusPx) : 0.0f;
-  return vec2(fresnel * hit.confidence * hit.fade * sslrEdgeFade(hit.uvHit, t.edgeFade), alpha);
+  float fades = sslrEdgeFade(hit.uvHit, t.edgeFade) *
+                sslrCameraFacingFade(vsR, vsV, t.cameraFadeStart, t.cameraFadeEnd);
+  return vec2(fresnel * hit.confidence * hit.fade * fades, alpha);
 }
 
 #ifdef __cplusplus

@@ -1,7 +1,8 @@
 // Pass 2: trace over listed tiles. Writes the reflection (rgb = hit colour x weights, a = blur
 // weight) and, with SSLR_DEBUG_OUTPUTS, the hit and iteration images.
-// Tracer: the adaptive-L iteration on depth (default), or with SSLR_METHOD_POSITION_BUFFER the
-// position-buffer march of "3D Game Shaders For Beginners" on a stored position texture.
+// Tracer: the depth-only tracer (adaptive L, with the hierarchical traversal as fallback or alone,
+// frame.trace.hizMode), or with SSLR_METHOD_POSITION_BUFFER the position-buffer march of
+// "3D Game Shaders For Beginners" on a stored position texture.
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
 
@@ -19,6 +20,7 @@ layout(binding = 2, r32f) uniform writeonly image2D uIterations;
 layout(std430, binding = SSLR_BINDING_STATS_SSBO) buffer SslrStats {
   uint tracedPixels;
   uint fetches;
+  uint hierarchicalPixels;
 } stats;
 #endif
 
@@ -41,7 +43,14 @@ bool sslrLoadPosition(ivec2 px, out vec4 vsPosition) {
 }
 #include "sslr_trace_position.h"
 #else
-#include "sslr_trace.h"
+// The min-max depth pyramid built by hiz.comp: mip m holds level m + 1.
+layout(binding = 6) uniform sampler2D uHiZ;
+vec2 sslrLoadDepthMinMax(int level, ivec2 cell) {
+  gFetches += 1u;
+  if (level == 0) return sslrHiZTexel(frame.surface, texelFetch(uDepth, cell, 0).r);
+  return texelFetch(uHiZ, cell, level - 1).rg;
+}
+#include "sslr_trace_hiz.h"
 #endif
 
 void main() {
@@ -72,11 +81,11 @@ void main() {
 #ifdef SSLR_METHOD_POSITION_BUFFER
       hit = sslrTracePositionBuffer(frame.proj, frame.surface, frame.positionBuffer, vsP, vsV, vsR);
 #else
-      hit = sslrTraceAdaptiveL(frame.proj, frame.surface, frame.trace, px, vsP, vsV, vsR);
+      hit = sslrTraceDepthOnly(frame.proj, frame.surface, frame.trace, px, vsP, vsR);
 #endif
       if (hit.status == SSLR_STATUS_HIT) {
         float distP = sslrViewDistance(frame.proj, vsP);
-        vec2 w = sslrReflectionWeights(frame.proj, frame.surface, frame.trace, hit, cosVN,
+        vec2 w = sslrReflectionWeights(frame.proj, frame.surface, frame.trace, hit, vsV, vsR, cosVN,
                                        sslrReflectance(frame.surface, texel),
                                        sslrRoughness(frame.surface, texel), distP);
         vec3 color = textureLod(uColor, hit.uvHit, 0.0f).rgb;
@@ -97,6 +106,7 @@ void main() {
 #ifdef SSLR_COLLECT_STATS
   if (hit.status != SSLR_STATUS_NOT_TRACED) atomicAdd(stats.tracedPixels, 1u);
   atomicAdd(stats.fetches, gFetches);
+  if (hit.hierarchical != 0) atomicAdd(stats.hierarchicalPixels, 1u);
 #endif
   // The first pixel of a tile that needs blurring lists the tile (no group barrier: on CPU
   // rasterizers barriers split the shader and cost more than this atomic).

@@ -66,6 +66,12 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
   else if (fresnel == "schlick") s.fresnel = FresnelMode::Schlick;
   else throw UsageError{"--fresnel must be classic or schlick (got '" + fresnel + "')"};
   if (args.count("no-blur")) s.blur = false;
+  if (args.count("object-thickness")) {
+    const std::string text = args["object-thickness"].as<std::string>();
+    std::istringstream in(text);
+    if (!(in >> s.objectThickness) || !in.eof())
+      throw UsageError{"--object-thickness expects a number (got '" + text + "')"};
+  }
   if (args.count("iterations")) {
     const std::string text = args["iterations"].as<std::string>();
     std::istringstream in(text);
@@ -86,11 +92,13 @@ int run(int argc, char** argv) {
       ("size", "output size WxH", cxxopts::value<std::string>()->default_value("960x540"))
       ("out", "output directory", cxxopts::value<std::string>()->default_value("out"))
       ("dump", "also write every buffer as EXR (color, normal, depth, position, hit, reflection, iterations, resolved)")
-      ("method", "tracer: adaptive-l (depth-only SSLR), position-buffer (the tutorial's, for comparison), or none", cxxopts::value<std::string>()->default_value("adaptive-l"))
+      ("method", "tracer: adaptive-l (depth-only SSLR, hierarchical fallback), hiz (the depth pyramid traversal alone), position-buffer (the tutorial's, for comparison), or none", cxxopts::value<std::string>()->default_value("adaptive-l"))
+      ("no-hiz-fallback", "adaptive-l alone, without the hierarchical traversal where it finds nothing")
       ("preset", "quality preset: low, medium, high, ultra", cxxopts::value<std::string>()->default_value("high"))
       ("fresnel", "weighting: classic (the article) or schlick", cxxopts::value<std::string>()->default_value("classic"))
       ("iterations", "override the preset's adaptive-L iteration cap", cxxopts::value<std::string>())
       ("no-blur", "skip the roughness blur")
+      ("object-thickness", "assumed depth of what the screen shows, fraction of its view depth (hierarchical traversal)", cxxopts::value<std::string>())
       ("depth", "depth convention: reversed, reversed-infinite, zero-to-one, gl-default",
        cxxopts::value<std::string>()->default_value("reversed"))
       ("normals", "normal packing: octahedral (RGBA16) or xyz (RGBA8, the article's)",
@@ -105,7 +113,7 @@ int run(int argc, char** argv) {
       ("device", "EGL device: auto, hardware, software, surfaceless or an index (default $SSLR_EGL_DEVICE or auto)",
        cxxopts::value<std::string>()->default_value(""))
       ("stats", "print tiles, traced pixels and depth (or position) fetches")
-      ("score", "score the traced hits against Embree ground truth (recall, error, false hits) and print them")
+      ("score", "score the traced hits against Embree ground truth (recall, error, false hits), print them and write DIR/error.png")
       ("h,help", "show this help");
   cxxopts::ParseResult args;
   try {
@@ -148,9 +156,12 @@ int run(int argc, char** argv) {
     } else if (method == "position-buffer") {
       settings.method = Method::PositionBuffer;
       gopt.withPosition = true;  // its G-buffer adds an RGBA32F view-space position texture
+    } else if (method == "hiz") {
+      settings.method = Method::HierarchicalDepth;
     } else if (method != "adaptive-l") {
-      throw UsageError{"--method must be adaptive-l, position-buffer or none (got '" + method + "')"};
+      throw UsageError{"--method must be adaptive-l, hiz, position-buffer or none (got '" + method + "')"};
     }
+    if (args.count("no-hiz-fallback")) settings.hierarchicalFallback = false;
     settings.debugOutputs = dump || args.count("score") > 0;
     settings.collectStats = args.count("stats") > 0;
 
@@ -236,7 +247,8 @@ int run(int argc, char** argv) {
     const FrameStats st = r.sslr().lastStats();
     std::cout << "  tiles " << st.tiles << " (blurred " << st.blurTiles << "), traced pixels " << st.tracedPixels << ", fetches "
               << st.fetches << " (" << (st.tracedPixels ? double(st.fetches) / st.tracedPixels : 0.0)
-              << " per traced pixel)\n";
+              << " per traced pixel), hierarchical traversal on " << st.hierarchicalPixels << " ("
+              << (st.tracedPixels ? 100.0 * st.hierarchicalPixels / st.tracedPixels : 0.0) << "% of traced)\n";
   }
   if (args.count("score") && reflections) {
     auto truth = groundTruthFor(scene, r.gbuffer(), settings);
@@ -246,6 +258,10 @@ int run(int argc, char** argv) {
     }
     const Image color = r.gbuffer().readColor();
     const HitMetrics m = compareHits(truth.value(), r.readHit(), kReportedConfidence, &color);
+    if (Status s = writeImage((outDir / "error.png").string(), hitErrorImage(truth.value(), r.readHit()), {}); !s) {
+      std::cerr << "sslr-render: " << s.message() << "\n";
+      return kExitFailure;
+    }
     std::printf("  truth: %zu visible (A), %zu occluded (B), %zu off screen (C), %zu escaped (D)\n", m.visible,
                 m.occluded, m.offScreen, m.escaped);
     std::printf("  recall@1px %.4f @2px %.4f @4px %.4f  median %.3f px  p95 %.3f px  false hits %.4f  "

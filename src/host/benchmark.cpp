@@ -24,6 +24,18 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
     if (!full && preset == Preset::Ultra) continue;
     BenchConfig c{"adaptive-l", name, Settings::preset(preset), preset == Preset::High};
     configs.push_back(c);
+    if (preset == Preset::High) {  // the article's tracer alone, without the hierarchical fallback
+      BenchConfig alone{"adaptive-l", "high-no-fallback", Settings::preset(preset), false};
+      alone.settings.hierarchicalFallback = false;
+      configs.push_back(alone);
+    }
+  }
+  // The hierarchical traversal alone (Method::HierarchicalDepth) at a few step caps.
+  for (int steps : full ? std::vector<int>{40, 80, 160} : std::vector<int>{80}) {
+    BenchConfig c{"hiz", "steps" + std::to_string(steps), Settings::preset(Preset::High), steps == 80};
+    c.settings.method = Method::HierarchicalDepth;
+    c.settings.hierarchicalMaxSteps = steps;
+    configs.push_back(c);
   }
   // The tutorial's method: its demo values first, then a sweep.
   std::vector<float> resolutions = full ? std::vector<float>{0.1f, 0.3f, 0.6f, 1.0f} : std::vector<float>{0.3f, 1.0f};
@@ -172,22 +184,6 @@ Image methodImage(const GroundTruth& gt, const Image& hit, const Image& color) {
   });
 }
 
-// Black = exact, green = 1 px, yellow = 2 px, red >= 4 px; magenta = visible but missed;
-// white = a false hit (B, C or D reported).
-Image errorImage(const GroundTruth& gt, const Image& hit) {
-  return paintImage(gt, [&](int x, int y, const TruthPixel& t) -> glm::vec3 {
-    const bool reported = hit.at(x, y, 2) > kReportedConfidence;
-    if (t.cls == TruthClass::Visible) {
-      if (!reported) return {0.8f, 0.0f, 0.8f};
-      const float e = glm::length((glm::vec2(hit.at(x, y, 0), hit.at(x, y, 1)) - t.uvHit) * glm::vec2(gt.width, gt.height));
-      if (e <= 1.0f) return {0.0f, e, 0.0f};
-      if (e <= 2.0f) return {e - 1.0f, 1.0f, 0.0f};
-      return {1.0f, std::max(0.0f, 1.0f - (e - 2.0f) / 2.0f), 0.0f};
-    }
-    return t.cls != TruthClass::NotReflective && reported ? glm::vec3(1.0f) : glm::vec3(0.0f);
-  });
-}
-
 }  // namespace
 
 Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, const std::string& renderer,
@@ -197,7 +193,9 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
   result.options = options;
   result.renderer = renderer;
   std::vector<std::string> scenes = options.scenes;
-  if (scenes.empty()) scenes = {"mirror-room", "grazing-plane", "thin-objects", "sky-heavy"};
+  if (scenes.empty())
+    scenes = {"mirror-room",   "grazing-plane", "thin-objects",  "sky-heavy",
+              "facing-mirror", "mirror-walls",  "curved-mirror", "glossy"};
   const std::vector<BenchConfig> grid = benchGrid(options.grid);
   Timer timer(software);
   result.timingMethod = timer.method();
@@ -308,7 +306,7 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
           const std::string m = prefix + "-" + slug(c.method);
           if (Status st = writeImage((fs::path(reportDir) / (m + ".png")).string(), methodImage(gt, hit, color)); !st)
             return Status::error(st.message());
-          if (Status st = writeImage((fs::path(reportDir) / (m + "-error.png")).string(), errorImage(gt, hit)); !st)
+          if (Status st = writeImage((fs::path(reportDir) / (m + "-error.png")).string(), hitErrorImage(gt, hit)); !st)
             return Status::error(st.message());
           sr.images.push_back(m + ".png");
           sr.images.push_back(m + "-error.png");

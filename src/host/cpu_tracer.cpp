@@ -1,5 +1,7 @@
 #include "sslr_host/cpu_tracer.hpp"
 
+#include <vector>
+
 #include "sslr/reference.hpp"
 #include "sslr_shared.h"
 
@@ -10,6 +12,10 @@ thread_local const sslr::host::CpuGBuffer* tG = nullptr;
 thread_local SslrProjection tProj{};
 thread_local SslrSurface tSurf{};
 thread_local bool tStored = false;
+// The min-max depth pyramid, built on the CPU with the same shared functions as hiz.comp:
+// tPyramid[l - 1] is level l, tPyramidWidth[l - 1] its cells per row.
+thread_local std::vector<std::vector<vec2>> tPyramid;
+thread_local std::vector<int> tPyramidWidth, tPyramidHeight;
 }  // namespace
 float sslrLoadDepth(ivec2 px) { return tG->depth->at(px.x, px.y, 0); }
 vec4 sslrLoadNormal(ivec2 px) {
@@ -20,6 +26,12 @@ bool sslrLoadPosition(ivec2 px, vec4& vsPosition) {
   const sslr::host::Image& p = *tG->positions;
   vsPosition = vec4(p.at(px.x, px.y, 0), p.at(px.x, px.y, 1), p.at(px.x, px.y, 2), p.at(px.x, px.y, 3));
   return vsPosition.w > 0.0f;
+}
+vec2 sslrLoadDepthMinMax(int level, ivec2 cell) {
+  if (level == 0) return sslrHiZTexel(tSurf, sslrLoadDepth(cell));
+  const int w = tPyramidWidth[level - 1], h = tPyramidHeight[level - 1];
+  if (cell.x < 0 || cell.y < 0 || cell.x >= w || cell.y >= h) return sslrHiZEmpty();
+  return tPyramid[level - 1][static_cast<size_t>(cell.y) * w + cell.x];
 }
 bool sslrLoadSurface(ivec2 px, vec3& vsPos) {
   if (tStored) {
@@ -32,6 +44,7 @@ bool sslrLoadSurface(ivec2 px, vec3& vsPos) {
 }
 }  // namespace sslr::shared
 
+#include "sslr_trace_hiz.h"
 #include "sslr_trace_position.h"
 
 namespace sslr::host {
@@ -54,6 +67,28 @@ Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& set
   tProj = proj;
   tSurf = surf;
   tStored = source == SurfaceSource::StoredPositions;
+  // Pyramid levels as hiz.comp builds them (level l: ceil(size / 2^l) cells per axis).
+  tPyramid.clear();
+  tPyramidWidth.clear();
+  tPyramidHeight.clear();
+  for (int level = 1; level <= t.hizLevels; ++level) {
+    const int pw = (w + (1 << level) - 1) >> level, ph = (h + (1 << level) - 1) >> level;
+    std::vector<vec2> cells(static_cast<size_t>(pw) * ph);
+    for (int cy = 0; cy < ph; ++cy)
+      for (int cx = 0; cx < pw; ++cx) {
+        vec2 m = sslrHiZEmpty();
+        for (int k = 0; k < 4; ++k) {
+          const ivec2 child(2 * cx + (k & 1), 2 * cy + (k >> 1));
+          const int srcW = level == 1 ? w : tPyramidWidth[level - 2];
+          const int srcH = level == 1 ? h : tPyramidHeight[level - 2];
+          if (child.x < srcW && child.y < srcH) m = sslrHiZReduce(m, sslrLoadDepthMinMax(level - 1, child));
+        }
+        cells[static_cast<size_t>(cy) * pw + cx] = m;
+      }
+    tPyramid.push_back(std::move(cells));
+    tPyramidWidth.push_back(pw);
+    tPyramidHeight.push_back(ph);
+  }
   const bool positionMethod = settings.method == Method::PositionBuffer;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -76,7 +111,7 @@ Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& set
       if (!(dot(-vsV, vsN) > 0.0f)) continue;
       const vec3 vsR = reflect(vsV, vsN);
       const SslrHit r = positionMethod ? sslrTracePositionBuffer(proj, surf, pb, vsP, vsV, vsR)
-                                       : sslrTraceAdaptiveL(proj, surf, t, px, vsP, vsV, vsR);
+                                       : sslrTraceDepthOnly(proj, surf, t, px, vsP, vsR);
       float* o = &hit.at(x, y, 0);
       o[0] = r.uvHit.x;
       o[1] = r.uvHit.y;
@@ -84,6 +119,7 @@ Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& set
       o[3] = r.L;
     }
   tG = nullptr;
+  tPyramid.clear();
   return hit;
 }
 

@@ -245,4 +245,26 @@ HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float thresho
   return m;
 }
 
+Image hitErrorImage(const GroundTruth& gt, const Image& hit) {
+  Image img{gt.width, gt.height, 3, std::vector<float>(static_cast<size_t>(gt.width) * gt.height * 3, 0.0f)};
+  for (int y = 0; y < gt.height; ++y)
+    for (int x = 0; x < gt.width; ++x) {
+      const TruthPixel& t = gt.pixels[static_cast<size_t>(y) * gt.width + x];
+      const bool reported = hit.at(x, y, 2) > kReportedConfidence;
+      glm::vec3 c(0.0f);
+      if (t.cls == TruthClass::Visible) {
+        const float e =
+            glm::length((glm::vec2(hit.at(x, y, 0), hit.at(x, y, 1)) - t.uvHit) * glm::vec2(gt.width, gt.height));
+        if (!reported) c = {0.8f, 0.0f, 0.8f};
+        else if (e <= 1.0f) c = {0.0f, e, 0.0f};
+        else if (e <= 2.0f) c = {e - 1.0f, 1.0f, 0.0f};
+        else c = {1.0f, std::max(0.0f, 1.0f - (e - 2.0f) / 2.0f), 0.0f};
+      } else if (t.cls != TruthClass::NotReflective && reported) {
+        c = glm::vec3(1.0f);
+      }
+      for (int k = 0; k < 3; ++k) img.at(x, y, k) = c[k];
+    }
+  return img;
+}
+
 }  // namespace sslr::host

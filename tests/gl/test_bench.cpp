@@ -64,9 +64,9 @@ TEST_F(Bench, QuickGridWritesCompleteResultsAndReport) {
       EXPECT_LE(r["recall1px"].get<double>(), r["recall4px"].get<double>());
     }
   }
-  EXPECT_EQ(methods, (std::set<std::string>{"adaptive-l", "position-buffer", "baseline"}));
-  EXPECT_EQ(scenes.size(), 4u);
-  ASSERT_EQ(j["scenes"].size(), 4u);
+  EXPECT_EQ(methods, (std::set<std::string>{"adaptive-l", "hiz", "position-buffer", "baseline"}));
+  EXPECT_EQ(scenes.size(), 8u);  // every built-in scene but the two analytic test scenes
+  ASSERT_EQ(j["scenes"].size(), 8u);
   for (const auto& s : j["scenes"]) EXPECT_TRUE(s["hitAgreementDepthVsStored"].is_number());
   // The report and every image it references.
   std::ifstream html(out / "report" / "index.html");

@@ -53,6 +53,10 @@ std::string validate(const Settings& s) {
   auto finite = [](float v) { return std::isfinite(v); };
   if (s.maxIterations < 1 || s.maxIterations > 256)
     why << "maxIterations = " << s.maxIterations << " (must be 1..256); ";
+  if (s.hierarchicalMaxSteps < 1 || s.hierarchicalMaxSteps > 1024)
+    why << "hierarchicalMaxSteps = " << s.hierarchicalMaxSteps << " (must be 1..1024); ";
+  if (!finite(s.objectThickness) || s.objectThickness < 0.0f)
+    why << "objectThickness = " << s.objectThickness << " (must be >= 0); ";
   if (!finite(s.convergenceEps) || s.convergenceEps < 0.0f)
     why << "convergenceEps = " << s.convergenceEps << " (must be >= 0); ";
   if (!finite(s.initialLengthScreen) || s.initialLengthScreen <= 0.0f || s.initialLengthScreen > 1.0f)
@@ -160,6 +164,10 @@ struct Context::Impl {
   int width = 0, height = 0;
 
   GLuint reflection = 0, blurTemp = 0, resolved = 0, hit = 0, iterations = 0;
+  // Min-max depth pyramid: mip m holds level m + 1 (sslr_shared.h). Its base is padded so that
+  // every mip halves exactly: mip m has at least ceil(size / 2^(m+1)) cells per axis.
+  GLuint hiz = 0;
+  int hizLevels = 0, hizWidth = 0, hizHeight = 0;
   GLuint frameUbo = 0, tileBuffer = 0, statsBuffer = 0;
   GLuint nearestSampler = 0, linearSampler = 0, vao = 0;
   std::map<std::string, GLuint> programs;  // key: entry files + defines
@@ -178,11 +186,11 @@ struct Context::Impl {
   }
 
   void destroyTargets() {
-    GLuint textures[] = {reflection, blurTemp, resolved, hit, iterations};
-    gl.DeleteTextures(5, textures);
+    GLuint textures[] = {reflection, blurTemp, resolved, hit, iterations, hiz};
+    gl.DeleteTextures(6, textures);
     GLuint buffers[] = {tileBuffer};
     gl.DeleteBuffers(1, buffers);
-    reflection = blurTemp = resolved = hit = iterations = tileBuffer = 0;
+    reflection = blurTemp = resolved = hit = iterations = hiz = tileBuffer = 0;
   }
 
   void destroy() {
@@ -212,6 +220,13 @@ struct Context::Impl {
     resolved = makeTexture(GL_RGBA16F, "sslr.resolved");
     hit = makeTexture(GL_RGBA32F, "sslr.hit");
     iterations = makeTexture(GL_R32F, "sslr.iterations");
+    hizLevels = shared::sslrHiZLevelCount(width, height);
+    const int top = 1 << hizLevels;
+    hizWidth = (width + top - 1) / top * (top / 2);
+    hizHeight = (height + top - 1) / top * (top / 2);
+    gl.CreateTextures(GL_TEXTURE_2D, 1, &hiz);
+    gl.TextureStorage2D(hiz, hizLevels, GL_RG32F, hizWidth, hizHeight);
+    label(GL_TEXTURE, hiz, "sslr.depthPyramid");
     const GLsizeiptr tiles = static_cast<GLsizeiptr>(tilesX()) * tilesY();
     gl.CreateBuffers(1, &tileBuffer);
     // Header (12 uints, see common/tiles.glsl), traced tiles, tiles to blur, per-tile stamps
@@ -367,9 +382,29 @@ struct Context::Impl {
     gl.BindSampler(1, nearestSampler);
     gl.BindTextureUnit(2, in.colorTexture);
     gl.BindSampler(2, linearSampler);
+    gl.BindTextureUnit(6, hiz);  // read by the depth-only trace (built when a mode needs it)
+    gl.BindSampler(6, nearestSampler);
     gl.BindBufferBase(GL_UNIFORM_BUFFER, SSLR_BINDING_FRAME_UBO, frameUbo);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_TILE_SSBO, tileBuffer);
     gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
+  }
+
+  // The min-max depth pyramid, one dispatch per level (each reads the level below). Its shader
+  // returns at once when classification listed no tile.
+  void buildPyramid(GLuint prog) const {
+    gl.UseProgram(prog);
+    gl.BindTextureUnit(6, hiz);
+    gl.BindSampler(6, nearestSampler);
+    for (int level = 1; level <= hizLevels; ++level) {
+      const int w = hizWidth >> (level - 1), h = hizHeight >> (level - 1);
+      gl.ProgramUniform1i(prog, 0, level - 1);  // uSourceLevel
+      if (level == 1) gl.ProgramUniform2i(prog, 1, width, height);  // uSourceSize
+      else gl.ProgramUniform2i(prog, 1, hizWidth >> (level - 2), hizHeight >> (level - 2));
+      gl.BindImageTexture(0, hiz, level - 1, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+      gl.DispatchCompute(static_cast<GLuint>((w + SSLR_TILE_SIZE - 1) / SSLR_TILE_SIZE),
+                         static_cast<GLuint>((h + SSLR_TILE_SIZE - 1) / SSLR_TILE_SIZE), 1);
+      gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
   }
 
   Status dispatch(const FrameInputs& in, const Settings& settings);
@@ -389,6 +424,9 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   if (settings.collectStats) traceDefines += "#define SSLR_COLLECT_STATS 1\n";
   if (settings.method == Method::PositionBuffer) traceDefines += "#define SSLR_METHOD_POSITION_BUFFER 1\n";
   auto classify = computeProgram("classify.comp");
+  const bool depthOnly = settings.method != Method::PositionBuffer;
+  const bool pyramid = depthOnly && (settings.method == Method::HierarchicalDepth || settings.hierarchicalFallback);
+  Expected<GLuint> hizBuild = pyramid ? computeProgram("hiz.comp") : Expected<GLuint>(GLuint(0));
   auto trace = computeProgram("trace.comp", traceDefines);
   const bool blur = settings.blur && settings.blurMaxRadiusPx > 0.0f;
   Expected<GLuint> blurH = GLuint(0), blurV = GLuint(0);
@@ -396,7 +434,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     blurH = computeProgram("blur.comp", "#define SSLR_BLUR_AXIS ivec2(1, 0)\n");
     blurV = computeProgram("blur.comp", "#define SSLR_BLUR_AXIS ivec2(0, 1)\n#define SSLR_BLUR_VERTICAL 1\n");
   }
-  for (const auto* p : {&classify, &trace, &blurH, &blurV})
+  for (const auto* p : {&classify, &hizBuild, &trace, &blurH, &blurV})
     if (!*p) return Status::error(p->error());
 
   detail::StateGuard guard(gl, false);
@@ -433,6 +471,8 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   gl.DispatchCompute(static_cast<GLuint>(tilesX()), static_cast<GLuint>(tilesY()), 1);
   gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 
+  if (pyramid) buildPyramid(hizBuild.value());
+
   gl.UseProgram(trace.value());
   gl.BindImageTexture(0, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   gl.BindImageTexture(3, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -467,13 +507,14 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   stats = {};
   if (settings.collectStats) {
     GLuint counts[kTileHeader] = {};
-    GLuint counters[2] = {0, 0};
+    GLuint counters[3] = {0, 0, 0};
     gl.GetNamedBufferSubData(tileBuffer, 0, sizeof(counts), counts);
     gl.GetNamedBufferSubData(statsBuffer, 0, sizeof(counters), counters);
     stats.tiles = counts[0];
     stats.blurTiles = counts[8];
     stats.tracedPixels = counters[0];
     stats.fetches = counters[1];
+    stats.hierarchicalPixels = counters[2];
   }
   haveFrame = true;
   return {};

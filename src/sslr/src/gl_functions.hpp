@@ -75,6 +75,8 @@ namespace sslr::detail {
   X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                                         \
   X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)                               \
   X(PFNGLUSEPROGRAMPROC, UseProgram)                                             \
+  X(PFNGLPROGRAMUNIFORM1IPROC, ProgramUniform1i)                                 \
+  X(PFNGLPROGRAMUNIFORM2IPROC, ProgramUniform2i)                                 \
   X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                                   \
   X(PFNGLDISPATCHCOMPUTEINDIRECTPROC, DispatchComputeIndirect)                   \
   X(PFNGLDRAWARRAYSINDIRECTPROC, DrawArraysIndirect)                             \

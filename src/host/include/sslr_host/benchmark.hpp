@@ -13,7 +13,7 @@ namespace sslr::host {
 
 struct BenchOptions {
   std::string grid = "quick";       // "quick" (CI) or "full" (docs)
-  std::vector<std::string> scenes;  // empty: the four built-in scenes
+  std::vector<std::string> scenes;  // empty: every built-in scene but the analytic test scenes
   int width = 320, height = 180;
   int frames = 7;                   // timed frames per config (median reported)
   int warmup = 1;

@@ -85,6 +85,10 @@ struct HitMetrics {
   // true hit, both sampled bilinearly from the lit colour buffer (linear RGB).
   double reflectionRmse = 0, reflectionPsnr = 0;  // PSNR with peak 1.0
 };
+// Error map of a hit image: black = exact, green = up to 1 px, yellow = 2 px, red >= 4 px;
+// magenta = visible (A) but missed; white = a false hit (B, C or D reported).
+Image hitErrorImage(const GroundTruth& truth, const Image& hit);
+
 // `color` (optional) enables the reflection RMSE / PSNR.
 HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float confidenceThreshold = kReportedConfidence,
                        const Image* color = nullptr);

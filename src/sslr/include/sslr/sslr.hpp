@@ -108,8 +108,10 @@ enum class FresnelMode {
 enum class Preset { Low, Medium, High, Ultra };
 
 enum class Method {
-  AdaptiveL,       // depth-only: the SSLR article's adaptive-L iteration (sslr's method)
-  PositionBuffer,  // comparison: "3D Game Shaders For Beginners" march on a position texture
+  AdaptiveL,           // depth-only: the SSLR article's adaptive-L iteration (sslr's method), with
+                       // the hierarchical traversal where it finds nothing (hierarchicalFallback)
+  HierarchicalDepth,   // depth-only: the min-max depth pyramid traversal alone (for comparison)
+  PositionBuffer,      // comparison: "3D Game Shaders For Beginners" march on a position texture
 };
 
 // Parameters of Method::PositionBuffer, with the tutorial's demo values.
@@ -125,6 +127,11 @@ struct Settings {
   PositionBufferSettings positionBuffer;  // used by Method::PositionBuffer only
   FresnelMode fresnel = FresnelMode::Classic;
   int maxIterations = 16;            // adaptive-L iterations (each one depth fetch); article: 10
+  bool hierarchicalFallback = true;  // AdaptiveL: trace the pyramid where adaptive L finds no hit
+  int hierarchicalMaxSteps = 80;     // pyramid cells visited per ray at most (each one fetch)
+  float objectThickness = 0.1f;      // depth of what the screen shows, fraction of its view depth:
+                                     // a ray less deep behind it hit it (hidden: no hit), a deeper
+                                     // one passes behind (hierarchical traversal)
   float convergenceEps = 0.002f;     // stop when |L_new - L| <= eps * L
   float initialLengthScreen = 0.03f; // first L moves the probe this fraction of the height (>= 4 px)
   float errorK = 0.02f;              // the article's LDelmiter (Classic only): fade ~ L * k
@@ -133,7 +140,7 @@ struct Settings {
   float thicknessPixels = 1.5f;      // ... plus pixel footprints, stretched by surface slope
   float edgeFade = 0.03f;            // fade width at the screen border (fraction of screen)
   float cameraFadeStart = 0.6f;      // dot(R, to-camera) where camera-facing rays begin to fade
-  float cameraFadeEnd = 0.9f;        // ... and where they are gone
+  float cameraFadeEnd = 0.9f;        // ... and where they are gone (weight only, never the hit)
   float roughnessCutoff = 0.5f;      // rougher pixels are not traced
   float minReflectance = 0.01f;      // pixels with reflectance <= this are not traced
   bool blur = true;                  // run the roughness blur (else resolved = raw reflection)
@@ -166,6 +173,7 @@ struct FrameStats {  // filled when Settings::collectStats is set
   std::uint32_t blurTiles = 0;      // tiles the roughness blur ran over
   std::uint32_t tracedPixels = 0;   // pixels that ran the tracer
   std::uint32_t fetches = 0;        // depth (or position) texels read by the trace pass
+  std::uint32_t hierarchicalPixels = 0;  // traced pixels that ran the hierarchical traversal
 };
 
 class Context {

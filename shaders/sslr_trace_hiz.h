@@ -1,0 +1,209 @@
+// sslr_trace_hiz.h - the hierarchical traversal over the min-max depth pyramid, and the per-pixel
+// choice between it and the adaptive-L tracer. Shared by the GPU pass and the CPU tests.
+//
+// Besides the loaders of sslr_trace.h, the includer defines
+//   vec2 sslrLoadDepthMinMax(int level, ivec2 cell);  // level 0: sslrHiZTexel of the depth texel;
+//                                                     // level >= 1: the pyramid (sslr_shared.h)
+//
+// The traversal (in the spirit of Uludag's Hi-Z tracing, GPU Pro 5, and FidelityFX SSSR) runs in
+// window space: x, y in pixels and the raw window depth. Both kinds of projection map the view-
+// space ray to a straight line there with the depth affine along it (perspective: depth is affine
+// in 1/w, as are x and y), so a cell of the pyramid is crossed by one segment whose nearest and
+// farthest depth sit at its ends. The depth is multiplied by keySign (-1 for reversed Z) so that a
+// larger key is always farther from the camera; the sign flip is exact, reversed-Z keeps its bits.
+//
+// Per step, at the current level, the cell under the ray is
+//   - skipped (and the level raised) when the segment lies in front of the nearest depth of the
+//     cell, or behind its farthest depth by more than any hit tolerance (the ray passes behind
+//     what the cell shows: depth buffers have no thickness, this is the thickness test);
+//   - else descended into, after moving to where the ray reaches the cell's nearest depth;
+//   - at level 0 (a pixel), a crossing is validated exactly as the adaptive-L hit is (the ray
+//     meets the tangent plane of the pixel's surface within the tolerance). A crossing that
+//     fails validation (a silhouette the ray passes behind) does not end the traversal.
+#ifndef SSLR_TRACE_HIZ_H
+#define SSLR_TRACE_HIZ_H
+
+#include "sslr_trace.h"
+
+#ifdef __cplusplus
+namespace sslr::shared {
+#endif
+
+// Tolerance (view units) of a hit on a surface at view depth `dist` seen at tan(angle) tanView:
+// the same terms as sslrHitValidation.
+SSLR_FN float sslrHitTolerance(SslrProjection p, SslrSurface s, SslrTraceParams t, float dist, float tanView) {
+  float footprint = sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : dist);
+  return t.thicknessRelative * abs(dist) + t.thicknessPixels * footprint * (1.0f + tanView);
+}
+
+SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin,
+                                      vec3 vsP, vec3 vsR) {
+  SslrHit hit = sslrNoHit(SSLR_STATUS_MISS);
+  hit.fade = 1.0f;
+  hit.hierarchical = 1;
+  vec2 sizePx = vec2(s.width, s.height);
+  float keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
+
+  // A second point of the ray, kept well in front of the camera plane (a point behind it would
+  // project to the wrong side); any point gives the same window-space line.
+  float distP = sslrViewDistance(p, vsP);
+  float probeL = p.orthographic != 0 ? 1.0f : max(distP, 1e-6f);
+  if (p.orthographic == 0 && vsR.z > 0.0f) probeL = min(probeL, 0.5f * distP / vsR.z);
+  vec3 o = sslrWindowFromView(p, sizePx, keySign, vsP);
+  vec3 d = sslrWindowFromView(p, sizePx, keySign, vsP + vsR * probeL) - o;
+  float majorPx = max(abs(d.x), abs(d.y));
+  // A ray along the view direction stays in its own pixel: nothing on screen can answer it.
+  if (!(majorPx > 1e-3f)) return hit;
+  d /= majorPx;  // t counts pixels along the major axis
+  // Cell boundaries are crossed exactly on the axis with d = 0 never; 1/d is huge but finite.
+  vec2 invD = vec2(abs(d.x) > 1e-12f ? 1.0f / d.x : 1e12f, abs(d.y) > 1e-12f ? 1.0f / d.y : 1e12f);
+  vec2 boundaryStep = vec2(d.x >= 0.0f ? 1.0f : 0.0f, d.y >= 0.0f ? 1.0f : 0.0f);
+  // The slope terms of the tolerance are unknown before a pixel is looked at: a cell may only be
+  // passed behind when the ray is farther behind than the largest tolerance (tanView = 16).
+  float nudge = 1.0f / 256.0f;  // past a cell boundary, in pixels (exact in float up to 2^15 px)
+
+  // Leave the reflecting pixel first.
+  vec2 cell0 = floor(vec2(o.x, o.y));
+  vec2 tBound0 = ((cell0 + boundaryStep) - vec2(o.x, o.y)) * invD;
+  float tRay = min(tBound0.x, tBound0.y) + nudge;
+  int level = 0;
+  bool inFront = true;  // the ray was in front of the depth surface where it was last looked at
+  int topLevel = t.hizLevels;
+  for (int i = 0; i < t.hizMaxSteps; ++i) {
+    vec3 pos = o + d * tRay;
+    if (!(pos.x >= 0.0f && pos.y >= 0.0f && pos.x < sizePx.x && pos.y < sizePx.y)) {
+      hit.status = SSLR_STATUS_OFF_SCREEN;
+      return hit;
+    }
+    float depthPos = keySign * pos.z;
+    if (!(depthPos >= 0.0f && depthPos <= 1.0f)) {  // behind the near plane or beyond the far one
+      hit.status = SSLR_STATUS_OFF_SCREEN;
+      return hit;
+    }
+    float cellSize = float(1 << level);
+    vec2 cell = floor(vec2(pos.x, pos.y) / cellSize);
+    vec2 minMax = sslrLoadDepthMinMax(level, ivec2(cell));
+    hit.iterations = i + 1;
+    float keyNear = min(keySign * minMax.x, keySign * minMax.y);
+    float keyFar = max(keySign * minMax.x, keySign * minMax.y);
+    vec2 tBound = ((cell + boundaryStep) * cellSize - vec2(o.x, o.y)) * invD;
+    float tExit = min(tBound.x, tBound.y);
+    float keyExit = o.z + d.z * tExit;
+    float segNear = min(pos.z, keyExit);
+    float segFar = max(pos.z, keyExit);
+#ifdef SSLR_HIZ_DEBUG_HOOK
+    SSLR_HIZ_DEBUG_HOOK(i, level, cell, tRay, tExit, pos, keyExit, keyNear, keyFar, inFront);
+#endif
+    if (segFar < keyNear) {
+      // In front of everything the cell shows: skip it, look coarser.
+      tRay = tExit + nudge;
+      level = min(level + 1, topLevel);
+      inFront = true;
+      continue;
+    }
+    // Behind everything the cell shows, deeper than any tolerance and than the objects' assumed
+    // thickness: the ray passes behind what the cell shows.
+    float farDepth = keySign * keyFar;
+    if (segNear > keyFar && sslrIsGeometryDepth(s, farDepth)) {
+      float distFar = sslrViewDepthFromDepth(p, farDepth);
+      float distRay = sslrViewDepthFromDepth(p, keySign * segNear);
+      float passBehind = max(sslrHitTolerance(p, s, t, distFar, 16.0f), t.objectThickness * distFar);
+      if (distRay - distFar > passBehind) {
+        tRay = tExit + nudge;
+        level = min(level + 1, topLevel);
+        inFront = false;
+        continue;
+      }
+    }
+    if (level > 0) {
+      // Move to where the ray reaches the cell's nearest depth (nothing in the cell is nearer),
+      // then look finer.
+      if (d.z > 0.0f && pos.z < keyNear) tRay = max(tRay, (keyNear - o.z) / d.z);
+      --level;
+      continue;
+    }
+    // Level 0: one pixel, whose surface the ray reaches or is behind inside the pixel.
+    ivec2 px = ivec2(cell);
+    vec3 vsSurface;
+    if (!sslrLoadSurface(px, vsSurface)) {  // background: only a ray beyond the far plane gets here
+      tRay = tExit + nudge;
+      continue;
+    }
+    vec3 vsSurfaceNormal;
+    bool normalOk = sslrDecodeNormal(s, sslrLoadNormal(px), vsSurfaceNormal);
+    bool ownPixel = px.x == pxOrigin.x && px.y == pxOrigin.y;
+    // The hit on this pixel: where the ray meets the pixel's tangent plane. A pixel holds one
+    // depth sample, so a ray running along a surface seen at a grazing angle shows its crossing a
+    // few pixels late: the plane's hit is then checked against the pixel it lands in (re-planed
+    // once there). A silhouette the ray passes behind meets its plane far away: no hit. Nearly
+    // edge-on planes say little: there the point where the ray reaches the pixel's depth is used.
+    float valid = 0.0f;
+    float L = 0.0f;
+    if (normalOk && !ownPixel) {
+      float denom = dot(vsR, vsSurfaceNormal);
+      if (denom < -0.05f) {
+        valid = sslrPlaneHit(p, s, t, pxOrigin, vsP, vsR, px, vsSurface, vsSurfaceNormal, L);
+      } else if (denom < 0.0f) {
+        float tCross = d.z != 0.0f ? clamp((keyNear - o.z) / d.z, tRay - nudge, tExit) : tRay;
+        vec3 wCross = o + d * tCross;
+        vec3 vsCross = sslrViewFromUvDepth(p, vec2(wCross.x, wCross.y) / sizePx, keySign * wCross.z);
+        L = dot(vsCross - vsP, vsR);
+        if (L > 0.0f) valid = sslrHitValidation(p, s, t, vsP + vsR * L, vsSurface, vsSurfaceNormal, vsR);
+      }
+    }
+    if (valid >= 0.5f) {
+      if (L > t.maxDistance) return hit;
+      vec3 ndcQ = sslrNdcFromView(p, vsP + vsR * L);
+      hit.uvHit = sslrUvFromNdc(vec2(ndcQ.x, ndcQ.y));
+      hit.L = L;
+      if (!(hit.uvHit.x >= 0.0f && hit.uvHit.x <= 1.0f && hit.uvHit.y >= 0.0f && hit.uvHit.y <= 1.0f)) {
+        hit.uvHit = clamp(hit.uvHit, vec2(0.0f), vec2(1.0f));
+        hit.status = SSLR_STATUS_OFF_SCREEN;
+        return hit;
+      }
+      hit.confidence = sslrSaturate(valid);
+      hit.status = SSLR_STATUS_HIT;
+      return hit;
+    }
+    // No hit here. How deep behind the pixel's surface does the ray get inside the pixel?
+    float distSurface = sslrViewDistance(p, vsSurface);
+    if (p.orthographic != 0) distSurface = -vsSurface.z;
+    float behind = sslrViewDepthFromDepth(p, keySign * segFar) - distSurface;
+    vec3 vsViewAtSurface = sslrViewDirection(p, vsSurface);
+    float cosView = normalOk ? abs(dot(vsSurfaceNormal, vsViewAtSurface)) : 0.0f;
+    float tanView = min(sqrt(max(1.0f - cosView * cosView, 0.0f)) / max(cosView, 0.0625f), 16.0f);
+    float tolerance = sslrHitTolerance(p, s, t, distSurface, tanView);
+    if (behind > tolerance && !ownPixel) {
+      // Behind by less than the object's thickness: the ray ran into the hidden part of what
+      // this pixel shows. Nothing on screen is its reflection.
+      if (behind < max(tolerance, t.objectThickness * distSurface) && inFront) return hit;
+      inFront = false;
+    } else {
+      inFront = true;  // in front, or within the tolerance of the surface (pixel snapping)
+    }
+    tRay = tExit + nudge;
+  }
+  return hit;
+}
+
+// The depth-only tracer of a pixel: adaptive L (the article's method), the hierarchical traversal
+// where adaptive L reports nothing (t.hizMode = SSLR_HIZ_FALLBACK), or the traversal alone.
+SSLR_FN SslrHit sslrTraceDepthOnly(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
+                                   vec3 vsR) {
+  if (t.hizMode == SSLR_HIZ_ONLY) return sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
+  SslrHit first = sslrTraceAdaptiveL(p, s, t, pxOrigin, vsP, vsR);
+  if (t.hizMode != SSLR_HIZ_FALLBACK || (first.status == SSLR_STATUS_HIT && first.confidence >= 0.5f))
+    return first;
+  SslrHit second = sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
+  second.iterations += first.iterations;
+  if (second.status == SSLR_STATUS_HIT && second.confidence > first.confidence) return second;
+  first.iterations = second.iterations;
+  first.hierarchical = 1;
+  return first;
+}
+
+#ifdef __cplusplus
+}  // namespace sslr::shared
+#endif
+
+#endif  // SSLR_TRACE_HIZ_H
