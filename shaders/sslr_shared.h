@@ -61,7 +61,8 @@ using glm::sqrt;
 #define SSLR_STATUS_NOT_TRACED 0  // background, not reflective, too rough, back-facing normal
 #define SSLR_STATUS_HIT 1         // converged and validated (confidence may still be faded)
 #define SSLR_STATUS_OFF_SCREEN 2  // the probe left the screen or crossed the near plane
-#define SSLR_STATUS_MISS 3        // ran into the background, or the hit failed validation
+#define SSLR_STATUS_MISS 3        // did not converge, or the hit failed validation
+#define SSLR_STATUS_SKY 4         // the ray ran into the background (nothing on screen to hit)
 
 #define SSLR_HIZ_OFF 0       // adaptive L alone (the article's method, made robust)
 #define SSLR_HIZ_FALLBACK 1  // adaptive L first; the hierarchical traversal where it finds no hit

@@ -196,7 +196,7 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
         L = 0.5f * (lo + L);
         continue;
       }
-      hit.status = SSLR_STATUS_MISS;
+      hit.status = SSLR_STATUS_SKY;
       return hit;
     }
     pxSurface = px;

@@ -368,7 +368,7 @@ Scene glossy() {
   const int panels = 6;
   for (int i = 0; i < panels; ++i) {
     const int m = addMaterial(s, glm::vec3(0.9f), 1.0f, 0.1f * i);
-    s.meshes.push_back(makeQuad({-5.0 + 2.0 * i, 0.0, -1.0}, {1.96, 8.0}, {0, 1, 0}, m));
+    s.meshes.push_back(makeQuad({-5.0 + 2.0 * i, 0.0, -1.0}, {2.0, 8.0}, {0, 1, 0}, m));
   }
   s.meshes.push_back(makeQuad({0, 3, -5}, {14, 6}, {0, 0, 1}, wall));
   for (int i = 0; i < panels; ++i) {

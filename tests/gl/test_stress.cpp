@@ -57,17 +57,23 @@ TEST_F(Stress, DepthConventionsNearFarFovAndViewports) {
             cam.fovyDegrees = fov;
             cam.orthographic = ortho;
             cam.orthoHeight = 8.0;
-            const Status st = r.value()->render(gpu, cam, &s, {0.3, -0.2});  // off-centre too
-            ASSERT_TRUE(st) << st.message();
-            const std::string what = std::string(toString(mode)) + " " + std::to_string(w) + "x" + std::to_string(h) +
-                                     " n=" + std::to_string(n) + " f=" + std::to_string(f) + " fov=" + std::to_string(fov) +
-                                     (ortho ? " ortho" : "");
-            ASSERT_EQ(nonFiniteOutputs(*r.value()), 0u) << what;
-            ASSERT_LE(maxIterations(*r.value()), float(s.maxIterations)) << what;
-            ++cases;
+            // The default (adaptive L with the hierarchical fallback) and the traversal alone.
+            for (Method method : {Method::AdaptiveL, Method::HierarchicalDepth}) {
+              s.method = method;
+              const Status st = r.value()->render(gpu, cam, &s, {0.3, -0.2});  // off-centre too
+              ASSERT_TRUE(st) << st.message();
+              const std::string what = std::string(toString(mode)) + " " + std::to_string(w) + "x" +
+                                       std::to_string(h) + " n=" + std::to_string(n) + " f=" + std::to_string(f) +
+                                       " fov=" + std::to_string(fov) + (ortho ? " ortho" : "") +
+                                       (method == Method::AdaptiveL ? " adaptive-l" : " hiz");
+              ASSERT_EQ(nonFiniteOutputs(*r.value()), 0u) << what;
+              // Adaptive L's cap plus the hierarchical traversal's: every loop is bounded.
+              ASSERT_LE(maxIterations(*r.value()), float(s.maxIterations + s.hierarchicalMaxSteps)) << what;
+              ++cases;
+            }
           }
     }
-  EXPECT_GT(cases, 200);
+  EXPECT_GT(cases, 400);
 }
 
 // Moves the whole world (scene and camera) away from the origin.
