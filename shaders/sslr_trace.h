@@ -104,9 +104,10 @@ SSLR_FN float sslrPlaneHit(SslrProjection p, SslrSurface s, SslrTraceParams t, i
     vec3 wQ = sslrWindowFromView(p, sizePx, keySign, vsQ);
     ivec2 pxQ = ivec2(floor(vec2(wQ.x, wQ.y)));
     ivec2 away = abs(pxQ - pxPlane);
-    if (max(away.x, away.y) == 0) break;
-    if (max(away.x, away.y) > 4 || pxQ.x < 0 || pxQ.y < 0 || pxQ.x >= int(sizePx.x) || pxQ.y >= int(sizePx.y) ||
-        (pxQ.x == pxOrigin.x && pxQ.y == pxOrigin.y))
+    if (max(away.x, away.y) == 0) break;  // the hit lies in the pixel whose plane it is on
+    // Re-planed once and still not landing in its own pixel: the surfaces disagree.
+    if (k == 1 || max(away.x, away.y) > 4 || pxQ.x < 0 || pxQ.y < 0 || pxQ.x >= int(sizePx.x) ||
+        pxQ.y >= int(sizePx.y) || (pxQ.x == pxOrigin.x && pxQ.y == pxOrigin.y))
       return 0.0f;
     pxPlane = pxQ;
     if (!sslrLoadSurface(pxPlane, vsPlane) || !sslrDecodeNormal(s, sslrLoadNormal(pxPlane), vsPlaneNormal))

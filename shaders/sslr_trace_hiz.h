@@ -37,6 +37,16 @@ SSLR_FN float sslrHitTolerance(SslrProjection p, SslrSurface s, SslrTraceParams 
   return t.thicknessRelative * abs(dist) + t.thicknessPixels * footprint * (1.0f + tanView);
 }
 
+// The level after a skipped cell: one coarser when the ray enters a new parent cell, else the
+// same (the parent, containing the skipped cell, could not have been skipped whole).
+SSLR_FN int sslrHiZNextLevel(vec3 o, vec3 d, float tRay, vec2 cell, int level, int topLevel) {
+  if (level >= topLevel) return topLevel;
+  float parentSize = float(2 << level);
+  vec2 parentNext = floor((vec2(o.x, o.y) + vec2(d.x, d.y) * tRay) / parentSize);
+  vec2 parentNow = floor(cell * 0.5f);
+  return (parentNext.x != parentNow.x || parentNext.y != parentNow.y) ? level + 1 : level;
+}
+
 SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin,
                                       vec3 vsP, vec3 vsR) {
   SslrHit hit = sslrNoHit(SSLR_STATUS_MISS);
@@ -96,9 +106,11 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
     SSLR_HIZ_DEBUG_HOOK(i, level, cell, tRay, tExit, pos, keyExit, keyNear, keyFar, inFront);
 #endif
     if (segFar < keyNear) {
-      // In front of everything the cell shows: skip it, look coarser.
+      // In front of everything the cell shows: skip it. Look coarser only on entering a new
+      // parent cell: the parent of this one was (or will be) looked at already, and going up
+      // into it again costs a step just to come back down.
       tRay = tExit + nudge;
-      level = min(level + 1, topLevel);
+      level = sslrHiZNextLevel(o, d, tRay, cell, level, topLevel);
       inFront = true;
       continue;
     }
@@ -111,7 +123,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
       float passBehind = max(sslrHitTolerance(p, s, t, distFar, 16.0f), t.objectThickness * distFar);
       if (distRay - distFar > passBehind) {
         tRay = tExit + nudge;
-        level = min(level + 1, topLevel);
+        level = sslrHiZNextLevel(o, d, tRay, cell, level, topLevel);
         inFront = false;
         continue;
       }

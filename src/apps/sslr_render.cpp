@@ -264,10 +264,10 @@ int run(int argc, char** argv) {
     }
     std::printf("  truth: %zu visible (A), %zu occluded (B), %zu off screen (C), %zu escaped (D)\n", m.visible,
                 m.occluded, m.offScreen, m.escaped);
-    std::printf("  recall@1px %.4f @2px %.4f @4px %.4f  median %.3f px  p95 %.3f px  false hits %.4f  "
-                "reflection RMSE %.4f  non-finite %zu\n",
+    std::printf("  recall@1px %.4f @2px %.4f @4px %.4f  median %.3f px  p95 %.3f px  false hits %.4f "
+                "(%.4f beyond 1 px of the true hit)  reflection RMSE %.4f  non-finite %zu\n",
                 m.recall1px, m.recall2px, m.recall4px, m.medianErrorPx, m.p95ErrorPx, m.falseHitRate,
-                m.reflectionRmse, m.nonFinite);
+                m.falseHitRateBeyond1px, m.reflectionRmse, m.nonFinite);
   }
   return 0;
 }

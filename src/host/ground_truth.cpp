@@ -193,7 +193,7 @@ HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float thresho
   double sqErr = 0.0;
   size_t sqCount = 0;
   std::vector<double> errors;
-  size_t within1 = 0, within2 = 0, within4 = 0, falseHits = 0;
+  size_t within1 = 0, within2 = 0, within4 = 0, falseHits = 0, hiddenByHair = 0;
   for (size_t p = 0; p < truth.pixels.size(); ++p) {
     const float* h = &hit.pixels[p * hit.channels];
     bool finite = true;
@@ -221,7 +221,14 @@ HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float thresho
         within4 += e <= 4.0;
         break;
       }
-      case TruthClass::Occluded: ++m.occluded; falseHits += reported; break;
+      case TruthClass::Occluded: {
+        ++m.occluded;
+        falseHits += reported;
+        // The true hit is hidden, but by less than a pixel: the reported point is it, to the pixel.
+        const double ex = (h[0] - t.uvHit.x) * truth.width, ey = (h[1] - t.uvHit.y) * truth.height;
+        hiddenByHair += reported && ex * ex + ey * ey <= 1.0;
+        break;
+      }
       case TruthClass::OffScreen: ++m.offScreen; falseHits += reported; break;
       case TruthClass::Escaped: ++m.escaped; falseHits += reported; break;
     }
@@ -242,6 +249,7 @@ HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float thresho
   }
   const size_t negatives = m.occluded + m.offScreen + m.escaped;
   m.falseHitRate = negatives > 0 ? double(falseHits) / negatives : 0.0;
+  m.falseHitRateBeyond1px = negatives > 0 ? double(falseHits - hiddenByHair) / negatives : 0.0;
   return m;
 }
 

@@ -224,14 +224,19 @@ TEST_P(RobustScenes, RecallAndFalseHitsOnGpuAndCpu) {
 
 INSTANTIATE_TEST_SUITE_P(
     Scenes, RobustScenes,
-    ::testing::Values(RobustCase{"facing-mirror", Method::AdaptiveL, 0.0, 1.0},
-                      RobustCase{"facing-mirror", Method::HierarchicalDepth, 0.0, 1.0},
-                      RobustCase{"mirror-walls", Method::AdaptiveL, 0.0, 1.0},
-                      RobustCase{"mirror-walls", Method::HierarchicalDepth, 0.0, 1.0},
-                      RobustCase{"curved-mirror", Method::AdaptiveL, 0.0, 1.0},
-                      RobustCase{"curved-mirror", Method::HierarchicalDepth, 0.0, 1.0},
-                      RobustCase{"glossy", Method::AdaptiveL, 0.0, 1.0},
-                      RobustCase{"glossy", Method::HierarchicalDepth, 0.0, 1.0}),
+    // Measured at 192x108 (recall / false hits): facing-mirror 0.914 / 0.153 (both: every ray of
+    // that mirror comes back towards the camera and takes the traversal), mirror-walls 0.928 /
+    // 0.060 and 0.918 / 0.035, curved-mirror 0.981 / 0.019 (both), glossy 0.968 / 0
+    // and 0.984 / 0.003. The false hits left on facing-mirror are rays through the boxes' hidden
+    // backs (docs/algorithm.md, "What the traversal cannot know").
+    ::testing::Values(RobustCase{"facing-mirror", Method::AdaptiveL, 0.88, 0.20},
+                      RobustCase{"facing-mirror", Method::HierarchicalDepth, 0.88, 0.20},
+                      RobustCase{"mirror-walls", Method::AdaptiveL, 0.90, 0.09},
+                      RobustCase{"mirror-walls", Method::HierarchicalDepth, 0.89, 0.06},
+                      RobustCase{"curved-mirror", Method::AdaptiveL, 0.95, 0.03},
+                      RobustCase{"curved-mirror", Method::HierarchicalDepth, 0.95, 0.03},
+                      RobustCase{"glossy", Method::AdaptiveL, 0.94, 0.01},
+                      RobustCase{"glossy", Method::HierarchicalDepth, 0.95, 0.01}),
     [](const ::testing::TestParamInfo<RobustCase>& info) {
       std::string n = std::string(info.param.scene) + (info.param.method == Method::AdaptiveL ? "_AdaptiveL" : "_Hiz");
       for (char& ch : n)

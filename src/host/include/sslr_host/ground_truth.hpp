@@ -80,6 +80,9 @@ struct HitMetrics {
   double recall1px = 0, recall2px = 0, recall4px = 0;  // A pixels reported within N px
   double medianErrorPx = 0, p95ErrorPx = 0;            // over A pixels that reported a hit
   double falseHitRate = 0;                             // B+C+D pixels reporting a hit
+  // The same, less the B pixels that report their true hit point within 1 px: a point hidden by
+  // less than a pixel (a contact line) that the G-buffer cannot tell from a visible one.
+  double falseHitRateBeyond1px = 0;
   size_t nonFinite = 0;                                // NaN/Inf pixels in the hit image
   // Reflection on A pixels: the colour at the reported hit (0 if none) against the colour at the
   // true hit, both sampled bilinearly from the lit colour buffer (linear RGB).
