@@ -1,0 +1,78 @@
+// Context::Impl: sslr's GL objects and the steps of a frame, shared by the files that implement
+// them: context.cpp (lifetime, targets, the public Context), programs.cpp (shader programs),
+// inputs.cpp (checks of the host's textures), passes.cpp (classify -> pyramid -> trace -> blur)
+// and composite.cpp.
+#pragma once
+
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gl_functions.hpp"
+#include "sslr/sslr.hpp"
+#include "sslr_shared.h"
+
+namespace sslr {
+
+constexpr GLsizeiptr kTileHeader = 12;               // uints before the tile lists
+constexpr GLintptr kDrawArgsOffset = 3 * 4;           // DrawArraysIndirectCommand (composite)
+constexpr GLintptr kBlurDispatchOffset = 8 * 4;       // DispatchIndirectCommand (blur)
+
+// What sslr needs to know of a host texture's internal format.
+struct FormatInfo {
+  enum Kind { Unsupported, Color, Depth } kind = Unsupported;
+  int channels = 0;
+  const char* name = "unsupported";
+};
+FormatInfo formatInfo(GLint internalFormat);
+
+struct Context::Impl {
+  detail::Gl gl;
+  LogCallback log;
+  int width = 0, height = 0;
+
+  GLuint reflection = 0, blurTemp = 0, resolved = 0, hit = 0, iterations = 0;
+  // Min-max depth pyramid: mip m holds level m + 1 (sslr_shared.h). Its base is padded so that
+  // every mip halves exactly: mip m has at least ceil(size / 2^(m+1)) cells per axis.
+  GLuint hiz = 0;
+  int hizLevels = 0, hizWidth = 0, hizHeight = 0;
+  GLuint frameUbo = 0, tileBuffer = 0, statsBuffer = 0;
+  GLuint nearestSampler = 0, linearSampler = 0, vao = 0;
+  std::map<std::string, GLuint> programs;  // key: entry files + defines
+  FrameStats stats;
+  bool haveFrame = false;  // a dispatch filled the tile list, so composite has work to draw
+  int frameIndex = 0;      // per-dispatch stamp for the blur tile list (1, 2, ...)
+
+  ~Impl() { destroy(); }
+
+  void message(LogLevel level, const std::string& text) const {
+    if (log) log(level, text);
+  }
+  void label(GLenum type, GLuint name, const char* text) const { gl.ObjectLabel(type, name, -1, text); }
+  int tilesX() const { return (width + SSLR_TILE_SIZE - 1) / SSLR_TILE_SIZE; }
+  int tilesY() const { return (height + SSLR_TILE_SIZE - 1) / SSLR_TILE_SIZE; }
+
+  // context.cpp
+  GLuint makeTexture(GLenum format, const char* name) const;
+  void createTargets();
+  void destroyTargets();
+  void destroy();
+  // programs.cpp: compiles one stage from an embedded entry with #defines prepended (logs name
+  // the file); returns a linked program from the cache, building it on first use.
+  Expected<GLuint> compileStage(GLenum stage, const char* entry, const std::string& defines) const;
+  Expected<GLuint> program(const std::vector<std::pair<GLenum, const char*>>& stages, const std::string& defines);
+  Expected<GLuint> computeProgram(const char* entry, const std::string& defines = {});
+  // inputs.cpp
+  Status checkTexture(GLName tex, const char* what, FormatInfo::Kind kind, int minChannels,
+                      FormatInfo* infoOut = nullptr) const;
+  Status checkInputs(const FrameInputs& in, Method method) const;
+  // passes.cpp
+  void bindInputs(const FrameInputs& in) const;
+  void buildPyramid(GLuint prog) const;
+  Status dispatch(const FrameInputs& in, const Settings& settings);
+  // composite.cpp
+  Status composite(GLName framebuffer);
+};
+
+}  // namespace sslr

@@ -1,0 +1,120 @@
+// Checks of the host's inputs: every texture exists, is 2D, has the context's size and a usable
+// format, and the surface layout fits it. Each error names the field, the GL name and the problem.
+#include <cmath>
+#include <sstream>
+
+#include "context_impl.hpp"
+
+namespace sslr {
+
+FormatInfo formatInfo(GLint f) {
+  switch (f) {
+    case GL_DEPTH_COMPONENT16: return {FormatInfo::Depth, 1, "DEPTH_COMPONENT16"};
+    case GL_DEPTH_COMPONENT24: return {FormatInfo::Depth, 1, "DEPTH_COMPONENT24"};
+    case GL_DEPTH_COMPONENT32: return {FormatInfo::Depth, 1, "DEPTH_COMPONENT32"};
+    case GL_DEPTH_COMPONENT32F: return {FormatInfo::Depth, 1, "DEPTH_COMPONENT32F"};
+    case GL_DEPTH24_STENCIL8: return {FormatInfo::Depth, 1, "DEPTH24_STENCIL8"};
+    case GL_DEPTH32F_STENCIL8: return {FormatInfo::Depth, 1, "DEPTH32F_STENCIL8"};
+    case GL_R8: return {FormatInfo::Color, 1, "R8"};
+    case GL_R16: return {FormatInfo::Color, 1, "R16"};
+    case GL_R16F: return {FormatInfo::Color, 1, "R16F"};
+    case GL_R32F: return {FormatInfo::Color, 1, "R32F"};
+    case GL_RG8: return {FormatInfo::Color, 2, "RG8"};
+    case GL_RG16: return {FormatInfo::Color, 2, "RG16"};
+    case GL_RG16F: return {FormatInfo::Color, 2, "RG16F"};
+    case GL_RG32F: return {FormatInfo::Color, 2, "RG32F"};
+    case GL_RGB8: return {FormatInfo::Color, 3, "RGB8"};
+    case GL_RGB16: return {FormatInfo::Color, 3, "RGB16"};
+    case GL_RGB16F: return {FormatInfo::Color, 3, "RGB16F"};
+    case GL_RGB32F: return {FormatInfo::Color, 3, "RGB32F"};
+    case GL_R11F_G11F_B10F: return {FormatInfo::Color, 3, "R11F_G11F_B10F"};
+    case GL_RGB9_E5: return {FormatInfo::Color, 3, "RGB9_E5"};
+    case GL_SRGB8: return {FormatInfo::Color, 3, "SRGB8"};
+    case GL_RGBA8: return {FormatInfo::Color, 4, "RGBA8"};
+    case GL_SRGB8_ALPHA8: return {FormatInfo::Color, 4, "SRGB8_ALPHA8"};
+    case GL_RGB10_A2: return {FormatInfo::Color, 4, "RGB10_A2"};
+    case GL_RGBA16: return {FormatInfo::Color, 4, "RGBA16"};
+    case GL_RGBA16F: return {FormatInfo::Color, 4, "RGBA16F"};
+    case GL_RGBA32F: return {FormatInfo::Color, 4, "RGBA32F"};
+    default: return {};
+  }
+}
+
+// Checks one host texture: exists, is 2D, has the context's size and a usable format.
+Status Context::Impl::checkTexture(GLName tex, const char* what, FormatInfo::Kind kind, int minChannels,
+                                   FormatInfo* infoOut) const {
+  std::ostringstream where;
+  where << "sslr: FrameInputs::" << what << " (texture " << tex << ")";
+  if (tex == 0) return Status::error(where.str() + " is 0: the texture is required");
+  if (!gl.IsTexture(tex)) return Status::error(where.str() + " is not a texture name");
+  GLint target = 0;
+  gl.GetTextureParameteriv(tex, GL_TEXTURE_TARGET, &target);
+  if (target != GL_TEXTURE_2D) return Status::error(where.str() + " is not a GL_TEXTURE_2D");
+  GLint w = 0, h = 0, format = 0;
+  gl.GetTextureLevelParameteriv(tex, 0, GL_TEXTURE_WIDTH, &w);
+  gl.GetTextureLevelParameteriv(tex, 0, GL_TEXTURE_HEIGHT, &h);
+  gl.GetTextureLevelParameteriv(tex, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+  if (w != width || h != height) {
+    where << " is " << w << "x" << h << " but the context is " << width << "x" << height;
+    return Status::error(where.str());
+  }
+  FormatInfo info = formatInfo(format);
+  if (info.kind != kind) {
+    where << " has internal format 0x" << std::hex << format << std::dec << " ("
+          << info.name << "); expected " << (kind == FormatInfo::Depth ? "a depth format" :
+                                             "a float or unorm colour format");
+    return Status::error(where.str());
+  }
+  if (info.channels < minChannels) {
+    where << " has " << info.channels << " channel(s) (" << info.name << "); needs " << minChannels;
+    return Status::error(where.str());
+  }
+  if (kind == FormatInfo::Depth &&
+      (format == GL_DEPTH24_STENCIL8 || format == GL_DEPTH32F_STENCIL8)) {
+    GLint mode = 0;
+    gl.GetTextureParameteriv(tex, GL_DEPTH_STENCIL_TEXTURE_MODE, &mode);
+    if (mode != GL_DEPTH_COMPONENT)
+      return Status::error(where.str() + " samples stencil (GL_DEPTH_STENCIL_TEXTURE_MODE); "
+                           "set it to GL_DEPTH_COMPONENT");
+  }
+  if (infoOut) *infoOut = info;
+  return {};
+}
+
+Status Context::Impl::checkInputs(const FrameInputs& in, Method method) const {
+  if (Status s = checkTexture(in.depthTexture, "depthTexture", FormatInfo::Depth, 1); !s) return s;
+  if (method == Method::PositionBuffer) {
+    if (Status s = checkTexture(in.positionTexture, "positionTexture", FormatInfo::Color, 4); !s)
+      return Status::error(s.message() + " (Method::PositionBuffer needs a view-space position texture)");
+  }
+  if (Status s = checkTexture(in.colorTexture, "colorTexture", FormatInfo::Color, 3); !s) return s;
+  const int normalChannels = in.surface.normals == NormalEncoding::Octahedral ? 2 : 3;
+  FormatInfo normalInfo;
+  if (Status s = checkTexture(in.normalTexture, "normalTexture", FormatInfo::Color, normalChannels,
+                              &normalInfo);
+      !s)
+    return s;
+  const SurfaceLayout& sl = in.surface;
+  auto checkChannel = [&](int channel, const char* name) -> Status {
+    if (channel < -1 || channel > 3)
+      return Status::error(std::string("sslr: SurfaceLayout::") + name + " = " +
+                           std::to_string(channel) + " (must be -1..3)");
+    if (channel >= normalInfo.channels)
+      return Status::error(std::string("sslr: SurfaceLayout::") + name + " = " +
+                           std::to_string(channel) + " but normalTexture (" + normalInfo.name +
+                           ") has only " + std::to_string(normalInfo.channels) + " channel(s)");
+    return {};
+  };
+  if (Status s = checkChannel(sl.roughnessChannel, "roughnessChannel"); !s) return s;
+  if (Status s = checkChannel(sl.reflectanceChannel, "reflectanceChannel"); !s) return s;
+  const int normalUses = sl.normals == NormalEncoding::Octahedral ? 2 : 3;
+  if (sl.roughnessChannel >= 0 && sl.roughnessChannel < normalUses)
+    return Status::error("sslr: SurfaceLayout::roughnessChannel overlaps the normal's channels");
+  if (sl.reflectanceChannel >= 0 && sl.reflectanceChannel < normalUses)
+    return Status::error("sslr: SurfaceLayout::reflectanceChannel overlaps the normal's channels");
+  if (!std::isfinite(sl.constantRoughness) || !std::isfinite(sl.constantReflectance))
+    return Status::error("sslr: SurfaceLayout constant roughness/reflectance must be finite");
+  return {};
+}
+
+}  // namespace sslr

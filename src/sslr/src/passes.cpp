@@ -1,0 +1,149 @@
+// The passes of a frame: classify (tile list) -> depth pyramid (when a mode traces it) -> trace
+// -> blur H -> blur V. Everything after classification runs over the listed tiles only.
+#include "context_impl.hpp"
+#include "gl_state.hpp"
+#include "sslr/reference.hpp"
+
+namespace sslr {
+
+void Context::Impl::bindInputs(const FrameInputs& in) const {
+  gl.BindTextureUnit(0, in.depthTexture);
+  gl.BindSampler(0, nearestSampler);
+  gl.BindTextureUnit(1, in.normalTexture);
+  gl.BindSampler(1, nearestSampler);
+  gl.BindTextureUnit(2, in.colorTexture);
+  gl.BindSampler(2, linearSampler);
+  gl.BindTextureUnit(6, hiz);  // read by the depth-only trace (built when a mode needs it)
+  gl.BindSampler(6, nearestSampler);
+  gl.BindBufferBase(GL_UNIFORM_BUFFER, SSLR_BINDING_FRAME_UBO, frameUbo);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_TILE_SSBO, tileBuffer);
+  gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
+}
+
+// The min-max depth pyramid, one dispatch per level (each reads the level below). Its shader
+// returns at once when classification listed no tile.
+void Context::Impl::buildPyramid(GLuint prog) const {
+  gl.UseProgram(prog);
+  gl.BindTextureUnit(6, hiz);
+  gl.BindSampler(6, nearestSampler);
+  for (int level = 1; level <= hizLevels; ++level) {
+    const int w = hizWidth >> (level - 1), h = hizHeight >> (level - 1);
+    gl.ProgramUniform1i(prog, 0, level - 1);  // uSourceLevel
+    if (level == 1) gl.ProgramUniform2i(prog, 1, width, height);  // uSourceSize
+    else gl.ProgramUniform2i(prog, 1, hizWidth >> (level - 2), hizHeight >> (level - 2));
+    gl.BindImageTexture(0, hiz, level - 1, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+    gl.DispatchCompute(static_cast<GLuint>((w + SSLR_TILE_SIZE - 1) / SSLR_TILE_SIZE),
+                       static_cast<GLuint>((h + SSLR_TILE_SIZE - 1) / SSLR_TILE_SIZE), 1);
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  }
+}
+
+Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) {
+  haveFrame = false;
+  auto constants = frameConstants(in, settings, width, height);  // validates settings + projection
+  if (!constants) return Status::error(constants.error());
+  if (Status s = checkInputs(in, settings.method); !s) return s;
+
+  // Build every program this frame needs before touching any state.
+  std::string traceDefines;
+  if (settings.debugOutputs) traceDefines += "#define SSLR_DEBUG_OUTPUTS 1\n";
+  if (settings.collectStats) traceDefines += "#define SSLR_COLLECT_STATS 1\n";
+  if (settings.method == Method::PositionBuffer) traceDefines += "#define SSLR_METHOD_POSITION_BUFFER 1\n";
+  auto classify = computeProgram("classify.comp");
+  const bool depthOnly = settings.method != Method::PositionBuffer;
+  const bool pyramid = depthOnly && (settings.method == Method::HierarchicalDepth || settings.hierarchicalFallback);
+  Expected<GLuint> hizBuild = pyramid ? computeProgram("hiz.comp") : Expected<GLuint>(GLuint(0));
+  auto trace = computeProgram("trace.comp", traceDefines);
+  const bool blur = settings.blur && settings.blurMaxRadiusPx > 0.0f;
+  Expected<GLuint> blurH = GLuint(0), blurV = GLuint(0);
+  if (blur) {
+    blurH = computeProgram("blur.comp", "#define SSLR_BLUR_AXIS ivec2(1, 0)\n");
+    blurV = computeProgram("blur.comp", "#define SSLR_BLUR_AXIS ivec2(0, 1)\n#define SSLR_BLUR_VERTICAL 1\n");
+  }
+  for (const auto* p : {&classify, &hizBuild, &trace, &blurH, &blurV})
+    if (!*p) return Status::error(p->error());
+
+  detail::StateGuard guard(gl, false);
+  gl.PushDebugGroup(GL_DEBUG_SOURCE_THIRD_PARTY, 0, -1, "sslr.dispatch");
+
+  shared::SslrFrame frame = constants.value();
+  frameIndex = frameIndex == 0x7fffffff ? 1 : frameIndex + 1;
+  frame.trace.frameIndex = frameIndex;
+  gl.NamedBufferSubData(frameUbo, 0, sizeof(frame), &frame);
+  // Tile list header: trace dispatch (0, 1, 1), draw (6 vertices, 0 instances), blur dispatch.
+  const GLuint header[kTileHeader] = {0, 1, 1, 6, 0, 0, 0, 0, 0, 1, 1, 0};
+  gl.NamedBufferSubData(tileBuffer, 0, sizeof(header), header);
+  // Outputs are only written inside listed tiles: clear so the rest reads as "no reflection".
+  const float zero[4] = {0, 0, 0, 0};
+  gl.ClearTexImage(reflection, 0, GL_RGBA, GL_FLOAT, zero);
+  gl.ClearTexImage(resolved, 0, GL_RGBA, GL_FLOAT, zero);
+  if (settings.debugOutputs) {
+    gl.ClearTexImage(hit, 0, GL_RGBA, GL_FLOAT, zero);
+    gl.ClearTexImage(iterations, 0, GL_RED, GL_FLOAT, zero);
+  }
+  if (settings.collectStats) {
+    const GLuint statsZero[4] = {0, 0, 0, 0};
+    gl.NamedBufferSubData(statsBuffer, 0, sizeof(statsZero), statsZero);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_STATS_SSBO, statsBuffer);
+  }
+  bindInputs(in);
+  if (settings.method == Method::PositionBuffer) {
+    gl.BindTextureUnit(5, in.positionTexture);
+    gl.BindSampler(5, nearestSampler);
+  }
+
+  // Classification covers the screen; everything after runs over the listed tiles only.
+  gl.UseProgram(classify.value());
+  gl.DispatchCompute(static_cast<GLuint>(tilesX()), static_cast<GLuint>(tilesY()), 1);
+  gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+
+  if (pyramid) buildPyramid(hizBuild.value());
+
+  gl.UseProgram(trace.value());
+  gl.BindImageTexture(0, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  gl.BindImageTexture(3, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  if (settings.debugOutputs) {
+    gl.BindImageTexture(1, hit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    gl.BindImageTexture(2, iterations, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  }
+  gl.DispatchComputeIndirect(0);
+  gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                   GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+
+  // The trace wrote resolved = reflection everywhere; the separable blur (reflection -> blurTemp
+  // -> resolved) runs only over the tiles the trace listed as having a pixel to blur.
+  if (blur) {
+    gl.BindSampler(3, nearestSampler);
+    gl.BindSampler(4, nearestSampler);
+    gl.UseProgram(blurH.value());
+    gl.BindTextureUnit(3, reflection);
+    gl.BindImageTexture(0, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    gl.DispatchComputeIndirect(kBlurDispatchOffset);
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    gl.UseProgram(blurV.value());
+    gl.BindTextureUnit(3, blurTemp);
+    gl.BindTextureUnit(4, reflection);
+    gl.BindImageTexture(0, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    gl.DispatchComputeIndirect(kBlurDispatchOffset);
+  }
+  // The host (and composite) may read the outputs in any way next: make all writes visible.
+  gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+  gl.PopDebugGroup();
+
+  stats = {};
+  if (settings.collectStats) {
+    GLuint counts[kTileHeader] = {};
+    GLuint counters[3] = {0, 0, 0};
+    gl.GetNamedBufferSubData(tileBuffer, 0, sizeof(counts), counts);
+    gl.GetNamedBufferSubData(statsBuffer, 0, sizeof(counters), counters);
+    stats.tiles = counts[0];
+    stats.blurTiles = counts[8];
+    stats.tracedPixels = counters[0];
+    stats.fetches = counters[1];
+    stats.hierarchicalPixels = counters[2];
+  }
+  haveFrame = true;
+  return {};
+}
+
+}  // namespace sslr

@@ -1,0 +1,85 @@
+// Settings: the presets and the validation dispatch() runs (also public: sslr::validate).
+#include <cmath>
+#include <sstream>
+
+#include "sslr/sslr.hpp"
+
+namespace sslr {
+
+Settings Settings::preset(Preset preset) {
+  Settings s;
+  switch (preset) {
+    case Preset::Low:
+      s.maxIterations = 8;  // 6 lost half the long reflections at 960x540 (docs/results.md)
+      s.convergenceEps = 0.01f;
+      s.blurMaxRadiusPx = 4.0f;
+      s.roughnessCutoff = 0.3f;
+      break;
+    case Preset::Medium:
+      s.maxIterations = 10;  // the article's fixed count
+      s.convergenceEps = 0.005f;
+      s.blurMaxRadiusPx = 6.0f;
+      s.roughnessCutoff = 0.4f;
+      break;
+    case Preset::High:
+      break;  // the defaults
+    case Preset::Ultra:
+      s.maxIterations = 32;
+      s.convergenceEps = 0.0005f;
+      s.blurMaxRadiusPx = 12.0f;
+      s.roughnessCutoff = 0.6f;
+      break;
+  }
+  return s;
+}
+
+std::string validate(const Settings& s) {
+  std::ostringstream why;
+  auto finite = [](float v) { return std::isfinite(v); };
+  if (s.maxIterations < 1 || s.maxIterations > 256)
+    why << "maxIterations = " << s.maxIterations << " (must be 1..256); ";
+  if (s.hierarchicalMaxSteps < 1 || s.hierarchicalMaxSteps > 1024)
+    why << "hierarchicalMaxSteps = " << s.hierarchicalMaxSteps << " (must be 1..1024); ";
+  if (!finite(s.objectThickness) || s.objectThickness < 0.0f)
+    why << "objectThickness = " << s.objectThickness << " (must be >= 0); ";
+  if (!finite(s.convergenceEps) || s.convergenceEps < 0.0f)
+    why << "convergenceEps = " << s.convergenceEps << " (must be >= 0); ";
+  if (!finite(s.initialLengthScreen) || s.initialLengthScreen <= 0.0f || s.initialLengthScreen > 1.0f)
+    why << "initialLengthScreen = " << s.initialLengthScreen << " (must be in (0, 1]); ";
+  if (!finite(s.errorK) || s.errorK < 0.0f) why << "errorK = " << s.errorK << " (must be >= 0); ";
+  if (!(s.maxDistance > 0.0f)) why << "maxDistance = " << s.maxDistance << " (must be > 0); ";
+  if (!finite(s.thicknessRelative) || s.thicknessRelative < 0.0f)
+    why << "thicknessRelative = " << s.thicknessRelative << " (must be >= 0); ";
+  if (!finite(s.thicknessPixels) || s.thicknessPixels < 0.0f)
+    why << "thicknessPixels = " << s.thicknessPixels << " (must be >= 0); ";
+  if (s.thicknessRelative == 0.0f && s.thicknessPixels == 0.0f)
+    why << "thicknessRelative and thicknessPixels are both 0 (no hit could validate); ";
+  if (!finite(s.edgeFade) || s.edgeFade < 0.0f || s.edgeFade > 0.5f)
+    why << "edgeFade = " << s.edgeFade << " (must be 0..0.5); ";
+  if (!finite(s.cameraFadeStart) || !finite(s.cameraFadeEnd) || s.cameraFadeEnd < s.cameraFadeStart)
+    why << "cameraFadeStart/End = " << s.cameraFadeStart << "/" << s.cameraFadeEnd
+        << " (must be finite, start <= end); ";
+  if (!finite(s.roughnessCutoff)) why << "roughnessCutoff is not finite; ";
+  if (!finite(s.minReflectance)) why << "minReflectance is not finite; ";
+  if (!finite(s.blurMaxRadiusPx) || s.blurMaxRadiusPx < 0.0f || s.blurMaxRadiusPx > 32.0f)
+    why << "blurMaxRadiusPx = " << s.blurMaxRadiusPx << " (must be 0..32); ";
+  if (!finite(s.blurConeScale) || s.blurConeScale < 0.0f)
+    why << "blurConeScale = " << s.blurConeScale << " (must be >= 0); ";
+  if (!finite(s.blurDepthSigma) || s.blurDepthSigma <= 0.0f)
+    why << "blurDepthSigma = " << s.blurDepthSigma << " (must be > 0); ";
+  if (!finite(s.blurNormalPower) || s.blurNormalPower < 0.0f)
+    why << "blurNormalPower = " << s.blurNormalPower << " (must be >= 0); ";
+  const PositionBufferSettings& pb = s.positionBuffer;
+  if (!(pb.maxDistance > 0.0f) || !finite(pb.maxDistance))
+    why << "positionBuffer.maxDistance = " << pb.maxDistance << " (must be > 0); ";
+  if (!(pb.resolution > 0.0f && pb.resolution <= 1.0f))
+    why << "positionBuffer.resolution = " << pb.resolution << " (must be in (0, 1]); ";
+  if (pb.steps < 0 || pb.steps > 64) why << "positionBuffer.steps = " << pb.steps << " (must be 0..64); ";
+  if (!(pb.thickness > 0.0f) || !finite(pb.thickness))
+    why << "positionBuffer.thickness = " << pb.thickness << " (must be > 0); ";
+  std::string text = why.str();
+  if (!text.empty()) text = "sslr: invalid Settings: " + text.substr(0, text.size() - 2);
+  return text;
+}
+
+}  // namespace sslr
