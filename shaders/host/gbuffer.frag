@@ -9,7 +9,7 @@ layout(location = 3) uniform vec3 uBaseColor;
 layout(location = 4) uniform float uMetallic;
 layout(location = 5) uniform float uRoughness;
 layout(location = 6) uniform float uReflectance;
-layout(location = 7) uniform float uEmissive;
+layout(location = 7) uniform vec3 uEmission;  // emitted colour, added to the lit colour
 layout(location = 8) uniform int uHasTexture;
 layout(location = 9) uniform vec3 uVsLightDirection;  // direction the light travels, view space
 layout(location = 10) uniform vec3 uVsUp;             // world up in view space (sky ambient)
@@ -30,7 +30,7 @@ void main() {
   float diffuse = max(dot(n, -uVsLightDirection), 0.0f);
   float ambient = 0.18f + 0.12f * dot(n, uVsUp);
   float kd = 1.0f - 0.85f * uMetallic;
-  oColor = vec4(base * (kd * (0.85f * diffuse + ambient) + uEmissive), 1.0f);
+  oColor = vec4(base * kd * (0.85f * diffuse + ambient) + uEmission, 1.0f);
   if (uNormalEncoding == SSLR_NORMALS_OCTAHEDRAL)
     oNormal = vec4(sslrOctEncode(n), uRoughness, uReflectance);
   else

@@ -200,7 +200,8 @@ Status GBuffer::render(const GpuScene& gpu, const Camera& camera, glm::dvec2 jit
     glProgramUniform1f(program_, 4, m.metallic);
     glProgramUniform1f(program_, 5, m.roughness);
     glProgramUniform1f(program_, 6, reflectance(m));
-    glProgramUniform1f(program_, 7, m.emissive);
+    const glm::vec3 emission = m.baseColor * m.emissive + m.emissiveColor;
+    glProgramUniform3fv(program_, 7, 1, &emission.x);
     const GLuint tex = gpu.texture(m.baseColorTexture);
     glProgramUniform1i(program_, 8, tex != 0 ? 1 : 0);
     glBindTextureUnit(0, tex);

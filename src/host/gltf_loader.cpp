@@ -5,7 +5,8 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <functional>
+#include <fstream>
+#include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -17,6 +18,137 @@ namespace {
 struct LoadError {
   std::string message;
 };
+
+// Sizes and offsets in a glTF file are untrusted 64-bit values: every sum and product of them is
+// checked, so a wrapped value can never pass a bounds test.
+bool addOverflows(size_t a, size_t b, size_t& sum) { return __builtin_add_overflow(a, b, &sum); }
+bool mulOverflows(size_t a, size_t b, size_t& product) { return __builtin_mul_overflow(a, b, &product); }
+
+// Text from a file (an error of the parser may quote it): printable ASCII only, and short, so the
+// raw bytes of a binary file never reach the terminal.
+std::string printable(const std::string& text, size_t limit = 240) {
+  std::string out;
+  for (char ch : text) {
+    if (out.size() >= limit) {
+      out += "...";
+      break;
+    }
+    const auto c = static_cast<unsigned char>(ch);
+    out += (c >= 32 && c < 127) ? ch : (c == '\n' ? ' ' : '?');
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+
+// ---- File access: only inside the model's folder ----------------------------------------------
+// tinygltf reads external buffers and images through these callbacks. A URI may name any path
+// ("/etc/passwd", "../../x"); a renderer run on files from elsewhere must not read outside the
+// model's folder, nor try to read a directory or a huge file into memory.
+constexpr std::uintmax_t kMaxExternalFileBytes = std::uintmax_t(2) << 30;  // 2 GiB
+
+struct FolderJail {
+  std::filesystem::path root;  // canonical folder of the model file
+  std::string modelFile;       // canonical path of the model itself
+};
+
+std::string explainOutside(const std::string& path, const FolderJail& jail) {
+  return "'" + printable(path) + "' is outside the model's folder " + jail.root.string() +
+         " (external buffers and images must lie in that folder or below it)";
+}
+
+// Empty string: readable; else why not.
+std::string checkReadable(const std::string& path, const FolderJail& jail, std::filesystem::path& resolved) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  resolved = fs::weakly_canonical(fs::path(path), ec);
+  if (ec) return "'" + printable(path) + "': " + ec.message();
+  if (resolved.string() != jail.modelFile) {
+    const auto rel = resolved.lexically_relative(jail.root);
+    if (rel.empty() || *rel.begin() == "..") return explainOutside(path, jail);
+  }
+  if (!fs::exists(resolved, ec)) return "'" + printable(path) + "' does not exist";
+  if (!fs::is_regular_file(resolved, ec)) return "'" + printable(path) + "' is not a regular file";
+  const auto size = fs::file_size(resolved, ec);
+  if (ec) return "'" + printable(path) + "': " + ec.message();
+  if (size > kMaxExternalFileBytes)
+    return "'" + printable(path) + "' is " + std::to_string(size >> 20) + " MiB (more than the 2048 MiB limit)";
+  return {};
+}
+
+// Anything that exists "exists" here, so that the read below is attempted and its refusal says why.
+bool jailFileExists(const std::string& path, void*) {
+  std::error_code ec;
+  return std::filesystem::exists(path, ec);
+}
+
+std::string jailExpandFilePath(const std::string& path, void*) { return path; }  // no ~ or $VAR
+
+bool jailReadWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  std::filesystem::path resolved;
+  if (std::string why = checkReadable(path, *static_cast<FolderJail*>(user), resolved); !why.empty()) {
+    if (err) *err += why + "\n";
+    return false;
+  }
+  std::ifstream in(resolved, std::ios::binary);
+  in.seekg(0, std::ios::end);
+  const auto size = static_cast<std::streamoff>(in.tellg());
+  in.seekg(0, std::ios::beg);
+  out->resize(static_cast<size_t>(std::max<std::streamoff>(size, 0)));
+  if (size > 0) in.read(reinterpret_cast<char*>(out->data()), size);
+  if (!in) {
+    if (err) *err += "cannot read '" + printable(path) + "'\n";
+    return false;
+  }
+  return true;
+}
+
+bool jailWriteWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (err) *err += "writing is not supported\n";
+  return false;
+}
+
+// ---- Images: size limit before decoding ---------------------------------------------------------
+constexpr int kMaxImageSide = 16384;
+
+// Width and height from a PNG or JPEG header (false: another format or a short header).
+bool imageSize(const unsigned char* bytes, int size, int& w, int& h) {
+  auto be16 = [&](int at) { return (bytes[at] << 8) | bytes[at + 1]; };
+  auto be32 = [&](int at) { return int((unsigned(bytes[at]) << 24) | (unsigned(bytes[at + 1]) << 16) | (unsigned(bytes[at + 2]) << 8) | bytes[at + 3]); };
+  static const unsigned char png[8] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
+  if (size >= 24 && std::memcmp(bytes, png, 8) == 0) {
+    w = be32(16);
+    h = be32(20);
+    return true;
+  }
+  if (size >= 4 && bytes[0] == 0xff && bytes[1] == 0xd8) {
+    int at = 2;
+    while (at + 9 < size && bytes[at] == 0xff) {
+      const int marker = bytes[at + 1];
+      const int length = be16(at + 2);
+      // Start-of-frame markers (baseline, progressive, ...) carry the size.
+      if (marker >= 0xc0 && marker <= 0xcf && marker != 0xc4 && marker != 0xc8 && marker != 0xcc) {
+        h = be16(at + 5);
+        w = be16(at + 7);
+        return true;
+      }
+      at += 2 + length;
+    }
+  }
+  return false;
+}
+
+bool limitedImageLoader(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int reqW,
+                        int reqH, const unsigned char* bytes, int size, void* user) {
+  int w = 0, h = 0;
+  if (imageSize(bytes, size, w, h) && (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide)) {
+    if (err)
+      *err += "image " + std::to_string(index) + " ('" + printable(image->uri) + "') is " + std::to_string(w) + "x" +
+              std::to_string(h) + ": the tools load images up to " + std::to_string(kMaxImageSide) + "x" +
+              std::to_string(kMaxImageSide) + "\n";
+    return false;
+  }
+  return tinygltf::LoadImageData(image, index, err, warn, reqW, reqH, bytes, size, user);
+}
 
 // Bounds-checked view of one accessor's elements.
 struct AccessorView {
@@ -73,13 +205,19 @@ AccessorView viewAccessor(const tinygltf::Model& model, int index, const std::st
   const size_t elemSize = static_cast<size_t>(compSize) * comps;
   const size_t stride = bv.byteStride != 0 ? bv.byteStride : elemSize;
   if (stride < elemSize) throw LoadError{what + ": byteStride is smaller than an element"};
-  if (bv.byteOffset + bv.byteLength > buffer.data.size())
-    throw LoadError{what + ": bufferView " + std::to_string(a.bufferView) + " runs past the end of buffer " +
-                    std::to_string(bv.buffer) + " (" + std::to_string(bv.byteOffset + bv.byteLength) +
-                    " > " + std::to_string(buffer.data.size()) + " bytes): the buffer is missing or short"};
-  if (a.count > 0 && a.byteOffset + stride * (a.count - 1) + elemSize > bv.byteLength)
-    throw LoadError{what + ": " + std::to_string(a.count) + " elements run past the end of bufferView " +
-                    std::to_string(a.bufferView)};
+  size_t viewEnd = 0;
+  if (addOverflows(bv.byteOffset, bv.byteLength, viewEnd) || viewEnd > buffer.data.size())
+    throw LoadError{what + ": bufferView " + std::to_string(a.bufferView) + " (byteOffset " +
+                    std::to_string(bv.byteOffset) + ", byteLength " + std::to_string(bv.byteLength) +
+                    ") runs past the end of buffer " + std::to_string(bv.buffer) + " (" +
+                    std::to_string(buffer.data.size()) + " bytes): the buffer is missing or short"};
+  size_t span = 0, last = 0, end = 0;
+  if (a.byteOffset > bv.byteLength ||
+      (a.count > 0 && (mulOverflows(stride, a.count - 1, span) || addOverflows(span, elemSize, last) ||
+                       addOverflows(a.byteOffset, last, end) || end > bv.byteLength)))
+    throw LoadError{what + ": " + std::to_string(a.count) + " elements of " + std::to_string(elemSize) +
+                    " bytes from byteOffset " + std::to_string(a.byteOffset) + " run past the end of bufferView " +
+                    std::to_string(a.bufferView) + " (" + std::to_string(bv.byteLength) + " bytes)"};
   AccessorView v;
   v.data = buffer.data.data() + bv.byteOffset + a.byteOffset;
   v.count = a.count;
@@ -111,7 +249,10 @@ bool finiteMatrix(const glm::dmat4& m) {
   return true;
 }
 
-void loadMaterials(const tinygltf::Model& model, Scene& scene) {
+// Features the tools do not render, each reported once per file.
+using Ignored = std::set<std::string>;
+
+void loadMaterials(const tinygltf::Model& model, Scene& scene, Ignored& ignored) {
   for (size_t i = 0; i < model.materials.size(); ++i) {
     const auto& pbr = model.materials[i].pbrMetallicRoughness;
     Material m;
@@ -121,6 +262,17 @@ void loadMaterials(const tinygltf::Model& model, Scene& scene) {
     m.roughness = static_cast<float>(pbr.roughnessFactor);
     if (!std::isfinite(m.baseColor.r + m.baseColor.g + m.baseColor.b + m.metallic + m.roughness))
       throw LoadError{"material " + std::to_string(i) + ": factors are not finite"};
+    const auto& e = model.materials[i].emissiveFactor;
+    if (e.size() >= 3) m.emissiveColor = glm::vec3(e[0], e[1], e[2]);
+    if (!std::isfinite(m.emissiveColor.r + m.emissiveColor.g + m.emissiveColor.b))
+      throw LoadError{"material " + std::to_string(i) + ": emissiveFactor is not finite"};
+    m.emissiveColor = glm::clamp(m.emissiveColor, 0.0f, 1.0f);
+    if (model.materials[i].emissiveTexture.index >= 0) ignored.insert("emissive textures (the emissive factor is used)");
+    if (model.materials[i].normalTexture.index >= 0) ignored.insert("normal maps");
+    if (pbr.metallicRoughnessTexture.index >= 0)
+      ignored.insert("metallic-roughness textures (the factors are used)");
+    if (model.materials[i].alphaMode != "OPAQUE" && !model.materials[i].alphaMode.empty())
+      ignored.insert("alpha modes MASK and BLEND (drawn opaque)");
     m.baseColor = glm::clamp(m.baseColor, 0.0f, 1.0f);
     m.metallic = glm::clamp(m.metallic, 0.0f, 1.0f);
     m.roughness = glm::clamp(m.roughness, 0.0f, 1.0f);
@@ -158,13 +310,28 @@ void loadMaterials(const tinygltf::Model& model, Scene& scene) {
   scene.materials.push_back(Material{});  // default material for primitives without one
 }
 
+// Triangle lists from TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN index sequences (glTF 2.0, 3.7.2.1:
+// strip triangle i = (i, i+1, i+2) with every other one flipped to keep the winding; fan = (0, i+1, i+2)).
+std::vector<std::uint32_t> triangleList(int mode, const std::vector<std::uint32_t>& seq) {
+  if (mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) return seq;
+  std::vector<std::uint32_t> out;
+  for (size_t i = 0; i + 2 < seq.size(); ++i) {
+    if (mode == TINYGLTF_MODE_TRIANGLE_FAN) out.insert(out.end(), {seq[0], seq[i + 1], seq[i + 2]});
+    else if (i % 2 == 0) out.insert(out.end(), {seq[i], seq[i + 1], seq[i + 2]});
+    else out.insert(out.end(), {seq[i + 1], seq[i], seq[i + 2]});
+  }
+  return out;
+}
+
 void loadPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim, const std::string& where,
-                   const glm::dmat4& worldFromModel, Scene& scene) {
-  if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES) {
-    scene.warnings.push_back(where + ": mode " + std::to_string(prim.mode) +
-                             " is not TRIANGLES; primitive skipped");
+                   const glm::dmat4& worldFromModel, Scene& scene, Ignored& ignored) {
+  const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+    ignored.insert("points and lines (primitive modes 0-3)");
     return;
   }
+  if (!prim.targets.empty()) ignored.insert("morph targets (meshes drawn without them)");
+  if (prim.attributes.count("JOINTS_0") != 0) ignored.insert("skins (meshes drawn in their bind pose)");
   auto pos = prim.attributes.find("POSITION");
   if (pos == prim.attributes.end()) throw LoadError{where + ": has no POSITION attribute"};
   AccessorView pv = viewAccessor(model, pos->second, where + " POSITION", TINYGLTF_TYPE_VEC3,
@@ -193,6 +360,7 @@ void loadPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim
   } else {
     for (size_t i = 0; i < pv.count; ++i) mesh.indices.push_back(static_cast<std::uint32_t>(i));
   }
+  mesh.indices = triangleList(mode, mesh.indices);
   if (mesh.indices.size() % 3 != 0) {
     scene.warnings.push_back(where + ": index count " + std::to_string(mesh.indices.size()) +
                              " is not a multiple of 3; trailing indices dropped");
@@ -252,7 +420,12 @@ Expected<Scene> loadGltf(const std::string& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) return Status::error(path + ": file not found");
   if (!fs::is_regular_file(path, ec)) return Status::error(path + ": not a regular file");
+  FolderJail jail;
+  jail.modelFile = fs::weakly_canonical(fs::path(path), ec).string();
+  jail.root = fs::path(jail.modelFile).parent_path();
   tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks({&jailFileExists, &jailExpandFilePath, &jailReadWholeFile, &jailWriteWholeFile, &jail});
+  loader.SetImageLoader(&limitedImageLoader, nullptr);
   tinygltf::Model model;
   std::string err, warn;
   const bool binary = path.size() >= 4 && (path.substr(path.size() - 4) == ".glb" || path.substr(path.size() - 4) == ".GLB");
@@ -260,36 +433,91 @@ Expected<Scene> loadGltf(const std::string& path) {
   try {
     ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
                 : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  } catch (const std::bad_alloc&) {
+    return Status::error(path + ": out of memory while parsing (a buffer or image larger than memory?)");
   } catch (const std::exception& e) {
-    return Status::error(path + ": malformed glTF: " + e.what());
+    return Status::error(path + ": malformed glTF: " + printable(e.what()));
   }
   if (!ok) {
-    while (!err.empty() && (err.back() == '\n' || err.back() == '\r')) err.pop_back();
-    return Status::error(path + ": cannot load glTF: " + (err.empty() ? "unknown error" : err));
+    if (model.asset.version.rfind("1.", 0) == 0)
+      return Status::error(path + ": glTF " + printable(model.asset.version, 16) + " is not supported (glTF 2.0 only)");
+    return Status::error(path + ": cannot load glTF: " + (err.empty() ? "unknown error" : printable(err, 400)));
+  }
+  if (model.asset.version.rfind("2.", 0) != 0)
+    return Status::error(path + ": glTF version '" + printable(model.asset.version, 16) + "' is not supported (glTF 2.0 only)");
+  // Required extensions change what the data means (compressed geometry, quantized attributes):
+  // a file that needs one the tools do not implement is refused, naming it.
+  if (!model.extensionsRequired.empty()) {
+    std::string names;
+    for (const std::string& e : model.extensionsRequired) names += (names.empty() ? "" : ", ") + printable(e, 80);
+    return Status::error(path + ": requires extension(s) " + names + ", which the tools do not support");
   }
   Scene scene;
   scene.name = fs::path(path).filename().string();
-  if (!warn.empty()) scene.warnings.push_back(warn);
+  if (!warn.empty()) scene.warnings.push_back(printable(warn, 400));
   try {
-    loadMaterials(model, scene);
+    Ignored ignored;
+    loadMaterials(model, scene, ignored);
+    if (!model.skins.empty()) ignored.insert("skins (meshes drawn in their bind pose)");
+    if (!model.animations.empty()) ignored.insert("animations (the scene is drawn at rest)");
+    for (const std::string& ext : model.extensionsUsed)
+      if (std::find(model.extensionsRequired.begin(), model.extensionsRequired.end(), ext) ==
+          model.extensionsRequired.end())
+        ignored.insert("extension " + printable(ext, 80));
+    // glTF allows one parent per node and scene roots without parents: check it before instancing
+    // (a node listed twice as a child turns 20 nodes into 2^20 instances) and so the traversal below
+    // is a forest walk, iterative, whatever the file's depth.
+    const size_t nodeCount = model.nodes.size();
+    std::vector<int> parent(nodeCount, -1);
+    for (size_t i = 0; i < nodeCount; ++i)
+      for (int child : model.nodes[i].children) {
+        if (child < 0 || static_cast<size_t>(child) >= nodeCount)
+          throw LoadError{"node " + std::to_string(i) + " lists child " + std::to_string(child) + ", which does not exist"};
+        if (parent[child] >= 0)
+          throw LoadError{"node " + std::to_string(child) + " has more than one parent (nodes " +
+                          std::to_string(parent[child]) + " and " + std::to_string(i) +
+                          "); glTF allows one parent per node"};
+        parent[child] = static_cast<int>(i);
+      }
+    std::vector<int> roots;
+    if (!model.scenes.empty()) {
+      const int s = model.defaultScene >= 0 && model.defaultScene < static_cast<int>(model.scenes.size())
+                        ? model.defaultScene : 0;
+      roots = model.scenes[s].nodes;
+      for (int r : roots) {
+        if (r < 0 || static_cast<size_t>(r) >= nodeCount)
+          throw LoadError{"scene " + std::to_string(s) + " lists node " + std::to_string(r) + ", which does not exist"};
+        if (parent[r] >= 0)
+          throw LoadError{"scene " + std::to_string(s) + " lists node " + std::to_string(r) +
+                          " as a root, but node " + std::to_string(parent[r]) + " is its parent (a cycle or a shared node)"};
+      }
+    } else {
+      // No scene: every node that is nobody's child is a root.
+      for (size_t i = 0; i < nodeCount; ++i)
+        if (parent[i] < 0) roots.push_back(static_cast<int>(i));
+    }
     std::optional<Camera> camera;
-    std::vector<int> visiting;
-    std::function<void(int, const glm::dmat4&)> visit = [&](int nodeIndex, const glm::dmat4& parent) {
-      if (nodeIndex < 0 || nodeIndex >= static_cast<int>(model.nodes.size()))
-        throw LoadError{"node " + std::to_string(nodeIndex) + " does not exist"};
-      if (std::find(visiting.begin(), visiting.end(), nodeIndex) != visiting.end())
-        throw LoadError{"node " + std::to_string(nodeIndex) + " is its own ancestor (cycle)"};
-      visiting.push_back(nodeIndex);
+    std::vector<bool> visited(nodeCount, false);
+    std::vector<std::pair<int, glm::dmat4>> stack;
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, glm::dmat4(1.0));
+    while (!stack.empty()) {
+      const auto [nodeIndex, parentWorld] = stack.back();
+      stack.pop_back();
+      // With one parent per node and parentless roots, a node is reached once; a repeated root
+      // in the scene list is the only way back.
+      if (visited[nodeIndex]) throw LoadError{"node " + std::to_string(nodeIndex) + " is listed twice in the scene"};
+      visited[nodeIndex] = true;
       const tinygltf::Node& node = model.nodes[nodeIndex];
-      const glm::dmat4 world = parent * nodeMatrix(node);
+      const glm::dmat4 world = parentWorld * nodeMatrix(node);
       if (!finiteMatrix(world)) throw LoadError{"node " + std::to_string(nodeIndex) + ": transform is not finite"};
+      if (node.skin >= 0) ignored.insert("skins (meshes drawn in their bind pose)");
       if (node.mesh >= 0) {
         if (node.mesh >= static_cast<int>(model.meshes.size()))
           throw LoadError{"node " + std::to_string(nodeIndex) + ": mesh " + std::to_string(node.mesh) + " does not exist"};
         const auto& prims = model.meshes[node.mesh].primitives;
         for (size_t p = 0; p < prims.size(); ++p)
           loadPrimitive(model, prims[p], "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p),
-                        world, scene);
+                        world, scene, ignored);
       }
       if (node.camera >= 0 && !camera && node.camera < static_cast<int>(model.cameras.size())) {
         const tinygltf::Camera& gc = model.cameras[node.camera];
@@ -313,28 +541,17 @@ Expected<Scene> loadGltf(const std::string& path) {
         else
           scene.warnings.push_back("camera " + std::to_string(node.camera) + " ignored: " + why);
       }
-      for (int child : node.children) visit(child, world);
-      visiting.pop_back();
-    };
-    std::vector<int> roots;
-    if (!model.scenes.empty()) {
-      const int s = model.defaultScene >= 0 && model.defaultScene < static_cast<int>(model.scenes.size())
-                        ? model.defaultScene : 0;
-      roots = model.scenes[s].nodes;
-    } else {
-      // No scene: every node that is nobody's child is a root.
-      std::vector<bool> isChild(model.nodes.size(), false);
-      for (const auto& n : model.nodes)
-        for (int c : n.children)
-          if (c >= 0 && c < static_cast<int>(isChild.size())) isChild[c] = true;
-      for (size_t i = 0; i < model.nodes.size(); ++i)
-        if (!isChild[i]) roots.push_back(static_cast<int>(i));
+      for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.emplace_back(*it, world);
     }
-    for (int r : roots) visit(r, glm::dmat4(1.0));
+    for (const std::string& what : ignored) scene.warnings.push_back("ignored: " + what);
     if (scene.meshes.empty()) throw LoadError{"the scene has no triangle meshes"};
     scene.camera = camera;
   } catch (const LoadError& e) {
     return Status::error(path + ": " + e.message);
+  } catch (const std::bad_alloc&) {
+    return Status::error(path + ": out of memory while building the meshes");
+  } catch (const std::exception& e) {
+    return Status::error(path + ": " + printable(e.what()));
   }
   return scene;
 }

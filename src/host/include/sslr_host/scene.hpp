@@ -23,7 +23,8 @@ struct Material {
   float metallic = 0.0f;
   float roughness = 0.8f;
   int baseColorTexture = -1;  // index into Scene::textures
-  float emissive = 0.0f;      // adds baseColor * emissive to the lit colour
+  float emissive = 0.0f;      // adds baseColor * emissive to the lit colour (built-in scenes)
+  glm::vec3 emissiveColor{0.0f};  // adds this colour (glTF emissiveFactor), linear
 };
 
 struct Mesh {
