@@ -3,9 +3,14 @@
 // Exit codes: 0 success, 1 rendering/GL failure, 2 bad command line or input file.
 #include <cxxopts.hpp>
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "sslr_host/egl_context.hpp"
@@ -51,6 +56,21 @@ void parseSize(const std::string& text, int& w, int& h) {
   char x = 0;
   if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || !in.eof() || w < 1 || h < 1 || w > 16384 || h > 16384)
     throw UsageError{"--size expects WxH with 1..16384 each (got '" + text + "')"};
+}
+
+// --out must be a directory we can write to: checked (and created) before any rendering, so a
+// typo or a read-only place costs no render and leaves nothing behind.
+void checkOutputDirectory(const fs::path& dir) {
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw UsageError{"--out " + dir.string() + " exists and is not a directory"};
+  fs::create_directories(dir, ec);
+  if (ec) throw UsageError{"--out " + dir.string() + ": cannot create the directory: " + ec.message()};
+  const fs::path probe = dir / (".sslr-render-write-test-" + std::to_string(::getpid()));
+  std::FILE* f = std::fopen(probe.c_str(), "wb");
+  if (f == nullptr) throw UsageError{"--out " + dir.string() + " is not writable: " + std::strerror(errno)};
+  std::fclose(f);
+  fs::remove(probe, ec);
 }
 
 Settings parseSettings(const cxxopts::ParseResult& args) {
@@ -181,6 +201,7 @@ int run(int argc, char** argv) {
       camera.orthoHeight = parsePositive("ortho", args["ortho"].as<std::string>());
     }
     if (std::string why = camera.validate(); !why.empty()) throw UsageError{"camera: " + why};
+    checkOutputDirectory(outDir);
   } catch (const UsageError& e) {
     std::cerr << "sslr-render: " << e.message << "\n";
     return kExitUsage;
@@ -224,21 +245,36 @@ int run(int argc, char** argv) {
       files.push_back({"resolved.exr", {r.readResolved(), {"R", "G", "B", "A"}}});
     }
   }
+  std::optional<HitMetrics> score;
+  if (args.count("score") && reflections) {
+    auto truth = groundTruthFor(scene, r.gbuffer(), settings);
+    if (!truth) {
+      std::cerr << "sslr-render: ground truth: " << truth.error() << "\n";
+      return kExitFailure;
+    }
+    const Image color = r.gbuffer().readColor();
+    const Image hit = r.readHit();
+    score = compareHits(truth.value(), hit, kReportedConfidence, &color);
+    files.push_back({"error.png", {hitErrorImage(truth.value(), hit), {}}});
+  }
   if (gl.value()->glErrorCount() > 0) {
     std::cerr << "sslr-render: " << gl.value()->glErrorCount() << " GL error(s) were reported; no output written\n";
     return kExitFailure;
   }
-  std::error_code ec;
-  fs::create_directories(outDir, ec);
-  if (ec) {
-    std::cerr << "sslr-render: cannot create output directory " << outDir << ": " << ec.message() << "\n";
-    return kExitFailure;
-  }
+  // Every file is encoded first, then all are written under temporary names and renamed into
+  // place: a failed write (disk full) leaves no partial output behind.
+  std::vector<std::pair<std::string, std::vector<unsigned char>>> encoded;
   for (const auto& [name, image] : files) {
-    if (Status s = writeImage((outDir / name).string(), image.first, image.second); !s) {
-      std::cerr << "sslr-render: " << s.message() << "\n";
+    auto bytes = encodeImage((outDir / name).string(), image.first, image.second);
+    if (!bytes) {
+      std::cerr << "sslr-render: " << bytes.error() << "\n";
       return kExitFailure;
     }
+    encoded.emplace_back((outDir / name).string(), std::move(bytes.value()));
+  }
+  if (Status s = writeFiles(encoded); !s) {
+    std::cerr << "sslr-render: " << s.message() << "\n";
+    return kExitFailure;
   }
   std::cout << "sslr-render: " << scene.name << " " << gopt.width << "x" << gopt.height << " ("
             << toString(gopt.depth) << " depth, " << scene.triangleCount() << " triangles) -> "
@@ -250,18 +286,8 @@ int run(int argc, char** argv) {
               << " per traced pixel), hierarchical traversal on " << st.hierarchicalPixels << " ("
               << (st.tracedPixels ? 100.0 * st.hierarchicalPixels / st.tracedPixels : 0.0) << "% of traced)\n";
   }
-  if (args.count("score") && reflections) {
-    auto truth = groundTruthFor(scene, r.gbuffer(), settings);
-    if (!truth) {
-      std::cerr << "sslr-render: ground truth: " << truth.error() << "\n";
-      return kExitFailure;
-    }
-    const Image color = r.gbuffer().readColor();
-    const HitMetrics m = compareHits(truth.value(), r.readHit(), kReportedConfidence, &color);
-    if (Status s = writeImage((outDir / "error.png").string(), hitErrorImage(truth.value(), r.readHit()), {}); !s) {
-      std::cerr << "sslr-render: " << s.message() << "\n";
-      return kExitFailure;
-    }
+  if (score) {
+    const HitMetrics& m = *score;
     std::printf("  truth: %zu visible (A), %zu occluded (B), %zu off screen (C), %zu escaped (D)\n", m.visible,
                 m.occluded, m.offScreen, m.escaped);
     std::printf("  recall@1px %.4f @2px %.4f @4px %.4f  median %.3f px  p95 %.3f px  false hits %.4f "

@@ -1,9 +1,14 @@
 #include "sslr_host/image_io.hpp"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
 
 namespace sslr::host {
 
@@ -21,7 +26,8 @@ bool endsWith(const std::string& s, const std::string& suffix) {
 }
 }  // namespace
 
-Status writeImage(const std::string& path, const Image& image, const std::vector<std::string>& channelNames) {
+Expected<std::vector<unsigned char>> encodeImage(const std::string& path, const Image& image,
+                                                 const std::vector<std::string>& channelNames) {
   if (image.width <= 0 || image.height <= 0 || image.channels <= 0 ||
       image.pixels.size() != static_cast<size_t>(image.width) * image.height * image.channels)
     return Status::error(path + ": refusing to write an empty or inconsistent image");
@@ -33,7 +39,11 @@ Status writeImage(const std::string& path, const Image& image, const std::vector
   OIIO::ImageSpec spec(image.width, image.height, image.channels, png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
   if (exr && channelNames.size() == static_cast<size_t>(image.channels)) spec.channelnames = channelNames;
   if (exr) spec.attribute("compression", "zip");
-  if (!out->open(path, spec)) return Status::error(path + ": cannot open for writing: " + out->geterror());
+  // Encoded into memory: the file itself is written (and every write checked) by writeFiles.
+  OIIO::Filesystem::IOVecOutput memory;
+  if (!out->supports("ioproxy") || !out->set_ioproxy(&memory))
+    return Status::error(path + ": the image writer cannot encode into memory");
+  if (!out->open(path, spec)) return Status::error(path + ": cannot encode: " + out->geterror());
   const size_t row = static_cast<size_t>(image.width) * image.channels;
   bool ok = true;
   if (png) {
@@ -55,10 +65,54 @@ Status writeImage(const std::string& path, const Image& image, const std::vector
   if (!ok) {
     std::string err = out->geterror();
     out->close();
-    return Status::error(path + ": write failed: " + err);
+    return Status::error(path + ": encoding failed: " + err);
   }
-  if (!out->close()) return Status::error(path + ": closing failed: " + out->geterror());
+  if (!out->close()) return Status::error(path + ": encoding failed: " + out->geterror());
+  return memory.buffer();
+}
+
+Status writeFiles(const std::vector<std::pair<std::string, std::vector<unsigned char>>>& files) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> temps;
+  auto discard = [&] {
+    std::error_code ec;
+    for (const auto& t : temps) fs::remove(t, ec);
+  };
+  for (const auto& [path, bytes] : files) {
+    const std::string temp = path + ".partial";
+    temps.push_back(temp);
+    std::FILE* f = std::fopen(temp.c_str(), "wb");
+    if (f == nullptr) {
+      const std::string why = std::strerror(errno);
+      discard();
+      return Status::error(path + ": cannot create: " + why);
+    }
+    const size_t written = bytes.empty() ? 0 : std::fwrite(bytes.data(), 1, bytes.size(), f);
+    const bool flushed = std::fflush(f) == 0;
+    const int writeErrno = errno;
+    const bool closed = std::fclose(f) == 0;
+    if (written != bytes.size() || !flushed || !closed) {
+      const std::string why = std::strerror(written != bytes.size() || !flushed ? writeErrno : errno);
+      discard();
+      return Status::error(path + ": write failed after " + std::to_string(written) + " of " +
+                           std::to_string(bytes.size()) + " bytes: " + why + " (nothing was written)");
+    }
+  }
+  for (size_t i = 0; i < files.size(); ++i) {
+    std::error_code ec;
+    fs::rename(temps[i], files[i].first, ec);
+    if (ec) {
+      discard();
+      return Status::error(files[i].first + ": cannot move the finished file into place: " + ec.message());
+    }
+  }
   return {};
+}
+
+Status writeImage(const std::string& path, const Image& image, const std::vector<std::string>& channelNames) {
+  auto bytes = encodeImage(path, image, channelNames);
+  if (!bytes) return Status::error(bytes.error());
+  return writeFiles({{path, std::move(bytes.value())}});
 }
 
 Expected<Image> readImage(const std::string& path) {

@@ -18,8 +18,11 @@ struct Result {
   std::string output;
 };
 
-Result run(const std::string& args) {
-  const std::string cmd = std::string(SSLR_RENDER_EXE) + " " + args + " 2>&1";
+// `prefix` runs before the program in the same shell (limits, traps).
+Result run(const std::string& args, const std::string& prefix = "") {
+  const std::string cmd =
+      prefix.empty() ? std::string(SSLR_RENDER_EXE) + " " + args + " 2>&1"
+                     : "bash -c '" + prefix + "; exec " + std::string(SSLR_RENDER_EXE) + " " + args + "' 2>&1";
   Result r;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (pipe == nullptr) return r;
@@ -128,8 +131,42 @@ TEST_F(RenderCli, DumpWritesEveryNamedBuffer) {
   EXPECT_FALSE(fs::exists(plain / "hit.exr"));
 }
 
+TEST(RenderCliNoGl, OutputThatCannotBeWrittenIsRefusedBeforeRendering) {
+  const fs::path dir = fs::path(SSLR_TEST_TMP) / "cli";
+  fs::create_directories(dir);
+  const fs::path file = dir / "not-a-directory";
+  std::ofstream(file) << "x";
+  Result r = run("--size 32x20 --out " + file.string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("exists and is not a directory"), std::string::npos) << r.output;
+  r = run("--size 32x20 --out /proc/sslr-no-such-place/out");
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("cannot create the directory"), std::string::npos) << r.output;
+}
+
+TEST_F(RenderCli, FailedWritesExitOneAndLeaveNothing) {
+  // A file size limit makes every write past 4 KiB fail as a full disk would (SIGXFSZ ignored:
+  // the write returns EFBIG). Nothing partial may be left behind, and the exit code says so.
+  const fs::path out = freshDir("full");
+  const Result r = run("--size 160x90 --dump --out " + out.string(), "trap \"\" XFSZ; ulimit -f 8");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("write failed"), std::string::npos) << r.output;
+  ASSERT_TRUE(fs::is_directory(out));
+  EXPECT_TRUE(fs::is_empty(out)) << "no partial or temporary file may remain";
+}
+
+TEST_F(RenderCli, ScoreAndHierarchicalMethod) {
+  const fs::path out = freshDir("score");
+  const Result r = run("--size 96x54 --scene facing-mirror --method hiz --score --stats --out " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("recall@1px"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("hierarchical traversal on"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(out / "error.png"));
+}
+
 TEST_F(RenderCli, EveryBuiltinSceneAndDepthConventionRenders) {
-  for (const char* scene : {"mirror-room", "grazing-plane", "thin-objects", "sky-heavy"})
+  for (const char* scene : {"mirror-room", "grazing-plane", "thin-objects", "sky-heavy", "facing-mirror",
+                            "mirror-walls", "curved-mirror", "glossy"})
     for (const char* depth : {"reversed", "gl-default"}) {
       const fs::path out = freshDir(std::string(scene) + depth);
       const Result r = run(std::string("--size 48x32 --scene ") + scene + " --depth " + depth + " --out " + out.string());

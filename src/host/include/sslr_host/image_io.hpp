@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -21,8 +22,16 @@ struct Image {
 
 // .exr: 32-bit float, values as they are. .png: 8-bit, linear -> sRGB, clamped to [0,1].
 // `channelNames` (optional) name the EXR channels, e.g. {"R","G","B","A"}.
+// The file is written in full under a temporary name and renamed into place: a failed write (disk
+// full, no permission) leaves nothing behind and says so.
 Status writeImage(const std::string& path, const Image& image,
                   const std::vector<std::string>& channelNames = {});
+// The image encoded as the file `path` would hold it (the extension picks the format).
+Expected<std::vector<unsigned char>> encodeImage(const std::string& path, const Image& image,
+                                                 const std::vector<std::string>& channelNames = {});
+// Writes every file under a temporary name, checking each write, then renames them all into
+// place; on any failure every temporary is removed and no file is touched.
+Status writeFiles(const std::vector<std::pair<std::string, std::vector<unsigned char>>>& files);
 Expected<Image> readImage(const std::string& path);
 
 // Per-channel statistics of the difference of two images (same size and channels).
