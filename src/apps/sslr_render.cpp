@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -71,6 +72,32 @@ void checkOutputDirectory(const fs::path& dir) {
   if (f == nullptr) throw UsageError{"--out " + dir.string() + " is not writable: " + std::strerror(errno)};
   std::fclose(f);
   fs::remove(probe, ec);
+}
+
+// What a size needs, estimated before anything is allocated: on llvmpipe every texture lives in
+// system memory. Per pixel: G-buffer 16 B (+16 position) and the final RGBA8/RGBA16F targets,
+// sslr's targets 47 B (reflection, blur, resolved, hit, iterations, pyramid), the read-back
+// float images and their encoded files (~30 B; ~250 B more with --dump).
+void checkMemory(int width, int height, bool dump) {
+  const double pixels = double(width) * height;
+  const double need = pixels * (16.0 + 16.0 + 16.0 + 47.0 + 30.0 + (dump ? 250.0 : 0.0));
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  double availableKiB = 0.0;
+  while (meminfo >> key) {
+    if (key == "MemAvailable:") {
+      meminfo >> availableKiB;
+      break;
+    }
+    meminfo.ignore(1 << 10, '\n');
+  }
+  if (availableKiB > 0.0 && need > 0.8 * availableKiB * 1024.0) {
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "--size %dx%d needs about %.1f GiB%s; %.1f GiB of memory are available (use a smaller size)",
+                  width, height, need / double(1 << 30), dump ? " with --dump" : "", availableKiB / double(1 << 20));
+    throw UsageError{text};
+  }
 }
 
 Settings parseSettings(const cxxopts::ParseResult& args) {
@@ -162,6 +189,7 @@ int run(int argc, char** argv) {
   const bool dump = args.count("dump") > 0;
   try {
     parseSize(args["size"].as<std::string>(), gopt.width, gopt.height);
+    checkMemory(gopt.width, gopt.height, args.count("dump") > 0);
     if (!parseDepthMode(args["depth"].as<std::string>(), gopt.depth))
       throw UsageError{"--depth must be reversed, reversed-infinite, zero-to-one or gl-default (got '" +
                        args["depth"].as<std::string>() + "')"};
@@ -189,9 +217,13 @@ int run(int argc, char** argv) {
     if (!loaded) throw UsageError{loaded.error()};
     scene = std::move(loaded.value());
     for (const auto& w : scene.warnings) std::cerr << "sslr-render: warning: " << w << "\n";
+    if (std::string why = scene.checkExtent(); !why.empty()) throw UsageError{args["scene"].as<std::string>() + ": " + why};
     camera = scene.camera ? *scene.camera : scene.defaultCamera();
     if (args.count("eye")) camera.eye = parseVec3("eye", args["eye"].as<std::string>());
     if (args.count("target")) camera.target = parseVec3("target", args["target"].as<std::string>());
+    // A moved camera sees the scene from elsewhere: its clip planes are fitted to the scene as seen
+    // from the new eye (the scene's own planes would clip a close look at a small model away).
+    if (args.count("eye") || args.count("target")) fitClipPlanes(camera, scene.worldBounds());
     if (args.count("up")) camera.up = parseVec3("up", args["up"].as<std::string>());
     if (args.count("fovy")) camera.fovyDegrees = parsePositive("fovy", args["fovy"].as<std::string>());
     if (args.count("near")) camera.nearPlane = parsePositive("near", args["near"].as<std::string>());

@@ -1,6 +1,8 @@
 #include "sslr_host/camera.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace sslr::host {
@@ -100,7 +102,15 @@ glm::dmat4 Camera::clipFromView(DepthMode mode, double aspect, glm::dvec2 offset
 std::string Camera::validate() const {
   auto finite3 = [](glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
   if (!finite3(eye) || !finite3(target) || !finite3(up)) return "camera eye/target/up must be finite";
-  if (glm::length(target - eye) <= 0.0) return "camera eye and target coincide";
+  // Beyond this a double can no longer tell a pixel's worth of view direction apart.
+  auto maxAbs = [](glm::dvec3 v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); };
+  const double far = std::max(maxAbs(eye), maxAbs(target));
+  if (!(far <= 1e15)) {
+    char text[128];
+    std::snprintf(text, sizeof text, "camera eye/target lie %.3g units from the origin (at most 1e15 supported)", far);
+    return text;
+  }
+  if (glm::length(target - eye) <= 1e-12 * std::max(far, 1.0)) return "camera eye and target coincide";
   if (glm::length(glm::cross(glm::normalize(target - eye), up)) < 1e-9)
     return "camera up is parallel to the view direction (or zero)";
   if (!(nearPlane > 0.0)) return "near plane must be > 0";

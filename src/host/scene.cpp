@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -10,10 +11,46 @@
 namespace sslr::host {
 
 Bounds Scene::worldBounds() const {
+  // Only vertices that triangles use: an unused vertex far away must not move the framing.
   Bounds b;
   for (const Mesh& m : meshes)
-    for (const glm::vec3& p : m.positions) b.add(glm::dvec3(m.worldFromModel * glm::dvec4(glm::dvec3(p), 1.0)));
+    for (std::uint32_t i : m.indices)
+      if (i < m.positions.size()) b.add(glm::dvec3(m.worldFromModel * glm::dvec4(glm::dvec3(m.positions[i]), 1.0)));
   return b;
+}
+
+std::string Scene::checkExtent() const {
+  const Bounds b = worldBounds();
+  if (b.empty()) return "";
+  auto maxAbs = [](glm::dvec3 v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); };
+  const double extent = std::max(maxAbs(b.min), maxAbs(b.max));
+  if (!std::isfinite(extent))
+    return "the scene's extent is not finite (a transform or vertex overflows)";
+  if (extent > kMaxSceneExtent) {
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "the scene reaches %.3g units from the origin (limit %.0e): vertices are rasterized in float "
+                  "and lose all precision there; scale or recentre the model",
+                  extent, kMaxSceneExtent);
+    return text;
+  }
+  return "";
+}
+
+void fitClipPlanes(Camera& c, const Bounds& b) {
+  if (b.empty()) return;
+  // Distances from the eye to the nearest and farthest points of the box.
+  const glm::dvec3 nearest = glm::clamp(c.eye, b.min, b.max);
+  double farthest = 0.0;
+  for (int k = 0; k < 8; ++k) {
+    const glm::dvec3 corner((k & 1) ? b.max.x : b.min.x, (k & 2) ? b.max.y : b.min.y, (k & 4) ? b.max.z : b.min.z);
+    farthest = std::max(farthest, glm::length(corner - c.eye));
+  }
+  const double size = std::max(glm::length(b.max - b.min), 1e-6);
+  c.farPlane = std::max(farthest, size * 1e-3) * 1.5;
+  // Half the distance to the box; from inside it a fixed fraction of the far plane (reversed-Z
+  // D32F keeps its precision over that ratio).
+  c.nearPlane = std::max(glm::length(nearest - c.eye) * 0.5, c.farPlane * 1e-5);
 }
 
 Camera Scene::defaultCamera() const {
@@ -26,8 +63,7 @@ Camera Scene::defaultCamera() const {
   const double dist = radius / std::sin(glm::radians(c.fovyDegrees) * 0.5);
   c.target = center;
   c.eye = center + glm::normalize(glm::dvec3(0.0, 0.35, 1.0)) * dist;
-  c.nearPlane = std::max(dist - radius, dist * 1e-3) * 0.5;
-  c.farPlane = (dist + radius) * 1.5;
+  fitClipPlanes(c, b);
   return c;
 }
 

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/gltf_writer.hpp"
 #include "sslr_host/gltf_loader.hpp"
 
 using namespace sslr::host;
@@ -15,29 +16,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// base64 of raw bytes, for data: URIs.
-std::string base64(const std::string& bytes) {
-  static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  size_t i = 0;
-  for (; i + 2 < bytes.size(); i += 3) {
-    const unsigned v = (unsigned char)bytes[i] << 16 | (unsigned char)bytes[i + 1] << 8 | (unsigned char)bytes[i + 2];
-    out += t[v >> 18 & 63]; out += t[v >> 12 & 63]; out += t[v >> 6 & 63]; out += t[v & 63];
-  }
-  if (i + 1 == bytes.size()) {
-    const unsigned v = (unsigned char)bytes[i] << 16;
-    out += t[v >> 18 & 63]; out += t[v >> 12 & 63]; out += "==";
-  } else if (i + 2 == bytes.size()) {
-    const unsigned v = (unsigned char)bytes[i] << 16 | (unsigned char)bytes[i + 1] << 8;
-    out += t[v >> 18 & 63]; out += t[v >> 12 & 63]; out += t[v >> 6 & 63]; out += '=';
-  }
-  return out;
-}
-
-template <typename T>
-std::string bytesOf(const std::vector<T>& v) {
-  return std::string(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
-}
+using sslr::test::base64;
+using sslr::test::bytesOf;
 
 struct Tri {
   std::vector<float> positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};

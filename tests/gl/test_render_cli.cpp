@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "common/gltf_writer.hpp"
 #include "gl/gl_fixture.hpp"
 #include "sslr_host/image_io.hpp"
 
@@ -173,6 +174,77 @@ TEST_F(RenderCli, EveryBuiltinSceneAndDepthConventionRenders) {
       EXPECT_EQ(r.exitCode, 0) << scene << " " << depth << "\n" << r.output;
       EXPECT_TRUE(fs::exists(out / "final.png"));
     }
+}
+
+// ---- Cameras and extents (issue: defects a new user hit) ------------------------------------
+
+// Two triangles of a 0.2-unit quad facing +z at the origin, plus `extra` vertices (unused unless
+// `useExtra`).
+std::string smallQuad(const std::vector<float>& extra = {}, bool useExtra = false) {
+  std::vector<float> p = {-0.1f, -0.1f, 0, 0.1f, -0.1f, 0, 0.1f, 0.1f, 0, -0.1f, 0.1f, 0};
+  p.insert(p.end(), extra.begin(), extra.end());
+  std::vector<std::uint16_t> idx = {0, 1, 2, 0, 2, 3};
+  if (useExtra) idx.insert(idx.end(), {0, 1, 4});
+  return sslr::test::meshGltf(p, idx);
+}
+
+fs::path writeModel(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::path(SSLR_TEST_TMP) / "cli";
+  fs::create_directories(dir);
+  std::ofstream(dir / name, std::ios::binary) << text;
+  return dir / name;
+}
+
+// Share of pixels that differ from the corner pixel: 0 for a uniform (empty) picture.
+double coverage(const fs::path& png) {
+  auto img = sslr::host::readImage(png.string());
+  if (!img) return -1.0;
+  const auto& px = img.value().pixels;
+  const int c = img.value().channels;
+  size_t differ = 0, n = px.size() / c;
+  for (size_t i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(px[i * c + k] - px[k]) > 0.02f) {
+        ++differ;
+        break;
+      }
+  return double(differ) / n;
+}
+
+TEST_F(RenderCli, MovedCameraFitsItsClipPlanes) {
+  // The default camera of a 0.2-unit quad framed from a larger model would keep a near plane
+  // far beyond a close eye; the planes follow the new eye.
+  const fs::path model = writeModel("small.gltf", smallQuad({0, 0, -50}, true));
+  const fs::path out = freshDir("close");
+  const Result r = run("--scene " + model.string() + " --eye 0,0,0.3 --target 0,0,0 --size 48x32 --out " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_GT(coverage(out / "final.png"), 0.3) << "the quad fills most of the view";
+}
+
+TEST_F(RenderCli, UnusedFarVertexDoesNotMoveTheFraming) {
+  const fs::path model = writeModel("stray.gltf", smallQuad({1e30f, 0, 0}, false));
+  const fs::path out = freshDir("stray");
+  const Result r = run("--scene " + model.string() + " --size 48x32 --out " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_GT(coverage(out / "final.png"), 0.05) << "the quad is framed, not the unused vertex";
+}
+
+TEST(RenderCliNoGl, AbsurdExtentsAndCamerasAreRefused) {
+  // A used vertex at 3e9 units: float rasterization turns it into NaN; refused with the reason.
+  const fs::path far = writeModel("far.gltf", smallQuad({3e9f, 0, 0}, true));
+  Result r = run("--scene " + far.string() + " --out " + freshDir("far").string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("lose all precision"), std::string::npos) << r.output;
+  r = run("--eye 1e300,0,0 --out " + freshDir("eye").string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("1e+300 units from the origin"), std::string::npos) << r.output;
+}
+
+TEST(RenderCliNoGl, SizeThatCannotFitInMemoryIsRefusedWithAnEstimate) {
+  const Result r = run("--size 16384x16384 --dump --out " + freshDir("huge").string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("GiB"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(fs::path(SSLR_TEST_TMP) / "cli" / "huge"));
 }
 
 }  // namespace

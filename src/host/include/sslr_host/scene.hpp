@@ -52,11 +52,20 @@ struct Scene {
   glm::vec3 background{0.0f};  // colour of background pixels in the lit colour buffer
   std::vector<std::string> warnings;  // non-fatal problems met while loading
 
-  Bounds worldBounds() const;
+  Bounds worldBounds() const;  // of the vertices that triangles use
+  // "" if the scene can be rendered, else why not (non-finite or absurd extent).
+  std::string checkExtent() const;
   // A camera framing the bounds from the front (+z), slightly above: for scenes without one.
   Camera defaultCamera() const;
   size_t triangleCount() const;
 };
+
+// Farthest a scene may reach from the origin (float rasterization: beyond this a vertex is
+// off by whole units; at 3e9 the G-buffer gets NaN).
+inline constexpr double kMaxSceneExtent = 1e8;
+
+// Near and far planes that hold the whole box as seen from the camera's eye.
+void fitClipPlanes(Camera& camera, const Bounds& bounds);
 
 // F0 the G-buffer stores for a material: 0.04 for dielectrics, base colour for metals.
 float reflectance(const Material& m);
