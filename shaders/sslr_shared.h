@@ -121,7 +121,7 @@ struct SslrSurface {
 struct SslrTraceParams {
   float initialLengthPixels;  // first L moves the probe this many pixels (Settings: fraction x height)
   float convergenceEps;       // stop once |L_new - L| <= eps * L
-  float errorK;               // the article's "LDelmiter": error = 1 - saturate(L * k)
+  float errorK;               // the article's "LDelmiter": error = 1 - saturate(L / distance * k)
   float maxDistance;          // reflections longer than this (view units) get zero confidence
   float thicknessRelative;    // hit tolerance: this fraction of the hit's view distance ...
   float thicknessPixels;      // ... plus this many pixel footprints (scaled by surface slope)
@@ -399,8 +399,14 @@ SSLR_FN float sslrFresnelSchlick(float f0, float cosVN) {
   float x2 = x * x;
   return f0 + (1.0f - f0) * x2 * x2 * x;
 }
-// The article's error term: long reflections fade out.
-SSLR_FN float sslrErrorWeight(float L, float k) { return 1.0f - sslrSaturate(L * k); }
+// The article's error term, long reflections fade out: 1 - saturate(L k). The article's L is in
+// world units, so its k ties the look to the scene's unit (a scene modelled in centimetres loses
+// its reflections). Here L is measured relative to the reflecting point's distance from the
+// camera (orthographic: its depth), which is the same at every scale.
+SSLR_FN float sslrErrorWeight(SslrProjection p, vec3 vsP, float L, float k) {
+  float distance = p.orthographic != 0 ? abs(vsP.z) : length(vsP);
+  return 1.0f - sslrSaturate(L / max(distance, 1e-30f) * k);
+}
 
 // 1 inside, falling linearly to 0 over `width` (fraction of the screen) at each border.
 SSLR_FN float sslrEdgeFade(vec2 uv, float width) {

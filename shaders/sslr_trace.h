@@ -307,10 +307,11 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
 // weight = Fresnel term x confidence x screen-edge fade x camera-facing fade, with the Fresnel term
 //   classic: reflectance * article Fresnel * article error term; schlick: Schlick(F0 = reflectance).
 SSLR_FN vec2 sslrReflectionWeights(SslrProjection p, SslrSurface s, SslrTraceParams t, SslrHit hit,
-                                   vec3 vsV, vec3 vsR, float cosVN, float reflectance, float roughness,
-                                   float distP) {
+                                   vec3 vsP, vec3 vsV, vec3 vsR, float cosVN, float reflectance,
+                                   float roughness) {
+  float distP = sslrViewDistance(p, vsP);
   float fresnel = t.fresnelMode == SSLR_FRESNEL_CLASSIC
-                      ? reflectance * sslrFresnelClassic(cosVN) * sslrErrorWeight(hit.L, t.errorK)
+                      ? reflectance * sslrFresnelClassic(cosVN) * sslrErrorWeight(p, vsP, hit.L, t.errorK)
                       : sslrFresnelSchlick(reflectance, cosVN);
   float radius = sslrBlurRadiusPx(p, s.height, distP, hit.L, roughness, t.blurConeScale);
   float alpha = t.blurMaxRadiusPx > 0.0f ? sslrSaturate(radius / t.blurMaxRadiusPx) : 0.0f;

@@ -84,10 +84,9 @@ void main() {
       hit = sslrTraceDepthOnly(frame.proj, frame.surface, frame.trace, px, vsP, vsR);
 #endif
       if (hit.status == SSLR_STATUS_HIT) {
-        float distP = sslrViewDistance(frame.proj, vsP);
-        vec2 w = sslrReflectionWeights(frame.proj, frame.surface, frame.trace, hit, vsV, vsR, cosVN,
+        vec2 w = sslrReflectionWeights(frame.proj, frame.surface, frame.trace, hit, vsP, vsV, vsR, cosVN,
                                        sslrReflectance(frame.surface, texel),
-                                       sslrRoughness(frame.surface, texel), distP);
+                                       sslrRoughness(frame.surface, texel));
         vec3 color = textureLod(uColor, hit.uvHit, 0.0f).rgb;
         // Poisoned colour must not spread through the blur: NaN/Inf become 0, and the value is
         // kept inside RGBA16F's range.

@@ -189,3 +189,27 @@ TEST(Projection, BackgroundDepthIsNotGeometry) {
 }
 
 }  // namespace
+
+namespace {
+
+// The classic error term must not depend on the scene's unit: scaling the reflecting point and
+// the reflection length together leaves it unchanged (the article's k in world units did not:
+// x100 kept 31% of the energy, x1e4 none).
+TEST(Weights, ClassicErrorTermIsScaleFree) {
+  using namespace sslr::shared;
+  for (bool ortho : {false, true}) {
+    SslrProjection p{};
+    p.orthographic = ortho ? 1 : 0;
+    const glm::vec3 vsP(1.2f, -0.7f, -6.0f);
+    for (float L : {0.1f, 2.0f, 9.0f}) {
+      const float reference = sslrErrorWeight(p, vsP, L, 0.15f);
+      EXPECT_GT(reference, 0.0f);
+      EXPECT_LT(reference, 1.0f);
+      for (float scale : {1e-3f, 1e-1f, 1e2f, 1e4f})
+        EXPECT_NEAR(sslrErrorWeight(p, vsP * scale, L * scale, 0.15f), reference, 1e-6f)
+            << (ortho ? "ortho" : "perspective") << " L " << L << " scale " << scale;
+    }
+  }
+}
+
+}  // namespace

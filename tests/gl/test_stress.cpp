@@ -112,4 +112,49 @@ TEST_F(Stress, HitsDoNotDependOnTheDistanceFromTheWorldOrigin) {
   }
 }
 
+// Scales the whole world (scene and camera planes) about the origin.
+Scene scaledScene(Scene s, double scale) {
+  for (Mesh& m : s.meshes) m.worldFromModel = glm::scale(glm::dmat4(1.0), glm::dvec3(scale)) * m.worldFromModel;
+  s.camera->eye *= scale;
+  s.camera->target *= scale;
+  s.camera->nearPlane *= scale;
+  s.camera->farPlane *= scale;
+  return s;
+}
+
+TEST_F(Stress, ImageDoesNotDependOnTheSceneUnit) {
+  // A scene modelled in millimetres or kilometres must look the same (both weightings).
+  auto base = makeBuiltinScene("mirror-room");
+  ASSERT_TRUE(base);
+  GBufferOptions o;
+  o.width = 96;
+  o.height = 54;
+  auto r = FrameRenderer::create(o);
+  ASSERT_TRUE(r);
+  for (FresnelMode fresnel : {FresnelMode::Classic, FresnelMode::Schlick}) {
+    Settings s;
+    s.fresnel = fresnel;
+    Image reference;
+    for (double scale : {1.0, 1e-3, 1e-1, 1e2, 1e4}) {
+      const Scene scene = scaledScene(base.value(), scale);
+      GpuScene gpu(scene);
+      ASSERT_TRUE(r.value()->render(gpu, *scene.camera, &s));
+      const Image reflection = r.value()->readResolved();
+      if (scale == 1.0) {
+        reference = reflection;
+        double energy = 0.0;
+        for (float v : reference.pixels) energy += v;
+        ASSERT_GT(energy, 1.0) << "the reference frame must have reflections";
+        continue;
+      }
+      // Float rounding of the scaled transforms moves a few edge pixels; the rest is identical.
+      const ImageDiff d = compareImages(reflection, reference, 1.0f / 255.0f);
+      std::printf("%s scale %g: max diff %.5f, %zu pixels over 1/255\n",
+                  fresnel == FresnelMode::Classic ? "classic" : "schlick", scale, d.maxAbs, d.pixelsOver);
+      EXPECT_LE(double(d.pixelsOver) / (o.width * o.height), 0.002) << "scale " << scale;
+      EXPECT_LT(d.meanAbs, 1e-3) << "scale " << scale;
+    }
+  }
+}
+
 }  // namespace

@@ -101,7 +101,8 @@ struct FrameInputs {
 
 // ---- Settings --------------------------------------------------------------------------------
 enum class FresnelMode {
-  Classic,  // the article: reflectance * saturate(2.8 (1 - cos)^2) * (1 - saturate(L * errorK))
+  Classic,  // the article: reflectance * saturate(2.8 (1 - cos)^2) * (1 - saturate(L / d * errorK)),
+            // d = the reflecting point's distance from the camera (scale-independent)
   Schlick,  // F0 + (1 - F0)(1 - cos)^5 with F0 = the pixel's reflectance
 };
 
@@ -134,7 +135,7 @@ struct Settings {
                                      // one passes behind (hierarchical traversal)
   float convergenceEps = 0.002f;     // stop when |L_new - L| <= eps * L
   float initialLengthScreen = 0.03f; // first L moves the probe this fraction of the height (>= 4 px)
-  float errorK = 0.02f;              // the article's LDelmiter (Classic only): fade ~ L * k
+  float errorK = 0.15f;              // the article's LDelmiter (Classic only): fade ~ L / distance * k
   float maxDistance = 1.0e30f;       // longer reflections are dropped (view units)
   float thicknessRelative = 0.002f;  // hit tolerance: fraction of the hit's view distance ...
   float thicknessPixels = 1.5f;      // ... plus pixel footprints, stretched by surface slope
