@@ -105,9 +105,17 @@ SSLR_FN float sslrPlaneHit(SslrProjection p, SslrSurface s, SslrTraceParams t, i
     ivec2 pxQ = ivec2(floor(vec2(wQ.x, wQ.y)));
     ivec2 away = abs(pxQ - pxPlane);
     if (max(away.x, away.y) == 0) break;  // the hit lies in the pixel whose plane it is on
+    // A contact line: another surface meets the reflecting one inside the reflecting pixel (a box
+    // standing on a mirror). The hit lies on that surface's plane, a pixel away; refusing it left
+    // a one-pixel row without reflection along every contact. Its length tells it from the
+    // reflecting surface itself (whose own plane the ray leaves at L = 0).
+    if (pxQ.x == pxOrigin.x && pxQ.y == pxOrigin.y) {
+      if (L > 0.05f * sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : sslrViewDistance(p, vsP))) break;
+      return 0.0f;
+    }
     // Re-planed once and still not landing in its own pixel: the surfaces disagree.
     if (k == 1 || max(away.x, away.y) > 4 || pxQ.x < 0 || pxQ.y < 0 || pxQ.x >= int(sizePx.x) ||
-        pxQ.y >= int(sizePx.y) || (pxQ.x == pxOrigin.x && pxQ.y == pxOrigin.y))
+        pxQ.y >= int(sizePx.y))
       return 0.0f;
     pxPlane = pxQ;
     if (!sslrLoadSurface(pxPlane, vsPlane) || !sslrDecodeNormal(s, sslrLoadNormal(pxPlane), vsPlaneNormal))
