@@ -2,6 +2,8 @@
 
 #include <tiny_gltf.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -413,6 +415,43 @@ void loadPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim
   scene.meshes.push_back(std::move(mesh));
 }
 
+// What must be known before tinygltf parses the file: its glTF version and the extensions it
+// requires (tinygltf rejects a Draco-compressed file with "accessor[0] invalid bufferView", and
+// parses glTF 1.0 into an empty scene). Reads the JSON (of a .glb: its first chunk) once more;
+// "" when the file may be parsed, else why not. Malformed input is left to tinygltf's messages.
+std::string precheck(const std::string& path, bool binary) {
+  std::ifstream in(path, std::ios::binary);
+  std::string json;
+  if (binary) {
+    unsigned char header[20] = {};
+    if (!in.read(reinterpret_cast<char*>(header), sizeof header)) return {};
+    const std::uint32_t length = header[12] | header[13] << 8 | header[14] << 16 | std::uint32_t(header[15]) << 24;
+    const bool jsonChunk = header[16] == 'J' && header[17] == 'S' && header[18] == 'O' && header[19] == 'N';
+    if (!jsonChunk || length > (64u << 20)) return {};
+    json.resize(length);
+    if (!in.read(json.data(), length)) return {};
+  } else {
+    std::error_code ec;
+    if (std::filesystem::file_size(path, ec) > (std::uintmax_t(256) << 20)) return {};
+    json.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const nlohmann::json j = nlohmann::json::parse(json, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) return {};
+  if (auto asset = j.find("asset"); asset != j.end() && asset->is_object()) {
+    if (auto v = asset->find("version"); v != asset->end() && v->is_string()) {
+      const std::string version = v->get<std::string>();
+      if (version.rfind("2.", 0) != 0)
+        return "glTF version '" + printable(version, 16) + "' is not supported (glTF 2.0 only)";
+    }
+  }
+  if (auto req = j.find("extensionsRequired"); req != j.end() && req->is_array() && !req->empty()) {
+    std::string names;
+    for (const auto& e : *req) names += (names.empty() ? "" : ", ") + printable(e.is_string() ? e.get<std::string>() : e.dump(), 80);
+    return "requires extension(s) " + names + ", which the tools do not support";
+  }
+  return {};
+}
+
 }  // namespace
 
 Expected<Scene> loadGltf(const std::string& path) {
@@ -429,6 +468,7 @@ Expected<Scene> loadGltf(const std::string& path) {
   tinygltf::Model model;
   std::string err, warn;
   const bool binary = path.size() >= 4 && (path.substr(path.size() - 4) == ".glb" || path.substr(path.size() - 4) == ".GLB");
+  if (std::string why = precheck(path, binary); !why.empty()) return Status::error(path + ": " + why);
   bool ok = false;
   try {
     ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
@@ -544,7 +584,11 @@ Expected<Scene> loadGltf(const std::string& path) {
       for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.emplace_back(*it, world);
     }
     for (const std::string& what : ignored) scene.warnings.push_back("ignored: " + what);
-    if (scene.meshes.empty()) throw LoadError{"the scene has no triangle meshes"};
+    if (scene.meshes.empty()) {
+      std::string skipped;
+      for (const std::string& what : ignored) skipped += (skipped.empty() ? " (ignored: " : "; ") + what;
+      throw LoadError{"the scene has no triangle meshes" + (skipped.empty() ? std::string() : skipped + ")")};
+    }
     scene.camera = camera;
   } catch (const LoadError& e) {
     return Status::error(path + ": " + e.message);
