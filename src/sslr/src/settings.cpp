@@ -12,12 +12,16 @@ Settings Settings::preset(Preset preset) {
     case Preset::Low:
       s.maxIterations = 8;  // 6 lost half the long reflections at 960x540 (docs/results.md)
       s.convergenceEps = 0.01f;
+      // Adaptive L alone: with 8 iterations it fails often enough that a fallback made the
+      // cheapest preset the slowest (measured 1.55x high's time on mirror-room, llvmpipe).
+      s.hierarchicalFallback = false;
       s.blurMaxRadiusPx = 4.0f;
       s.roughnessCutoff = 0.3f;
       break;
     case Preset::Medium:
       s.maxIterations = 10;  // the article's fixed count
       s.convergenceEps = 0.005f;
+      s.hierarchicalMaxSteps = 48;
       s.blurMaxRadiusPx = 6.0f;
       s.roughnessCutoff = 0.4f;
       break;
@@ -26,6 +30,7 @@ Settings Settings::preset(Preset preset) {
     case Preset::Ultra:
       s.maxIterations = 32;
       s.convergenceEps = 0.0005f;
+      s.hierarchicalMaxSteps = 160;
       s.blurMaxRadiusPx = 12.0f;
       s.roughnessCutoff = 0.6f;
       break;
