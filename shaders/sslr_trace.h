@@ -124,6 +124,29 @@ SSLR_FN float sslrPlaneHit(SslrProjection p, SslrSurface s, SslrTraceParams t, i
   return sslrHitValidation(p, s, t, vsP + vsR * L, vsPlane, vsPlaneNormal, vsR);
 }
 
+// Fills in a tracer's final answer: the hit Q = P + R L, its uv, and the validation as the
+// confidence. Confidence = how sure the hit is right; the screen-edge and camera-facing fades are
+// presentation, not doubt (sslrReflectionWeights applies them).
+SSLR_FN SslrHit sslrFinishHit(SslrProjection p, SslrHit hit, vec3 vsP, vec3 vsR, float L, float valid) {
+  vec3 vsQ = vsP + vsR * L;
+  if (sslrClipW(p, vsQ) <= 0.0f) {
+    hit.status = SSLR_STATUS_OFF_SCREEN;
+    return hit;
+  }
+  vec3 ndcQ = sslrNdcFromView(p, vsQ);
+  hit.uvHit = sslrUvFromNdc(vec2(ndcQ.x, ndcQ.y));
+  hit.L = L;
+  // The refined hit may lie just outside the screen (its pixel was the border one): no colour.
+  if (!(hit.uvHit.x >= 0.0f && hit.uvHit.x <= 1.0f && hit.uvHit.y >= 0.0f && hit.uvHit.y <= 1.0f)) {
+    hit.uvHit = clamp(hit.uvHit, vec2(0.0f), vec2(1.0f));
+    hit.status = SSLR_STATUS_OFF_SCREEN;
+    return hit;
+  }
+  hit.confidence = sslrSaturate(valid);
+  hit.status = hit.confidence > 0.0f ? SSLR_STATUS_HIT : SSLR_STATUS_MISS;
+  return hit;
+}
+
 // The article's adaptive-L iteration: Q = P + R L, project Q, read the depth there, rebuild P',
 // L = |P' - P|. It is a fixed-point iteration that settles where the ray meets the depth surface.
 // Guards added (docs/algorithm.md): off-screen / behind-near-plane / background exits, a
@@ -289,25 +312,7 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
   } else if (valid > 0.0f) {
     L = sslrRefineOnPlane(vsP, vsR, vsSurface, vsSurfaceNormal, L);
   }
-  vsQ = vsP + vsR * L;
-  if (sslrClipW(p, vsQ) <= 0.0f) {
-    hit.status = SSLR_STATUS_OFF_SCREEN;
-    return hit;
-  }
-  vec3 ndcQ = sslrNdcFromView(p, vsQ);
-  hit.uvHit = sslrUvFromNdc(vec2(ndcQ.x, ndcQ.y));
-  hit.L = L;
-  // The refined hit may lie just outside the screen (its pixel was the border one): no colour.
-  if (!(hit.uvHit.x >= 0.0f && hit.uvHit.x <= 1.0f && hit.uvHit.y >= 0.0f && hit.uvHit.y <= 1.0f)) {
-    hit.uvHit = clamp(hit.uvHit, vec2(0.0f), vec2(1.0f));
-    hit.status = SSLR_STATUS_OFF_SCREEN;
-    return hit;
-  }
-  // Confidence = how sure the hit is right: the validation alone. The screen-edge and
-  // camera-facing fades are presentation, not doubt: sslrReflectionWeights applies them.
-  hit.confidence = sslrSaturate(valid);
-  hit.status = hit.confidence > 0.0f ? SSLR_STATUS_HIT : SSLR_STATUS_MISS;
-  return hit;
+  return sslrFinishHit(p, hit, vsP, vsR, L, valid);
 }
 
 // Everything the pass does per pixel besides fetching: returns rgb weight (applied to the hit's

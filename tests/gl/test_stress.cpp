@@ -76,11 +76,14 @@ TEST_F(Stress, DepthConventionsNearFarFovAndViewports) {
   EXPECT_GT(cases, 400);
 }
 
-// Moves the whole world (scene and camera) away from the origin.
-Scene offsetScene(Scene s, glm::dvec3 offset) {
-  for (Mesh& m : s.meshes) m.worldFromModel = glm::translate(glm::dmat4(1.0), offset) * m.worldFromModel;
-  s.camera->eye += offset;
-  s.camera->target += offset;
+// The whole world (scene and camera) moved by a translation and a uniform scale about the origin.
+Scene transformedScene(Scene s, glm::dvec3 offset, double scale = 1.0) {
+  const glm::dmat4 newFromOld = glm::scale(glm::translate(glm::dmat4(1.0), offset), glm::dvec3(scale));
+  for (Mesh& m : s.meshes) m.worldFromModel = newFromOld * m.worldFromModel;
+  s.camera->eye = glm::dvec3(newFromOld * glm::dvec4(s.camera->eye, 1.0));
+  s.camera->target = glm::dvec3(newFromOld * glm::dvec4(s.camera->target, 1.0));
+  s.camera->nearPlane *= scale;
+  s.camera->farPlane *= scale;
   return s;
 }
 
@@ -96,7 +99,7 @@ TEST_F(Stress, HitsDoNotDependOnTheDistanceFromTheWorldOrigin) {
   s.debugOutputs = true;
   double recallAtOrigin = 0.0;
   for (double d : {0.0, 1e3, 1e5, 1e6}) {
-    const Scene scene = offsetScene(base.value(), {d, 0.5 * d, -d});
+    const Scene scene = transformedScene(base.value(), {d, 0.5 * d, -d});
     GpuScene gpu(scene);
     ASSERT_TRUE(r.value()->render(gpu, *scene.camera, &s));
     auto gt = groundTruthFor(scene, r.value()->gbuffer(), s);
@@ -110,16 +113,6 @@ TEST_F(Stress, HitsDoNotDependOnTheDistanceFromTheWorldOrigin) {
     EXPECT_LE(m.p95ErrorPx, 0.05) << "offset " << d;
     EXPECT_EQ(m.nonFinite, 0u);
   }
-}
-
-// Scales the whole world (scene and camera planes) about the origin.
-Scene scaledScene(Scene s, double scale) {
-  for (Mesh& m : s.meshes) m.worldFromModel = glm::scale(glm::dmat4(1.0), glm::dvec3(scale)) * m.worldFromModel;
-  s.camera->eye *= scale;
-  s.camera->target *= scale;
-  s.camera->nearPlane *= scale;
-  s.camera->farPlane *= scale;
-  return s;
 }
 
 TEST_F(Stress, ImageDoesNotDependOnTheSceneUnit) {
@@ -136,7 +129,7 @@ TEST_F(Stress, ImageDoesNotDependOnTheSceneUnit) {
     s.fresnel = fresnel;
     Image reference;
     for (double scale : {1.0, 1e-3, 1e-1, 1e2, 1e4}) {
-      const Scene scene = scaledScene(base.value(), scale);
+      const Scene scene = transformedScene(base.value(), glm::dvec3(0.0), scale);
       GpuScene gpu(scene);
       ASSERT_TRUE(r.value()->render(gpu, *scene.camera, &s));
       const Image reflection = r.value()->readResolved();
