@@ -13,13 +13,15 @@
 // larger key is always farther from the camera; the sign flip is exact, reversed-Z keeps its bits.
 //
 // Per step, at the current level, the cell under the ray is
-//   - skipped (and the level raised) when the segment lies in front of the nearest depth of the
-//     cell, or behind its farthest depth by more than any hit tolerance (the ray passes behind
-//     what the cell shows: depth buffers have no thickness, this is the thickness test);
+//   - skipped when the segment lies in front of the nearest depth of the cell, or behind its
+//     farthest depth by more than any hit tolerance and the objects' assumed thickness (the ray
+//     passes behind what the cell shows: depth buffers have no thickness, this is the thickness
+//     test); after a skip the level rises when the ray enters a new parent cell;
 //   - else descended into, after moving to where the ray reaches the cell's nearest depth;
-//   - at level 0 (a pixel), a crossing is validated exactly as the adaptive-L hit is (the ray
-//     meets the tangent plane of the pixel's surface within the tolerance). A crossing that
-//     fails validation (a silhouette the ray passes behind) does not end the traversal.
+//   - at level 0 (a pixel), a crossing is a hit when it passes the plane check (sslrPlaneHit) and
+//     the adaptive-L validation. A crossing that fails them ends the ray when it went less deep
+//     behind the surface than the thickness (it hit the hidden side of what the pixel shows), and
+//     lets it pass behind when it went deeper (a silhouette the ray passes behind).
 
 #ifndef SSLR_TRACE_HIZ_H
 #define SSLR_TRACE_HIZ_H
@@ -58,7 +60,8 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   // A second point of the ray, kept well in front of the camera plane (a point behind it would
   // project to the wrong side); any point gives the same window-space line.
   float distP = sslrViewDistance(p, vsP);
-  float probeL = p.orthographic != 0 ? 1.0f : max(distP, 1e-6f);
+  // Orthographic: ~64 pixels of travel, so the direction keeps its precision at any scale.
+  float probeL = p.orthographic != 0 ? 64.0f * sslrPixelFootprint(p, s.height, 1.0f) : max(distP, 1e-6f);
   if (p.orthographic == 0 && vsR.z > 0.0f) probeL = min(probeL, 0.5f * distP / vsR.z);
   vec3 o = sslrWindowFromView(p, sizePx, keySign, vsP);
   vec3 d = sslrWindowFromView(p, sizePx, keySign, vsP + vsR * probeL) - o;
@@ -66,7 +69,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   // A ray along the view direction stays in its own pixel: nothing on screen can answer it.
   if (!(majorPx > 1e-3f)) return hit;
   d /= majorPx;  // t counts pixels along the major axis
-  // Cell boundaries are crossed exactly on the axis with d = 0 never; 1/d is huge but finite.
+  // An axis the ray does not move along has no boundary to reach: 1/d huge but finite.
   vec2 invD = vec2(abs(d.x) > 1e-12f ? 1.0f / d.x : 1e12f, abs(d.y) > 1e-12f ? 1.0f / d.y : 1e12f);
   vec2 boundaryStep = vec2(d.x >= 0.0f ? 1.0f : 0.0f, d.y >= 0.0f ? 1.0f : 0.0f);
   // The slope terms of the tolerance are unknown before a pixel is looked at: a cell may only be
