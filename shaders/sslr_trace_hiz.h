@@ -81,7 +81,6 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   vec2 tBound0 = ((cell0 + boundaryStep) - vec2(o.x, o.y)) * invD;
   float tRay = min(tBound0.x, tBound0.y) + nudge;
   int level = 0;
-  bool inFront = true;  // the ray was in front of the depth surface where it was last looked at
   int topLevel = t.hizLevels;
   for (int i = 0; i < t.hizMaxSteps; ++i) {
     vec3 pos = o + d * tRay;
@@ -106,7 +105,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
     float segNear = min(pos.z, keyExit);
     float segFar = max(pos.z, keyExit);
 #ifdef SSLR_HIZ_DEBUG_HOOK
-    SSLR_HIZ_DEBUG_HOOK(i, level, cell, tRay, tExit, pos, keyExit, keyNear, keyFar, inFront);
+    SSLR_HIZ_DEBUG_HOOK(i, level, cell, tRay, tExit, pos, keyExit, keyNear, keyFar);
 #endif
     if (segFar < keyNear) {
       // In front of everything the cell shows: skip it. Look coarser only on entering a new
@@ -114,7 +113,6 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
       // into it again costs a step just to come back down.
       tRay = tExit + nudge;
       level = sslrHiZNextLevel(o, d, tRay, cell, level, topLevel);
-      inFront = true;
       continue;
     }
     // Behind everything the cell shows, deeper than any tolerance and than the objects' assumed
@@ -127,7 +125,6 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
       if (distRay - distFar > passBehind) {
         tRay = tExit + nudge;
         level = sslrHiZNextLevel(o, d, tRay, cell, level, topLevel);
-        inFront = false;
         continue;
       }
     }
@@ -176,14 +173,11 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
     float cosView = normalOk ? abs(dot(vsSurfaceNormal, vsViewAtSurface)) : 0.0f;
     float tanView = min(sqrt(max(1.0f - cosView * cosView, 0.0f)) / max(cosView, 0.0625f), 16.0f);
     float tolerance = sslrHitTolerance(p, s, t, distSurface, tanView);
-    if (behind > tolerance && !ownPixel) {
-      // Behind by less than the object's thickness right after being in front: the ray ran into
-      // the hidden part of what this pixel shows. Nothing on screen is its reflection.
-      if (behind < max(tolerance, t.objectThickness * distSurface) && inFront) return hit;
-      inFront = false;
-    } else {
-      inFront = true;  // in front, or within the tolerance of the surface (pixel snapping)
-    }
+    // What the pixel shows is taken to fill [surface, surface + objectThickness x distance] along
+    // the view. A ray inside that slab (deeper than the hit tolerance: pixel snapping) ran into
+    // the hidden part of the object, from the front or from behind: nothing on screen is its
+    // reflection. Deeper than the slab it passes behind; within the tolerance it goes on.
+    if (behind > tolerance && !ownPixel && behind < max(tolerance, t.objectThickness * distSurface)) return hit;
     tRay = tExit + nudge;
   }
   return hit;

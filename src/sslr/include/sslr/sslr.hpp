@@ -130,9 +130,9 @@ struct Settings {
   int maxIterations = 16;            // adaptive-L iterations (each one depth fetch); article: 10
   bool hierarchicalFallback = true;  // AdaptiveL: trace the pyramid where adaptive L finds no hit
   int hierarchicalMaxSteps = 80;     // pyramid cells visited per ray at most (each one fetch)
-  float objectThickness = 0.1f;      // depth of what the screen shows, fraction of its view depth:
-                                     // a ray less deep behind it hit it (hidden: no hit), a deeper
-                                     // one passes behind (hierarchical traversal)
+  float objectThickness = 0.075f;    // depth of what the screen shows, fraction of its view depth:
+                                     // a ray less deep behind it ran into it (hidden: no hit), a
+                                     // deeper one passes behind (hierarchical traversal)
   float convergenceEps = 0.002f;     // stop when |L_new - L| <= eps * L
   float initialLengthScreen = 0.03f; // first L moves the probe this fraction of the height (>= 4 px)
   float errorK = 0.15f;              // the article's LDelmiter (Classic only): fade ~ L / distance * k
