@@ -72,8 +72,6 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   // An axis the ray does not move along has no boundary to reach: 1/d huge but finite.
   vec2 invD = vec2(abs(d.x) > 1e-12f ? 1.0f / d.x : 1e12f, abs(d.y) > 1e-12f ? 1.0f / d.y : 1e12f);
   vec2 boundaryStep = vec2(d.x >= 0.0f ? 1.0f : 0.0f, d.y >= 0.0f ? 1.0f : 0.0f);
-  // The slope terms of the tolerance are unknown before a pixel is looked at: a cell may only be
-  // passed behind when the ray is farther behind than the largest tolerance (tanView = 16).
   float nudge = 1.0f / 256.0f;  // past a cell boundary, in pixels (exact in float up to 2^15 px)
 
   // Leave the reflecting pixel first.
@@ -116,7 +114,8 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
       continue;
     }
     // Behind everything the cell shows, deeper than any tolerance and than the objects' assumed
-    // thickness: the ray passes behind what the cell shows.
+    // thickness: the ray passes behind what the cell shows. (The slope term of the tolerance is
+    // unknown before a pixel is looked at: the largest one, tan = 16, is assumed.)
     float farDepth = keySign * keyFar;
     if (segNear > keyFar && sslrIsGeometryDepth(s, farDepth)) {
       float distFar = sslrViewDepthFromDepth(p, farDepth);
