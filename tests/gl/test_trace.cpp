@@ -20,6 +20,7 @@ struct TraceCase {
   const char* scene;
   DepthMode depth;
   bool ortho;
+  Method method = Method::AdaptiveL;
 };
 
 struct Traced {
@@ -43,6 +44,7 @@ Traced traceAndCompare(const TraceCase& c, int w, int h) {
   EXPECT_TRUE(r) << r.error();
   GpuScene gpu(scene.value());
   Settings s = Settings::preset(Preset::High);
+  s.method = c.method;
   s.debugOutputs = true;
   const Status st = r.value()->render(gpu, cam, &s);
   EXPECT_TRUE(st) << st.message();
@@ -62,8 +64,8 @@ TEST_P(TraceAnalytic, HitsWithinOnePixelAndNoFalseHits) {
   const TraceCase c = GetParam();
   const Traced t = traceAndCompare(c, 160, 120);
   const HitMetrics& m = t.metrics;
-  std::printf("%s %s%s: A=%zu B=%zu C=%zu D=%zu recall@1px %.4f @2px %.4f median %.3f px p95 %.3f px false hits %.4f\n",
-              c.scene, toString(c.depth), c.ortho ? " ortho" : "", m.visible, m.occluded, m.offScreen, m.escaped,
+  std::printf("%s %s%s%s: A=%zu B=%zu C=%zu D=%zu recall@1px %.4f @2px %.4f median %.3f px p95 %.3f px false hits %.4f\n",
+              c.scene, toString(c.depth), c.ortho ? " ortho" : "", c.method == Method::AdaptiveL ? "" : " hiz", m.visible, m.occluded, m.offScreen, m.escaped,
               m.recall1px, m.recall2px, m.medianErrorPx, m.p95ErrorPx, m.falseHitRate);
   ASSERT_GT(m.visible, 1000u) << "the scene must show visible reflections";
   EXPECT_GE(m.recall1px, 0.95);
@@ -80,9 +82,15 @@ INSTANTIATE_TEST_SUITE_P(
                       TraceCase{"tilted-mirror", DepthMode::Reversed, false},
                       TraceCase{"tilted-mirror", DepthMode::GlDefault, false},
                       TraceCase{"mirror-box", DepthMode::Reversed, true},
-                      TraceCase{"tilted-mirror", DepthMode::ZeroToOne, true}),
+                      TraceCase{"tilted-mirror", DepthMode::ZeroToOne, true},
+                      // The hierarchical traversal alone, in the conventions the pyramid keys differ.
+                      TraceCase{"mirror-box", DepthMode::GlDefault, false, Method::HierarchicalDepth},
+                      TraceCase{"mirror-box", DepthMode::ReversedInfinite, false, Method::HierarchicalDepth},
+                      TraceCase{"tilted-mirror", DepthMode::ZeroToOne, false, Method::HierarchicalDepth},
+                      TraceCase{"mirror-box", DepthMode::Reversed, true, Method::HierarchicalDepth}),
     [](const ::testing::TestParamInfo<TraceCase>& info) {
-      std::string n = std::string(info.param.scene) + "_" + toString(info.param.depth) + (info.param.ortho ? "_ortho" : "");
+      std::string n = std::string(info.param.scene) + "_" + toString(info.param.depth) + (info.param.ortho ? "_ortho" : "") +
+                      (info.param.method == Method::HierarchicalDepth ? "_hiz" : "");
       for (char& ch : n) if (ch == '-') ch = '_';
       return n;
     });
