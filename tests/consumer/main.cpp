@@ -2,6 +2,23 @@
 #include <sslr/sslr.hpp>
 
 #include <cstdio>
+#include <string>
+
+// The quick start of sslr.hpp's comment and README.md, as written there (compiled, not run: it
+// needs the host's GL context). If it stops compiling, the documentation is wrong.
+[[maybe_unused]] static void quickStart(int width, int height, sslr::GetProcAddress eglGetProcAddress,
+                                        sslr::GLName colorTex, sslr::GLName normalTex, sslr::GLName depthTex,
+                                        const glm::dmat4& clipFromView, sslr::GLName hostFramebuffer) {
+  auto log = [](const std::string& text) { std::fprintf(stderr, "%s\n", text.c_str()); };
+  auto ctx = sslr::Context::create({width, height, eglGetProcAddress});   // once
+  if (!ctx) log(ctx.error());
+  sslr::FrameInputs in;                                                     // per frame
+  in.colorTexture = colorTex; in.normalTexture = normalTex; in.depthTexture = depthTex;
+  in.clipFromView = clipFromView;  // glm::dmat4, the matrix that rasterized the depth
+  if (auto st = ctx.value()->dispatch(in, sslr::Settings::preset(sslr::Preset::High)); !st)
+    log(st.message());
+  ctx.value()->composite(hostFramebuffer);   // adds the resolved reflection to what is there
+}
 
 int main() {
   // Without a GL context the library must refuse cleanly, with a message.

@@ -168,6 +168,9 @@ struct Snapshot {
     GLint vp[4];
     glGetIntegerv(GL_VIEWPORT, vp);
     s.values.insert(s.values.end(), vp, vp + 4);
+    GLint polygonMode[2] = {0, 0};
+    glGetIntegerv(GL_POLYGON_MODE, polygonMode);
+    s.values.push_back(polygonMode[0]);
     for (GLenum cap : {GL_DEPTH_TEST, GL_STENCIL_TEST, GL_CULL_FACE, GL_SCISSOR_TEST, GL_BLEND, GL_RASTERIZER_DISCARD})
       s.values.push_back(glIsEnabled(cap));
     for (GLuint k = 0; k < 4; ++k) {
@@ -196,7 +199,7 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   GLuint fboTex = makeTexture(GL_RGBA16F);
   glCreateFramebuffers(1, &hostFbo);
   glNamedFramebufferTexture(hostFbo, GL_COLOR_ATTACHMENT0, fboTex, 0);
-  for (int u = 0; u < 6; ++u) {
+  for (int u = 0; u < 7; ++u) {  // every unit sslr uses (6: its depth pyramid)
     glBindTextureUnit(u, hostTex[u % 3]);
     glBindSampler(u, hostSampler);
   }
@@ -223,6 +226,7 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   glColorMaski(0, GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
   glColorMaski(1, GL_FALSE, GL_TRUE, GL_FALSE, GL_TRUE);
   glDepthMask(GL_FALSE);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);  // a wireframe debug view left on by the host
   GLuint hostProgram = glCreateProgram();  // any valid program name works as "current"
   (void)hostProgram;
 
@@ -237,6 +241,7 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
 
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glBindVertexArray(0);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   glDisable(GL_SCISSOR_TEST);
@@ -371,6 +376,42 @@ TEST_F(Api, ResizeFollowsTheHost) {
   EXPECT_NE(st.message().find("32x16"), std::string::npos) << st.message();
   ASSERT_TRUE(ctx->resize(W, H));
   EXPECT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), Settings{}));
+}
+
+}  // namespace
+
+namespace {
+
+// A host that left a wireframe polygon mode on still gets the filled composite (issue: engine
+// integration, item 6), and gets its polygon mode back.
+TEST_F(Api, CompositeIsFilledWhateverThePolygonMode) {
+  auto ctx = makeContext();
+  Frame f;
+  ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), Settings{}));
+  auto compositeInto = [&](GLenum polygonMode) {
+    GLuint target = makeTexture(GL_RGBA16F), fbo = 0;
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, target, 0);
+    const float black[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(fbo, GL_COLOR, 0, black);
+    glPolygonMode(GL_FRONT_AND_BACK, polygonMode);
+    EXPECT_TRUE(ctx->composite(fbo));
+    GLint after[2] = {0, 0};
+    glGetIntegerv(GL_POLYGON_MODE, after);
+    EXPECT_EQ(after[0], GLint(polygonMode)) << "the host's polygon mode is restored";
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    std::vector<float> pixels(static_cast<size_t>(W) * H * 4);
+    glGetTextureImage(target, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels.size() * sizeof(float)), pixels.data());
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &target);
+    return pixels;
+  };
+  const std::vector<float> filled = compositeInto(GL_FILL);
+  const std::vector<float> wire = compositeInto(GL_LINE);
+  double energy = 0.0;
+  for (float v : filled) energy += v;
+  ASSERT_GT(energy, 1.0) << "the frame must have reflections";
+  EXPECT_EQ(wire, filled);
 }
 
 }  // namespace

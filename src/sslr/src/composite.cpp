@@ -28,6 +28,7 @@ Status Context::Impl::composite(GLName framebuffer) {
   gl.BindTextureUnit(4, resolved);
   gl.BindSampler(4, nearestSampler);
   gl.Viewport(0, 0, width, height);
+  gl.PolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   gl.Disable(GL_DEPTH_TEST);
   gl.Disable(GL_STENCIL_TEST);
   gl.Disable(GL_CULL_FACE);

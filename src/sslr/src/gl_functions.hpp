@@ -31,6 +31,7 @@ namespace sslr::detail {
   X(PFNGLBLENDFUNCSEPARATEIPROC, BlendFuncSeparatei)                             \
   X(PFNGLBLENDEQUATIONSEPARATEIPROC, BlendEquationSeparatei)                     \
   X(PFNGLVIEWPORTPROC, Viewport)                                                 \
+  X(PFNGLPOLYGONMODEPROC, PolygonMode)                                           \
   X(PFNGLGETFLOATVPROC, GetFloatv)                                               \
   X(PFNGLISTEXTUREPROC, IsTexture)                                               \
   X(PFNGLISFRAMEBUFFERPROC, IsFramebuffer)                                       \

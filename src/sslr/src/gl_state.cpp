@@ -53,6 +53,7 @@ StateGuard::StateGuard(const Gl& gl, bool forDraw) : gl_(gl), forDraw_(forDraw) 
   gl.GetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao_);
   gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer_);
   gl.GetIntegerv(GL_VIEWPORT, viewport_);
+  gl.GetIntegerv(GL_POLYGON_MODE, polygonMode_);
   depthTest_ = gl.IsEnabled(GL_DEPTH_TEST);
   stencilTest_ = gl.IsEnabled(GL_STENCIL_TEST);
   cullFace_ = gl.IsEnabled(GL_CULL_FACE);
@@ -99,6 +100,7 @@ StateGuard::~StateGuard() {
   gl.BindVertexArray(static_cast<GLuint>(vao_));
   gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(drawFramebuffer_));
   gl.Viewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
+  gl.PolygonMode(GL_FRONT_AND_BACK, static_cast<GLenum>(polygonMode_[0]));
   auto set = [&](GLenum cap, GLboolean on) { on ? gl.Enable(cap) : gl.Disable(cap); };
   set(GL_DEPTH_TEST, depthTest_);
   set(GL_STENCIL_TEST, stencilTest_);

@@ -42,6 +42,7 @@ class StateGuard {
   // Draw state (composite only).
   GLint drawIndirect_ = 0, vao_ = 0, drawFramebuffer_ = 0;
   GLint viewport_[4] = {};
+  GLint polygonMode_[2] = {GL_FILL, GL_FILL};  // a host's GL_LINE would draw the composite as wireframe
   GLboolean depthTest_ = 0, stencilTest_ = 0, cullFace_ = 0, scissorTest_ = 0, discard_ = 0;
   GLboolean blend0_ = 0;
   GLint blendSrcRgb_ = 0, blendDstRgb_ = 0, blendSrcAlpha_ = 0, blendDstAlpha_ = 0;

@@ -1,9 +1,12 @@
 // sslr - Screen Space Local Reflections for OpenGL 4.5 deferred renderers (depth-only variant).
 //
-// Quick start (docs/integration.md has the full checklist and the input table):
+// Quick start (docs/integration.md has the full checklist and the input table; the same lines are
+// compiled by the find_package consumer test, tests/consumer/main.cpp):
 //   auto ctx = sslr::Context::create({width, height, eglGetProcAddress});   // once
 //   if (!ctx) log(ctx.error());
-//   sslr::FrameInputs in{colorTex, normalTex, depthTex, clipFromView};        // per frame
+//   sslr::FrameInputs in;                                                     // per frame
+//   in.colorTexture = colorTex; in.normalTexture = normalTex; in.depthTexture = depthTex;
+//   in.clipFromView = clipFromView;  // glm::dmat4, the matrix that rasterized the depth
 //   if (auto st = ctx.value()->dispatch(in, sslr::Settings::preset(sslr::Preset::High)); !st)
 //     log(st.message());
 //   ctx.value()->composite(hostFramebuffer);   // adds the resolved reflection to what is there
