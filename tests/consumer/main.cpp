@@ -1,4 +1,5 @@
 // Compiles and links against the installed library only: no GL loader, no windowing, no tools.
+#include <sslr/reference.hpp>  // pulls the shared C++/GLSL headers from beside it
 #include <sslr/sslr.hpp>
 
 #include <cstdio>
@@ -29,5 +30,11 @@ int main() {
   auto ctx = sslr::Context::create(desc);
   if (ctx) return 1;
   std::printf("refused as expected: %s\n", ctx.error().c_str());
+  // The CPU reference of the shaders' math is usable from the installed headers: a singular
+  // projection is refused with a message.
+  sslr::FrameInputs singular;
+  singular.clipFromView = glm::dmat4(0.0);
+  if (sslr::frameConstants(singular, sslr::Settings{}, 64, 64)) return 1;
+  std::printf("shared header: SslrFrame is %zu bytes\n", sizeof(sslr::shared::SslrFrame));
   return sslr::validate(sslr::Settings::preset(sslr::Preset::High)).empty() ? 0 : 1;
 }
