@@ -44,6 +44,10 @@ struct Case {
   bool ortho;
   glm::dvec2 offsetPx;
 };
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << toString(c.mode) << (c.ortho ? " orthographic" : " perspective")
+      << (c.offsetPx.x != 0.0 ? " off-centre" : "");
+}
 
 class Reconstruction : public ::testing::TestWithParam<Case> {};
 

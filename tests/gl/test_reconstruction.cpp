@@ -15,6 +15,7 @@ struct Case {
   DepthMode mode;
   bool ortho;
 };
+void PrintTo(const Case& c, std::ostream* os) { *os << toString(c.mode) << (c.ortho ? " orthographic" : " perspective"); }
 
 class ReconstructionGl : public sslr::test::GlTest, public ::testing::WithParamInterface<Case> {};
 

@@ -22,6 +22,10 @@ struct TraceCase {
   bool ortho;
   Method method = Method::AdaptiveL;
 };
+void PrintTo(const TraceCase& c, std::ostream* os) {
+  *os << c.scene << " " << toString(c.depth) << (c.ortho ? " orthographic" : "")
+      << (c.method == Method::HierarchicalDepth ? " hierarchical" : "");
+}
 
 struct Traced {
   HitMetrics metrics;
@@ -141,6 +145,17 @@ TEST_F(Golden, DefaultSceneMatchesStoredImage) {
 namespace {
 
 // One source of truth: the GPU pass and the CPU run of the same shared header agree.
+}  // namespace
+
+namespace sslr {
+// gtest finds this by argument-dependent lookup for the Method parameters below.
+void PrintTo(Method m, std::ostream* os) {
+  *os << (m == Method::AdaptiveL ? "adaptive-l" : m == Method::HierarchicalDepth ? "hiz" : "position-buffer");
+}
+}  // namespace sslr
+
+namespace {
+
 class CpuGpuAgreement : public sslr::test::GlTest, public ::testing::WithParamInterface<Method> {};
 
 TEST_P(CpuGpuAgreement, SameHitsOnTheSameGBuffer) {
@@ -196,6 +211,10 @@ struct RobustCase {
   double minRecall;     // recall@1px on visible reflections (class A)
   double maxFalseHits;  // share of B/C/D pixels reporting a hit
 };
+void PrintTo(const RobustCase& c, std::ostream* os) {
+  *os << c.scene << (c.method == Method::HierarchicalDepth ? " hierarchical" : " default") << " recall >= "
+      << c.minRecall << ", false hits <= " << c.maxFalseHits;
+}
 
 class RobustScenes : public sslr::test::GlTest, public ::testing::WithParamInterface<RobustCase> {};
 
