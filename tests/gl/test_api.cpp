@@ -300,10 +300,12 @@ TEST_F(Api, PoisonedGBufferNeverProducesNanOrInf) {
     in.depthTexture = depth;
     in.clipFromView = cam.clipFromView(mode, double(W) / H);
     in.depth = depthConvention(mode);
-    for (NormalEncoding enc : {NormalEncoding::Octahedral, NormalEncoding::XyzUnorm}) {
+    for (NormalEncoding enc : {NormalEncoding::Octahedral, NormalEncoding::XyzUnorm})
+    for (Method method : {Method::AdaptiveL, Method::HierarchicalDepth}) {  // the pyramid sees the garbage too
       in.surface.normals = enc;
       in.surface.roughnessChannel = enc == NormalEncoding::Octahedral ? 2 : -1;
       Settings s;
+      s.method = method;
       s.debugOutputs = true;
       ASSERT_TRUE(ctx->dispatch(in, s));
       for (auto [tex, ch] : {std::pair{ctx->reflectionTexture(), 4}, {ctx->resolvedTexture(), 4},
@@ -412,6 +414,47 @@ TEST_F(Api, CompositeIsFilledWhateverThePolygonMode) {
   for (float v : filled) energy += v;
   ASSERT_GT(energy, 1.0) << "the frame must have reflections";
   EXPECT_EQ(wire, filled);
+}
+
+}  // namespace
+
+namespace {
+
+// NaN in a single texel and in a whole 8x8 tile of each G-buffer texture (it happens in real
+// engines; the RGBA16 unorm normal stores it as 0, a zero normal): no output anywhere turns
+// NaN/Inf, no GL error (fixture), and the next clean frame is exactly the clean frame (nothing of
+// the poisoned one is carried over: pyramid, tile lists, blur stamps).
+TEST_F(Api, PoisonedTexelsStayLocalAndLeaveNoTrace) {
+  auto ctx = makeContext();
+  Frame f;
+  const FrameInputs in = f.gbuffer->frameInputs();
+  Settings s;
+  s.debugOutputs = true;
+  ASSERT_TRUE(ctx->dispatch(in, s));
+  const Image cleanResolved = readAll(ctx->resolvedTexture(), 4), cleanHit = readAll(ctx->hitTexture(), 4);
+  const float nan = NAN;
+  struct Target {
+    GLuint texture;
+    GLenum format;
+    int channels;
+    const char* name;
+  } targets[] = {{in.colorTexture, GL_RGBA, 4, "colour"}, {in.normalTexture, GL_RGBA, 4, "normal"},
+                 {in.depthTexture, GL_DEPTH_COMPONENT, 1, "depth"}};
+  for (const Target& t : targets)
+    for (int size : {1, 8}) {
+      const int x0 = W / 2 - size / 2, y0 = H / 3;  // on the mirror floor, where rays start and land
+      std::vector<float> saved(static_cast<size_t>(size) * size * t.channels), poison(saved.size(), nan);
+      glGetTextureSubImage(t.texture, 0, x0, y0, 0, size, size, 1, t.format, GL_FLOAT,
+                           static_cast<GLsizei>(saved.size() * sizeof(float)), saved.data());
+      glTextureSubImage2D(t.texture, 0, x0, y0, size, size, t.format, GL_FLOAT, poison.data());
+      ASSERT_TRUE(ctx->dispatch(in, s));
+      for (GLuint out : {ctx->reflectionTexture(), ctx->resolvedTexture(), ctx->hitTexture()})
+        EXPECT_EQ(countNonFinite(readAll(out, 4)), 0u) << t.name << " " << size << "x" << size;
+      glTextureSubImage2D(t.texture, 0, x0, y0, size, size, t.format, GL_FLOAT, saved.data());
+      ASSERT_TRUE(ctx->dispatch(in, s));
+      EXPECT_EQ(readAll(ctx->resolvedTexture(), 4).pixels, cleanResolved.pixels) << t.name << " " << size;
+      EXPECT_EQ(readAll(ctx->hitTexture(), 4).pixels, cleanHit.pixels) << t.name << " " << size;
+    }
 }
 
 }  // namespace
