@@ -50,17 +50,25 @@ SSLR_FN SslrHit sslrNoHit(int status) {
 // within a tolerance that grows with distance (depth precision) and with the pixel footprint
 // stretched by the surface slope (pixel snapping on a steep surface moves P' along the view ray).
 // Also rejects the back of surfaces and hits on the reflecting pixel itself.
+// tan(angle) between a surface and the view ray that sees it, capped: a surface seen edge-on has
+// no depth to speak of.
+SSLR_FN float sslrSlopeTan(SslrProjection p, vec3 vsSurface, vec3 vsSurfaceNormal) {
+  float cosView = abs(dot(vsSurfaceNormal, sslrViewDirection(p, vsSurface)));
+  return min(sqrt(max(1.0f - cosView * cosView, 0.0f)) / max(cosView, 0.0625f), 16.0f);
+}
+
+// Hit tolerance (view units) on a surface at view depth `dist` seen at tan(angle) `tanView`: a
+// fraction of the distance (depth precision) plus pixel footprints stretched by the slope.
+SSLR_FN float sslrHitTolerance(SslrProjection p, SslrSurface s, SslrTraceParams t, float dist, float tanView) {
+  float footprint = sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : dist);
+  return t.thicknessRelative * abs(dist) + t.thicknessPixels * footprint * (1.0f + tanView);
+}
+
 SSLR_FN float sslrHitValidation(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsQ,
                                 vec3 vsSurface, vec3 vsSurfaceNormal, vec3 vsR) {
   if (dot(vsSurfaceNormal, vsR) >= 0.0f) return 0.0f;  // the ray would hit the surface's back
-  vec3 vsViewAtHit = sslrViewDirection(p, vsSurface);
-  float cosView = abs(dot(vsSurfaceNormal, vsViewAtHit));
-  // tan(angle) of the surface seen from the camera, capped: a surface seen edge-on has no depth.
-  float tanView = min(sqrt(max(1.0f - cosView * cosView, 0.0f)) / max(cosView, 0.0625f), 16.0f);
-  float dist = sslrViewDistance(p, vsSurface);
-  float footprint = sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : dist);
-  float tolerance = t.thicknessRelative * (p.orthographic != 0 ? abs(vsSurface.z) : dist) +
-                    t.thicknessPixels * footprint * (1.0f + tanView);
+  float dist = p.orthographic != 0 ? abs(vsSurface.z) : sslrViewDistance(p, vsSurface);
+  float tolerance = sslrHitTolerance(p, s, t, dist, sslrSlopeTan(p, vsSurface, vsSurfaceNormal));
   float miss = length(vsQ - vsSurface);
   return 1.0f - smoothstep(tolerance, 2.0f * tolerance, miss);
 }
@@ -251,10 +259,7 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
     // Done when Q lies on the surface its pixel shows (within the hit tolerance, without the
     // slope term; the final validation and the plane refinement below do the rest).
     float distS = p.orthographic != 0 ? abs(vsSurface.z) : -vsSurface.z;
-    float onSurfaceTolerance =
-        t.thicknessRelative * distS +
-        t.thicknessPixels * sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : distS);
-    if (length(vsQ - vsSurface) <= onSurfaceTolerance) break;
+    if (length(vsQ - vsSurface) <= sslrHitTolerance(p, s, t, distS, 0.0f)) break;
     // The article's update has settled (|P' - P| = L) but Q is not on the surface: a spurious
     // fixed point (the sphere of radius L around P meets the surface elsewhere). Not a hit:
     // move on with the bracket instead.

@@ -32,13 +32,6 @@
 namespace sslr::shared {
 #endif
 
-// Tolerance (view units) of a hit on a surface at view depth `dist` seen at tan(angle) tanView:
-// the same terms as sslrHitValidation.
-SSLR_FN float sslrHitTolerance(SslrProjection p, SslrSurface s, SslrTraceParams t, float dist, float tanView) {
-  float footprint = sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : dist);
-  return t.thicknessRelative * abs(dist) + t.thicknessPixels * footprint * (1.0f + tanView);
-}
-
 // The level after a skipped cell: one coarser when the ray enters a new parent cell, else the
 // same (the parent, containing the skipped cell, could not have been skipped whole).
 SSLR_FN int sslrHiZNextLevel(vec3 o, vec3 d, float tRay, vec2 cell, int level, int topLevel) {
@@ -165,13 +158,10 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
     }
     if (valid >= 0.5f) return L > t.maxDistance ? hit : sslrFinishHit(p, hit, vsP, vsR, L, valid);
     // No hit here. How deep behind the pixel's surface does the ray get inside the pixel?
-    float distSurface = sslrViewDistance(p, vsSurface);
-    if (p.orthographic != 0) distSurface = -vsSurface.z;
+    float distSurface = -vsSurface.z;  // view depth, as sslrViewDepthFromDepth measures it
     float behind = sslrViewDepthFromDepth(p, keySign * segFar) - distSurface;
-    vec3 vsViewAtSurface = sslrViewDirection(p, vsSurface);
-    float cosView = normalOk ? abs(dot(vsSurfaceNormal, vsViewAtSurface)) : 0.0f;
-    float tanView = min(sqrt(max(1.0f - cosView * cosView, 0.0f)) / max(cosView, 0.0625f), 16.0f);
-    float tolerance = sslrHitTolerance(p, s, t, distSurface, tanView);
+    float tolerance =
+        sslrHitTolerance(p, s, t, distSurface, normalOk ? sslrSlopeTan(p, vsSurface, vsSurfaceNormal) : 16.0f);
     // What the pixel shows is taken to fill [surface, surface + objectThickness x distance] along
     // the view. A ray inside that slab (deeper than the hit tolerance: pixel snapping) ran into
     // the hidden part of the object, from the front or from behind: nothing on screen is its

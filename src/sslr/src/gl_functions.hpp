@@ -77,7 +77,6 @@ namespace sslr::detail {
   X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)                               \
   X(PFNGLUSEPROGRAMPROC, UseProgram)                                             \
   X(PFNGLPROGRAMUNIFORM1IPROC, ProgramUniform1i)                                 \
-  X(PFNGLPROGRAMUNIFORM2IPROC, ProgramUniform2i)                                 \
   X(PFNGLDISPATCHCOMPUTEPROC, DispatchCompute)                                   \
   X(PFNGLDISPATCHCOMPUTEINDIRECTPROC, DispatchComputeIndirect)                   \
   X(PFNGLDRAWARRAYSINDIRECTPROC, DrawArraysIndirect)                             \

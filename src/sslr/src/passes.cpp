@@ -29,8 +29,6 @@ void Context::Impl::buildPyramid(GLuint prog) const {
   for (int level = 1; level <= hizLevels; ++level) {
     const int w = hizWidth >> (level - 1), h = hizHeight >> (level - 1);
     gl.ProgramUniform1i(prog, 0, level - 1);  // uSourceLevel
-    if (level == 1) gl.ProgramUniform2i(prog, 1, width, height);  // uSourceSize
-    else gl.ProgramUniform2i(prog, 1, hizWidth >> (level - 2), hizHeight >> (level - 2));
     gl.BindImageTexture(0, hiz, level - 1, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
     gl.DispatchCompute(static_cast<GLuint>((w + SSLR_TILE_SIZE - 1) / SSLR_TILE_SIZE),
                        static_cast<GLuint>((h + SSLR_TILE_SIZE - 1) / SSLR_TILE_SIZE), 1);
@@ -50,8 +48,8 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   if (settings.collectStats) traceDefines += "#define SSLR_COLLECT_STATS 1\n";
   if (settings.method == Method::PositionBuffer) traceDefines += "#define SSLR_METHOD_POSITION_BUFFER 1\n";
   auto classify = computeProgram("classify.comp");
-  const bool depthOnly = settings.method != Method::PositionBuffer;
-  const bool pyramid = depthOnly && (settings.method == Method::HierarchicalDepth || settings.hierarchicalFallback);
+  // frameConstants decided whether the trace uses the traversal; the pyramid follows it.
+  const bool pyramid = constants.value().trace.hizMode != SSLR_HIZ_OFF;
   Expected<GLuint> hizBuild = pyramid ? computeProgram("hiz.comp") : Expected<GLuint>(GLuint(0));
   auto trace = computeProgram("trace.comp", traceDefines);
   const bool blur = settings.blur && settings.blurMaxRadiusPx > 0.0f;
