@@ -128,14 +128,9 @@ int main(int argc, char** argv) {
   std::printf("%-14s %-16s %9s %8s %8s %8s %8s %9s\n", "scene", "method", "time ms", "ratio", "rec@1px", "p95 px",
               "false", "fetch/px");
   for (const auto& sc : result.value().scenes) {
-    std::vector<const RunRecord*> defaults;
-    const RunRecord* p = nullptr;  // the tutorial's configuration: time ratios are to it
-    for (const RunRecord& r : result.value().runs)
-      if (r.scene == sc.scene && r.config.isDefault) {
-        defaults.push_back(&r);
-        if (r.method == "position-buffer") p = &r;
-      }
-    for (const RunRecord* r : defaults)
+    const SceneDefaults defaults = defaultRuns(result.value(), sc.scene);
+    const RunRecord* p = defaults.tutorial;  // time ratios are to the tutorial's configuration
+    for (const RunRecord* r : defaults.runs)
       std::printf("%-14s %-16s %9.2f %8.2f %8.4f %8.3f %8.4f %9.1f\n", sc.scene.c_str(), r->method.c_str(),
                   r->timeMedianMs, p ? r->timeMedianMs / p->timeMedianMs : 0.0, r->metrics.recall1px,
                   r->metrics.p95ErrorPx, r->metrics.falseHitRate, r->fetchesPerTracedPixel);

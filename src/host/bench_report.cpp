@@ -225,14 +225,9 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
        "<th>recall@1px</th><th>p95 px</th><th>false hits</th><th>RMSE</th><th>fetches/px</th><th>G-buffer B/px</th></tr>";
   for (const SceneRecord& sc : result.scenes) {
     // Each method's default; the time ratio is to the tutorial's configuration.
-    std::vector<const RunRecord*> defaults;
-    const RunRecord* p = nullptr;
-    for (const RunRecord& r : result.runs)
-      if (r.scene == sc.scene && r.config.isDefault) {
-        defaults.push_back(&r);
-        if (r.method == "position-buffer") p = &r;
-      }
-    for (const RunRecord* r : defaults) {
+    const SceneDefaults defaults = defaultRuns(result, sc.scene);
+    const RunRecord* p = defaults.tutorial;
+    for (const RunRecord* r : defaults.runs) {
       const double ratio = (p && p->timeMedianMs > 0) ? r->timeMedianMs / p->timeMedianMs : NAN;
       h << "<tr><td>" << esc(sc.scene) << "</td><td>" << esc(r->method) << " " << esc(r->label) << "</td><td>"
         << fmt(r->timeMedianMs, 2) << "</td><td>" << fmt(ratio, 2) << "</td><td>" << fmt(r->metrics.recall1px, 4)

@@ -344,4 +344,14 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
   return result;
 }
 
+SceneDefaults defaultRuns(const BenchResult& result, const std::string& scene) {
+  SceneDefaults d;
+  for (const RunRecord& r : result.runs)
+    if (r.scene == scene && r.config.isDefault) {
+      d.runs.push_back(&r);
+      if (r.method == "position-buffer") d.tutorial = &r;
+    }
+  return d;
+}
+
 }  // namespace sslr::host

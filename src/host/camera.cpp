@@ -103,8 +103,7 @@ std::string Camera::validate() const {
   auto finite3 = [](glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
   if (!finite3(eye) || !finite3(target) || !finite3(up)) return "camera eye/target/up must be finite";
   // Beyond this a double can no longer tell a pixel's worth of view direction apart.
-  auto maxAbs = [](glm::dvec3 v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); };
-  const double far = std::max(maxAbs(eye), maxAbs(target));
+  const double far = std::max(maxAbsComponent(eye), maxAbsComponent(target));
   if (!(far <= 1e15)) {
     char text[128];
     std::snprintf(text, sizeof text, "camera eye/target lie %.3g units from the origin (at most 1e15 supported)", far);

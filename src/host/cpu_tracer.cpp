@@ -67,11 +67,13 @@ Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& set
   tProj = proj;
   tSurf = surf;
   tStored = source == SurfaceSource::StoredPositions;
-  // Pyramid levels as hiz.comp builds them (level l: ceil(size / 2^l) cells per axis).
+  // Pyramid levels as hiz.comp builds them (level l: ceil(size / 2^l) cells per axis), only when
+  // the trace uses them (as dispatch() builds them only then).
   tPyramid.clear();
   tPyramidWidth.clear();
   tPyramidHeight.clear();
-  for (int level = 1; level <= t.hizLevels; ++level) {
+  const int levels = t.hizMode != SSLR_HIZ_OFF ? t.hizLevels : 0;
+  for (int level = 1; level <= levels; ++level) {
     const int pw = (w + (1 << level) - 1) >> level, ph = (h + (1 << level) - 1) >> level;
     std::vector<vec2> cells(static_cast<size_t>(pw) * ph);
     for (int cy = 0; cy < ph; ++cy)

@@ -22,8 +22,7 @@ Bounds Scene::worldBounds() const {
 std::string Scene::checkExtent() const {
   const Bounds b = worldBounds();
   if (b.empty()) return "";
-  auto maxAbs = [](glm::dvec3 v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); };
-  const double extent = std::max(maxAbs(b.min), maxAbs(b.max));
+  const double extent = std::max(maxAbsComponent(b.min), maxAbsComponent(b.max));
   if (!std::isfinite(extent))
     return "the scene's extent is not finite (a transform or vertex overflows)";
   if (extent > kMaxSceneExtent) {
@@ -314,6 +313,20 @@ Scene tiltedMirror() {
 }
 
 
+// The matte box colours of the scenes built to break the tracer (slightly emissive, so that their
+// reflections read clearly in the shade).
+struct BoxColours {
+  int red, green, blue, yellow;
+};
+BoxColours addBoxColours(Scene& s, float emissive) {
+  BoxColours c;
+  c.red = addMaterial(s, glm::vec3(0.8f, 0.12f, 0.1f), 0.0f, 0.7f, emissive);
+  c.green = addMaterial(s, glm::vec3(0.12f, 0.7f, 0.2f), 0.0f, 0.7f, emissive);
+  c.blue = addMaterial(s, glm::vec3(0.12f, 0.25f, 0.85f), 0.0f, 0.7f, emissive);
+  c.yellow = addMaterial(s, glm::vec3(0.9f, 0.75f, 0.1f), 0.0f, 0.7f, emissive);
+  return c;
+}
+
 // The scenes below were built to break the tracer (issue: robust tracing), not to show it off.
 
 // A mirror leaning 20 degrees towards a camera at eye height, its face to the viewer: its
@@ -324,16 +337,14 @@ Scene facingMirror() {
   const int mirror = addMaterial(s, glm::vec3(0.95f), 1.0f, 0.0f);
   const int floor = addMaterial(s, glm::vec3(0.55f, 0.5f, 0.42f), 0.0f, 0.9f, 0.1f);
   const int wall = addMaterial(s, glm::vec3(0.6f, 0.62f, 0.66f), 0.0f, 0.9f, 0.05f);
-  const int red = addMaterial(s, glm::vec3(0.8f, 0.12f, 0.1f), 0.0f, 0.7f, 0.2f);
-  const int green = addMaterial(s, glm::vec3(0.12f, 0.7f, 0.2f), 0.0f, 0.7f, 0.2f);
-  const int blue = addMaterial(s, glm::vec3(0.12f, 0.25f, 0.85f), 0.0f, 0.7f, 0.2f);
+  const BoxColours box = addBoxColours(s, 0.2f);
   s.meshes.push_back(makeQuad({0, 0, 0}, {20, 20}, {0, 1, 0}, floor));
   s.meshes.push_back(makeQuad({0, 3, -7}, {20, 6}, {0, 0, 1}, wall));
   const double lean = glm::radians(20.0);
   s.meshes.push_back(makeQuad({0, 1.65, -4.5}, {5, 3}, {0, -std::sin(lean), std::cos(lean)}, mirror));
-  s.meshes.push_back(makeBox({-1.6, 0.5, -2.2}, {0.9, 1.0, 0.9}, red, 15.0));
-  s.meshes.push_back(makeBox({0.3, 0.35, -1.4}, {0.7, 0.7, 0.7}, green, -25.0));
-  s.meshes.push_back(makeBox({1.7, 0.7, -2.6}, {0.8, 1.4, 0.8}, blue, 40.0));
+  s.meshes.push_back(makeBox({-1.6, 0.5, -2.2}, {0.9, 1.0, 0.9}, box.red, 15.0));
+  s.meshes.push_back(makeBox({0.3, 0.35, -1.4}, {0.7, 0.7, 0.7}, box.green, -25.0));
+  s.meshes.push_back(makeBox({1.7, 0.7, -2.6}, {0.8, 1.4, 0.8}, box.blue, 40.0));
   s.camera = perspectiveCamera({0.0, 1.6, 4.0}, {0.0, 1.3, -4.5}, 55.0, 0.1, 100.0);
   s.background = glm::vec3(0.3f, 0.32f, 0.38f);
   return s;
@@ -347,10 +358,7 @@ Scene mirrorWalls() {
   const int mirror = addMaterial(s, glm::vec3(0.95f), 1.0f, 0.0f);
   const int floor = addMaterial(s, glm::vec3(0.5f, 0.48f, 0.45f), 0.0f, 0.9f, 0.1f);
   const int wall = addMaterial(s, glm::vec3(0.7f, 0.66f, 0.6f), 0.0f, 0.9f, 0.1f);
-  const int red = addMaterial(s, glm::vec3(0.8f, 0.12f, 0.1f), 0.0f, 0.7f, 0.2f);
-  const int green = addMaterial(s, glm::vec3(0.12f, 0.7f, 0.2f), 0.0f, 0.7f, 0.2f);
-  const int blue = addMaterial(s, glm::vec3(0.12f, 0.25f, 0.85f), 0.0f, 0.7f, 0.2f);
-  const int yellow = addMaterial(s, glm::vec3(0.9f, 0.75f, 0.1f), 0.0f, 0.7f, 0.2f);
+  const BoxColours box = addBoxColours(s, 0.2f);
   s.meshes.push_back(makeQuad({0, 0, -4}, {14, 20}, {0, 1, 0}, floor));
   s.meshes.push_back(makeQuad({0, 2.5, -12}, {14, 5}, {0, 0, 1}, wall));
   // A wall normal along +x (left wall) or -x (right wall), turned towards the camera about +y.
@@ -362,10 +370,10 @@ Scene mirrorWalls() {
   // each other across the room: a corridor of two mirrors.
   s.meshes.push_back(makeQuad({-3.2, 1.6, -5.5}, {9.0, 3.2}, yawed(1.0, 20.0), mirror));
   s.meshes.push_back(makeQuad({3.4, 1.6, -6.0}, {10.0, 3.2}, yawed(-1.0, 12.0), mirror));
-  s.meshes.push_back(makeBox({-1.2, 0.6, -8.5}, {1.0, 1.2, 1.0}, red, 20.0));
-  s.meshes.push_back(makeBox({1.0, 0.9, -6.5}, {0.8, 1.8, 0.8}, green, -15.0));
-  s.meshes.push_back(makeBox({-0.6, 0.4, -3.5}, {0.8, 0.8, 0.8}, blue, 30.0));
-  s.meshes.push_back(makeBox({1.6, 0.3, -2.2}, {0.6, 0.6, 0.6}, yellow, 10.0));
+  s.meshes.push_back(makeBox({-1.2, 0.6, -8.5}, {1.0, 1.2, 1.0}, box.red, 20.0));
+  s.meshes.push_back(makeBox({1.0, 0.9, -6.5}, {0.8, 1.8, 0.8}, box.green, -15.0));
+  s.meshes.push_back(makeBox({-0.6, 0.4, -3.5}, {0.8, 0.8, 0.8}, box.blue, 30.0));
+  s.meshes.push_back(makeBox({1.6, 0.3, -2.2}, {0.6, 0.6, 0.6}, box.yellow, 10.0));
   s.camera = perspectiveCamera({0.2, 1.6, 4.0}, {0.0, 1.2, -8.0}, 60.0, 0.1, 100.0);
   s.background = glm::vec3(0.3f, 0.33f, 0.4f);
   return s;
@@ -378,16 +386,14 @@ Scene curvedMirror() {
   const int mirror = addMaterial(s, glm::vec3(0.95f), 1.0f, 0.0f);
   const int floor = addMaterial(s, glm::vec3(0.5f, 0.5f, 0.46f), 0.0f, 0.9f, 0.1f);
   const int wall = addMaterial(s, glm::vec3(0.55f, 0.6f, 0.68f), 0.0f, 0.9f, 0.1f);
-  const int red = addMaterial(s, glm::vec3(0.8f, 0.12f, 0.1f), 0.0f, 0.7f, 0.2f);
-  const int green = addMaterial(s, glm::vec3(0.12f, 0.7f, 0.2f), 0.0f, 0.7f, 0.2f);
-  const int yellow = addMaterial(s, glm::vec3(0.9f, 0.75f, 0.1f), 0.0f, 0.7f, 0.2f);
+  const BoxColours box = addBoxColours(s, 0.2f);
   s.meshes.push_back(makeQuad({0, 0, -2}, {16, 16}, {0, 1, 0}, floor));
   s.meshes.push_back(makeQuad({0, 3, -7}, {16, 6}, {0, 0, 1}, wall));
   s.meshes.push_back(makeSphere({-1.2, 1.0, -2.0}, 1.0, mirror, 48, 96));
   s.meshes.push_back(makeCylinder({1.6, 0.0, -2.8}, 0.6, 2.2, mirror, 96));
-  s.meshes.push_back(makeBox({-3.2, 0.6, -3.8}, {1.0, 1.2, 1.0}, red, 25.0));
-  s.meshes.push_back(makeBox({0.4, 0.35, -4.8}, {0.7, 0.7, 0.7}, green, -10.0));
-  s.meshes.push_back(makeBox({3.3, 0.5, -1.0}, {0.8, 1.0, 0.8}, yellow, 35.0));
+  s.meshes.push_back(makeBox({-3.2, 0.6, -3.8}, {1.0, 1.2, 1.0}, box.red, 25.0));
+  s.meshes.push_back(makeBox({0.4, 0.35, -4.8}, {0.7, 0.7, 0.7}, box.green, -10.0));
+  s.meshes.push_back(makeBox({3.3, 0.5, -1.0}, {0.8, 1.0, 0.8}, box.yellow, 35.0));
   s.camera = perspectiveCamera({0.0, 2.0, 4.5}, {0.0, 0.9, -2.5}, 55.0, 0.1, 100.0);
   s.background = glm::vec3(0.3f, 0.33f, 0.4f);
   return s;
@@ -398,9 +404,7 @@ Scene glossy() {
   Scene s;
   s.name = "glossy";
   const int wall = addMaterial(s, glm::vec3(0.6f, 0.6f, 0.62f), 0.0f, 0.9f, 0.1f);
-  const int red = addMaterial(s, glm::vec3(0.8f, 0.12f, 0.1f), 0.0f, 0.7f, 0.25f);
-  const int green = addMaterial(s, glm::vec3(0.12f, 0.7f, 0.2f), 0.0f, 0.7f, 0.25f);
-  const int blue = addMaterial(s, glm::vec3(0.12f, 0.25f, 0.85f), 0.0f, 0.7f, 0.25f);
+  const BoxColours box = addBoxColours(s, 0.25f);
   const int panels = 6;
   for (int i = 0; i < panels; ++i) {
     const int m = addMaterial(s, glm::vec3(0.9f), 1.0f, 0.1f * i);
@@ -408,7 +412,7 @@ Scene glossy() {
   }
   s.meshes.push_back(makeQuad({0, 3, -5}, {14, 6}, {0, 0, 1}, wall));
   for (int i = 0; i < panels; ++i) {
-    const int m = i % 3 == 0 ? red : (i % 3 == 1 ? green : blue);
+    const int m = i % 3 == 0 ? box.red : (i % 3 == 1 ? box.green : box.blue);
     s.meshes.push_back(makeBox({-5.0 + 2.0 * i, 0.6, -3.6}, {0.8, 1.2, 0.8}, m, 20.0 * i));
   }
   s.camera = perspectiveCamera({0.0, 2.2, 5.5}, {0.0, 0.6, -2.5}, 60.0, 0.1, 100.0);

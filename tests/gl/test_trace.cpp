@@ -27,6 +27,32 @@ void PrintTo(const TraceCase& c, std::ostream* os) {
       << (c.method == Method::HierarchicalDepth ? " hierarchical" : "");
 }
 
+// A frame rendered with debug outputs and the exact reflections traced by Embree: what every
+// accuracy test in this file starts from. Failures are reported; `renderer` is null then.
+struct ScoredFrame {
+  std::unique_ptr<FrameRenderer> renderer;
+  GroundTruth truth;
+  Image hit;
+};
+
+ScoredFrame renderScored(const Scene& scene, const Camera& camera, const GBufferOptions& options, Settings settings) {
+  ScoredFrame f;
+  auto r = FrameRenderer::create(options);
+  EXPECT_TRUE(r) << r.error();
+  if (!r) return f;
+  GpuScene gpu(scene);
+  settings.debugOutputs = true;
+  const Status st = r.value()->render(gpu, camera, &settings);
+  EXPECT_TRUE(st) << st.message();
+  auto gt = groundTruthFor(scene, r.value()->gbuffer(), settings);
+  EXPECT_TRUE(gt) << gt.error();
+  if (!st || !gt) return f;
+  f.truth = std::move(gt.value());
+  f.hit = r.value()->readHit();
+  f.renderer = std::move(r.value());
+  return f;
+}
+
 struct Traced {
   HitMetrics metrics;
   size_t nonFiniteOutputs = 0;
@@ -44,21 +70,14 @@ Traced traceAndCompare(const TraceCase& c, int w, int h) {
   o.width = w;
   o.height = h;
   o.depth = c.depth;
-  auto r = FrameRenderer::create(o);
-  EXPECT_TRUE(r) << r.error();
-  GpuScene gpu(scene.value());
   Settings s = Settings::preset(Preset::High);
   s.method = c.method;
-  s.debugOutputs = true;
-  const Status st = r.value()->render(gpu, cam, &s);
-  EXPECT_TRUE(st) << st.message();
-  const Image hit = r.value()->readHit();
-  auto gt = groundTruthFor(scene.value(), r.value()->gbuffer(), s);
-  EXPECT_TRUE(gt) << gt.error();
+  const ScoredFrame f = renderScored(scene.value(), cam, o, s);
   Traced t;
-  t.metrics = compareHits(gt.value(), hit);
-  t.nonFiniteOutputs = countNonFinite(r.value()->readReflection()) + countNonFinite(r.value()->readResolved()) +
-                       countNonFinite(r.value()->readFinal()) + countNonFinite(hit);
+  if (!f.renderer) return t;
+  t.metrics = compareHits(f.truth, f.hit);
+  t.nonFiniteOutputs = countNonFinite(f.renderer->readReflection()) + countNonFinite(f.renderer->readResolved()) +
+                       countNonFinite(f.renderer->readFinal()) + countNonFinite(f.hit);
   return t;
 }
 
@@ -225,19 +244,14 @@ TEST_P(RobustScenes, RecallAndFalseHitsOnGpuAndCpu) {
   GBufferOptions o;
   o.width = 192;
   o.height = 108;
-  auto r = FrameRenderer::create(o);
-  ASSERT_TRUE(r) << r.error();
-  GpuScene gpu(scene.value());
   Settings s;
   s.method = c.method;
-  s.debugOutputs = true;
-  ASSERT_TRUE(r.value()->render(gpu, *scene.value().camera, &s));
-  auto gt = groundTruthFor(scene.value(), r.value()->gbuffer(), s);
-  ASSERT_TRUE(gt) << gt.error();
-  GBuffer& g = r.value()->gbuffer();
+  const ScoredFrame f = renderScored(scene.value(), *scene.value().camera, o, s);
+  ASSERT_TRUE(f.renderer);
+  GBuffer& g = f.renderer->gbuffer();
   const Image depth = g.readDepth(), normal = g.readNormalPacked();
-  const HitMetrics onGpu = compareHits(gt.value(), r.value()->readHit());
-  const HitMetrics onCpu = compareHits(gt.value(), traceOnCpu({&depth, &normal, nullptr}, g.frameInputs(), s));
+  const HitMetrics onGpu = compareHits(f.truth, f.hit);
+  const HitMetrics onCpu = compareHits(f.truth, traceOnCpu({&depth, &normal, nullptr}, g.frameInputs(), s));
   for (const auto& [where, m] : {std::pair{"gpu", onGpu}, std::pair{"cpu", onCpu}}) {
     std::printf("%s %s %s: A=%zu B=%zu C=%zu D=%zu recall@1px %.4f p95 %.3f px false hits %.4f\n", c.scene,
                 c.method == Method::AdaptiveL ? "adaptive-l" : "hiz", where, m.visible, m.occluded, m.offScreen,
@@ -287,20 +301,15 @@ TEST_F(ContactLine, ReflectionsWithinTwoPixelsAreFound) {
     GBufferOptions o;
     o.width = 320;
     o.height = 180;
-    auto r = FrameRenderer::create(o);
-    ASSERT_TRUE(r);
-    GpuScene gpu(scene.value());
     Settings s;
     s.method = method;
-    s.debugOutputs = true;
-    ASSERT_TRUE(r.value()->render(gpu, *scene.value().camera, &s));
-    auto gt = groundTruthFor(scene.value(), r.value()->gbuffer(), s);
-    ASSERT_TRUE(gt);
-    const Image hit = r.value()->readHit();
+    const ScoredFrame f = renderScored(scene.value(), *scene.value().camera, o, s);
+    ASSERT_TRUE(f.renderer);
+    const Image& hit = f.hit;
     size_t contact = 0, found = 0;
     for (int y = 0; y < o.height; ++y)
       for (int x = 0; x < o.width; ++x) {
-        const TruthPixel& t = gt.value().pixels[static_cast<size_t>(y) * o.width + x];
+        const TruthPixel& t = f.truth.pixels[static_cast<size_t>(y) * o.width + x];
         if (t.cls != TruthClass::Visible) continue;
         const glm::vec2 truePx = t.uvHit * glm::vec2(o.width, o.height);
         if (glm::length(truePx - glm::vec2(x + 0.5f, y + 0.5f)) > 2.0f) continue;

@@ -66,6 +66,14 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool isSoftwareR
                                    const std::string& reportDir,
                                    const std::function<void(int, int, const std::string&)>& progress);
 
+// Each method's default run on `scene`, and the tutorial's configuration (the position-buffer
+// default) that summaries take time ratios to (nullptr if the run has none).
+struct SceneDefaults {
+  std::vector<const RunRecord*> runs;
+  const RunRecord* tutorial = nullptr;
+};
+SceneDefaults defaultRuns(const BenchResult& result, const std::string& scene);
+
 // results.json, results.csv and report/index.html under outDir.
 Status writeBenchResults(const BenchResult& result, const std::string& outDir);
 

@@ -1,6 +1,8 @@
 // Cameras and the projection matrices of every depth convention, built in double.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include <glm/glm.hpp>
@@ -19,6 +21,10 @@ enum class DepthMode {
 const char* toString(DepthMode mode);
 bool parseDepthMode(const std::string& text, DepthMode& mode);
 DepthConvention depthConvention(DepthMode mode);
+
+// The largest |coordinate| of a point: how far from the origin it reaches along an axis (the
+// length of a far point would overflow).
+inline double maxAbsComponent(glm::dvec3 v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 
 struct Camera {
   glm::dvec3 eye{0.0, 2.0, 8.0};
