@@ -1,26 +1,47 @@
-// Pass 1: tile classification. One work group per 8x8 tile: a tile with at least one pixel that
-// needs tracing is appended to the tile list; all later passes run over listed tiles only, so a
-// frame without reflective pixels costs this one cheap pass.
+// Pass 1: tile classification, one invocation per pixel: the first pixel of an 8x8 tile found to
+// need tracing appends the tile to the tile list (a per-tile stamp says "listed this frame"); all
+// later passes run over listed tiles only. No shared memory and no barrier: on CPU rasterizers a
+// barrier splits the shader and cost more than the whole pass (measured: 3.2x the baseline pass on
+// an empty frame with three barriers, docs/results.md).
+//
+// With SSLR_CLEANUP the same file is the clean-up pass, run after classification over the
+// previous frame's traced tiles: those not listed again are zeroed. The outputs are never cleared
+// whole: the trace writes every pixel of a listed tile, so after a frame only its listed tiles
+// can be non-zero, and an empty frame after an empty frame only reads the G-buffer.
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
 
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 
-shared uint sAnyTraced;
+#ifdef SSLR_CLEANUP
+layout(binding = 0, rgba16f) uniform writeonly image2D uReflection;
+layout(binding = 3, rgba16f) uniform writeonly image2D uResolved;
 
 void main() {
-  if (gl_LocalInvocationIndex == 0u) sAnyTraced = 0u;
-  barrier();
-  ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-  if (sslrInside(px)) {
-    float depth = texelFetch(uDepth, px, 0).r;
-    vec4 packedNormal = texelFetch(uNormal, px, 0);
-    if (sslrShouldTrace(frame.surface, frame.trace, depth, packedNormal)) atomicOr(sAnyTraced, 1u);
-  }
-  barrier();
-  if (gl_LocalInvocationIndex == 0u && sAnyTraced != 0u) {
-    uint slot = atomicAdd(tiles.dispatchX, 1u);
-    atomicAdd(tiles.drawInstances, 1u);
-    tiles.tileCoords[slot] = gl_WorkGroupID.x | (gl_WorkGroupID.y << 16);
-  }
+  uint entry = tiles.tileCoords[4u * sslrTileCapacity() + gl_WorkGroupID.x];
+  uvec2 tile = uvec2(entry & 0xffffu, entry >> 16);
+  if (tiles.tileCoords[sslrTileListedStamp(tile)] == uint(frame.trace.frameIndex)) return;  // traced again
+  ivec2 px = ivec2(tile) * SSLR_TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
+  if (!sslrInside(px)) return;
+  imageStore(uReflection, px, vec4(0.0f));
+  imageStore(uResolved, px, vec4(0.0f));
 }
+#else
+void main() {
+  ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+  if (!sslrInside(px)) return;
+  float depth = texelFetch(uDepth, px, 0).r;
+  vec4 packedNormal = texelFetch(uNormal, px, 0);
+  if (!sslrShouldTrace(frame.surface, frame.trace, depth, packedNormal)) return;
+  uint stamp = sslrTileListedStamp(gl_WorkGroupID.xy);
+  uint frameIndex = uint(frame.trace.frameIndex);
+  // The plain read spares the atomic to all but the first few pixels of a listed tile.
+  if (tiles.tileCoords[stamp] == frameIndex || atomicExchange(tiles.tileCoords[stamp], frameIndex) == frameIndex)
+    return;
+  uint slot = atomicAdd(tiles.dispatchX, 1u);
+  atomicAdd(tiles.drawInstances, 1u);
+  tiles.tileCoords[slot] = gl_WorkGroupID.x | (gl_WorkGroupID.y << 16);
+  if (slot == 0u)  // the first listed tile: the frame traces, so it needs the pyramid
+    for (int i = 0; i < 3 * SSLR_HIZ_MAX_LEVELS; ++i) tiles.hizDispatch[i] = tiles.hizGroups[i];
+}
+#endif

@@ -18,8 +18,7 @@ vec2 sourceCell(ivec2 c, ivec2 sourceSize) {
 }
 
 void main() {
-  // Nothing is traced in a frame without listed tiles: the pyramid is not needed.
-  if (tiles.dispatchX == 0u) return;
+  // Dispatched indirectly: with no tile listed, no group runs (common/tiles.glsl).
   ivec2 cell = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(cell, imageSize(uLevel)))) return;
   ivec2 n = uSourceLevel == 0 ? textureSize(uDepth, 0) : textureSize(uHiZ, uSourceLevel - 1);

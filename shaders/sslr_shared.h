@@ -154,6 +154,18 @@ struct SslrPositionParams {
   int steps;          // binary refinement steps (tutorial: 5)
 };
 
+// The screen-space DDA comparison method (McGuire & Mara 2014).
+struct SslrDdaParams {
+  float stride;       // pixels per step (>= 1)
+  float thickness;    // depth assumed behind every visible surface, view units (the paper's zThickness)
+  float maxDistance;  // ray length, view units
+  int maxSteps;       // steps at most (each one depth fetch), refinement not included
+  int jitter;         // 1: checkerboard offset of half a stride (stride > 1)
+  int refine;         // 1: re-march the stride of a hit one pixel at a time
+  int pad0;
+  int pad1;
+};
+
 #ifdef __cplusplus
 #define SSLR_FRAME_BLOCK_BEGIN struct SslrFrame {
 #define SSLR_FRAME_BLOCK_END };
@@ -167,6 +179,7 @@ SSLR_FRAME_BLOCK_BEGIN
   SslrSurface surface;
   SslrTraceParams trace;
   SslrPositionParams positionBuffer;
+  SslrDdaParams dda;
 SSLR_FRAME_BLOCK_END
 
 #ifdef __cplusplus
@@ -200,7 +213,9 @@ static_assert(offsetof(SslrFrame, surface) == 48, "std140 mirror");
 static_assert(offsetof(SslrFrame, trace) == 80, "std140 mirror");
 static_assert(sizeof(SslrPositionParams) == 16, "std140 mirror");
 static_assert(offsetof(SslrFrame, positionBuffer) == 176, "std140 mirror");
-static_assert(sizeof(SslrFrame) == 192, "std140 mirror");
+static_assert(sizeof(SslrDdaParams) == 32, "std140 mirror");
+static_assert(offsetof(SslrFrame, dda) == 192, "std140 mirror");
+static_assert(sizeof(SslrFrame) == 224, "std140 mirror");
 #endif
 
 // ---- Pure math ----------------------------------------------------------------------------
@@ -349,10 +364,13 @@ SSLR_FN bool sslrShouldTrace(SslrSurface s, SslrTraceParams t, float depth, vec4
   if (!sslrIsGeometryDepth(s, depth)) return false;
   float reflectance = sslrReflectance(s, packedNormal);
   float roughness = sslrRoughness(s, packedNormal);
+  // Written so that NaN material values fail. A branch of its own, not one && chain: shader
+  // compilers evaluate such a chain whole, and the normal decode is most of the test's cost
+  // (measured on llvmpipe: classification of a frame with nothing reflective took 3.7x the
+  // baseline pass with the chain).
+  if (!(reflectance > t.minReflectance && roughness <= t.roughnessCutoff)) return false;
   vec3 n;
-  // Written so that NaN material values fail.
-  return reflectance > t.minReflectance && roughness <= t.roughnessCutoff &&
-         sslrDecodeNormal(s, packedNormal, n);
+  return sslrDecodeNormal(s, packedNormal, n);
 }
 
 // ---- Min-max depth pyramid (hierarchical traversal) -----------------------------------------

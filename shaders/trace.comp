@@ -2,7 +2,8 @@
 // weight) and, with SSLR_DEBUG_OUTPUTS, the hit and iteration images.
 // Tracer: the depth-only tracer (adaptive L, with the hierarchical traversal as fallback or alone,
 // frame.trace.hizMode), or with SSLR_METHOD_POSITION_BUFFER the position-buffer march of
-// "3D Game Shaders For Beginners" on a stored position texture.
+// "3D Game Shaders For Beginners" on a stored position texture, or with SSLR_METHOD_DDA McGuire &
+// Mara's screen-space DDA on the depth buffer.
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
 
@@ -42,6 +43,8 @@ bool sslrLoadPosition(ivec2 px, out vec4 vsPosition) {
   return vsPosition.w > 0.0f;
 }
 #include "sslr_trace_position.h"
+#elif defined(SSLR_METHOD_DDA)
+#include "sslr_trace_dda.h"
 #else
 // The min-max depth pyramid built by hiz.comp: mip m holds level m + 1.
 layout(binding = 6) uniform sampler2D uHiZ;
@@ -80,6 +83,8 @@ void main() {
       vec3 vsR = reflect(vsV, vsN);
 #ifdef SSLR_METHOD_POSITION_BUFFER
       hit = sslrTracePositionBuffer(frame.proj, frame.surface, frame.positionBuffer, vsP, vsV, vsR);
+#elif defined(SSLR_METHOD_DDA)
+      hit = sslrTraceDda(frame.proj, frame.surface, frame.dda, px, vsP, vsR);
 #else
       hit = sslrTraceDepthOnly(frame.proj, frame.surface, frame.trace, px, vsP, vsR);
 #endif

@@ -18,9 +18,21 @@ layout(std430, binding = SSLR_BINDING_TILE_SSBO) buffer SslrTiles {
   uint blurDispatchY;
   uint blurDispatchZ;
   uint reserved1;
-  // [0, tileCapacity): traced tiles; [tileCapacity, 2 tileCapacity): tiles to blur (each entry
-  // tile x | tile y << 16); [2 tileCapacity, 3 tileCapacity): per tile, the frame index in
-  // which it was last listed for blurring (no per-frame clear needed).
+  // DispatchIndirectCommand per pyramid level (hiz.comp): zero groups until classification lists
+  // the first tile, which copies the level's real group counts in from hizGroups (written by the
+  // CPU each frame). A frame without listed tiles thus builds no pyramid and pays no dispatch.
+  uint hizDispatch[3 * SSLR_HIZ_MAX_LEVELS];
+  uint hizGroups[3 * SSLR_HIZ_MAX_LEVELS];
+  // DispatchIndirectCommand of the clean-up pass: the previous frame's trace dispatch, copied here
+  // before this frame's header is written (the CPU never writes it).
+  uint cleanupDispatchX;
+  uint cleanupDispatchY;
+  uint cleanupDispatchZ;
+  uint reserved2;
+  // [0, cap): traced tiles; [cap, 2 cap): tiles to blur (each entry tile x | tile y << 16);
+  // [2 cap, 3 cap): per tile, the frame index in which it was last listed for blurring; [3 cap,
+  // 4 cap): per tile, the frame index in which classification last listed it for tracing (stamps:
+  // no per-frame clear needed); [4 cap, 5 cap): the previous frame's traced tiles (copied).
   uint tileCoords[];
 } tiles;
 
@@ -37,6 +49,8 @@ ivec2 sslrTileOrigin(uint index) { return sslrTileOriginFromEntry(tiles.tileCoor
 ivec2 sslrBlurTileOrigin(uint index) {
   return sslrTileOriginFromEntry(tiles.tileCoords[sslrTileCapacity() + index]);
 }
+
+uint sslrTileListedStamp(uvec2 tile) { return 3u * sslrTileCapacity() + tile.y * sslrTilesX() + tile.x; }
 
 // Appends the tile holding px to the blur list, once per frame.
 void sslrListTileForBlur(ivec2 px) {

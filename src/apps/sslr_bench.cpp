@@ -1,4 +1,4 @@
-// sslr-bench: run time against error, depth-only adaptive L vs the position-buffer method, on
+// sslr-bench: run time against error, depth-only adaptive L vs the screen-space DDA, the hierarchical traversal and the position-buffer method, on
 // every built-in scene, with Embree ground truth. Writes DIR/results.json, DIR/results.csv and
 // DIR/report/index.html. Exit codes: 0 success, 1 failure, 2 bad arguments.
 #include <unistd.h>
@@ -54,6 +54,10 @@ int main(int argc, char** argv) {
       ("size", "resolution WxH", cxxopts::value<std::string>())
       ("frames", "timed frames per configuration (median reported)", cxxopts::value<std::string>())
       ("warmup", "untimed warm-up rounds", cxxopts::value<std::string>())
+      ("curves", "also time the cost curves (the full grid always does): resolution 480x270, 960x540, 1920x1080 (full: and 3840x2160) and reflective fraction 0, 1, 10, 50, 100%")
+      ("no-curves", "skip the cost curves")
+      ("curve-sizes", "resolutions of the resolution curve, WxH,WxH,... (implies --curves)", cxxopts::value<std::string>())
+      ("curve-fractions", "reflective percentages of the fraction curve, N,N,... (implies --curves)", cxxopts::value<std::string>())
       ("out", "output directory", cxxopts::value<std::string>()->default_value("bench-out"))
       ("device", "EGL device: auto, hardware, software, surfaceless or an index", cxxopts::value<std::string>()->default_value(""))
       ("h,help", "show this help");
@@ -97,6 +101,36 @@ int main(int argc, char** argv) {
         if (!check) throw std::runtime_error(check.error());
         bo.scenes.push_back(s);
       }
+    bool curves = bo.grid == "full" || args.count("curves") || args.count("curve-sizes") || args.count("curve-fractions");
+    if (args.count("no-curves")) curves = false;
+    if (curves) {
+      bo.curveSizes = {{480, 270}, {960, 540}, {1920, 1080}};
+      if (bo.grid == "full") bo.curveSizes.push_back({3840, 2160});
+      bo.curveFractions = {0, 1, 10, 50, 100};
+      if (args.count("curve-sizes")) {
+        bo.curveSizes.clear();
+        std::stringstream list(args["curve-sizes"].as<std::string>());
+        for (std::string item; std::getline(list, item, ',');) {
+          std::istringstream in(item);
+          int w = 0, h = 0;
+          char x = 0;
+          if (!(in >> w >> x >> h) || x != 'x' || !in.eof() || w < 8 || h < 8 || w > 8192 || h > 8192)
+            throw std::runtime_error("--curve-sizes expects WxH,WxH,... with 8..8192 each (got '" + item + "')");
+          bo.curveSizes.push_back({w, h});
+        }
+      }
+      if (args.count("curve-fractions")) {
+        bo.curveFractions.clear();
+        std::stringstream list(args["curve-fractions"].as<std::string>());
+        for (std::string item; std::getline(list, item, ',');) {
+          std::istringstream in(item);
+          int n = -1;
+          if (!(in >> n) || !in.eof() || n < 0 || n > 100)
+            throw std::runtime_error("--curve-fractions expects percentages 0..100 (got '" + item + "')");
+          bo.curveFractions.push_back(n);
+        }
+      }
+    }
     outDir = args["out"].as<std::string>();
     device = args["device"].as<std::string>();
   } catch (const std::exception& e) {
@@ -134,6 +168,39 @@ int main(int argc, char** argv) {
       std::printf("%-14s %-16s %9.2f %8.2f %8.4f %8.3f %8.4f %9.1f\n", sc.scene.c_str(), r->method.c_str(),
                   r->timeMedianMs, p ? r->timeMedianMs / p->timeMedianMs : 0.0, r->metrics.recall1px,
                   r->metrics.p95ErrorPx, r->metrics.falseHitRate, r->fetchesPerTracedPixel);
+  }
+  std::printf("\nfastest configuration per method reaching recall@1px >= %.2f (ratio to adaptive-l's):\n", kParetoRecall);
+  for (const auto& sc : result.value().scenes) {
+    const auto fastest = fastestReaching(result.value(), sc.scene, kParetoRecall);
+    const RunRecord* ours = nullptr;
+    for (const FastestRun& f : fastest)
+      if (f.method == "adaptive-l") ours = f.run;
+    for (const FastestRun& f : fastest) {
+      if (!f.run) {
+        std::printf("%-14s %-16s none reaches it\n", sc.scene.c_str(), f.method.c_str());
+        continue;
+      }
+      std::printf("%-14s %-16s %9.2f %8.2f %8.4f  %s\n", sc.scene.c_str(), f.method.c_str(), f.run->timeMedianMs,
+                  ours ? f.run->timeMedianMs / ours->timeMedianMs : 0.0, f.run->metrics.recall1px, f.run->label.c_str());
+    }
+  }
+  // The cost curves, each point as a ratio to the baseline pass at the same point.
+  for (const char* curve : {"resolution", "fraction"}) {
+    bool header = false;
+    for (const CurvePoint& p : result.value().curves) {
+      if (p.curve != curve || p.method == "baseline") continue;
+      if (!header) std::printf("\ncost against %s (median ms; ratio to the baseline pass):\n", curve);
+      header = true;
+      double base = 0;
+      for (const CurvePoint& q : result.value().curves)
+        if (q.curve == p.curve && q.method == "baseline" && q.width == p.width && q.height == p.height &&
+            q.percent == p.percent)
+          base = q.timeMedianMs;
+      const std::string point = p.percent >= 0 ? "reflective-" + std::to_string(p.percent)
+                                               : std::to_string(p.width) + "x" + std::to_string(p.height);
+      std::printf("  %-16s %-15s traced %6.4f %9.2f ms  %6.2fx baseline\n", p.method.c_str(), point.c_str(),
+                  p.tracedFraction, p.timeMedianMs, base > 0 ? p.timeMedianMs / base : 0.0);
+    }
   }
   std::printf("timing: %s on %s\nwrote %s/results.json, %s/results.csv, %s/report/index.html\n",
               result.value().timingMethod.c_str(), renderer.c_str(), outDir.c_str(), outDir.c_str(), outDir.c_str());

@@ -133,13 +133,13 @@ int run(int argc, char** argv) {
   cxxopts::Options options("sslr-render", "Headless render with Screen Space Local Reflections (depth-only SSLR).");
   std::string sceneHelp = "built-in scene (";
   for (const auto& n : builtinSceneNames()) sceneHelp += n + (n == builtinSceneNames().back() ? "" : ", ");
-  sceneHelp += ") or a .gltf/.glb file";
+  sceneHelp += ", reflective-N for N% of the screen reflecting) or a .gltf/.glb file";
   options.add_options()
       ("scene", sceneHelp, cxxopts::value<std::string>()->default_value("mirror-room"))
       ("size", "output size WxH", cxxopts::value<std::string>()->default_value("960x540"))
       ("out", "output directory", cxxopts::value<std::string>()->default_value("out"))
       ("dump", "also write every buffer as EXR (color, normal, depth, position, hit, reflection, iterations, resolved)")
-      ("method", "tracer: adaptive-l (depth-only SSLR, hierarchical fallback), hiz (the depth pyramid traversal alone), position-buffer (the tutorial's, for comparison), or none", cxxopts::value<std::string>()->default_value("adaptive-l"))
+      ("method", "tracer: adaptive-l (depth-only SSLR, hierarchical fallback), hiz (the depth pyramid traversal alone), dda (McGuire & Mara 2014's screen-space DDA) or position-buffer (the tutorial's), for comparison, or none", cxxopts::value<std::string>()->default_value("adaptive-l"))
       ("no-hiz-fallback", "adaptive-l alone, without the hierarchical traversal where it finds nothing")
       ("preset", "quality preset: low, medium, high, ultra", cxxopts::value<std::string>()->default_value("high"))
       ("fresnel", "weighting: classic (the article) or schlick", cxxopts::value<std::string>()->default_value("classic"))
@@ -206,8 +206,10 @@ int run(int argc, char** argv) {
       gopt.withPosition = true;  // its G-buffer adds an RGBA32F view-space position texture
     } else if (method == "hiz") {
       settings.method = Method::HierarchicalDepth;
+    } else if (method == "dda") {
+      settings.method = Method::ScreenSpaceDDA;
     } else if (method != "adaptive-l") {
-      throw UsageError{"--method must be adaptive-l, hiz, position-buffer or none (got '" + method + "')"};
+      throw UsageError{"--method must be adaptive-l, hiz, dda, position-buffer or none (got '" + method + "')"};
     }
     if (args.count("no-hiz-fallback")) settings.hierarchicalFallback = false;
     settings.debugOutputs = dump || args.count("score") > 0;

@@ -25,6 +25,9 @@ json settingsJson(const BenchConfig& c) {
             {"resolution", s.positionBuffer.resolution},
             {"steps", s.positionBuffer.steps},
             {"thickness", s.positionBuffer.thickness}};
+  if (c.method == "dda")
+    return {{"stride", s.dda.stride},     {"thickness", s.dda.thickness}, {"maxSteps", s.dda.maxSteps},
+            {"maxDistance", s.dda.maxDistance}, {"jitter", s.dda.jitter},   {"refine", s.dda.refine}};
   if (c.method == "baseline") return json::object();
   return {{"maxIterations", s.maxIterations},       {"hierarchicalFallback", s.hierarchicalFallback},
           {"hierarchicalMaxSteps", s.hierarchicalMaxSteps}, {"objectThickness", s.objectThickness},       {"convergenceEps", s.convergenceEps},
@@ -98,6 +101,13 @@ std::vector<const RunRecord*> pareto(std::vector<const RunRecord*> runs) {
   return front;
 }
 
+const std::map<std::string, std::string>& methodColors() {
+  static const std::map<std::string, std::string> colors = {{"adaptive-l", "#1f77b4"}, {"position-buffer", "#ff7f0e"},
+                                                            {"hiz", "#2ca02c"},        {"dda", "#9467bd"},
+                                                            {"baseline", "#777777"}};
+  return colors;
+}
+
 std::string plotSvg(const std::vector<const RunRecord*>& runs, double baselineMs) {
   const double W = 640, H = 360, L = 60, R = 20, T = 20, B = 50;
   double maxT = baselineMs, maxE = 0;
@@ -125,8 +135,8 @@ std::string plotSvg(const std::vector<const RunRecord*>& runs, double baselineMs
     s << "<line x1='" << X(baselineMs) << "' y1='" << T << "' x2='" << X(baselineMs) << "' y2='" << H - B
       << "' stroke='gray' stroke-dasharray='4 3'/><text x='" << X(baselineMs) + 3 << "' y='" << T + 10
       << "' fill='gray'>read+write baseline</text>";
-  const std::map<std::string, std::string> colors = {{"adaptive-l", "#1f77b4"}, {"position-buffer", "#ff7f0e"}, {"hiz", "#2ca02c"}};
-  for (const auto& [method, color] : colors) {
+  for (const auto& [method, color] : methodColors()) {
+    if (method == "baseline") continue;
     std::vector<const RunRecord*> mine;
     for (auto* r : runs)
       if (r->method == method) mine.push_back(r);
@@ -145,7 +155,68 @@ std::string plotSvg(const std::vector<const RunRecord*>& runs, double baselineMs
   s << "<circle cx='" << W - 170 << "' cy='" << T + 30 << "' r='5' fill='#1f77b4'/><text x='" << W - 160 << "' y='" << T + 34
     << "'>adaptive-l (depth-only)</text><circle cx='" << W - 170 << "' cy='" << T + 48 << "' r='5' fill='#ff7f0e'/><text x='"
     << W - 160 << "' y='" << T + 52 << "'>position-buffer</text><circle cx='" << W - 170 << "' cy='" << T + 66
-    << "' r='5' fill='#2ca02c'/><text x='" << W - 160 << "' y='" << T + 70 << "'>hiz (pyramid alone)</text></svg>";
+    << "' r='5' fill='#2ca02c'/><text x='" << W - 160 << "' y='" << T + 70 << "'>hiz (pyramid alone)</text><circle cx='"
+    << W - 170 << "' cy='" << T + 84 << "' r='5' fill='#9467bd'/><text x='" << W - 160 << "' y='" << T + 88
+    << "'>dda (McGuire-Mara)</text></svg>";
+  return s.str();
+}
+
+// A cost curve: median time per method against pixels (log axis) or reflective fraction (%).
+std::string curveSvg(const std::vector<CurvePoint>& points, const std::string& curve) {
+  const double W = 640, H = 360, L = 60, R = 150, T = 20, B = 50;
+  const bool byResolution = curve == "resolution";
+  auto xValue = [&](const CurvePoint& p) {
+    return byResolution ? std::log2(double(p.width) * p.height) : double(p.percent);
+  };
+  double xMin = INFINITY, xMax = -INFINITY, maxT = 0;
+  for (const CurvePoint& p : points) {
+    if (p.curve != curve) continue;
+    xMin = std::min(xMin, xValue(p));
+    xMax = std::max(xMax, xValue(p));
+    maxT = std::max(maxT, p.timeMedianMs);
+  }
+  if (!(xMax > xMin)) xMax = xMin + 1;
+  maxT = maxT > 0 ? maxT * 1.1 : 1.0;
+  auto X = [&](double x) { return L + (W - L - R) * (x - xMin) / (xMax - xMin); };
+  auto Y = [&](double t) { return H - B - (H - T - B) * t / maxT; };
+  std::ostringstream s;
+  s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << W << "' height='" << H
+    << "' font-family='sans-serif' font-size='11'><rect width='100%' height='100%' fill='white'/>"
+    << "<line x1='" << L << "' y1='" << H - B << "' x2='" << W - R << "' y2='" << H - B << "' stroke='black'/>"
+    << "<line x1='" << L << "' y1='" << T << "' x2='" << L << "' y2='" << H - B << "' stroke='black'/>";
+  for (int i = 0; i <= 4; ++i)
+    s << "<text x='" << L - 5 << "' y='" << Y(maxT * i / 4) + 4 << "' text-anchor='end'>" << fmt(maxT * i / 4, 1)
+      << "</text>";
+  std::map<std::string, std::vector<const CurvePoint*>> byMethod;
+  for (const CurvePoint& p : points)
+    if (p.curve == curve) byMethod[p.method].push_back(&p);
+  // x labels from one method's points (all methods share them).
+  if (!byMethod.empty())
+    for (const CurvePoint* p : byMethod.begin()->second)
+      s << "<text x='" << X(xValue(*p)) << "' y='" << H - B + 15 << "' text-anchor='middle'>"
+        << (byResolution ? std::to_string(p->width) + "x" + std::to_string(p->height) : std::to_string(p->percent) + "%")
+        << "</text>";
+  s << "<text x='" << (L + W - R) / 2 << "' y='" << H - 12 << "' text-anchor='middle'>"
+    << (byResolution ? "resolution (mirror-room; log pixels)" : "reflective share of the frame (reflective-N scenes)")
+    << "</text><text transform='rotate(-90)' x='" << -(T + H - B) / 2
+    << "' y='14' text-anchor='middle'>median time per frame (ms)</text>";
+  int legend = 0;
+  for (const auto& [method, pts] : byMethod) {
+    const auto it = methodColors().find(method);
+    const std::string color = it == methodColors().end() ? "#000000" : it->second;
+    s << "<polyline fill='none' stroke='" << color << "' stroke-width='1.5'"
+      << (method == "baseline" ? " stroke-dasharray='4 3'" : "") << " points='";
+    for (const CurvePoint* p : pts) s << X(xValue(*p)) << "," << Y(p->timeMedianMs) << " ";
+    s << "'/>";
+    for (const CurvePoint* p : pts)
+      s << "<circle cx='" << X(xValue(*p)) << "' cy='" << Y(p->timeMedianMs) << "' r='3' fill='" << color
+        << "'><title>" << esc(method) << ": " << fmt(p->timeMedianMs, 2) << " ms</title></circle>";
+    s << "<line x1='" << W - R + 10 << "' y1='" << T + 10 + 16 * legend << "' x2='" << W - R + 30 << "' y2='"
+      << T + 10 + 16 * legend << "' stroke='" << color << "' stroke-width='2'/><text x='" << W - R + 35 << "' y='"
+      << T + 14 + 16 * legend << "'>" << esc(method) << "</text>";
+    ++legend;
+  }
+  s << "</svg>";
   return s.str();
 }
 
@@ -177,6 +248,15 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
                            {"hitAgreementDepthVsStored", num(s.hitAgreement)},
                            {"recall1pxDepth", num(s.recallDepth)},
                            {"recall1pxStored", num(s.recallStored)}});
+  j["costCurves"] = json::array();
+  for (const CurvePoint& p : result.curves)
+    j["costCurves"].push_back({{"curve", p.curve},
+                               {"method", p.method},
+                               {"width", p.width},
+                               {"height", p.height},
+                               {"reflectivePercent", p.percent},
+                               {"tracedFraction", num(p.tracedFraction)},
+                               {"timeMedianMs", num(p.timeMedianMs)}});
   {
     std::ofstream out(fs::path(outDir) / "results.json");
     out << j.dump(2) << "\n";
@@ -237,6 +317,61 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
     }
   }
   h << "</table>";
+  // Each method at its best: the fastest configuration that reaches recall 0.95.
+  h << "<h2>Fastest configuration reaching recall@1px &ge; " << fmt(kParetoRecall, 2)
+    << "</h2><p>Per scene and method, over the whole grid; time ratio to adaptive-l's fastest such "
+       "configuration (&gt; 1: slower than sslr's).</p><table><tr><th>scene</th><th>method</th><th>config</th>"
+       "<th>time ms</th><th>ratio to adaptive-l</th><th>recall@1px</th><th>false hits</th></tr>";
+  for (const SceneRecord& sc : result.scenes) {
+    const auto fastest = fastestReaching(result, sc.scene, kParetoRecall);
+    const RunRecord* ours = nullptr;
+    for (const FastestRun& f : fastest)
+      if (f.method == "adaptive-l") ours = f.run;
+    for (const FastestRun& f : fastest) {
+      h << "<tr><td>" << esc(sc.scene) << "</td><td>" << esc(f.method) << "</td>";
+      if (!f.run) {
+        h << "<td>none reaches it</td><td colspan='4'></td></tr>";
+        continue;
+      }
+      const double ratio = ours && ours->timeMedianMs > 0 ? f.run->timeMedianMs / ours->timeMedianMs : NAN;
+      h << "<td>" << esc(f.run->label) << "</td><td>" << fmt(f.run->timeMedianMs, 2) << "</td><td>" << fmt(ratio, 2)
+        << "</td><td>" << fmt(f.run->metrics.recall1px, 4) << "</td><td>" << fmt(f.run->metrics.falseHitRate, 4)
+        << "</td></tr>";
+    }
+  }
+  h << "</table>";
+  // Cost curves, with the ratios the targets are stated in.
+  for (const char* curve : {"resolution", "fraction"}) {
+    bool any = false;
+    for (const CurvePoint& p : result.curves) any = any || p.curve == curve;
+    if (!any) continue;
+    const std::string svg = curveSvg(result.curves, curve);
+    std::ofstream(fs::path(outDir) / "report" / (std::string("curve-") + curve + ".svg")) << svg << "\n";
+    h << "<h2>Cost against " << (std::string(curve) == "resolution" ? "resolution" : "reflective fraction")
+      << "</h2>" << svg << "<table><tr><th>point</th><th>traced share</th>";
+    std::vector<std::string> methods;
+    for (const CurvePoint& p : result.curves)
+      if (p.curve == curve && std::find(methods.begin(), methods.end(), p.method) == methods.end())
+        methods.push_back(p.method);
+    for (const std::string& m : methods) h << "<th>" << esc(m) << " ms</th>";
+    h << "<th>adaptive-l / baseline</th></tr>";
+    for (size_t i = 0; i < result.curves.size(); i += methods.size()) {
+      const CurvePoint& first = result.curves[i];
+      if (first.curve != curve) continue;
+      double ours = NAN, base = NAN;
+      h << "<tr><td>"
+        << (first.percent >= 0 ? "reflective-" + std::to_string(first.percent)
+                               : std::to_string(first.width) + "x" + std::to_string(first.height))
+        << "</td><td>" << fmt(first.tracedFraction, 4) << "</td>";
+      for (size_t k = i; k < i + methods.size() && k < result.curves.size(); ++k) {
+        h << "<td>" << fmt(result.curves[k].timeMedianMs, 2) << "</td>";
+        if (result.curves[k].method == "adaptive-l") ours = result.curves[k].timeMedianMs;
+        if (result.curves[k].method == "baseline") base = result.curves[k].timeMedianMs;
+      }
+      h << "<td>" << fmt(ours / base, 2) << "</td></tr>";
+    }
+    h << "</table>";
+  }
   for (const SceneRecord& sc : result.scenes) {
     std::vector<const RunRecord*> runs;
     double baselineMs = 0;

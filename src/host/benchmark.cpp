@@ -37,7 +37,23 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
     c.settings.hierarchicalMaxSteps = steps;
     configs.push_back(c);
   }
-  // The tutorial's method: its demo values first, then a sweep.
+  // McGuire & Mara's screen-space DDA: stride x thickness, each with steps enough to cross about
+  // 1024 pixels (so that the stride, not the step cap, sets the reach).
+  std::vector<float> strides = full ? std::vector<float>{1.0f, 2.0f, 4.0f, 8.0f} : std::vector<float>{2.0f, 8.0f};
+  std::vector<float> thicknesses = full ? std::vector<float>{0.1f, 0.5f} : std::vector<float>{0.5f};
+  for (float stride : strides)
+    for (float thick : thicknesses) {
+      Settings s;
+      s.method = Method::ScreenSpaceDDA;
+      s.dda.stride = stride;
+      s.dda.thickness = thick;
+      s.dda.maxSteps = static_cast<int>(1024.0f / stride);
+      std::ostringstream label;
+      label << "stride" << stride << "-thick" << thick;
+      configs.push_back({"dda", label.str(), s, stride == 2.0f && thick == 0.5f});
+    }
+  // The tutorial's method: its demo values first, then the values its text gives (maxDistance 15,
+  // resolution 0.3, steps 10), then a sweep.
   std::vector<float> resolutions = full ? std::vector<float>{0.1f, 0.3f, 0.6f, 1.0f} : std::vector<float>{0.3f, 1.0f};
   std::vector<int> steps = full ? std::vector<int>{5, 10} : std::vector<int>{5};
   std::vector<float> distances = full ? std::vector<float>{8.0f, 32.0f} : std::vector<float>{8.0f, 32.0f};
@@ -54,6 +70,14 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
         const bool tutorial = dist == 8.0f && res == 0.3f && st == 5;
         configs.push_back({"position-buffer", tutorial ? "tutorial (res0.3-steps5-dist8)" : label.str(), s, tutorial});
       }
+  {
+    Settings s;
+    s.method = Method::PositionBuffer;
+    s.positionBuffer.maxDistance = 15.0f;
+    s.positionBuffer.resolution = 0.3f;
+    s.positionBuffer.steps = 10;
+    configs.push_back({"position-buffer", "tutorial text (res0.3-steps10-dist15)", s, false});
+  }
   BenchConfig baseline{"baseline", "read G-buffer, write 1 texel", Settings{}, false};
   configs.push_back(baseline);
   return configs;
@@ -182,6 +206,64 @@ Image methodImage(const GroundTruth& gt, const Image& hit, const Image& color) {
     if (t.cls == TruthClass::NotReflective || !(hit.at(x, y, 2) > kReportedConfidence)) return glm::vec3(0.0f);
     return sampleBilinear(color, {hit.at(x, y, 0), hit.at(x, y, 1)});
   });
+}
+
+}  // namespace
+
+namespace {
+
+// The configurations the cost curves time: each method's default.
+std::vector<BenchConfig> defaultConfigs(const std::vector<BenchConfig>& grid) {
+  std::vector<BenchConfig> out;
+  for (const BenchConfig& c : grid)
+    if (c.isDefault) out.push_back(c);
+  return out;
+}
+
+// Times the defaults and the baseline on one scene at one size, interleaved; appends the points.
+Status timeCurvePoint(const std::string& curve, const std::string& sceneName, int width, int height, int percent,
+                      const BenchOptions& options, Timer& timer, std::vector<CurvePoint>& out) {
+  auto scene = loadScene(sceneName);
+  if (!scene) return Status::error(scene.error());
+  GBufferOptions g;
+  g.width = width;
+  g.height = height;
+  g.withPosition = true;
+  auto renderer = FrameRenderer::create(g);
+  if (!renderer) return Status::error(renderer.error());
+  FrameRenderer& fr = *renderer.value();
+  GpuScene gpu(scene.value());
+  const Camera camera = scene.value().camera ? *scene.value().camera : scene.value().defaultCamera();
+  if (Status s = fr.render(gpu, camera, nullptr); !s) return s;
+  const FrameInputs inputs = fr.gbuffer().frameInputs();
+  std::vector<BenchConfig> configs = defaultConfigs(benchGrid(options.grid));
+  BaselinePass baseline(width, height);
+  // What the frame reflects, from the default's own count.
+  Settings counting = configs.front().settings;
+  counting.collectStats = true;
+  if (Status s = fr.sslr().dispatch(inputs, counting); !s) return s;
+  const double traced = double(fr.sslr().lastStats().tracedPixels) / (double(width) * height);
+  std::vector<std::vector<double>> times(configs.size() + 1);
+  for (int round = 0; round < options.warmup + options.frames; ++round)
+    for (size_t i = 0; i <= configs.size(); ++i) {
+      Status st;
+      const double ms = i == configs.size() ? timer.timeMs([&] { baseline.run(inputs); })
+                                            : timer.timeMs([&] { st = fr.sslr().dispatch(inputs, configs[i].settings); });
+      if (!st) return st;
+      if (round >= options.warmup) times[i].push_back(ms);
+    }
+  for (size_t i = 0; i <= configs.size(); ++i) {
+    CurvePoint p;
+    p.curve = curve;
+    p.method = i == configs.size() ? "baseline" : configs[i].method;
+    p.width = width;
+    p.height = height;
+    p.percent = percent;
+    p.tracedFraction = traced;
+    p.timeMedianMs = median(times[i]);
+    out.push_back(p);
+  }
+  return {};
 }
 
 }  // namespace
@@ -341,7 +423,32 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
     result.runs.insert(result.runs.end(), runs.begin(), runs.end());
     result.scenes.push_back(sr);
   }
+  // Cost curves: time against resolution (mirror-room) and against reflective fraction.
+  for (const auto& [w, h] : options.curveSizes) {
+    progress(done, total, "cost curve: " + std::to_string(w) + "x" + std::to_string(h));
+    if (Status s = timeCurvePoint("resolution", "mirror-room", w, h, -1, options, timer, result.curves); !s)
+      return Status::error(s.message());
+  }
+  for (int percent : options.curveFractions) {
+    progress(done, total, "cost curve: reflective-" + std::to_string(percent));
+    if (Status s = timeCurvePoint("fraction", "reflective-" + std::to_string(percent), options.width, options.height,
+                                  percent, options, timer, result.curves);
+        !s)
+      return Status::error(s.message());
+  }
   return result;
+}
+
+std::vector<FastestRun> fastestReaching(const BenchResult& result, const std::string& scene, double minRecall) {
+  std::vector<FastestRun> out;
+  for (const RunRecord& r : result.runs) {
+    if (r.scene != scene || r.method == "baseline") continue;
+    auto it = std::find_if(out.begin(), out.end(), [&](const FastestRun& f) { return f.method == r.method; });
+    if (it == out.end()) it = out.insert(out.end(), FastestRun{r.method, nullptr});
+    const bool reaches = r.metrics.recall1px >= minRecall;
+    if (reaches && (!it->run || r.timeMedianMs < it->run->timeMedianMs)) it->run = &r;
+  }
+  return out;
 }
 
 SceneDefaults defaultRuns(const BenchResult& result, const std::string& scene) {

@@ -44,6 +44,7 @@ bool sslrLoadSurface(ivec2 px, vec3& vsPos) {
 }
 }  // namespace sslr::shared
 
+#include "sslr_trace_dda.h"
 #include "sslr_trace_hiz.h"
 #include "sslr_trace_position.h"
 
@@ -113,7 +114,9 @@ Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& set
       if (!(dot(-vsV, vsN) > 0.0f)) continue;
       const vec3 vsR = reflect(vsV, vsN);
       const SslrHit r = positionMethod ? sslrTracePositionBuffer(proj, surf, pb, vsP, vsV, vsR)
-                                       : sslrTraceDepthOnly(proj, surf, t, px, vsP, vsR);
+                        : settings.method == Method::ScreenSpaceDDA
+                            ? sslrTraceDda(proj, surf, frame.value().dda, px, vsP, vsR)
+                            : sslrTraceDepthOnly(proj, surf, t, px, vsP, vsR);
       float* o = &hit.at(x, y, 0);
       o[0] = r.uvHit.x;
       o[1] = r.uvHit.y;

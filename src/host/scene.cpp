@@ -422,6 +422,56 @@ Scene glossy() {
 
 }  // namespace
 
+// The cost-curve scene: a floor with boxes and a back wall that together fill the screen, seen
+// from 20 degrees above. The bottom `percent` of the screen's rows are mirror (floor first, then
+// the wall upwards; at 100 the boxes are mirrors too, so that every pixel reflects); the rest is
+// rough stone. Lines parallel to the camera's x axis (floor z = const, wall y = const) project to
+// single rows, so the band edge is exact: row fraction v looks down at
+// theta(v) = pitch - atan((2v - 1) tan(fovy / 2)) and meets the floor or the wall there.
+Scene reflectiveFraction(int percent) {
+  Scene s;
+  s.name = "reflective-" + std::to_string(percent);
+  const double h = 3.0, eyeZ = 6.0, wallZ = -14.0, pitch = glm::radians(20.0), fovy = 50.0;
+  const bool all = percent >= 100;
+  const int mirror = addMaterial(s, glm::vec3(0.9f), 1.0f, 0.0f);
+  const int stone = addMaterial(s, glm::vec3(0.55f, 0.52f, 0.5f), 0.0f, 0.9f);
+  const int red = all ? addMaterial(s, glm::vec3(0.9f, 0.3f, 0.25f), 1.0f, 0.0f)
+                      : addMaterial(s, glm::vec3(0.8f, 0.12f, 0.1f), 0.0f, 0.7f, 0.15f);
+  const int blue = all ? addMaterial(s, glm::vec3(0.3f, 0.4f, 0.9f), 1.0f, 0.0f)
+                       : addMaterial(s, glm::vec3(0.12f, 0.25f, 0.85f), 0.0f, 0.7f, 0.15f);
+  const double floorNear = eyeZ + 2.0, wallTop = 40.0;
+  double floorEdge = floorNear, wallEdge = 0.0;  // where the mirror band ends on floor and wall
+  if (all) {
+    floorEdge = wallZ;
+    wallEdge = wallTop;
+  } else if (percent > 0) {
+    const double v = percent / 100.0;
+    const double theta = pitch - std::atan((2.0 * v - 1.0) * std::tan(glm::radians(fovy) / 2.0));
+    const double floorZ = theta > 0.0 ? eyeZ - h / std::tan(theta) : -1e30;
+    if (floorZ >= wallZ) {
+      floorEdge = floorZ;
+    } else {
+      floorEdge = wallZ;
+      wallEdge = h + (eyeZ - wallZ) * std::tan(-theta);
+    }
+  }
+  auto floorPart = [&](double z0, double z1, int material) {
+    if (z0 > z1) s.meshes.push_back(makeQuad({0, 0, 0.5 * (z0 + z1)}, {80, z0 - z1}, {0, 1, 0}, material));
+  };
+  auto wallPart = [&](double y0, double y1, int material) {
+    if (y1 > y0) s.meshes.push_back(makeQuad({0, 0.5 * (y0 + y1), wallZ}, {80, y1 - y0}, {0, 0, 1}, material));
+  };
+  floorPart(floorNear, floorEdge, mirror);
+  floorPart(floorEdge, wallZ, stone);
+  wallPart(0.0, wallEdge, mirror);
+  wallPart(wallEdge, wallTop, stone);
+  for (int i = 0; i < 5; ++i)
+    s.meshes.push_back(makeBox({-6.0 + 3.0 * i, 1.25, -6.0 + (i % 2) * 2.0}, {1.2, 2.5, 1.2}, i % 2 ? blue : red,
+                               15.0 * i));
+  s.camera = perspectiveCamera({0.0, h, eyeZ}, {0.0, h - std::tan(pitch), eyeZ - 1.0}, fovy, 0.1, 100.0);
+  return s;
+}
+
 std::vector<std::string> builtinSceneNames() {
   return {"mirror-room",   "grazing-plane", "thin-objects",  "sky-heavy", "mirror-box",
           "tilted-mirror", "facing-mirror", "mirror-walls", "curved-mirror", "glossy"};
@@ -438,10 +488,16 @@ Expected<Scene> makeBuiltinScene(const std::string& name) {
   if (name == "mirror-walls") return mirrorWalls();
   if (name == "curved-mirror") return curvedMirror();
   if (name == "glossy") return glossy();
+  if (name.rfind("reflective-", 0) == 0) {
+    const std::string digits = name.substr(11);
+    if (!digits.empty() && digits.size() <= 3 && std::all_of(digits.begin(), digits.end(), ::isdigit) &&
+        std::stoi(digits) <= 100)
+      return reflectiveFraction(std::stoi(digits));
+  }
   std::string known;
   for (const auto& n : builtinSceneNames()) known += (known.empty() ? "" : ", ") + n;
   return Status::error("unknown scene '" + name + "' (built-in scenes: " + known +
-                       "; or give a .gltf/.glb file)");
+                       ", reflective-N with N = 0..100; or give a .gltf/.glb file)");
 }
 
 Expected<Scene> loadScene(const std::string& nameOrPath) {

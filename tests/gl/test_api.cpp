@@ -343,6 +343,50 @@ TEST_F(Api, EmptyFrameTracesNothing) {
   EXPECT_GE(ctx->lastStats().fetches, ctx->lastStats().tracedPixels);
 }
 
+// The outputs are not cleared whole each frame: classification zeroes only the tiles a trace wrote
+// before and that are not traced now. Whatever came before, a frame's outputs are exactly those
+// of a fresh context.
+TEST_F(Api, OutputsDoNotDependOnEarlierFrames) {
+  Frame f;
+  const FrameInputs full = f.gbuffer->frameInputs();
+  FrameInputs none = full;  // reflectance 0 everywhere: nothing is traced
+  none.surface.reflectanceChannel = -1;
+  none.surface.constantReflectance = 0.0f;
+  Settings s;
+  // Fewer tiles: the same frame whose left half is rough (roughness channel 1: not traced).
+  Frame half;
+  const FrameInputs partial = half.gbuffer->frameInputs();
+  const std::vector<float> rough(static_cast<size_t>(W / 2) * H * 4, 1.0f);
+  glTextureSubImage2D(partial.normalTexture, 0, 0, 0, W / 2, H, GL_RGBA, GL_FLOAT, rough.data());
+  auto expected = [&](const FrameInputs& in, const Settings& st) {
+    auto fresh = makeContext();
+    EXPECT_TRUE(fresh->dispatch(in, st));
+    return std::pair{readAll(fresh->reflectionTexture(), 4).pixels, readAll(fresh->resolvedTexture(), 4).pixels};
+  };
+  const auto wantFull = expected(full, s), wantNone = expected(none, s), wantPartial = expected(partial, s);
+  for (float v : wantNone.second) ASSERT_EQ(v, 0.0f);
+  ASSERT_NE(wantFull.second, wantPartial.second) << "the two frames must trace different tiles";
+  auto ctx = makeContext();
+  struct Step {
+    const FrameInputs* in;
+    const Settings* settings;
+    const std::pair<std::vector<float>, std::vector<float>>* want;
+    const char* name;
+  } steps[] = {{&full, &s, &wantFull, "full"},       {&none, &s, &wantNone, "none after full"},
+               {&none, &s, &wantNone, "none again"}, {&full, &s, &wantFull, "full after none"},
+               {&partial, &s, &wantPartial, "fewer tiles after full"}, {&full, &s, &wantFull, "full again"}};
+  for (const Step& st : steps) {
+    ASSERT_TRUE(ctx->dispatch(*st.in, *st.settings));
+    EXPECT_EQ(readAll(ctx->reflectionTexture(), 4).pixels, st.want->first) << st.name;
+    EXPECT_EQ(readAll(ctx->resolvedTexture(), 4).pixels, st.want->second) << st.name;
+  }
+  // A resize starts from zero outputs too.
+  ASSERT_TRUE(ctx->resize(W / 2, H / 2));
+  ASSERT_TRUE(ctx->resize(W, H));
+  ASSERT_TRUE(ctx->dispatch(none, s));
+  EXPECT_EQ(readAll(ctx->resolvedTexture(), 4).pixels, wantNone.second) << "after resize";
+}
+
 TEST_F(Api, ArticleXyzNormalsGiveTheSameHitsAsOctahedral) {
   auto ctx = makeContext();
   Settings s;

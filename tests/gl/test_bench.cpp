@@ -64,7 +64,7 @@ TEST_F(Bench, QuickGridWritesCompleteResultsAndReport) {
       EXPECT_LE(r["recall1px"].get<double>(), r["recall4px"].get<double>());
     }
   }
-  EXPECT_EQ(methods, (std::set<std::string>{"adaptive-l", "hiz", "position-buffer", "baseline"}));
+  EXPECT_EQ(methods, (std::set<std::string>{"adaptive-l", "hiz", "dda", "position-buffer", "baseline"}));
   EXPECT_EQ(scenes.size(), 8u);  // every built-in scene but the two analytic test scenes
   ASSERT_EQ(j["scenes"].size(), 8u);
   for (const auto& s : j["scenes"]) EXPECT_TRUE(s["hitAgreementDepthVsStored"].is_number());
@@ -73,6 +73,7 @@ TEST_F(Bench, QuickGridWritesCompleteResultsAndReport) {
   ASSERT_TRUE(html);
   const std::string text((std::istreambuf_iterator<char>(html)), {});
   EXPECT_NE(text.find("<svg"), std::string::npos);
+  EXPECT_NE(text.find("Fastest configuration reaching recall"), std::string::npos);
   const std::regex img("src='([^']+)'");
   int images = 0;
   for (std::sregex_iterator it(text.begin(), text.end(), img), end; it != end; ++it, ++images)

@@ -169,7 +169,10 @@ namespace {
 namespace sslr {
 // gtest finds this by argument-dependent lookup for the Method parameters below.
 void PrintTo(Method m, std::ostream* os) {
-  *os << (m == Method::AdaptiveL ? "adaptive-l" : m == Method::HierarchicalDepth ? "hiz" : "position-buffer");
+  *os << (m == Method::AdaptiveL           ? "adaptive-l"
+          : m == Method::HierarchicalDepth ? "hiz"
+          : m == Method::ScreenSpaceDDA    ? "dda"
+                                           : "position-buffer");
 }
 }  // namespace sslr
 
@@ -210,9 +213,16 @@ TEST_P(CpuGpuAgreement, SameHitsOnTheSameGBuffer) {
   EXPECT_GE(double(same) / traced, 0.99) << same << " of " << traced;
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, CpuGpuAgreement, ::testing::Values(Method::AdaptiveL, Method::PositionBuffer),
+INSTANTIATE_TEST_SUITE_P(Methods, CpuGpuAgreement,
+                         ::testing::Values(Method::AdaptiveL, Method::HierarchicalDepth, Method::ScreenSpaceDDA,
+                                           Method::PositionBuffer),
                          [](const ::testing::TestParamInfo<Method>& info) {
-                           return std::string(info.param == Method::AdaptiveL ? "AdaptiveL" : "PositionBuffer");
+                           switch (info.param) {
+                             case Method::AdaptiveL: return std::string("AdaptiveL");
+                             case Method::HierarchicalDepth: return std::string("HierarchicalDepth");
+                             case Method::ScreenSpaceDDA: return std::string("ScreenSpaceDDA");
+                             default: return std::string("PositionBuffer");
+                           }
                          });
 
 }  // namespace

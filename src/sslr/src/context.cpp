@@ -32,12 +32,15 @@ void Context::Impl::createTargets() {
   label(GL_TEXTURE, hiz, "sslr.depthPyramid");
   const GLsizeiptr tiles = static_cast<GLsizeiptr>(tilesX()) * tilesY();
   gl.CreateBuffers(1, &tileBuffer);
-  // Header (12 uints, see common/tiles.glsl), traced tiles, tiles to blur, per-tile stamps
-  // (zero-initialized: frame indices start at 1).
-  const std::vector<GLuint> zeros(static_cast<size_t>(kTileHeader + 3 * tiles), 0u);
+  // Header (see common/tiles.glsl), traced tiles, tiles to blur, per-tile stamps (zero: frame
+  // indices start at 1), the previous frame's traced tiles (none: the outputs start cleared).
+  std::vector<GLuint> zeros(static_cast<size_t>(kTileHeader + kTileArrays * tiles), 0u);
+  zeros[kCleanupDispatchOffset / 4 + 1] = zeros[kCleanupDispatchOffset / 4 + 2] = 1;
   gl.NamedBufferStorage(tileBuffer, static_cast<GLsizeiptr>(zeros.size() * sizeof(GLuint)), zeros.data(),
                         GL_DYNAMIC_STORAGE_BIT);
   label(GL_BUFFER, tileBuffer, "sslr.tiles");
+  const float zero[4] = {0, 0, 0, 0};
+  for (GLuint t : {reflection, resolved}) gl.ClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
 }
 
 void Context::Impl::destroyTargets() {

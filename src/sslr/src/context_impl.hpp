@@ -15,7 +15,13 @@
 
 namespace sslr {
 
-constexpr GLsizeiptr kTileHeader = 12;               // uints before the tile lists
+// The tile buffer (common/tiles.glsl): a header of indirect commands, then the per-tile arrays.
+constexpr GLintptr kHizDispatchOffset = 12 * 4;       // DispatchIndirectCommand per pyramid level
+constexpr GLsizeiptr kHizGroupsIndex = 12 + 3 * SSLR_HIZ_MAX_LEVELS;  // their real group counts
+constexpr GLsizeiptr kHeaderUpload = 12 + 6 * SSLR_HIZ_MAX_LEVELS;    // uints the CPU writes per frame
+constexpr GLintptr kCleanupDispatchOffset = kHeaderUpload * 4;       // the previous trace dispatch
+constexpr GLsizeiptr kTileHeader = kHeaderUpload + 4;                // uints before the tile lists
+constexpr GLsizeiptr kTileArrays = 5;                                // per-tile arrays after it
 constexpr GLintptr kDrawArgsOffset = 3 * 4;           // DrawArraysIndirectCommand (composite)
 constexpr GLintptr kBlurDispatchOffset = 8 * 4;       // DispatchIndirectCommand (blur)
 

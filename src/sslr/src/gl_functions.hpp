@@ -42,6 +42,7 @@ namespace sslr::detail {
   X(PFNGLGETTEXTURELEVELPARAMETERIVPROC, GetTextureLevelParameteriv)             \
   X(PFNGLCLEARTEXIMAGEPROC, ClearTexImage)                                       \
   X(PFNGLCOPYIMAGESUBDATAPROC, CopyImageSubData)                                 \
+  X(PFNGLCOPYNAMEDBUFFERSUBDATAPROC, CopyNamedBufferSubData)                     \
   X(PFNGLBINDTEXTUREUNITPROC, BindTextureUnit)                                   \
   X(PFNGLBINDTEXTUREPROC, BindTexture)                                           \
   X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                                       \

@@ -20,18 +20,16 @@ void Context::Impl::bindInputs(const FrameInputs& in) const {
   gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
 }
 
-// The min-max depth pyramid, one dispatch per level (each reads the level below). Its shader
-// returns at once when classification listed no tile.
+// The min-max depth pyramid, one dispatch per level (each reads the level below), indirect: the
+// group counts are zero unless classification listed a tile (common/tiles.glsl).
 void Context::Impl::buildPyramid(GLuint prog) const {
   gl.UseProgram(prog);
   gl.BindTextureUnit(6, hiz);
   gl.BindSampler(6, nearestSampler);
   for (int level = 1; level <= hizLevels; ++level) {
-    const int w = hizWidth >> (level - 1), h = hizHeight >> (level - 1);
     gl.ProgramUniform1i(prog, 0, level - 1);  // uSourceLevel
     gl.BindImageTexture(0, hiz, level - 1, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-    gl.DispatchCompute(static_cast<GLuint>((w + SSLR_TILE_SIZE - 1) / SSLR_TILE_SIZE),
-                       static_cast<GLuint>((h + SSLR_TILE_SIZE - 1) / SSLR_TILE_SIZE), 1);
+    gl.DispatchComputeIndirect(kHizDispatchOffset + static_cast<GLintptr>(3 * 4 * (level - 1)));
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   }
 }
@@ -47,7 +45,9 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   if (settings.debugOutputs) traceDefines += "#define SSLR_DEBUG_OUTPUTS 1\n";
   if (settings.collectStats) traceDefines += "#define SSLR_COLLECT_STATS 1\n";
   if (settings.method == Method::PositionBuffer) traceDefines += "#define SSLR_METHOD_POSITION_BUFFER 1\n";
+  if (settings.method == Method::ScreenSpaceDDA) traceDefines += "#define SSLR_METHOD_DDA 1\n";
   auto classify = computeProgram("classify.comp");
+  auto cleanup = computeProgram("classify.comp", "#define SSLR_CLEANUP 1\n");
   // frameConstants decided whether the trace uses the traversal; the pyramid follows it.
   const bool pyramid = constants.value().trace.hizMode != SSLR_HIZ_OFF;
   Expected<GLuint> hizBuild = pyramid ? computeProgram("hiz.comp") : Expected<GLuint>(GLuint(0));
@@ -58,7 +58,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     blurH = computeProgram("blur.comp", "#define SSLR_BLUR_AXIS ivec2(1, 0)\n");
     blurV = computeProgram("blur.comp", "#define SSLR_BLUR_AXIS ivec2(0, 1)\n#define SSLR_BLUR_VERTICAL 1\n");
   }
-  for (const auto* p : {&classify, &hizBuild, &trace, &blurH, &blurV})
+  for (const auto* p : {&classify, &cleanup, &hizBuild, &trace, &blurH, &blurV})
     if (!*p) return Status::error(p->error());
 
   detail::StateGuard guard(gl, false);
@@ -68,13 +68,29 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   frameIndex = frameIndex == 0x7fffffff ? 1 : frameIndex + 1;
   frame.trace.frameIndex = frameIndex;
   gl.NamedBufferSubData(frameUbo, 0, sizeof(frame), &frame);
-  // Tile list header: trace dispatch (0, 1, 1), draw (6 vertices, 0 instances), blur dispatch.
-  const GLuint header[kTileHeader] = {0, 1, 1, 6, 0, 0, 0, 0, 0, 1, 1, 0};
+  // Tile list header: trace dispatch (0, 1, 1), draw (6 vertices, 0 instances), blur dispatch,
+  // pyramid dispatches (0, 1, 1) per level and their real group counts (classify.comp copies them
+  // over when it lists a tile).
+  // The previous frame's trace dispatch and tile list become the clean-up pass's.
+  const GLsizeiptr capacity = static_cast<GLsizeiptr>(tilesX()) * tilesY();
+  gl.CopyNamedBufferSubData(tileBuffer, tileBuffer, 0, kCleanupDispatchOffset, 3 * sizeof(GLuint));
+  gl.CopyNamedBufferSubData(tileBuffer, tileBuffer, kTileHeader * sizeof(GLuint),
+                            (kTileHeader + 4 * capacity) * sizeof(GLuint), capacity * sizeof(GLuint));
+  GLuint header[kHeaderUpload] = {0, 1, 1, 6, 0, 0, 0, 0, 0, 1, 1, 0};
+  for (int level = 1; level <= SSLR_HIZ_MAX_LEVELS; ++level) {
+    GLuint* live = &header[12 + 3 * (level - 1)];
+    GLuint* real = &header[kHizGroupsIndex + 3 * (level - 1)];
+    live[0] = 0, live[1] = 1, live[2] = 1;
+    const int w = hizWidth >> (level - 1), h = hizHeight >> (level - 1);
+    const bool used = level <= hizLevels;
+    real[0] = used ? static_cast<GLuint>((w + SSLR_TILE_SIZE - 1) / SSLR_TILE_SIZE) : 0u;
+    real[1] = used ? static_cast<GLuint>((h + SSLR_TILE_SIZE - 1) / SSLR_TILE_SIZE) : 1u;
+    real[2] = 1;
+  }
   gl.NamedBufferSubData(tileBuffer, 0, sizeof(header), header);
-  // Outputs are only written inside listed tiles: clear so the rest reads as "no reflection".
+  // reflection and resolved are not cleared: classification zeroes the tiles a trace wrote before
+  // and does not write now (classify.comp). The debug images are cleared whole (debug only).
   const float zero[4] = {0, 0, 0, 0};
-  gl.ClearTexImage(reflection, 0, GL_RGBA, GL_FLOAT, zero);
-  gl.ClearTexImage(resolved, 0, GL_RGBA, GL_FLOAT, zero);
   if (settings.debugOutputs) {
     gl.ClearTexImage(hit, 0, GL_RGBA, GL_FLOAT, zero);
     gl.ClearTexImage(iterations, 0, GL_RED, GL_FLOAT, zero);
@@ -94,6 +110,12 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   gl.UseProgram(classify.value());
   gl.DispatchCompute(static_cast<GLuint>(tilesX()), static_cast<GLuint>(tilesY()), 1);
   gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+  // Zero the tiles the previous frame traced and this one does not (classify.comp).
+  gl.UseProgram(cleanup.value());
+  gl.BindImageTexture(0, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  gl.BindImageTexture(3, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  gl.DispatchComputeIndirect(kCleanupDispatchOffset);
+  gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 
   if (pyramid) buildPyramid(hizBuild.value());
 

@@ -52,6 +52,12 @@ Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings
   f.positionBuffer.resolution = s.positionBuffer.resolution;
   f.positionBuffer.thickness = s.positionBuffer.thickness;
   f.positionBuffer.steps = s.positionBuffer.steps;
+  f.dda.stride = s.dda.stride;
+  f.dda.thickness = s.dda.thickness;
+  f.dda.maxDistance = s.dda.maxDistance;
+  f.dda.maxSteps = s.dda.maxSteps;
+  f.dda.jitter = s.dda.jitter ? 1 : 0;
+  f.dda.refine = s.dda.refine ? 1 : 0;
   return f;
 }
 

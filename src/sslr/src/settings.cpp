@@ -82,6 +82,16 @@ std::string validate(const Settings& s) {
   if (pb.steps < 0 || pb.steps > 64) why << "positionBuffer.steps = " << pb.steps << " (must be 0..64); ";
   if (!(pb.thickness > 0.0f) || !finite(pb.thickness))
     why << "positionBuffer.thickness = " << pb.thickness << " (must be > 0); ";
+  const DdaSettings& dda = s.dda;
+  if (!finite(dda.stride) || dda.stride < 1.0f || dda.stride > 64.0f)
+    why << "dda.stride = " << dda.stride << " (must be 1..64 pixels); ";
+  if (!finite(dda.thickness) || dda.thickness < 0.0f)
+    why << "dda.thickness = " << dda.thickness << " (must be >= 0); ";
+  if (!(dda.maxDistance > 0.0f)) why << "dda.maxDistance = " << dda.maxDistance << " (must be > 0); ";
+  if (dda.maxSteps < 1 || dda.maxSteps > 16384) why << "dda.maxSteps = " << dda.maxSteps << " (must be 1..16384); ";
+  if (s.method != Method::AdaptiveL && s.method != Method::HierarchicalDepth && s.method != Method::PositionBuffer &&
+      s.method != Method::ScreenSpaceDDA)
+    why << "method = " << static_cast<int>(s.method) << " (not a sslr::Method); ";
   std::string text = why.str();
   if (!text.empty()) text = "sslr: invalid Settings: " + text.substr(0, text.size() - 2);
   return text;

@@ -17,10 +17,15 @@ struct BenchOptions {
   int width = 320, height = 180;
   int frames = 7;                   // timed frames per config (median reported)
   int warmup = 1;
+  // Cost curves: each method's default and the baseline pass, timed against resolution (on
+  // mirror-room) and against the reflective fraction of the frame (reflective-N scenes at
+  // width x height). Empty: no resolution curve; fractions empty: no fraction curve.
+  std::vector<std::pair<int, int>> curveSizes;
+  std::vector<int> curveFractions;
 };
 
 struct BenchConfig {
-  std::string method;  // "adaptive-l", "position-buffer" or "baseline"
+  std::string method;  // "adaptive-l", "hiz", "dda", "position-buffer" or "baseline"
   std::string label;   // e.g. "high", "res0.3-steps5-dist8"
   Settings settings;
   bool isDefault = false;  // the method's default configuration (image strips, summary)
@@ -51,11 +56,23 @@ struct SceneRecord {
   std::vector<std::string> images;  // image strip files, relative to the report folder
 };
 
+// One point of a cost curve: a method's default configuration (or the baseline pass) at one
+// resolution or reflective fraction.
+struct CurvePoint {
+  std::string curve;   // "resolution" or "fraction"
+  std::string method;  // as in RunRecord, "baseline" for the read-G-buffer-write-one-texel pass
+  int width = 0, height = 0;
+  int percent = -1;                // fraction curve: the reflective-N scene's N
+  double tracedFraction = 0;       // traced pixels / all pixels (what the frame actually reflects)
+  double timeMedianMs = 0;
+};
+
 struct BenchResult {
   BenchOptions options;
   std::string renderer, timingMethod;
   std::vector<RunRecord> runs;
   std::vector<SceneRecord> scenes;
+  std::vector<CurvePoint> curves;
 };
 
 std::vector<BenchConfig> benchGrid(const std::string& grid);
@@ -73,6 +90,15 @@ struct SceneDefaults {
   const RunRecord* tutorial = nullptr;
 };
 SceneDefaults defaultRuns(const BenchResult& result, const std::string& scene);
+
+// Per method, its fastest configuration on `scene` whose recall@1px reaches `minRecall` (run is
+// nullptr when none does), in the order the grid lists the methods.
+inline constexpr double kParetoRecall = 0.95;  // "reaches the target" in reports and summaries
+struct FastestRun {
+  std::string method;
+  const RunRecord* run = nullptr;
+};
+std::vector<FastestRun> fastestReaching(const BenchResult& result, const std::string& scene, double minRecall);
 
 // results.json, results.csv and report/index.html under outDir.
 Status writeBenchResults(const BenchResult& result, const std::string& outDir);

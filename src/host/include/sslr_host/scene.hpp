@@ -72,7 +72,8 @@ float reflectance(const Material& m);
 
 // Built-in procedural scenes: mirror-room (default), grazing-plane, thin-objects, sky-heavy,
 // the analytic test scenes mirror-box, tilted-mirror, and the scenes built to break the tracer:
-// facing-mirror, mirror-walls, curved-mirror, glossy.
+// facing-mirror, mirror-walls, curved-mirror, glossy. Also reflective-N (N = 0..100): a floor
+// whose bottom N% of screen rows is a mirror, for cost against reflective fraction.
 std::vector<std::string> builtinSceneNames();
 Expected<Scene> makeBuiltinScene(const std::string& name);
 

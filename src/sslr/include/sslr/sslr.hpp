@@ -116,6 +116,7 @@ enum class Method {
                        // the hierarchical traversal where it finds nothing (hierarchicalFallback)
   HierarchicalDepth,   // depth-only: the min-max depth pyramid traversal alone (for comparison)
   PositionBuffer,      // comparison: "3D Game Shaders For Beginners" march on a position texture
+  ScreenSpaceDDA,      // comparison, depth-only: McGuire & Mara 2014's perspective-correct DDA
 };
 
 // Parameters of Method::PositionBuffer, with the tutorial's demo values.
@@ -126,9 +127,20 @@ struct PositionBufferSettings {
   float thickness = 0.5f;    // hit tolerance, view units
 };
 
+// Parameters of Method::ScreenSpaceDDA (McGuire & Mara 2014, JCGT 3(4)).
+struct DdaSettings {
+  float stride = 2.0f;           // pixels per step (>= 1)
+  float thickness = 0.5f;        // depth assumed behind every visible surface, view units
+  float maxDistance = 1.0e30f;   // ray length, view units (capped at 1e4 x the origin's distance)
+  int maxSteps = 256;            // depth fetches per ray at most, refinement not counted
+  bool jitter = true;            // checkerboard offset of half a stride (stride > 1)
+  bool refine = true;            // re-march the stride of a hit one pixel at a time (stride > 1)
+};
+
 struct Settings {
   Method method = Method::AdaptiveL;
   PositionBufferSettings positionBuffer;  // used by Method::PositionBuffer only
+  DdaSettings dda;                        // used by Method::ScreenSpaceDDA only
   FresnelMode fresnel = FresnelMode::Classic;
   int maxIterations = 16;            // adaptive-L iterations (each one depth fetch); article: 10
   bool hierarchicalFallback = true;  // AdaptiveL: trace the pyramid where adaptive L finds no hit
