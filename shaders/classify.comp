@@ -5,7 +5,10 @@
 // an empty frame with three barriers, docs/results.md).
 //
 // With SSLR_CLEANUP the same file is the clean-up pass, run after classification over the
-// previous frame's traced tiles: those not listed again are zeroed. The outputs are never cleared
+// previous frame's traced tiles: those not listed again are zeroed. With SSLR_PYRAMID_ARGS it is a
+// one-group pass that turns the pyramid's dispatches on when a tile was listed. That copy is not
+// in the classification itself: llvmpipe runs every instruction of a shader under lane masks,
+// taken branch or not, and the 24-word copy there made classification 2.5x slower (measured). The outputs are never cleared
 // whole: the trace writes every pixel of a listed tile, so after a frame only its listed tiles
 // can be non-zero, and an empty frame after an empty frame only reads the G-buffer.
 #include "common/gbuffer.glsl"
@@ -26,6 +29,12 @@ void main() {
   imageStore(uReflection, px, vec4(0.0f));
   imageStore(uResolved, px, vec4(0.0f));
 }
+#elif defined(SSLR_PYRAMID_ARGS)
+void main() {
+  // A frame that traces needs the pyramid: its dispatches get their real group counts.
+  if (gl_LocalInvocationIndex == 0u && tiles.dispatchX != 0u)
+    for (int i = 0; i < 3 * SSLR_HIZ_MAX_LEVELS; ++i) tiles.hizDispatch[i] = tiles.hizGroups[i];
+}
 #else
 void main() {
   ivec2 px = ivec2(gl_GlobalInvocationID.xy);
@@ -41,7 +50,5 @@ void main() {
   uint slot = atomicAdd(tiles.dispatchX, 1u);
   atomicAdd(tiles.drawInstances, 1u);
   tiles.tileCoords[slot] = gl_WorkGroupID.x | (gl_WorkGroupID.y << 16);
-  if (slot == 0u)  // the first listed tile: the frame traces, so it needs the pyramid
-    for (int i = 0; i < 3 * SSLR_HIZ_MAX_LEVELS; ++i) tiles.hizDispatch[i] = tiles.hizGroups[i];
 }
 #endif

@@ -18,9 +18,10 @@ layout(std430, binding = SSLR_BINDING_TILE_SSBO) buffer SslrTiles {
   uint blurDispatchY;
   uint blurDispatchZ;
   uint reserved1;
-  // DispatchIndirectCommand per pyramid level (hiz.comp): zero groups until classification lists
-  // the first tile, which copies the level's real group counts in from hizGroups (written by the
-  // CPU each frame). A frame without listed tiles thus builds no pyramid and pays no dispatch.
+  // DispatchIndirectCommand per pyramid level (hiz.comp): zero groups unless classification
+  // listed a tile; then classify.comp's SSLR_PYRAMID_ARGS pass copies the level's real group
+  // counts in from hizGroups (written by the CPU each frame). A frame without listed tiles thus
+  // builds no pyramid.
   uint hizDispatch[3 * SSLR_HIZ_MAX_LEVELS];
   uint hizGroups[3 * SSLR_HIZ_MAX_LEVELS];
   // DispatchIndirectCommand of the clean-up pass: the previous frame's trace dispatch, copied here

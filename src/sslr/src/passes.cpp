@@ -51,6 +51,8 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   // frameConstants decided whether the trace uses the traversal; the pyramid follows it.
   const bool pyramid = constants.value().trace.hizMode != SSLR_HIZ_OFF;
   Expected<GLuint> hizBuild = pyramid ? computeProgram("hiz.comp") : Expected<GLuint>(GLuint(0));
+  Expected<GLuint> hizArgs =
+      pyramid ? computeProgram("classify.comp", "#define SSLR_PYRAMID_ARGS 1\n") : Expected<GLuint>(GLuint(0));
   auto trace = computeProgram("trace.comp", traceDefines);
   const bool blur = settings.blur && settings.blurMaxRadiusPx > 0.0f;
   Expected<GLuint> blurH = GLuint(0), blurV = GLuint(0);
@@ -58,7 +60,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     blurH = computeProgram("blur.comp", "#define SSLR_BLUR_AXIS ivec2(1, 0)\n");
     blurV = computeProgram("blur.comp", "#define SSLR_BLUR_AXIS ivec2(0, 1)\n#define SSLR_BLUR_VERTICAL 1\n");
   }
-  for (const auto* p : {&classify, &cleanup, &hizBuild, &trace, &blurH, &blurV})
+  for (const auto* p : {&classify, &cleanup, &hizBuild, &hizArgs, &trace, &blurH, &blurV})
     if (!*p) return Status::error(p->error());
 
   detail::StateGuard guard(gl, false);
@@ -117,7 +119,12 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   gl.DispatchComputeIndirect(kCleanupDispatchOffset);
   gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 
-  if (pyramid) buildPyramid(hizBuild.value());
+  if (pyramid) {
+    gl.UseProgram(hizArgs.value());
+    gl.DispatchCompute(1, 1, 1);
+    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    buildPyramid(hizBuild.value());
+  }
 
   gl.UseProgram(trace.value());
   gl.BindImageTexture(0, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
