@@ -35,9 +35,9 @@ SSLR_FN bool sslrDdaOverlaps(float rayZMin, float rayZMax, float sceneZ, float t
 //   to the caller's origin bias) and stops at the screen border (outside there is no depth);
 // - "unlimited" maxDistance is capped at 1e4 x the origin's distance (the projected end point is
 //   then the direction's vanishing point to within a pixel);
-// - refinement: after a hit with stride > 1 the last stride is re-marched one pixel at a time
-//   (the paper suggests refining by a binary search or a finer re-march; the re-march keeps its
-//   exact overlap test). Without a finer hit the coarse one stands.
+// - refinement: after a hit with stride > 1 the last stride and the next are re-marched one pixel
+//   at a time (the paper suggests refining by a binary search or a finer re-march; the re-march
+//   keeps its exact overlap test). Without a finer hit the coarse one stands.
 SSLR_FN SslrHit sslrTraceDda(SslrProjection p, SslrSurface s, SslrDdaParams d, ivec2 pxOrigin, vec3 vsP,
                              vec3 vsR) {
   SslrHit hit = sslrNoHit(SSLR_STATUS_MISS);
@@ -122,12 +122,14 @@ SSLR_FN SslrHit sslrTraceDda(SslrProjection p, SslrSurface s, SslrDdaParams d, i
   }
 
   if (found && d.refine != 0 && stride > 1.0f) {
-    // Re-march the last stride one pixel at a time from where the previous step ended.
+    // Re-march one pixel at a time from the previous coarse sample.
     vec2 Pf = P - dP * stride;
     vec3 Qf = Q - dQ * stride;
     float kf = k - dk * stride;
     float prevFine = (Qf.z + dQ.z * 0.5f) / (kf + dk * 0.5f);
-    int fineSteps = int(stride);
+    // The coarse step's z extent reached half a stride past its sample, so the crossing it saw may
+    // lie up to a stride beyond it: re-march two strides.
+    int fineSteps = 2 * int(stride);
     for (int j = 1; j <= fineSteps; ++j) {
       Pf += dP;
       Qf += dQ;
