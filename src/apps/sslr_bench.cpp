@@ -180,8 +180,9 @@ int main(int argc, char** argv) {
         std::printf("%-14s %-16s none reaches it\n", sc.scene.c_str(), f.method.c_str());
         continue;
       }
-      std::printf("%-14s %-16s %9.2f %8.2f %8.4f  %s\n", sc.scene.c_str(), f.method.c_str(), f.run->timeMedianMs,
-                  ours ? f.run->timeMedianMs / ours->timeMedianMs : 0.0, f.run->metrics.recall1px, f.run->label.c_str());
+      const std::string ratio = ours ? std::to_string(f.run->timeMedianMs / ours->timeMedianMs).substr(0, 4) : "-";
+      std::printf("%-14s %-16s %9.2f %8s %8.4f  %s\n", sc.scene.c_str(), f.method.c_str(), f.run->timeMedianMs,
+                  ratio.c_str(), f.run->metrics.recall1px, f.run->label.c_str());
     }
   }
   // The cost curves, each point as a ratio to the baseline pass at the same point.

@@ -17,6 +17,7 @@
 #include "sslr_host/egl_context.hpp"
 #include "sslr_host/frame_renderer.hpp"
 #include "sslr_host/gbuffer.hpp"
+#include "sslr_host/gltf_writer.hpp"
 #include "sslr_host/ground_truth.hpp"
 #include "sslr_host/image_io.hpp"
 #include "sslr_host/scene.hpp"
@@ -159,6 +160,7 @@ int run(int argc, char** argv) {
       ("ortho", "orthographic camera with this view height", cxxopts::value<std::string>())
       ("device", "EGL device: auto, hardware, software, surfaceless or an index (default $SSLR_EGL_DEVICE or auto)",
        cxxopts::value<std::string>()->default_value(""))
+      ("export-gltf", "write the scene (with the camera as given) as a self-contained glTF 2.0 file and exit, without rendering", cxxopts::value<std::string>())
       ("stats", "print tiles, traced pixels and depth (or position) fetches")
       ("score", "score the traced hits against Embree ground truth (recall, error, false hits), print them and write DIR/error.png")
       ("h,help", "show this help");
@@ -235,6 +237,19 @@ int run(int argc, char** argv) {
       camera.orthoHeight = parsePositive("ortho", args["ortho"].as<std::string>());
     }
     if (std::string why = camera.validate(); !why.empty()) throw UsageError{"camera: " + why};
+    if (args.count("export-gltf")) {
+      const std::string file = args["export-gltf"].as<std::string>();
+      Scene exported = scene;
+      exported.camera = camera;
+      auto text = gltfFromScene(exported);
+      if (!text) throw UsageError{"--export-gltf: " + text.error()};
+      if (Status st = writeFiles({{file, std::vector<unsigned char>(text.value().begin(), text.value().end())}}); !st) {
+        std::cerr << "sslr-render: " << st.message() << "\n";
+        return kExitFailure;
+      }
+      std::cout << "wrote " << file << "\n";
+      return 0;
+    }
     checkOutputDirectory(outDir);
   } catch (const UsageError& e) {
     std::cerr << "sslr-render: " << e.message << "\n";

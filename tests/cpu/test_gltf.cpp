@@ -159,6 +159,29 @@ TEST_F(Gltf, NodeCycle) {
   ASSERT_FALSE(s);  // tinygltf or our own traversal must refuse it
 }
 
+// Inputs the fuzzer kept (tests/fuzz/run.sh; tests/fuzz/regressions/README.md): each loads or is
+// refused with a message naming the file, within seconds. The folder holds at least the inputs
+// the first fuzzing runs reduced to their deepest refusals.
+TEST_F(Gltf, FuzzRegressionsAreRefusedOrLoaded) {
+  const fs::path root = fs::path(SSLR_SOURCE_DIR) / "tests" / "fuzz" / "regressions";
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(root)) {
+    if (e.path().filename() == "README.md") continue;
+    ++files;
+    // As the fuzzer saw it: a .glb when it starts with the GLB magic, else a .gltf.
+    std::ifstream in(e.path(), std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    const bool glb = bytes.rfind("glTF", 0) == 0;
+    const std::string path = write("fuzz-" + e.path().filename().string() + (glb ? ".glb" : ".gltf"), bytes);
+    const auto t0 = std::chrono::steady_clock::now();
+    auto s = loadGltf(path);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_LT(seconds, 10.0) << e.path();
+    if (!s) EXPECT_NE(s.error().find(path), std::string::npos) << e.path() << ": " << s.error();
+  }
+  EXPECT_GT(files, 0) << "no inputs in " << root;
+}
+
 TEST_F(Gltf, AssimpTestModelsNeverCrash) {
   // Debian's assimp-testmodels ship real and deliberately malformed glTF files. Whatever they
   // hold, loading returns a scene or an error naming the file; it never crashes.

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include "host_embedded_shaders.hpp"
+#include "sslr_host/embedded_shaders.hpp"
 #include "sslr_host/cpu_tracer.hpp"
 #include "sslr_host/frame_renderer.hpp"
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "host_embedded_shaders.hpp"
+#include "sslr_host/embedded_shaders.hpp"
 #include "sslr_shared.h"
 
 namespace sslr::host {

@@ -452,6 +452,33 @@ std::string precheck(const std::string& path, bool binary) {
   return {};
 }
 
+// What sslr's glTF writer stores where glTF has no field (gltf_writer.hpp): asset.extras.sslr
+// {background: [r,g,b], lightDirection: [x,y,z]}. Values that are not three finite numbers (or a
+// zero light direction) are ignored with a warning.
+void readSslrExtras(const tinygltf::Value& extras, Scene& scene) {
+  if (!extras.IsObject() || !extras.Has("sslr")) return;
+  const tinygltf::Value& x = extras.Get("sslr");
+  auto vec3 = [&](const char* key, glm::vec3& out) {
+    if (!x.IsObject() || !x.Has(key)) return false;
+    const tinygltf::Value& a = x.Get(key);
+    if (!a.IsArray() || a.ArrayLen() != 3) return false;
+    glm::vec3 v;
+    for (int i = 0; i < 3; ++i) {
+      if (!a.Get(i).IsNumber()) return false;
+      v[i] = static_cast<float>(a.Get(i).GetNumberAsDouble());
+    }
+    if (!std::isfinite(v.x + v.y + v.z)) return false;
+    out = v;
+    return true;
+  };
+  glm::vec3 background, light;
+  if (vec3("background", background)) scene.background = glm::clamp(background, 0.0f, 1e4f);
+  else if (x.IsObject() && x.Has("background")) scene.warnings.push_back("asset.extras.sslr.background ignored (not 3 finite numbers)");
+  if (vec3("lightDirection", light) && glm::length(light) > 1e-6f) scene.lightDirection = glm::normalize(light);
+  else if (x.IsObject() && x.Has("lightDirection"))
+    scene.warnings.push_back("asset.extras.sslr.lightDirection ignored (not a finite non-zero vector)");
+}
+
 }  // namespace
 
 Expected<Scene> loadGltf(const std::string& path) {
@@ -495,6 +522,7 @@ Expected<Scene> loadGltf(const std::string& path) {
   Scene scene;
   scene.name = fs::path(path).filename().string();
   if (!warn.empty()) scene.warnings.push_back(printable(warn, 400));
+  readSslrExtras(model.asset.extras, scene);
   try {
     Ignored ignored;
     loadMaterials(model, scene, ignored);
