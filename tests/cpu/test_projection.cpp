@@ -144,11 +144,17 @@ TEST(Projection, RejectsNonFiniteSingularAndSkewedMatrices) {
   ASSERT_FALSE(r);
   EXPECT_NE(r.error().find("skew"), std::string::npos) << r.error();
 
-  // The identity is an orthographic projection whose depth grows towards the camera: reversed.
-  EXPECT_TRUE(sslr::detail::reduceProjection(glm::dmat4(1.0), DepthConvention::reversed()));
-  r = sslr::detail::reduceProjection(glm::dmat4(1.0), DepthConvention::glDefault());
-  ASSERT_FALSE(r);
-  EXPECT_NE(r.error().find("mismatch"), std::string::npos) << r.error();
+  // The identity is FrameInputs' default: a host that forgot its projection is told so, whatever
+  // the convention (it would pass as a reversed orthographic unit cube).
+  for (const DepthConvention c : {DepthConvention::reversed(), DepthConvention::glDefault()}) {
+    r = sslr::detail::reduceProjection(glm::dmat4(1.0), c);
+    ASSERT_FALSE(r);
+    EXPECT_NE(r.error().find("identity"), std::string::npos) << r.error();
+  }
+  // An orthographic unit cube that is not exactly the identity is fine.
+  glm::dmat4 cube(1.0);
+  cube[2][2] = -1.0;
+  EXPECT_TRUE(sslr::detail::reduceProjection(cube, DepthConvention::glDefault()));
 
   r = sslr::detail::reduceProjection(glm::dmat4(0.0), DepthConvention::reversed());
   ASSERT_FALSE(r);
@@ -167,6 +173,38 @@ TEST(Projection, RejectsNearEqualsFarAndConventionMismatch) {
   r = sslr::detail::reduceProjection(ok.clipFromView(DepthMode::Reversed, 1.0), DepthConvention::glDefault());
   ASSERT_FALSE(r);
   EXPECT_NE(r.error().find("mismatch"), std::string::npos) << r.error();
+}
+
+// What the matrix can tell about the declared range: every matching pair passes (also covered by
+// the reconstruction cases above); a reversed matrix declared with GL's -1..1 range puts the far
+// end of the depth range behind the camera and is refused with the fix. A standard matrix built
+// for one range and declared with the other cannot be told apart from a matrix with other planes
+// (docs/conventions.md, "What sslr cannot check").
+TEST(Projection, RangeMismatchesThatTheMatrixRevealsAreRefused) {
+  Camera cam;
+  const struct {
+    DepthMode mode;
+    DepthConvention declared;
+    bool ok;
+  } cases[] = {
+      {DepthMode::Reversed, DepthConvention::reversed(), true},
+      {DepthMode::ReversedInfinite, DepthConvention::reversed(), true},
+      {DepthMode::ZeroToOne, DepthConvention::zeroToOne(), true},
+      {DepthMode::GlDefault, DepthConvention::glDefault(), true},
+      {DepthMode::Reversed, DepthConvention{DepthRange::NegativeOneToOne, true}, false},
+      {DepthMode::ReversedInfinite, DepthConvention{DepthRange::NegativeOneToOne, true}, false},
+  };
+  for (const auto& c : cases) {
+    auto r = sslr::detail::reduceProjection(cam.clipFromView(c.mode, 1.5), c.declared);
+    EXPECT_EQ(bool(r), c.ok) << static_cast<int>(c.mode) << (r ? "" : ": " + r.error());
+    if (!r && !c.ok) EXPECT_NE(r.error().find("GL_ZERO_TO_ONE"), std::string::npos) << r.error();
+  }
+  // A perspective matrix whose near end lies behind the camera under the declared convention.
+  glm::dmat4 bad = cam.clipFromView(DepthMode::Reversed, 1.5);
+  bad[2][2] = -2.0;  // ndc z = 2 + zOffset / dist: depth 1 (the near end) at dist = -zOffset
+  auto r = sslr::detail::reduceProjection(bad, DepthConvention::reversed());
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().find("near end"), std::string::npos) << r.error();
 }
 
 TEST(Projection, DepthFromNdcInvertsNdcFromDepth) {

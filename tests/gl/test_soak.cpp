@@ -153,7 +153,12 @@ TEST_F(Soak, ObjectsErrorsAndMemoryStayFlat) {
   EXPECT_LE(objectsAtEnd, objectsAtWarmup + programCacheSlack);
   // Memory: the driver's shader cache and the allocator's pools settle during the warm-up; a
   // leak of 20 KB per dispatch (a small target, a program's binary) would add more than this.
+  // Not under AddressSanitizer: its quarantine keeps freed blocks resident (measured +71 MiB).
+#if defined(__SANITIZE_ADDRESS__)
+  std::printf("soak: resident memory not checked under AddressSanitizer (quarantine)\n");
+#else
   EXPECT_LT(memoryAtEnd - memoryAtWarmup, 24.0);
+#endif
   glDeleteFramebuffers(1, &targetFbo);
   glDeleteTextures(1, &target);
 }

@@ -19,6 +19,12 @@ Expected<shared::SslrProjection> reduceProjection(const glm::dmat4& m, const Dep
       if (!std::isfinite(m[c][r]))
         return Status::error("sslr: projection is not finite: " + entry(c, r, m[c][r]));
 
+  // FrameInputs' default: the host forgot to set its projection (the identity would otherwise
+  // pass as a reversed orthographic unit cube and reconstruct nonsense).
+  if (m == glm::dmat4(1.0))
+    return Status::error(
+        "sslr: clipFromView is the identity (FrameInputs' default): set it to the projection matrix "
+        "that rasterized the depth buffer");
   const bool ortho = m[2][3] == 0.0 && m[3][3] == 1.0;
   const bool persp = m[2][3] == -1.0 && m[3][3] == 0.0;
   if (!ortho && !persp)
@@ -52,6 +58,39 @@ Expected<shared::SslrProjection> reduceProjection(const glm::dmat4& m, const Dep
     return Status::error(std::string("sslr: depth convention mismatch: DepthConvention::reversedZ = ") +
                          (depth.reversedZ ? "true" : "false") + " but clipFromView maps nearer points to " +
                          (reversedMatrix ? "larger" : "smaller") + " depth");
+
+  if (persp) {
+    // Where the declared convention puts the two ends of the depth range, as view distances:
+    // dist(ndcZ) = zOffset / (ndcZ + zScale). The near end must lie in front of the camera and
+    // the far end beyond it (or at infinity). A reversed matrix declared with GL's -1..1 range
+    // puts the far end behind the camera: half the depth range would be unused and the depth
+    // read back would be misread.
+    const bool zeroToOne = depth.range == DepthRange::ZeroToOne;
+    const double ndcNear = depth.reversedZ ? 1.0 : (zeroToOne ? 0.0 : -1.0);
+    const double ndcFar = depth.reversedZ ? (zeroToOne ? 0.0 : -1.0) : 1.0;
+    const double nearDist = zOffset / (ndcNear + zScale);
+    const double farDen = ndcFar + zScale;
+    const double farDist = farDen == 0.0 ? INFINITY : zOffset / farDen;
+    const char* range = zeroToOne ? "DepthRange::ZeroToOne" : "DepthRange::NegativeOneToOne";
+    if (!(nearDist > 0.0) || !std::isfinite(nearDist)) {
+      std::ostringstream why;
+      why << "sslr: depth convention mismatch: with " << range << " and reversedZ = "
+          << (depth.reversedZ ? "true" : "false") << ", clipFromView puts the near end of the depth range at view "
+          << "distance " << nearDist << " (it must be in front of the camera): the matrix was built for another "
+          << "depth range or convention";
+      return Status::error(why.str());
+    }
+    if (farDist < nearDist * (1.0 + 1e-9) && !(farDist == INFINITY)) {
+      std::ostringstream why;
+      why << "sslr: depth convention mismatch: with " << range << " and reversedZ = "
+          << (depth.reversedZ ? "true" : "false") << ", clipFromView puts the far end of the depth range at view "
+          << "distance " << farDist << ", not beyond the near end (" << nearDist << ")"
+          << (depth.reversedZ && !zeroToOne ? ": a reversed-Z projection needs glClipControl(..., GL_ZERO_TO_ONE) "
+                                              "and DepthRange::ZeroToOne"
+                                            : ": the matrix was built for another depth range or convention");
+      return Status::error(why.str());
+    }
+  }
 
   const shared::SslrProjection p =
       shared::sslrProjectionFromMatrix(m, depth.range == DepthRange::ZeroToOne);
