@@ -77,6 +77,8 @@ using glm::sqrt;
 #define SSLR_BINDING_FRAME_UBO 0
 #define SSLR_BINDING_TILE_SSBO 0
 #define SSLR_BINDING_STATS_SSBO 1
+#define SSLR_BINDING_RETRACE_SSBO 2  // half resolution: pixels that trace their own ray
+#define SSLR_RETRACE_GROUP 64        // invocations per group of the retrace pass
 
 // ---- Uniform block structs (std140: every member 4 bytes, every struct a multiple of 16) ----
 

@@ -7,7 +7,34 @@
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
 
+// Half resolution (Settings::halfResolution) runs this file three times: SSLR_HALF_QUADS traces
+// one ray per 2x2 quad; SSLR_HALF_RES shades every pixel of the listed tiles from its quad's ray
+// where the pixel lies on the traced pixel's surface and lists the others; SSLR_HALF_RETRACE
+// traces and shades the listed pixels. The middle pass holds no tracer code: llvmpipe would run
+// it under lane masks for every pixel (measured: with the tracer inline, half resolution was
+// slower than full on mirror-room).
+#ifdef SSLR_HALF_QUADS
+layout(local_size_x = SSLR_TILE_SIZE / 2, local_size_y = SSLR_TILE_SIZE / 2) in;
+layout(binding = 1, rgba32f) uniform writeonly image2D uQuadHitOut;      // see uQuadHit
+layout(binding = 2, rgba16f) uniform writeonly image2D uQuadSurfaceOut;  // see uQuadSurface
+#elif defined(SSLR_HALF_RETRACE)
+layout(local_size_x = SSLR_RETRACE_GROUP) in;
+#else
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
+#endif
+#ifdef SSLR_HALF_RES
+layout(binding = 3) uniform sampler2D uQuadHit;      // xyz: view-space hit point; w: confidence + 2 x traced index
+layout(binding = 4) uniform sampler2D uQuadSurface;  // xy: traced pixel's octahedral normal; zw: hit surface's
+#endif
+#if defined(SSLR_HALF_RES) || defined(SSLR_HALF_RETRACE)
+layout(std430, binding = SSLR_BINDING_RETRACE_SSBO) buffer SslrRetrace {
+  uint dispatchX;  // DispatchIndirectCommand of the retrace pass: ceil(count / SSLR_RETRACE_GROUP)
+  uint dispatchY;
+  uint dispatchZ;
+  uint count;      // pixels listed
+  uint pixels[];   // x | y << 16
+} retrace;
+#endif
 
 layout(binding = 0, rgba16f) uniform writeonly image2D uReflection;
 // The resolved image gets the reflection too: tiles without a pixel to blur are final here,
@@ -56,12 +83,107 @@ vec2 sslrLoadDepthMinMax(int level, ivec2 cell) {
 #include "sslr_trace_hiz.h"
 #endif
 
-void main() {
-  ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
-  if (!sslrInside(px)) return;
+// The configured tracer for one ray from pixel px.
+SslrHit sslrTraceRay(ivec2 px, vec3 vsP, vec3 vsV, vec3 vsR) {
+#ifdef SSLR_METHOD_POSITION_BUFFER
+  return sslrTracePositionBuffer(frame.proj, frame.surface, frame.positionBuffer, vsP, vsV, vsR);
+#elif defined(SSLR_METHOD_DDA)
+  return sslrTraceDda(frame.proj, frame.surface, frame.dda, px, vsP, vsR);
+#else
+  return sslrTraceDepthOnly(frame.proj, frame.surface, frame.trace, px, vsP, vsR);
+#endif
+}
 
+#ifdef SSLR_HALF_QUADS
+void main() {
+  ivec2 quad = sslrTileOrigin(gl_WorkGroupID.x) / 2 + ivec2(gl_LocalInvocationID.xy);
+  // The traced pixel rotates through the quad frame by frame (the first of the four, in that
+  // order, that needs tracing), so that a temporal filter would see every pixel's own ray.
+  int start = frame.trace.frameIndex & 3;
+  vec4 quadHit = vec4(0.0f);
+  vec4 quadSurface = vec4(0.5f);
+  for (int k = 0; k < 4; ++k) {
+    int index = (start + k) & 3;
+    ivec2 px = quad * 2 + sslrQuadOffset(index);
+    if (!sslrInside(px)) continue;
+    vec4 texel = sslrLoadNormal(px);
+    float depth = sslrLoadDepth(px);
+    vec3 vsP;
+    if (!sslrSurfaceFromDepth(frame.proj, frame.surface, px, depth, vsP) ||
+        !sslrShouldTrace(frame.surface, frame.trace, depth, texel))
+      continue;
+    vec3 vsN;
+    sslrDecodeNormal(frame.surface, texel, vsN);
+    vec3 vsV = sslrViewDirection(frame.proj, vsP);
+    if (!(dot(-vsV, vsN) > 0.0f)) continue;
+    vec3 vsR = reflect(vsV, vsN);
+    SslrHit hit = sslrTraceRay(px, vsP, vsV, vsR);
+    float confidence = hit.status == SSLR_STATUS_HIT ? hit.confidence : 0.0f;
+    vec3 vsHitNormal = vec3(0.0f, 0.0f, 1.0f);
+    if (confidence > 0.0f)
+      sslrDecodeNormal(frame.surface, sslrLoadNormal(sslrPixelFromUv(hit.uvHit, sslrSizePx())), vsHitNormal);
+    quadHit = vec4(vsP + vsR * hit.L, min(confidence, 0.999f) + 2.0f * float(index));
+    quadSurface = vec4(sslrOctEncode(vsN), sslrOctEncode(vsHitNormal));
+#ifdef SSLR_COLLECT_STATS
+    atomicAdd(stats.tracedPixels, 1u);
+    if (hit.hierarchical != 0) atomicAdd(stats.hierarchicalPixels, 1u);
+#endif
+    break;
+  }
+  imageStore(uQuadHitOut, quad, quadHit);
+  imageStore(uQuadSurfaceOut, quad, quadSurface);
+#ifdef SSLR_COLLECT_STATS
+  atomicAdd(stats.fetches, gFetches);
+#endif
+}
+#else
+
+#ifdef SSLR_HALF_RES
+// The quad's ray answers for this pixel when the pixel lies on the traced pixel's surface: its hit
+// is re-planed for this pixel's ray (sslrReusedLength) and checked against the depth where it
+// lands; a miss of the quad's ray is a miss here. False: trace this pixel's own ray.
+bool sslrReuseQuadHit(ivec2 px, vec3 vsP, vec3 vsN, vec3 vsR, out SslrHit hit) {
+  hit = sslrNoHit(SSLR_STATUS_MISS);
+  ivec2 quad = px / 2;
+  vec4 a = texelFetch(uQuadHit, quad, 0);
+  vec4 b = texelFetch(uQuadSurface, quad, 0);
+  gFetches += 2u;
+  int index = clamp(int(floor(a.w * 0.5f)), 0, 3);
+  float confidence = a.w - 2.0f * float(index);
+  ivec2 traced = quad * 2 + sslrQuadOffset(index);
+  if (traced != px) {
+    vec3 vsTraced;
+    if (!sslrLoadSurface(traced, vsTraced)) return false;
+    if (!sslrSameSurface(frame.proj, frame.surface, vsP, vsN, vsTraced, sslrOctDecode(b.xy))) return false;
+  }
+  if (!(confidence > 0.0f)) return true;  // the surface's ray found nothing on screen
+  vec3 vsHitNormal = sslrOctDecode(b.zw);
+  float L = traced == px ? length(a.xyz - vsP) : sslrReusedLength(vsP, vsR, a.xyz, vsHitNormal);
+  if (!(L > 0.0f)) return false;
+  vec3 vsQ = vsP + vsR * L;
+  if (sslrClipW(frame.proj, vsQ) <= 0.0f) return false;
+  if (traced != px) {
+    // The re-planed point must lie on what its pixel shows (else the reflected surface ended
+    // between the two rays: a silhouette).
+    vec3 ndcQ = sslrNdcFromView(frame.proj, vsQ);
+    ivec2 landed = sslrPixelFromUv(sslrUvFromNdc(vec2(ndcQ.x, ndcQ.y)), sslrSizePx());
+    vec3 vsSurface;
+    if (!sslrLoadSurface(landed, vsSurface)) return false;
+    float dist = frame.proj.orthographic != 0 ? abs(vsSurface.z) : sslrViewDistance(frame.proj, vsSurface);
+    float tolerance = sslrHitTolerance(frame.proj, frame.surface, frame.trace, dist,
+                                       sslrSlopeTan(frame.proj, vsSurface, vsHitNormal));
+    if (length(vsQ - vsSurface) > tolerance) return false;
+  }
+  hit = sslrFinishHit(frame.proj, hit, vsP, vsR, L, confidence);
+  return true;
+}
+#endif
+
+// Traces (or reuses) and shades one pixel: reflection, resolved, debug images, stats, blur list.
+void sslrShadePixel(ivec2 px) {
   SslrHit hit = sslrNoHit(SSLR_STATUS_NOT_TRACED);
   vec4 reflection = vec4(0.0f);
+  bool ranTracer = false;  // stats: half resolution answers most pixels from their quad's ray
 
   vec4 texel = sslrLoadNormal(px);
   float depth = sslrLoadDepth(px);
@@ -81,12 +203,20 @@ void main() {
     float cosVN = dot(-vsV, vsN);
     if (cosVN > 0.0f) {  // a normal facing away from the camera has nothing to reflect
       vec3 vsR = reflect(vsV, vsN);
-#ifdef SSLR_METHOD_POSITION_BUFFER
-      hit = sslrTracePositionBuffer(frame.proj, frame.surface, frame.positionBuffer, vsP, vsV, vsR);
-#elif defined(SSLR_METHOD_DDA)
-      hit = sslrTraceDda(frame.proj, frame.surface, frame.dda, px, vsP, vsR);
+#ifdef SSLR_HALF_RES
+      if (!sslrReuseQuadHit(px, vsP, vsN, vsR, hit)) {
+        // Its own ray, in the retrace pass, which also writes this pixel's outputs.
+        uint slot = atomicAdd(retrace.count, 1u);
+        retrace.pixels[slot] = uint(px.x) | (uint(px.y) << 16);
+        if (slot % uint(SSLR_RETRACE_GROUP) == 0u) atomicAdd(retrace.dispatchX, 1u);
+#ifdef SSLR_COLLECT_STATS
+        atomicAdd(stats.fetches, gFetches);
+#endif
+        return;
+      }
 #else
-      hit = sslrTraceDepthOnly(frame.proj, frame.surface, frame.trace, px, vsP, vsR);
+      hit = sslrTraceRay(px, vsP, vsV, vsR);
+      ranTracer = true;
 #endif
       if (hit.status == SSLR_STATUS_HIT) {
         vec2 w = sslrReflectionWeights(frame.proj, frame.surface, frame.trace, hit, vsP, vsV, vsR, cosVN,
@@ -108,7 +238,7 @@ void main() {
   imageStore(uIterations, px, vec4(float(hit.iterations)));
 #endif
 #ifdef SSLR_COLLECT_STATS
-  if (hit.status != SSLR_STATUS_NOT_TRACED) atomicAdd(stats.tracedPixels, 1u);
+  if (ranTracer) atomicAdd(stats.tracedPixels, 1u);
   atomicAdd(stats.fetches, gFetches);
   if (hit.hierarchical != 0) atomicAdd(stats.hierarchicalPixels, 1u);
 #endif
@@ -116,3 +246,16 @@ void main() {
   // rasterizers barriers split the shader and cost more than this atomic).
   if (reflection.a * frame.trace.blurMaxRadiusPx >= 0.5f) sslrListTileForBlur(px);
 }
+
+void main() {
+#ifdef SSLR_HALF_RETRACE
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= retrace.count) return;
+  ivec2 px = ivec2(int(retrace.pixels[i] & 0xffffu), int(retrace.pixels[i] >> 16));
+#else
+  ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
+  if (!sslrInside(px)) return;
+#endif
+  sslrShadePixel(px);
+}
+#endif  // SSLR_HALF_QUADS

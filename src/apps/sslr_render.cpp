@@ -146,6 +146,7 @@ int run(int argc, char** argv) {
       ("fresnel", "weighting: classic (the article) or schlick", cxxopts::value<std::string>()->default_value("classic"))
       ("iterations", "override the preset's adaptive-L iteration cap", cxxopts::value<std::string>())
       ("no-blur", "skip the roughness blur")
+      ("half-res", "one ray per 2x2 quad, reused by the quad's pixels on the same surface")
       ("object-thickness", "assumed depth of what the screen shows, fraction of its view depth (hierarchical traversal)", cxxopts::value<std::string>())
       ("depth", "depth convention: reversed, reversed-infinite, zero-to-one, gl-default",
        cxxopts::value<std::string>()->default_value("reversed"))
@@ -214,6 +215,7 @@ int run(int argc, char** argv) {
       throw UsageError{"--method must be adaptive-l, hiz, dda, position-buffer or none (got '" + method + "')"};
     }
     if (args.count("no-hiz-fallback")) settings.hierarchicalFallback = false;
+    if (args.count("half-res")) settings.halfResolution = true;
     settings.debugOutputs = dump || args.count("score") > 0;
     settings.collectStats = args.count("stats") > 0;
 

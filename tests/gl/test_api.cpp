@@ -208,6 +208,7 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   glBindImageTexture(2, hostTex[2], 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
   glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, hostBuf[0], 256, 512);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, hostBuf[1]);
+  glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 2, hostBuf[2], 0, 128);  // half resolution's list
   glBindBufferRange(GL_UNIFORM_BUFFER, 0, hostBuf[2], 0, 256);
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, hostBuf[2]);
   glBindBuffer(GL_UNIFORM_BUFFER, hostBuf[0]);
@@ -236,6 +237,10 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   s.collectStats = true;
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), s));
   EXPECT_EQ(Snapshot::take().values, before.values) << "dispatch changed GL state";
+  Settings half = s;
+  half.halfResolution = true;  // three more passes, two more textures and a buffer
+  ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), half));
+  EXPECT_EQ(Snapshot::take().values, before.values) << "half-resolution dispatch changed GL state";
   ASSERT_TRUE(ctx->composite(hostFbo));
   EXPECT_EQ(Snapshot::take().values, before.values) << "composite changed GL state";
 

@@ -28,6 +28,9 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
       BenchConfig alone{"adaptive-l", "high-no-fallback", Settings::preset(preset), false};
       alone.settings.hierarchicalFallback = false;
       configs.push_back(alone);
+      BenchConfig half{"adaptive-l", "high-half", Settings::preset(preset), false};  // one ray per quad
+      half.settings.halfResolution = true;
+      configs.push_back(half);
     }
   }
   // The hierarchical traversal alone (Method::HierarchicalDepth) at a few step caps.

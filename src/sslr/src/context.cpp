@@ -44,8 +44,10 @@ void Context::Impl::createTargets() {
 }
 
 void Context::Impl::destroyTargets() {
-  GLuint textures[] = {reflection, blurTemp, resolved, hit, iterations, hiz};
-  gl.DeleteTextures(6, textures);
+  GLuint textures[] = {reflection, blurTemp, resolved, hit, iterations, hiz, quadHit, quadSurface};
+  gl.DeleteTextures(8, textures);
+  gl.DeleteBuffers(1, &retraceBuffer);
+  quadHit = quadSurface = retraceBuffer = 0;
   GLuint buffers[] = {tileBuffer};
   gl.DeleteBuffers(1, buffers);
   reflection = blurTemp = resolved = hit = iterations = hiz = tileBuffer = 0;

@@ -42,6 +42,8 @@ struct Context::Impl {
   // Min-max depth pyramid: mip m holds level m + 1 (sslr_shared.h). Its base is padded so that
   // every mip halves exactly: mip m has at least ceil(size / 2^(m+1)) cells per axis.
   GLuint hiz = 0;
+  // Half resolution: per 2x2 quad, its ray's hit and surfaces (created on first use).
+  GLuint quadHit = 0, quadSurface = 0, retraceBuffer = 0;
   int hizLevels = 0, hizWidth = 0, hizHeight = 0;
   GLuint frameUbo = 0, tileBuffer = 0, statsBuffer = 0;
   GLuint nearestSampler = 0, linearSampler = 0, vao = 0;

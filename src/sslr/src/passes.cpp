@@ -41,11 +41,17 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   if (Status s = checkInputs(in, settings.method); !s) return s;
 
   // Build every program this frame needs before touching any state.
-  std::string traceDefines;
+  std::string methodDefines;
+  if (settings.method == Method::PositionBuffer) methodDefines = "#define SSLR_METHOD_POSITION_BUFFER 1\n";
+  if (settings.method == Method::ScreenSpaceDDA) methodDefines = "#define SSLR_METHOD_DDA 1\n";
+  const std::string statsDefine = settings.collectStats ? "#define SSLR_COLLECT_STATS 1\n" : "";
+  std::string traceDefines = methodDefines + statsDefine;
   if (settings.debugOutputs) traceDefines += "#define SSLR_DEBUG_OUTPUTS 1\n";
-  if (settings.collectStats) traceDefines += "#define SSLR_COLLECT_STATS 1\n";
-  if (settings.method == Method::PositionBuffer) traceDefines += "#define SSLR_METHOD_POSITION_BUFFER 1\n";
-  if (settings.method == Method::ScreenSpaceDDA) traceDefines += "#define SSLR_METHOD_DDA 1\n";
+  // Half resolution: a quad pass (the tracer, one ray per 2x2 quad) before the full-resolution
+  // pass, which reuses those rays.
+  const std::string quadDefines = "#define SSLR_HALF_QUADS 1\n" + methodDefines + statsDefine;
+  const std::string retraceDefines = traceDefines + "#define SSLR_HALF_RETRACE 1\n";
+  if (settings.halfResolution) traceDefines += "#define SSLR_HALF_RES 1\n";
   auto classify = computeProgram("classify.comp");
   auto cleanup = computeProgram("classify.comp", "#define SSLR_CLEANUP 1\n");
   // frameConstants decided whether the trace uses the traversal; the pyramid follows it.
@@ -54,15 +60,31 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   Expected<GLuint> hizArgs =
       pyramid ? computeProgram("classify.comp", "#define SSLR_PYRAMID_ARGS 1\n") : Expected<GLuint>(GLuint(0));
   auto trace = computeProgram("trace.comp", traceDefines);
+  const Expected<GLuint> none = GLuint(0);
+  Expected<GLuint> quads = settings.halfResolution ? computeProgram("trace.comp", quadDefines) : none;
+  Expected<GLuint> retrace = settings.halfResolution ? computeProgram("trace.comp", retraceDefines) : none;
   const bool blur = settings.blur && settings.blurMaxRadiusPx > 0.0f;
   Expected<GLuint> blurH = GLuint(0), blurV = GLuint(0);
   if (blur) {
     blurH = computeProgram("blur.comp", "#define SSLR_BLUR_AXIS ivec2(1, 0)\n");
     blurV = computeProgram("blur.comp", "#define SSLR_BLUR_AXIS ivec2(0, 1)\n#define SSLR_BLUR_VERTICAL 1\n");
   }
-  for (const auto* p : {&classify, &cleanup, &hizBuild, &hizArgs, &trace, &blurH, &blurV})
+  for (const auto* p : {&classify, &cleanup, &hizBuild, &hizArgs, &trace, &quads, &retrace, &blurH, &blurV})
     if (!*p) return Status::error(p->error());
 
+  if (settings.halfResolution && quadHit == 0) {
+    const int qw = (width + 1) / 2, qh = (height + 1) / 2;
+    gl.CreateTextures(GL_TEXTURE_2D, 1, &quadHit);
+    gl.TextureStorage2D(quadHit, 1, GL_RGBA32F, qw, qh);
+    label(GL_TEXTURE, quadHit, "sslr.quadHit");
+    gl.CreateTextures(GL_TEXTURE_2D, 1, &quadSurface);
+    gl.TextureStorage2D(quadSurface, 1, GL_RGBA16F, qw, qh);
+    label(GL_TEXTURE, quadSurface, "sslr.quadSurface");
+    gl.CreateBuffers(1, &retraceBuffer);
+    gl.NamedBufferStorage(retraceBuffer, static_cast<GLsizeiptr>((4 + static_cast<size_t>(width) * height) * sizeof(GLuint)),
+                          nullptr, GL_DYNAMIC_STORAGE_BIT);
+    label(GL_BUFFER, retraceBuffer, "sslr.retrace");
+  }
   detail::StateGuard guard(gl, false);
   gl.PushDebugGroup(GL_DEBUG_SOURCE_THIRD_PARTY, 0, -1, "sslr.dispatch");
 
@@ -126,6 +148,20 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     buildPyramid(hizBuild.value());
   }
 
+  if (settings.halfResolution) {
+    const GLuint retraceHeader[4] = {0, 1, 1, 0};  // dispatch (0, 1, 1), count 0
+    gl.NamedBufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_RETRACE_SSBO, retraceBuffer);
+    gl.UseProgram(quads.value());
+    gl.BindImageTexture(1, quadHit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    gl.BindImageTexture(2, quadSurface, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    gl.DispatchComputeIndirect(0);  // one 4x4 group per listed tile
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    gl.BindTextureUnit(3, quadHit);  // units 3 and 4 are the blur's, free during the trace
+    gl.BindSampler(3, nearestSampler);
+    gl.BindTextureUnit(4, quadSurface);
+    gl.BindSampler(4, nearestSampler);
+  }
   gl.UseProgram(trace.value());
   gl.BindImageTexture(0, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   gl.BindImageTexture(3, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -134,6 +170,13 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.BindImageTexture(2, iterations, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
   }
   gl.DispatchComputeIndirect(0);
+  if (settings.halfResolution) {  // the pixels whose quad's ray did not answer them
+    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    gl.UseProgram(retrace.value());
+    gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, retraceBuffer);
+    gl.DispatchComputeIndirect(0);
+    gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
+  }
   gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                    GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 

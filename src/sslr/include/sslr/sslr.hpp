@@ -159,6 +159,9 @@ struct Settings {
   float cameraFadeEnd = 0.9f;        // ... and where they are gone (weight only, never the hit)
   float roughnessCutoff = 0.5f;      // rougher pixels are not traced
   float minReflectance = 0.01f;      // pixels with reflectance <= this are not traced
+  bool halfResolution = false;       // one ray per 2x2 quad (the traced pixel rotates per frame);
+                                     // the quad's pixels on the same surface reuse its hit, the
+                                     // others trace their own ray (depth-only methods)
   bool blur = true;                  // run the roughness blur (else resolved = raw reflection)
   float blurMaxRadiusPx = 8.0f;      // blur radius that alpha = 1 stands for
   float blurConeScale = 1.0f;        // cone tan(half angle) = roughness^2 * scale
