@@ -336,7 +336,7 @@ SSLR_FN ivec2 sslrQuadOffset(int index) {
 SSLR_FN bool sslrSameSurface(SslrProjection p, SslrSurface s, vec3 vsP, vec3 vsN, vec3 vsPc, vec3 vsNc) {
   float dist = p.orthographic != 0 ? abs(vsP.z) : sslrViewDistance(p, vsP);
   float tolerance = 0.002f * dist + 0.25f * sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : dist);
-  return dot(vsN, vsNc) > 0.99f && abs(dot(vsP - vsPc, vsNc)) <= tolerance;
+  return dot(vsN, vsNc) > 0.9995f && abs(dot(vsP - vsPc, vsNc)) <= tolerance;
 }
 
 // The length along P's ray R to the plane of the quad's hit (point H, normal Nh): a neighbouring

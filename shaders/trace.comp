@@ -23,7 +23,7 @@ layout(local_size_x = SSLR_RETRACE_GROUP) in;
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 #endif
 #ifdef SSLR_HALF_RES
-layout(binding = 3) uniform sampler2D uQuadHit;      // xyz: view-space hit point; w: confidence + 2 x traced index
+layout(binding = 3) uniform sampler2D uQuadHit;      // xyz: view-space hit point; w: see SSLR_HALF_QUADS
 layout(binding = 4) uniform sampler2D uQuadSurface;  // xy: traced pixel's octahedral normal; zw: hit surface's
 #endif
 #if defined(SSLR_HALF_RES) || defined(SSLR_HALF_RETRACE)
@@ -122,7 +122,10 @@ void main() {
     vec3 vsHitNormal = vec3(0.0f, 0.0f, 1.0f);
     if (confidence > 0.0f)
       sslrDecodeNormal(frame.surface, sslrLoadNormal(sslrPixelFromUv(hit.uvHit, sslrSizePx())), vsHitNormal);
-    quadHit = vec4(vsP + vsR * hit.L, min(confidence, 0.999f) + 2.0f * float(index));
+    // w packs the confidence (< 1), 2 x the traced pixel's index and 8 for a ray that neither hit
+    // nor left the screen or met the sky (its neighbours trace their own: they may converge).
+    float hardMiss = (confidence == 0.0f && hit.status == SSLR_STATUS_MISS) ? 8.0f : 0.0f;
+    quadHit = vec4(vsP + vsR * hit.L, min(confidence, 0.999f) + 2.0f * float(index) + hardMiss);
     quadSurface = vec4(sslrOctEncode(vsN), sslrOctEncode(vsHitNormal));
 #ifdef SSLR_COLLECT_STATS
     atomicAdd(stats.tracedPixels, 1u);
@@ -141,22 +144,26 @@ void main() {
 #ifdef SSLR_HALF_RES
 // The quad's ray answers for this pixel when the pixel lies on the traced pixel's surface: its hit
 // is re-planed for this pixel's ray (sslrReusedLength) and checked against the depth where it
-// lands; a miss of the quad's ray is a miss here. False: trace this pixel's own ray.
+// lands; a quad's ray that left the screen or met the sky is a miss here too. False: trace this
+// pixel's own ray.
 bool sslrReuseQuadHit(ivec2 px, vec3 vsP, vec3 vsN, vec3 vsR, out SslrHit hit) {
   hit = sslrNoHit(SSLR_STATUS_MISS);
   ivec2 quad = px / 2;
   vec4 a = texelFetch(uQuadHit, quad, 0);
   vec4 b = texelFetch(uQuadSurface, quad, 0);
   gFetches += 2u;
-  int index = clamp(int(floor(a.w * 0.5f)), 0, 3);
-  float confidence = a.w - 2.0f * float(index);
+  bool hardMiss = a.w >= 8.0f;
+  float code = hardMiss ? a.w - 8.0f : a.w;
+  int index = clamp(int(floor(code * 0.5f)), 0, 3);
+  float confidence = code - 2.0f * float(index);
   ivec2 traced = quad * 2 + sslrQuadOffset(index);
   if (traced != px) {
     vec3 vsTraced;
     if (!sslrLoadSurface(traced, vsTraced)) return false;
     if (!sslrSameSurface(frame.proj, frame.surface, vsP, vsN, vsTraced, sslrOctDecode(b.xy))) return false;
   }
-  if (!(confidence > 0.0f)) return true;  // the surface's ray found nothing on screen
+  if (hardMiss) return false;
+  if (!(confidence > 0.0f)) return true;  // the surface's ray left the screen or met the sky
   vec3 vsHitNormal = sslrOctDecode(b.zw);
   float L = traced == px ? length(a.xyz - vsP) : sslrReusedLength(vsP, vsR, a.xyz, vsHitNormal);
   if (!(L > 0.0f)) return false;

@@ -118,7 +118,7 @@ INSTANTIATE_TEST_SUITE_P(
       return n;
     });
 
-// Golden image of the default scene on llvmpipe. Re-bless with tests/golden/bless.sh (it sets
+// Golden image of the default scene on llvmpipe. Re-bless with assets/golden/bless.sh (it sets
 // SSLR_BLESS=1). The renderer string is stored beside the image: another renderer (a GPU, another
 // Mesa) is compared with a looser tolerance, since rasterization and float rounding differ.
 class Golden : public sslr::test::GlTest {};
@@ -145,7 +145,7 @@ TEST_F(Golden, DefaultSceneMatchesStoredImage) {
     GTEST_SKIP() << "blessed " << image;
   }
   auto golden = readImage(image.string());
-  ASSERT_TRUE(golden) << golden.error() << " (run tests/golden/bless.sh)";
+  ASSERT_TRUE(golden) << golden.error() << " (run assets/golden/bless.sh)";
   std::string goldenRenderer;
   std::getline(std::ifstream(rendererFile), goldenRenderer);
   // Filament's renderdiff tolerance on Mesa: 5/255 per channel, at most 0.1% of pixels over.
