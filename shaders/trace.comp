@@ -123,8 +123,10 @@ void main() {
     if (confidence > 0.0f)
       sslrDecodeNormal(frame.surface, sslrLoadNormal(sslrPixelFromUv(hit.uvHit, sslrSizePx())), vsHitNormal);
     // w packs the confidence (< 1), 2 x the traced pixel's index and 8 for a ray that neither hit
-    // nor left the screen or met the sky (its neighbours trace their own: they may converge).
-    float hardMiss = (confidence == 0.0f && hit.status == SSLR_STATUS_MISS) ? 8.0f : 0.0f;
+    // nor left the screen or met the sky before any hierarchical traversal (its neighbours trace
+    // their own: adaptive L may converge for them). A ray the traversal gave up on stays a miss
+    // for its neighbours: retracing those doubled the cost of half resolution on mirror-walls.
+    float hardMiss = (confidence == 0.0f && hit.status == SSLR_STATUS_MISS && hit.hierarchical == 0) ? 8.0f : 0.0f;
     quadHit = vec4(vsP + vsR * hit.L, min(confidence, 0.999f) + 2.0f * float(index) + hardMiss);
     quadSurface = vec4(sslrOctEncode(vsN), sslrOctEncode(vsHitNormal));
 #ifdef SSLR_COLLECT_STATS
