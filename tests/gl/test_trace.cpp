@@ -229,6 +229,31 @@ INSTANTIATE_TEST_SUITE_P(Methods, CpuGpuAgreement,
 
 namespace {
 
+// A built-in scene at 192x108 traced with `s`, scored against Embree truth on the GPU pass and on
+// the CPU run of the same shared headers.
+struct GpuCpuScores {
+  HitMetrics gpu, cpu;
+  bool ok = false;
+};
+GpuCpuScores scoreOnGpuAndCpu(const char* sceneName, const Settings& s) {
+  GpuCpuScores r;
+  auto scene = makeBuiltinScene(sceneName);
+  EXPECT_TRUE(scene) << sceneName;
+  if (!scene) return r;
+  GBufferOptions o;
+  o.width = 192;
+  o.height = 108;
+  const ScoredFrame f = renderScored(scene.value(), *scene.value().camera, o, s);
+  if (!f.renderer) return r;
+  GBuffer& g = f.renderer->gbuffer();
+  const Image depth = g.readDepth(), normal = g.readNormalPacked();
+  r.gpu = compareHits(f.truth, f.hit);
+  r.cpu = compareHits(f.truth, traceOnCpu({&depth, &normal, nullptr}, g.frameInputs(), s));
+  r.ok = true;
+  return r;
+}
+
+
 // The scenes built to break the tracer (rays towards the camera and behind foreground boxes,
 // reflections across the screen, curved mirrors, rough panels), scored against Embree truth on
 // the GPU pass and on the CPU run of the same shared headers. The floors are the values measured
@@ -249,20 +274,11 @@ class RobustScenes : public sslr::test::GlTest, public ::testing::WithParamInter
 
 TEST_P(RobustScenes, RecallAndFalseHitsOnGpuAndCpu) {
   const RobustCase c = GetParam();
-  auto scene = makeBuiltinScene(c.scene);
-  ASSERT_TRUE(scene);
-  GBufferOptions o;
-  o.width = 192;
-  o.height = 108;
   Settings s;
   s.method = c.method;
-  const ScoredFrame f = renderScored(scene.value(), *scene.value().camera, o, s);
-  ASSERT_TRUE(f.renderer);
-  GBuffer& g = f.renderer->gbuffer();
-  const Image depth = g.readDepth(), normal = g.readNormalPacked();
-  const HitMetrics onGpu = compareHits(f.truth, f.hit);
-  const HitMetrics onCpu = compareHits(f.truth, traceOnCpu({&depth, &normal, nullptr}, g.frameInputs(), s));
-  for (const auto& [where, m] : {std::pair{"gpu", onGpu}, std::pair{"cpu", onCpu}}) {
+  const GpuCpuScores scores = scoreOnGpuAndCpu(c.scene, s);
+  ASSERT_TRUE(scores.ok);
+  for (const auto& [where, m] : {std::pair{"gpu", scores.gpu}, std::pair{"cpu", scores.cpu}}) {
     std::printf("%s %s %s: A=%zu B=%zu C=%zu D=%zu recall@1px %.4f p95 %.3f px false hits %.4f\n", c.scene,
                 c.method == Method::AdaptiveL ? "adaptive-l" : "hiz", where, m.visible, m.occluded, m.offScreen,
                 m.escaped, m.recall1px, m.p95ErrorPx, m.falseHitRate);
@@ -291,21 +307,12 @@ class DdaTrace : public sslr::test::GlTest, public ::testing::WithParamInterface
 
 TEST_P(DdaTrace, HitsLieWithinAPixelStepOnAnalyticMirrors) {
   const DdaCase c = GetParam();
-  auto scene = makeBuiltinScene(c.scene);
-  ASSERT_TRUE(scene);
-  GBufferOptions o;
-  o.width = 192;
-  o.height = 108;
   Settings s;
   s.method = Method::ScreenSpaceDDA;
   s.dda.stride = c.stride;
-  const ScoredFrame f = renderScored(scene.value(), *scene.value().camera, o, s);
-  ASSERT_TRUE(f.renderer);
-  GBuffer& g = f.renderer->gbuffer();
-  const Image depth = g.readDepth(), normal = g.readNormalPacked();
-  const HitMetrics onGpu = compareHits(f.truth, f.hit);
-  const HitMetrics onCpu = compareHits(f.truth, traceOnCpu({&depth, &normal, nullptr}, g.frameInputs(), s));
-  for (const auto& [where, m] : {std::pair{"gpu", onGpu}, std::pair{"cpu", onCpu}}) {
+  const GpuCpuScores scores = scoreOnGpuAndCpu(c.scene, s);
+  ASSERT_TRUE(scores.ok);
+  for (const auto& [where, m] : {std::pair{"gpu", scores.gpu}, std::pair{"cpu", scores.cpu}}) {
     std::printf("%s dda stride %g %s: A=%zu recall@1/2px %.4f %.4f p95 %.3f px false hits %.4f\n", c.scene, c.stride,
                 where, m.visible, m.recall1px, m.recall2px, m.p95ErrorPx, m.falseHitRate);
     ASSERT_GT(m.visible, 1000u);
