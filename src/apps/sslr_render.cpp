@@ -331,11 +331,16 @@ int run(int argc, char** argv) {
             << toString(gopt.depth) << " depth, " << scene.triangleCount() << " triangles) -> "
             << (outDir / "final.png").string() << (dump ? " + buffers" : "") << "\n";
   if (settings.collectStats && reflections) {
-    const FrameStats st = r.sslr().lastStats();
+    const FrameStats st = r.sslr().waitForStats();
     std::cout << "  tiles " << st.tiles << " (blurred " << st.blurTiles << "), traced pixels " << st.tracedPixels << ", fetches "
               << st.fetches << " (" << (st.tracedPixels ? double(st.fetches) / st.tracedPixels : 0.0)
               << " per traced pixel), hierarchical traversal on " << st.hierarchicalPixels << " ("
               << (st.tracedPixels ? 100.0 * st.hierarchicalPixels / st.tracedPixels : 0.0) << "% of traced)\n";
+    if (st.classifyMs >= 0.0)
+      std::printf("  pass times (GL_TIMESTAMP%s): classify %.2f ms, pyramid %.2f ms, trace %.2f ms, blur %.2f ms\n",
+                  gl.value()->isSoftware() ? "; a software renderer: CPU work; the first frame, with shader compilation"
+                                           : "; the first frame, with shader compilation",
+                  st.classifyMs, st.pyramidMs, st.traceMs, st.blurMs);
   }
   if (score) {
     const HitMetrics& m = *score;

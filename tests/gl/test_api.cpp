@@ -336,16 +336,63 @@ TEST_F(Api, EmptyFrameTracesNothing) {
   Settings s;
   s.collectStats = true;
   ASSERT_TRUE(ctx->dispatch(in, s));
-  EXPECT_EQ(ctx->lastStats().tiles, 0u);
-  EXPECT_EQ(ctx->lastStats().tracedPixels, 0u);
-  EXPECT_EQ(ctx->lastStats().fetches, 0u);
+  const FrameStats empty = ctx->waitForStats();
+  EXPECT_EQ(empty.frame, 1u);
+  EXPECT_EQ(empty.tiles, 0u);
+  EXPECT_EQ(empty.tracedPixels, 0u);
+  EXPECT_EQ(empty.fetches, 0u);
   const Image resolved = readAll(ctx->resolvedTexture(), 4);
   for (float v : resolved.pixels) ASSERT_EQ(v, 0.0f);
   // The same frame with reflectance traces and reports its work.
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), s));
-  EXPECT_GT(ctx->lastStats().tiles, 0u);
-  EXPECT_GT(ctx->lastStats().tracedPixels, 0u);
-  EXPECT_GE(ctx->lastStats().fetches, ctx->lastStats().tracedPixels);
+  const FrameStats full = ctx->waitForStats();
+  EXPECT_EQ(full.frame, 2u);
+  EXPECT_GT(full.tiles, 0u);
+  EXPECT_GT(full.tracedPixels, 0u);
+  EXPECT_GE(full.fetches, full.tracedPixels);
+}
+
+// Stats are read a few frames late instead of stalling: lastStats() never waits and reports the
+// newest dispatch whose GPU work is done (FrameStats::frame), waitForStats() the newest of all.
+// Counts belong to the frame they say (alternating empty and full frames tell them apart), and
+// with GL_TIMESTAMP the pass times are present and non-negative.
+TEST_F(Api, StatsArriveLateWithoutStalling) {
+  auto ctx = makeContext();
+  Frame f;
+  FrameInputs full = f.gbuffer->frameInputs(), empty = full;
+  empty.surface.reflectanceChannel = -1;
+  empty.surface.constantReflectance = 0.0f;
+  Settings s;
+  s.collectStats = true;
+  EXPECT_EQ(ctx->lastStats().frame, 0u);  // nothing dispatched yet
+  // More frames than the ring holds, none read in between: the oldest slots are overwritten.
+  for (int i = 1; i <= 7; ++i) ASSERT_TRUE(ctx->dispatch(i % 2 ? full : empty, s));
+  const FrameStats newest = ctx->waitForStats();
+  EXPECT_EQ(newest.frame, 7u);
+  EXPECT_GT(newest.tracedPixels, 0u);  // frame 7 is a full one
+  // After the GPU is idle, lastStats() has the newest without waiting; an empty frame reads empty.
+  ASSERT_TRUE(ctx->dispatch(empty, s));
+  glFinish();
+  const FrameStats late = ctx->lastStats();
+  EXPECT_EQ(late.frame, 8u);
+  EXPECT_EQ(late.tracedPixels, 0u);
+  EXPECT_EQ(late.tiles, 0u);
+  GLint bits = 0;
+  glGetQueryiv(GL_TIMESTAMP, GL_QUERY_COUNTER_BITS, &bits);
+  for (const FrameStats& st : {newest, late}) {
+    if (bits > 0) {
+      EXPECT_GE(st.classifyMs, 0.0);
+      EXPECT_GE(st.pyramidMs, 0.0);
+      EXPECT_GE(st.traceMs, 0.0);
+      EXPECT_GE(st.blurMs, 0.0);
+    } else {
+      EXPECT_EQ(st.classifyMs, -1.0);
+    }
+  }
+  // A dispatch without stats leaves the last ones as they were.
+  Settings quiet;
+  ASSERT_TRUE(ctx->dispatch(full, quiet));
+  EXPECT_EQ(ctx->waitForStats().frame, 8u);
 }
 
 // The outputs are not cleared whole each frame: classification zeroes only the tiles a trace wrote

@@ -356,7 +356,7 @@ TEST_P(HalfResolution, QuarterOfTheRaysSameHits) {
   const ScoredFrame b = renderScored(scene.value(), *scene.value().camera, o, half);
   ASSERT_TRUE(a.renderer && b.renderer);
   const HitMetrics ma = compareHits(a.truth, a.hit), mb = compareHits(b.truth, b.hit);
-  const FrameStats sa = a.renderer->sslr().lastStats(), sb = b.renderer->sslr().lastStats();
+  const FrameStats sa = a.renderer->sslr().waitForStats(), sb = b.renderer->sslr().waitForStats();
   std::printf("%s: rays %u -> %u (%.3fx); recall@2px %.4f -> %.4f; false hits %.4f -> %.4f\n", GetParam(),
               sa.tracedPixels, sb.tracedPixels, double(sb.tracedPixels) / sa.tracedPixels, ma.recall2px, mb.recall2px,
               ma.falseHitRate, mb.falseHitRate);

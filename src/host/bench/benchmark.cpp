@@ -245,7 +245,7 @@ Status timeCurvePoint(const std::string& curve, const std::string& sceneName, in
   Settings counting = configs.front().settings;
   counting.collectStats = true;
   if (Status s = fr.sslr().dispatch(inputs, counting); !s) return s;
-  const double traced = double(fr.sslr().lastStats().tracedPixels) / (double(width) * height);
+  const double traced = double(fr.sslr().waitForStats().tracedPixels) / (double(width) * height);
   std::vector<std::vector<double>> times(configs.size() + 1);
   for (int round = 0; round < options.warmup + options.frames; ++round)
     for (size_t i = 0; i <= configs.size(); ++i) {
@@ -382,7 +382,7 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
         if (Status st = fr.sslr().dispatch(inputs, s); !st) return Status::error(st.message());
         const Image hit = fr.readHit();
         r.metrics = compareHits(gt, hit, kReportedConfidence, &color);
-        const FrameStats stats = fr.sslr().lastStats();
+        const FrameStats stats = fr.sslr().waitForStats();
         r.tracedPixels = stats.tracedPixels;
         r.fetches = stats.fetches;
         r.fetchesPerTracedPixel = stats.tracedPixels ? double(stats.fetches) / stats.tracedPixels : 0.0;

@@ -56,14 +56,19 @@ void Context::Impl::destroyTargets() {
 void Context::Impl::destroy() {
   if (gl.DeleteTextures == nullptr) return;  // loading failed: nothing was created
   destroyTargets();
-  GLuint buffers[] = {frameUbo, statsBuffer};
-  gl.DeleteBuffers(2, buffers);
+  gl.DeleteBuffers(1, &frameUbo);
+  for (StatsSlot& slot : statsRing) {
+    gl.DeleteBuffers(1, &slot.buffer);
+    gl.DeleteQueries(5, slot.queries);
+    if (slot.fence != nullptr) gl.DeleteSync(slot.fence);
+    slot = {};
+  }
   GLuint samplers[] = {nearestSampler, linearSampler};
   gl.DeleteSamplers(2, samplers);
   gl.DeleteVertexArrays(1, &vao);
   for (auto& [key, program] : programs) gl.DeleteProgram(program);
   programs.clear();
-  frameUbo = statsBuffer = nearestSampler = linearSampler = vao = 0;
+  frameUbo = nearestSampler = linearSampler = vao = 0;
 }
 
 // ---- Context ------------------------------------------------------------------------------
@@ -102,9 +107,15 @@ Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
   gl.CreateBuffers(1, &impl->frameUbo);
   gl.NamedBufferStorage(impl->frameUbo, sizeof(shared::SslrFrame), nullptr, GL_DYNAMIC_STORAGE_BIT);
   impl->label(GL_BUFFER, impl->frameUbo, "sslr.frame");
-  gl.CreateBuffers(1, &impl->statsBuffer);
-  gl.NamedBufferStorage(impl->statsBuffer, 4 * sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT);
-  impl->label(GL_BUFFER, impl->statsBuffer, "sslr.stats");
+  for (Impl::StatsSlot& slot : impl->statsRing) {
+    gl.CreateBuffers(1, &slot.buffer);
+    gl.NamedBufferStorage(slot.buffer, 8 * sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    impl->label(GL_BUFFER, slot.buffer, "sslr.stats");
+    gl.CreateQueries(GL_TIMESTAMP, 5, slot.queries);
+  }
+  GLint timestampBits = 0;
+  gl.GetQueryiv(GL_TIMESTAMP, GL_QUERY_COUNTER_BITS, &timestampBits);
+  impl->timestamps = timestampBits > 0;
   gl.CreateSamplers(1, &impl->nearestSampler);
   gl.CreateSamplers(1, &impl->linearSampler);
   for (GLuint s : {impl->nearestSampler, impl->linearSampler}) {
@@ -147,6 +158,13 @@ GLName Context::reflectionTexture() const { return impl_->reflection; }
 GLName Context::resolvedTexture() const { return impl_->resolved; }
 GLName Context::hitTexture() const { return impl_->hit; }
 GLName Context::iterationsTexture() const { return impl_->iterations; }
-FrameStats Context::lastStats() const { return impl_->stats; }
+FrameStats Context::lastStats() const {
+  impl_->harvestStats(false);
+  return impl_->stats;
+}
+FrameStats Context::waitForStats() const {
+  impl_->harvestStats(true);
+  return impl_->stats;
+}
 
 }  // namespace sslr

@@ -4,6 +4,7 @@
 // and composite.cpp.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <utility>
@@ -45,10 +46,23 @@ struct Context::Impl {
   // Half resolution: per 2x2 quad, its ray's hit and surfaces (created on first use).
   GLuint quadHit = 0, quadSurface = 0, retraceBuffer = 0;
   int hizLevels = 0, hizWidth = 0, hizHeight = 0;
-  GLuint frameUbo = 0, tileBuffer = 0, statsBuffer = 0;
+  GLuint frameUbo = 0, tileBuffer = 0;
+  // Stats without a stall: a ring of slots, each a counter buffer (traced pixels, fetches,
+  // hierarchical pixels, pad, tiles, blur tiles), five GL_TIMESTAMP queries (before
+  // classification, after it, after the pyramid, after the trace, after the blur) and a fence.
+  struct StatsSlot {
+    GLuint buffer = 0;
+    GLuint queries[5] = {0, 0, 0, 0, 0};
+    GLsync fence = nullptr;
+    std::uint64_t frame = 0;
+  };
+  static constexpr int kStatsRing = 4;
+  mutable StatsSlot statsRing[kStatsRing];
+  bool timestamps = false;         // GL_TIMESTAMP has counter bits
+  std::uint64_t dispatches = 0;    // dispatches that got as far as the GPU
+  mutable FrameStats stats;        // the newest harvested
   GLuint nearestSampler = 0, linearSampler = 0, vao = 0;
   std::map<std::string, GLuint> programs;  // key: entry files + defines
-  FrameStats stats;
   bool haveFrame = false;  // a dispatch filled the tile list, so composite has work to draw
   int frameIndex = 0;      // per-dispatch stamp for the blur tile list (1, 2, ...)
 
@@ -81,6 +95,9 @@ struct Context::Impl {
   Status dispatch(const FrameInputs& in, const Settings& settings);
   // composite.cpp
   Status composite(GLName framebuffer);
+  // stats.cpp: reads the slots whose fence has signalled (the newest wins); with `waitNewest`,
+  // first waits for the newest pending one.
+  void harvestStats(bool waitNewest) const;
 };
 
 }  // namespace sslr

@@ -56,6 +56,14 @@ namespace sslr::detail {
   X(PFNGLNAMEDBUFFERSTORAGEPROC, NamedBufferStorage)                             \
   X(PFNGLNAMEDBUFFERSUBDATAPROC, NamedBufferSubData)                             \
   X(PFNGLGETNAMEDBUFFERSUBDATAPROC, GetNamedBufferSubData)                       \
+  X(PFNGLFENCESYNCPROC, FenceSync)                                               \
+  X(PFNGLCLIENTWAITSYNCPROC, ClientWaitSync)                                     \
+  X(PFNGLDELETESYNCPROC, DeleteSync)                                             \
+  X(PFNGLCREATEQUERIESPROC, CreateQueries)                                       \
+  X(PFNGLDELETEQUERIESPROC, DeleteQueries)                                       \
+  X(PFNGLQUERYCOUNTERPROC, QueryCounter)                                         \
+  X(PFNGLGETQUERYIVPROC, GetQueryiv)                                             \
+  X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)                           \
   X(PFNGLBINDBUFFERPROC, BindBuffer)                                             \
   X(PFNGLBINDBUFFERRANGEPROC, BindBufferRange)                                   \
   X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                                     \

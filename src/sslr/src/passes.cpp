@@ -119,11 +119,23 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.ClearTexImage(hit, 0, GL_RGBA, GL_FLOAT, zero);
     gl.ClearTexImage(iterations, 0, GL_RED, GL_FLOAT, zero);
   }
+  // Stats go to the ring slot of this dispatch (the oldest; a slot still unread is overwritten:
+  // lastStats then reports a later frame).
+  ++dispatches;
+  StatsSlot* slot = nullptr;
   if (settings.collectStats) {
-    const GLuint statsZero[4] = {0, 0, 0, 0};
-    gl.NamedBufferSubData(statsBuffer, 0, sizeof(statsZero), statsZero);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_STATS_SSBO, statsBuffer);
+    slot = &statsRing[dispatches % kStatsRing];
+    if (slot->fence != nullptr) gl.DeleteSync(slot->fence);
+    slot->fence = nullptr;
+    slot->frame = dispatches;
+    const GLuint statsZero[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    gl.NamedBufferSubData(slot->buffer, 0, sizeof(statsZero), statsZero);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_STATS_SSBO, slot->buffer);
   }
+  auto timestamp = [&](int i) {
+    if (slot != nullptr && timestamps) gl.QueryCounter(slot->queries[i], GL_TIMESTAMP);
+  };
+  timestamp(0);
   bindInputs(in);
   if (settings.method == Method::PositionBuffer) {
     gl.BindTextureUnit(5, in.positionTexture);
@@ -141,6 +153,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   gl.DispatchComputeIndirect(kCleanupDispatchOffset);
   gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 
+  timestamp(1);
   if (pyramid) {
     gl.UseProgram(hizArgs.value());
     gl.DispatchCompute(1, 1, 1);
@@ -148,6 +161,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     buildPyramid(hizBuild.value());
   }
 
+  timestamp(2);
   if (settings.halfResolution) {
     const GLuint retraceHeader[4] = {0, 1, 1, 0};  // dispatch (0, 1, 1), count 0
     gl.NamedBufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
@@ -180,6 +194,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                    GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 
+  timestamp(3);
   // The trace wrote resolved = reflection everywhere; the separable blur (reflection -> blurTemp
   // -> resolved) runs only over the tiles the trace listed as having a pixel to blur.
   if (blur) {
@@ -196,22 +211,16 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.BindImageTexture(0, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl.DispatchComputeIndirect(kBlurDispatchOffset);
   }
+  timestamp(4);
   // The host (and composite) may read the outputs in any way next: make all writes visible.
   gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
-  gl.PopDebugGroup();
-
-  stats = {};
-  if (settings.collectStats) {
-    GLuint counts[kTileHeader] = {};
-    GLuint counters[3] = {0, 0, 0};
-    gl.GetNamedBufferSubData(tileBuffer, 0, sizeof(counts), counts);
-    gl.GetNamedBufferSubData(statsBuffer, 0, sizeof(counters), counters);
-    stats.tiles = counts[0];
-    stats.blurTiles = counts[8];
-    stats.tracedPixels = counters[0];
-    stats.fetches = counters[1];
-    stats.hierarchicalPixels = counters[2];
+  if (slot != nullptr) {
+    // The tile counts join the counters on the GPU (no read-back), then a fence marks the slot.
+    gl.CopyNamedBufferSubData(tileBuffer, slot->buffer, 0, 4 * sizeof(GLuint), sizeof(GLuint));
+    gl.CopyNamedBufferSubData(tileBuffer, slot->buffer, kBlurDispatchOffset, 5 * sizeof(GLuint), sizeof(GLuint));
+    slot->fence = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
   }
+  gl.PopDebugGroup();
   haveFrame = true;
   return {};
 }

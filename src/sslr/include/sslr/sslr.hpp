@@ -168,7 +168,8 @@ struct Settings {
   float blurDepthSigma = 0.02f;      // bilateral depth weight exp(-|dz| / (sigma z))
   float blurNormalPower = 16.0f;     // bilateral normal weight max(0, n0.n1)^power
   bool debugOutputs = false;         // also write hitTexture() and iterationsTexture()
-  bool collectStats = false;         // count tiles, traced pixels and fetches (reads back: stalls)
+  bool collectStats = false;         // count tiles, traced pixels and fetches, time the passes
+                                     // (read a few frames late: no stall; see lastStats)
 
   static Settings preset(Preset preset);
 };
@@ -188,11 +189,18 @@ struct ContextDesc {
 };
 
 struct FrameStats {  // filled when Settings::collectStats is set
+  std::uint64_t frame = 0;          // the dispatch these are of (1 = the context's first; 0 = none yet)
   std::uint32_t tiles = 0;          // classified tiles that were traced
   std::uint32_t blurTiles = 0;      // tiles the roughness blur ran over
   std::uint32_t tracedPixels = 0;   // pixels that ran the tracer
   std::uint32_t fetches = 0;        // depth (or position) texels read by the trace pass
   std::uint32_t hierarchicalPixels = 0;  // traced pixels that ran the hierarchical traversal
+  // GPU time between the passes from GL_TIMESTAMP queries (-1 where the GL has no timestamps).
+  // On software renderers (llvmpipe) these measure the CPU doing the work, not a GPU.
+  double classifyMs = -1.0;         // classification and clean-up
+  double pyramidMs = -1.0;          // the depth pyramid (0 when the mode needs none)
+  double traceMs = -1.0;            // the trace (half resolution: its three passes)
+  double blurMs = -1.0;             // the roughness blur
 };
 
 class Context {
@@ -217,7 +225,12 @@ class Context {
   GLName resolvedTexture() const;    // RGBA16F: after the roughness blur (what composite adds)
   GLName hitTexture() const;         // RGBA32F (debugOutputs): uvHit, confidence, L
   GLName iterationsTexture() const;  // R32F (debugOutputs): adaptive-L iterations run
+  // Stats never stall the pipeline: each dispatch with collectStats records into a ring of 4
+  // slots, and lastStats() returns the newest whose GPU work has finished (FrameStats::frame says
+  // which dispatch; typically 1-3 frames back on a GPU). waitForStats() waits for the newest
+  // dispatch's (a stall: for tools and tests).
   FrameStats lastStats() const;
+  FrameStats waitForStats() const;
 
   struct Impl;
 
