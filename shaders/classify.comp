@@ -1,16 +1,18 @@
 // Pass 1: tile classification, one invocation per pixel: the first pixel of an 8x8 tile found to
 // need tracing appends the tile to the tile list (a per-tile stamp says "listed this frame"); all
 // later passes run over listed tiles only. No shared memory and no barrier: on CPU rasterizers a
-// barrier splits the shader and cost more than the whole pass (measured: 3.2x the baseline pass on
-// an empty frame with three barriers, docs/results.md).
+// barrier splits the shader (an empty frame took 1.12x as long with the group flag and barriers,
+// in an interleaved A/B).
 //
 // With SSLR_CLEANUP the same file is the clean-up pass, run after classification over the
-// previous frame's traced tiles: those not listed again are zeroed. With SSLR_PYRAMID_ARGS it is a
-// one-group pass that turns the pyramid's dispatches on when a tile was listed. That copy is not
-// in the classification itself: llvmpipe runs every instruction of a shader under lane masks,
-// taken branch or not, and the 24-word copy there made classification 2.5x slower (measured). The outputs are never cleared
+// previous frame's traced tiles: those not listed again are zeroed. The outputs are never cleared
 // whole: the trace writes every pixel of a listed tile, so after a frame only its listed tiles
 // can be non-zero, and an empty frame after an empty frame only reads the G-buffer.
+//
+// With SSLR_PYRAMID_ARGS it is a one-group pass that turns the pyramid's dispatches on when a
+// tile was listed. That copy is not in the classification itself: llvmpipe runs every
+// instruction of a shader under lane masks, taken branch or not, and the 24-word copy there made
+// classification 2.5x slower (measured).
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
 

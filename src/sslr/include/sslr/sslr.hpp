@@ -228,7 +228,8 @@ class Context {
   // Stats never stall the pipeline: each dispatch with collectStats records into a ring of 4
   // slots, and lastStats() returns the newest whose GPU work has finished (FrameStats::frame says
   // which dispatch; typically 1-3 frames back on a GPU). waitForStats() waits for the newest
-  // dispatch's (a stall: for tools and tests).
+  // dispatch's (a stall: for tools and tests). Both read GL objects: call them with the
+  // Context's GL context current, like every other call.
   FrameStats lastStats() const;
   FrameStats waitForStats() const;
 
