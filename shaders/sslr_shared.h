@@ -118,6 +118,12 @@ struct SslrSurface {
   float constantReflectance; // used when reflectanceChannel = -1
   float width;               // viewport size in pixels
   float height;
+  // Normals stored in world space (SurfaceLayout::space): the columns of the matrix that turns
+  // them into view space (inverse-transpose of viewFromWorld's 3x3); w of the first is 1 then,
+  // 0 for view-space normals (the columns are then unused).
+  vec4 normalFromStored0;
+  vec4 normalFromStored1;
+  vec4 normalFromStored2;
 };
 
 struct SslrTraceParams {
@@ -209,15 +215,15 @@ inline SslrProjection sslrProjectionFromMatrix(const glm::dmat4& clipFromView, b
   return p;
 }
 static_assert(sizeof(SslrProjection) == 48, "std140 mirror");
-static_assert(sizeof(SslrSurface) == 32, "std140 mirror");
+static_assert(sizeof(SslrSurface) == 80, "std140 mirror");
 static_assert(sizeof(SslrTraceParams) == 96, "std140 mirror");
 static_assert(offsetof(SslrFrame, surface) == 48, "std140 mirror");
-static_assert(offsetof(SslrFrame, trace) == 80, "std140 mirror");
+static_assert(offsetof(SslrFrame, trace) == 128, "std140 mirror");
 static_assert(sizeof(SslrPositionParams) == 16, "std140 mirror");
-static_assert(offsetof(SslrFrame, positionBuffer) == 176, "std140 mirror");
+static_assert(offsetof(SslrFrame, positionBuffer) == 224, "std140 mirror");
 static_assert(sizeof(SslrDdaParams) == 32, "std140 mirror");
-static_assert(offsetof(SslrFrame, dda) == 192, "std140 mirror");
-static_assert(sizeof(SslrFrame) == 224, "std140 mirror");
+static_assert(offsetof(SslrFrame, dda) == 240, "std140 mirror");
+static_assert(sizeof(SslrFrame) == 272, "std140 mirror");
 #endif
 
 // ---- Pure math ----------------------------------------------------------------------------
@@ -344,6 +350,11 @@ SSLR_FN bool sslrDecodeNormal(SslrSurface s, vec4 texel, SSLR_OUT(vec3) vsNormal
       return false;
     }
     n = normalize(n);
+  }
+  if (s.normalFromStored0.w != 0.0f) {  // world-space normals: into view space
+    n = normalize(vec3(s.normalFromStored0.x, s.normalFromStored0.y, s.normalFromStored0.z) * n.x +
+                  vec3(s.normalFromStored1.x, s.normalFromStored1.y, s.normalFromStored1.z) * n.y +
+                  vec3(s.normalFromStored2.x, s.normalFromStored2.y, s.normalFromStored2.z) * n.z);
   }
   bool finite = !(isnan(n.x) || isnan(n.y) || isnan(n.z) || isinf(n.x) || isinf(n.y) || isinf(n.z));
   vsNormal = finite ? n : vec3(0.0f, 0.0f, 1.0f);

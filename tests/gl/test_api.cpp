@@ -1,9 +1,12 @@
 // The drop-in API: creation, every invalid input rejected with a message (and no GL error),
 // GL state restored, poisoned G-buffers never producing NaN/Inf, empty frames doing no work.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 
 #include "gl/gl_fixture.hpp"
+#include "sslr/reference.hpp"
 #include "sslr/sslr.hpp"
 #include "sslr_host/frame_renderer.hpp"
 #include "sslr_host/gbuffer.hpp"
@@ -437,6 +440,64 @@ TEST_F(Api, OutputsDoNotDependOnEarlierFrames) {
   ASSERT_TRUE(ctx->resize(W, H));
   ASSERT_TRUE(ctx->dispatch(none, s));
   EXPECT_EQ(readAll(ctx->resolvedTexture(), 4).pixels, wantNone.second) << "after resize";
+}
+
+// World-space normals with the view matrix give the hits of view-space normals; declared as
+// view space they trace other reflections (what sslr cannot detect, docs/integration.md).
+TEST_F(Api, WorldSpaceNormalsWithTheViewMatrixGiveTheSameHits) {
+  auto ctx = makeContext();
+  Frame f;
+  const FrameInputs viewIn = f.gbuffer->frameInputs();
+  Settings s;
+  s.debugOutputs = true;
+  ASSERT_TRUE(ctx->dispatch(viewIn, s));
+  const Image hitView = readAll(ctx->hitTexture(), 4);
+  // The same normals in world space, in a texture of the host's format (RGBA16 octahedral).
+  const Image packed = readAll(viewIn.normalTexture, 4);
+  const glm::dmat3 worldFromView = glm::inverse(glm::dmat3(f.gbuffer->viewFromWorld()));
+  std::vector<std::uint16_t> world(static_cast<size_t>(W) * H * 4);
+  for (int p = 0; p < W * H; ++p) {
+    const float* t = &packed.pixels[static_cast<size_t>(p) * 4];
+    const glm::vec3 n = sslr::shared::sslrOctDecode(glm::vec2(t[0], t[1]));
+    const glm::vec2 e = sslr::shared::sslrOctEncode(glm::vec3(glm::normalize(worldFromView * glm::dvec3(n))));
+    const float out[4] = {e.x, e.y, t[2], t[3]};  // roughness and reflectance as they were
+    for (int c = 0; c < 4; ++c)
+      world[static_cast<size_t>(p) * 4 + c] = static_cast<std::uint16_t>(std::lround(std::clamp(out[c], 0.0f, 1.0f) * 65535.0f));
+  }
+  const GLuint worldTex = makeTexture(GL_RGBA16);
+  glTextureSubImage2D(worldTex, 0, 0, 0, W, H, GL_RGBA, GL_UNSIGNED_SHORT, world.data());
+  FrameInputs worldIn = viewIn;
+  worldIn.normalTexture = worldTex;
+  worldIn.surface.space = NormalSpace::World;
+  worldIn.viewFromWorld = f.gbuffer->viewFromWorld();
+  ASSERT_TRUE(ctx->dispatch(worldIn, s));
+  const Image hitWorld = readAll(ctx->hitTexture(), 4);
+  worldIn.surface.space = NormalSpace::View;  // the mistake: world normals declared as view space
+  ASSERT_TRUE(ctx->dispatch(worldIn, s));
+  const Image hitWrong = readAll(ctx->hitTexture(), 4);
+  size_t traced = 0, same = 0, sameWrong = 0;
+  for (int p = 0; p < W * H; ++p) {
+    const float* a = &hitView.pixels[static_cast<size_t>(p) * 4];
+    if (!(a[2] > 0.5f)) continue;
+    ++traced;
+    auto close = [&](const Image& other) {
+      const float* b = &other.pixels[static_cast<size_t>(p) * 4];
+      return b[2] > 0.5f && std::hypot((a[0] - b[0]) * W, (a[1] - b[1]) * H) <= 0.5f;
+    };
+    same += close(hitWorld);
+    sameWrong += close(hitWrong);
+  }
+  ASSERT_GT(traced, 500u);
+  // 16-bit octahedral normals re-encoded once: a few hits may move by a fraction of a pixel.
+  EXPECT_GE(double(same) / traced, 0.98) << same << " of " << traced;
+  EXPECT_LT(double(sameWrong) / traced, 0.5) << "world normals read as view space must differ";
+  // A singular view matrix is refused with the field named.
+  worldIn.surface.space = NormalSpace::World;
+  worldIn.viewFromWorld = glm::dmat4(0.0);
+  const Status st = ctx->dispatch(worldIn, s);
+  ASSERT_FALSE(st);
+  EXPECT_NE(st.message().find("viewFromWorld"), std::string::npos) << st.message();
+  glDeleteTextures(1, &worldTex);
 }
 
 TEST_F(Api, ArticleXyzNormalsGiveTheSameHitsAsOctahedral) {

@@ -2,6 +2,8 @@
 #include "sslr/reference.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 
 #include "projection.hpp"
 
@@ -22,6 +24,21 @@ Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings
   f.surface.constantReflectance = in.surface.constantReflectance;
   f.surface.width = static_cast<float>(width);
   f.surface.height = static_cast<float>(height);
+  if (in.surface.space == NormalSpace::World) {
+    // Normals transform by the inverse transpose (right for any affine view, scaled ones too).
+    const glm::dmat3 linear(in.viewFromWorld);
+    const double det = glm::determinant(linear);
+    bool finite = std::isfinite(det);
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) finite = finite && std::isfinite(in.viewFromWorld[c][r]);
+    if (!finite || std::abs(det) < 1e-12)
+      return Status::error("sslr: FrameInputs::viewFromWorld is singular or not finite (determinant " +
+                           std::to_string(det) + "); NormalSpace::World needs the frame's view matrix");
+    const glm::dmat3 normalFromWorld = glm::transpose(glm::inverse(linear));
+    f.surface.normalFromStored0 = glm::vec4(glm::vec3(normalFromWorld[0]), 1.0f);
+    f.surface.normalFromStored1 = glm::vec4(glm::vec3(normalFromWorld[1]), 0.0f);
+    f.surface.normalFromStored2 = glm::vec4(glm::vec3(normalFromWorld[2]), 0.0f);
+  }
   shared::SslrTraceParams& t = f.trace;
   // At least 4 pixels: a shorter first step leaves the probe in or next to its own pixel, whose
   // depth says nothing about the ray (measured: 64x48 frames lose a third of their hits).

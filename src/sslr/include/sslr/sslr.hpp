@@ -79,8 +79,13 @@ struct DepthConvention {
 };
 
 enum class NormalEncoding {
-  Octahedral,  // channels R,G (unorm or float in [0,1]) = octahedral view-space normal
-  XyzUnorm,    // channels R,G,B = view-space normal * 0.5 + 0.5 (the article's packing)
+  Octahedral,  // channels R,G (unorm or float in [0,1]) = octahedral normal (see NormalSpace)
+  XyzUnorm,    // channels R,G,B = normal * 0.5 + 0.5 (the article's packing)
+};
+
+enum class NormalSpace {
+  View,   // the normal texture holds view-space normals
+  World,  // it holds world-space normals; FrameInputs::viewFromWorld turns them into view space
 };
 
 // Where the material bits live in the host's normal texture.
@@ -90,6 +95,7 @@ struct SurfaceLayout {
   int reflectanceChannel = 3;       // 0..3 (F0 in [0,1]), or -1: constantReflectance
   float constantRoughness = 0.0f;
   float constantReflectance = 1.0f;
+  NormalSpace space = NormalSpace::View;  // last, so existing aggregate initializers still compile
 };
 
 struct FrameInputs {
@@ -98,6 +104,7 @@ struct FrameInputs {
   GLName depthTexture = 0;   // the hardware depth buffer the G-buffer was rasterized with
   GLName positionTexture = 0;  // Method::PositionBuffer only: RGBA32F/RGBA16F view position, w = 1
   glm::dmat4 clipFromView{1.0};  // the exact projection that rasterized the depth (jitter incl.)
+  glm::dmat4 viewFromWorld{1.0}; // NormalSpace::World only: the view matrix of the frame
   DepthConvention depth{};
   SurfaceLayout surface{};
 };
