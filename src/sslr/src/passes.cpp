@@ -1,5 +1,6 @@
-// The passes of a frame: classify (tile list) -> depth pyramid (when a mode traces it) -> trace
-// -> blur H -> blur V. Everything after classification runs over the listed tiles only.
+// The passes of a frame: classify (tile list) -> clean-up of last frame's tiles -> depth pyramid
+// (when a mode traces it) -> trace (half resolution: quads -> reuse -> retrace) -> blur H -> blur
+// V. Everything after classification runs over the listed tiles (or listed pixels) only.
 #include "context_impl.hpp"
 #include "gl_state.hpp"
 #include "sslr/reference.hpp"
@@ -112,8 +113,9 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     real[2] = 1;
   }
   gl.NamedBufferSubData(tileBuffer, 0, sizeof(header), header);
-  // reflection and resolved are not cleared: classification zeroes the tiles a trace wrote before
-  // and does not write now (classify.comp). The debug images are cleared whole (debug only).
+  // reflection and resolved are not cleared: the clean-up pass (classify.comp, SSLR_CLEANUP)
+  // zeroes the tiles the previous frame traced and this one does not. The debug images are
+  // cleared whole (debug only).
   const float zero[4] = {0, 0, 0, 0};
   if (settings.debugOutputs) {
     gl.ClearTexImage(hit, 0, GL_RGBA, GL_FLOAT, zero);
