@@ -124,6 +124,10 @@ struct SslrSurface {
   vec4 normalFromStored0;
   vec4 normalFromStored1;
   vec4 normalFromStored2;
+  int separateMaterial;      // 1: roughness/reflectance channels are of the material texture
+  int surfacePad0;
+  int surfacePad1;
+  int surfacePad2;
 };
 
 struct SslrTraceParams {
@@ -215,15 +219,15 @@ inline SslrProjection sslrProjectionFromMatrix(const glm::dmat4& clipFromView, b
   return p;
 }
 static_assert(sizeof(SslrProjection) == 48, "std140 mirror");
-static_assert(sizeof(SslrSurface) == 80, "std140 mirror");
+static_assert(sizeof(SslrSurface) == 96, "std140 mirror");
 static_assert(sizeof(SslrTraceParams) == 96, "std140 mirror");
 static_assert(offsetof(SslrFrame, surface) == 48, "std140 mirror");
-static_assert(offsetof(SslrFrame, trace) == 128, "std140 mirror");
+static_assert(offsetof(SslrFrame, trace) == 144, "std140 mirror");
 static_assert(sizeof(SslrPositionParams) == 16, "std140 mirror");
-static_assert(offsetof(SslrFrame, positionBuffer) == 224, "std140 mirror");
+static_assert(offsetof(SslrFrame, positionBuffer) == 240, "std140 mirror");
 static_assert(sizeof(SslrDdaParams) == 32, "std140 mirror");
-static_assert(offsetof(SslrFrame, dda) == 240, "std140 mirror");
-static_assert(sizeof(SslrFrame) == 272, "std140 mirror");
+static_assert(offsetof(SslrFrame, dda) == 256, "std140 mirror");
+static_assert(sizeof(SslrFrame) == 288, "std140 mirror");
 #endif
 
 // ---- Pure math ----------------------------------------------------------------------------
@@ -373,10 +377,12 @@ SSLR_FN float sslrReflectance(SslrSurface s, vec4 texel) {
 
 // The per-pixel test shared by classification, tracing and the blur's neighbour test: geometry
 // (not background), reflective enough, smooth enough, and a normal that decodes.
-SSLR_FN bool sslrShouldTrace(SslrSurface s, SslrTraceParams t, float depth, vec4 packedNormal) {
+// `material` is the texel holding the material channels: the normal texel itself unless the host
+// gave a separate material texture (SslrSurface::separateMaterial).
+SSLR_FN bool sslrShouldTrace(SslrSurface s, SslrTraceParams t, float depth, vec4 packedNormal, vec4 material) {
   if (!sslrIsGeometryDepth(s, depth)) return false;
-  float reflectance = sslrReflectance(s, packedNormal);
-  float roughness = sslrRoughness(s, packedNormal);
+  float reflectance = sslrReflectance(s, material);
+  float roughness = sslrRoughness(s, material);
   // Written so that NaN material values fail. A branch of its own, not one && chain: shader
   // compilers evaluate such a chain whole, and the normal decode is most of the test's cost
   // (measured on llvmpipe: classification of a frame with nothing reflective took 3.7x the

@@ -110,7 +110,7 @@ void main() {
     float depth = sslrLoadDepth(px);
     vec3 vsP;
     if (!sslrSurfaceFromDepth(frame.proj, frame.surface, px, depth, vsP) ||
-        !sslrShouldTrace(frame.surface, frame.trace, depth, texel))
+        !sslrShouldTrace(frame.surface, frame.trace, depth, texel, sslrMaterialAt(px, texel)))
       continue;
     vec3 vsN;
     sslrDecodeNormal(frame.surface, texel, vsN);
@@ -205,7 +205,8 @@ void sslrShadePixel(ivec2 px) {
 #else
   bool geometry = sslrSurfaceFromDepth(frame.proj, frame.surface, px, depth, vsP);
 #endif
-  if (geometry && sslrShouldTrace(frame.surface, frame.trace, depth, texel)) {
+  vec4 material = sslrMaterialAt(px, texel);
+  if (geometry && sslrShouldTrace(frame.surface, frame.trace, depth, texel, material)) {
     vec3 vsN;
     sslrDecodeNormal(frame.surface, texel, vsN);
     vec3 vsV = sslrViewDirection(frame.proj, vsP);
@@ -229,8 +230,8 @@ void sslrShadePixel(ivec2 px) {
 #endif
       if (hit.status == SSLR_STATUS_HIT) {
         vec2 w = sslrReflectionWeights(frame.proj, frame.surface, frame.trace, hit, vsP, vsV, vsR, cosVN,
-                                       sslrReflectance(frame.surface, texel),
-                                       sslrRoughness(frame.surface, texel));
+                                       sslrReflectance(frame.surface, material),
+                                       sslrRoughness(frame.surface, material));
         vec3 color = textureLod(uColor, hit.uvHit, 0.0f).rgb;
         // Poisoned colour must not spread through the blur: NaN/Inf become 0, and the value is
         // kept inside RGBA16F's range.

@@ -5,6 +5,13 @@
 layout(binding = 0) uniform sampler2D uDepth;   // raw window depth (nearest)
 layout(binding = 1) uniform sampler2D uNormal;  // texel normal + material (nearest)
 layout(binding = 2) uniform sampler2D uColor;   // lit colour (bilinear, clamped)
+layout(binding = 7) uniform sampler2D uMaterial;  // optional material texture (nearest)
+
+// The texel holding pixel px's material channels: the host's material texture if it gave one,
+// else the normal texel itself (read already).
+vec4 sslrMaterialAt(ivec2 px, vec4 normalTexel) {
+  return frame.surface.separateMaterial != 0 ? texelFetch(uMaterial, px, 0) : normalTexel;
+}
 
 vec2 sslrSizePx() { return vec2(frame.surface.width, frame.surface.height); }
 

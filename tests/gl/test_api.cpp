@@ -202,7 +202,7 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   GLuint fboTex = makeTexture(GL_RGBA16F);
   glCreateFramebuffers(1, &hostFbo);
   glNamedFramebufferTexture(hostFbo, GL_COLOR_ATTACHMENT0, fboTex, 0);
-  for (int u = 0; u < 7; ++u) {  // every unit sslr uses (6: its depth pyramid)
+  for (int u = 0; u < 8; ++u) {  // every unit sslr uses (6: its depth pyramid, 7: material)
     glBindTextureUnit(u, hostTex[u % 3]);
     glBindSampler(u, hostSampler);
   }
@@ -498,6 +498,44 @@ TEST_F(Api, WorldSpaceNormalsWithTheViewMatrixGiveTheSameHits) {
   ASSERT_FALSE(st);
   EXPECT_NE(st.message().find("viewFromWorld"), std::string::npos) << st.message();
   glDeleteTextures(1, &worldTex);
+}
+
+// Roughness and reflectance in a texture of their own (as many engines keep them) give the
+// frame of the packed layout; a channel the material texture lacks is refused, naming it.
+TEST_F(Api, SeparateMaterialTextureGivesThePackedResult) {
+  auto ctx = makeContext();
+  Frame f;
+  const FrameInputs packedIn = f.gbuffer->frameInputs();  // roughness in B, reflectance in A
+  Settings s;
+  s.debugOutputs = true;
+  ASSERT_TRUE(ctx->dispatch(packedIn, s));
+  const Image hitPacked = readAll(ctx->hitTexture(), 4), resolvedPacked = readAll(ctx->resolvedTexture(), 4);
+  // RG16 material texture: R = reflectance, G = roughness (the other order on purpose).
+  const Image packed = readAll(packedIn.normalTexture, 4);
+  std::vector<std::uint16_t> material(static_cast<size_t>(W) * H * 2);
+  for (int p = 0; p < W * H; ++p) {
+    material[static_cast<size_t>(p) * 2] = static_cast<std::uint16_t>(std::lround(packed.pixels[static_cast<size_t>(p) * 4 + 3] * 65535.0f));
+    material[static_cast<size_t>(p) * 2 + 1] = static_cast<std::uint16_t>(std::lround(packed.pixels[static_cast<size_t>(p) * 4 + 2] * 65535.0f));
+  }
+  const GLuint materialTex = makeTexture(GL_RG16);
+  glTextureSubImage2D(materialTex, 0, 0, 0, W, H, GL_RG, GL_UNSIGNED_SHORT, material.data());
+  FrameInputs separate = packedIn;
+  separate.materialTexture = materialTex;
+  separate.surface.reflectanceChannel = 0;
+  separate.surface.roughnessChannel = 1;
+  ASSERT_TRUE(ctx->dispatch(separate, s));
+  // The same 16-bit values reach the same formulas: the same frame, bit for bit.
+  EXPECT_EQ(readAll(ctx->hitTexture(), 4).pixels, hitPacked.pixels);
+  EXPECT_EQ(readAll(ctx->resolvedTexture(), 4).pixels, resolvedPacked.pixels);
+  size_t traced = 0;
+  for (int p = 0; p < W * H; ++p) traced += hitPacked.pixels[static_cast<size_t>(p) * 4 + 2] > 0.5f;
+  ASSERT_GT(traced, 500u);
+  // A channel the material texture does not have.
+  separate.surface.roughnessChannel = 2;
+  const Status st = ctx->dispatch(separate, s);
+  ASSERT_FALSE(st);
+  EXPECT_NE(st.message().find("materialTexture"), std::string::npos) << st.message();
+  glDeleteTextures(1, &materialTex);
 }
 
 TEST_F(Api, ArticleXyzNormalsGiveTheSameHitsAsOctahedral) {

@@ -107,7 +107,7 @@ Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& set
       } else {
         geometry = sslrSurfaceFromDepth(proj, surf, px, depth, vsP);
       }
-      if (!geometry || !sslrShouldTrace(surf, t, depth, texel)) continue;
+      if (!geometry || !sslrShouldTrace(surf, t, depth, texel, texel)) continue;  // material in the normal texel
       vec3 vsN;
       sslrDecodeNormal(surf, texel, vsN);
       const vec3 vsV = sslrViewDirection(proj, vsP);

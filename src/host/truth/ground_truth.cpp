@@ -116,7 +116,8 @@ std::vector<std::uint8_t> reflectiveMask(const Image& depth, const Image& normal
   std::vector<std::uint8_t> mask(static_cast<size_t>(depth.width) * depth.height, 0);
   for (size_t p = 0; p < mask.size(); ++p) {
     const float* n = &normalPacked.pixels[p * normalPacked.channels];
-    mask[p] = shared::sslrShouldTrace(s, t, depth.pixels[p], glm::vec4(n[0], n[1], n[2], n[3])) ? 1 : 0;
+    const glm::vec4 texel(n[0], n[1], n[2], n[3]);  // the tools keep the material in the normal texel
+    mask[p] = shared::sslrShouldTrace(s, t, depth.pixels[p], texel, texel) ? 1 : 0;
   }
   return mask;
 }

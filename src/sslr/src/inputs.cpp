@@ -95,19 +95,27 @@ Status Context::Impl::checkInputs(const FrameInputs& in, Method method) const {
       !s)
     return s;
   const SurfaceLayout& sl = in.surface;
+  // The material channels are of the material texture when there is one, else of the normal one.
+  const bool separate = in.materialTexture != 0;
+  FormatInfo materialInfo = normalInfo;
+  if (separate) {
+    if (Status s = checkTexture(in.materialTexture, "materialTexture", FormatInfo::Color, 1, &materialInfo); !s)
+      return s;
+  }
+  const char* materialName = separate ? "materialTexture" : "normalTexture";
   auto checkChannel = [&](int channel, const char* name) -> Status {
     if (channel < -1 || channel > 3)
       return Status::error(std::string("sslr: SurfaceLayout::") + name + " = " +
                            std::to_string(channel) + " (must be -1..3)");
-    if (channel >= normalInfo.channels)
+    if (channel >= materialInfo.channels)
       return Status::error(std::string("sslr: SurfaceLayout::") + name + " = " +
-                           std::to_string(channel) + " but normalTexture (" + normalInfo.name +
-                           ") has only " + std::to_string(normalInfo.channels) + " channel(s)");
+                           std::to_string(channel) + " but " + materialName + " (" + materialInfo.name +
+                           ") has only " + std::to_string(materialInfo.channels) + " channel(s)");
     return {};
   };
   if (Status s = checkChannel(sl.roughnessChannel, "roughnessChannel"); !s) return s;
   if (Status s = checkChannel(sl.reflectanceChannel, "reflectanceChannel"); !s) return s;
-  const int normalUses = sl.normals == NormalEncoding::Octahedral ? 2 : 3;
+  const int normalUses = separate ? 0 : (sl.normals == NormalEncoding::Octahedral ? 2 : 3);
   if (sl.roughnessChannel >= 0 && sl.roughnessChannel < normalUses)
     return Status::error("sslr: SurfaceLayout::roughnessChannel overlaps the normal's channels");
   if (sl.reflectanceChannel >= 0 && sl.reflectanceChannel < normalUses)

@@ -88,7 +88,7 @@ enum class NormalSpace {
   World,  // it holds world-space normals; FrameInputs::viewFromWorld turns them into view space
 };
 
-// Where the material bits live in the host's normal texture.
+// Where the material bits live: channels of the normal texture, or of FrameInputs::materialTexture.
 struct SurfaceLayout {
   NormalEncoding normals = NormalEncoding::Octahedral;
   int roughnessChannel = 2;         // 0..3 of the normal texture, or -1: constantRoughness
@@ -103,6 +103,8 @@ struct FrameInputs {
   GLName normalTexture = 0;  // packed view-space normal + material, see SurfaceLayout
   GLName depthTexture = 0;   // the hardware depth buffer the G-buffer was rasterized with
   GLName positionTexture = 0;  // Method::PositionBuffer only: RGBA32F/RGBA16F view position, w = 1
+  GLName materialTexture = 0;  // optional: the texture SurfaceLayout's roughness/reflectance
+                               // channels refer to (0: they are channels of normalTexture)
   glm::dmat4 clipFromView{1.0};  // the exact projection that rasterized the depth (jitter incl.)
   glm::dmat4 viewFromWorld{1.0}; // NormalSpace::World only: the view matrix of the frame
   DepthConvention depth{};
