@@ -125,7 +125,7 @@ struct SslrSurface {
   vec4 normalFromStored1;
   vec4 normalFromStored2;
   int separateMaterial;      // 1: roughness/reflectance channels are of the material texture
-  int surfacePad0;
+  int hasMask;               // 1: rays start only where the mask texture's first channel > 0.5
   int surfacePad1;
   int surfacePad2;
 };

@@ -110,7 +110,7 @@ void main() {
     float depth = sslrLoadDepth(px);
     vec3 vsP;
     if (!sslrSurfaceFromDepth(frame.proj, frame.surface, px, depth, vsP) ||
-        !sslrShouldTrace(frame.surface, frame.trace, depth, texel, sslrMaterialAt(px, texel)))
+        !sslrShouldTracePixel(px, depth, texel))
       continue;
     vec3 vsN;
     sslrDecodeNormal(frame.surface, texel, vsN);
@@ -206,7 +206,7 @@ void sslrShadePixel(ivec2 px) {
   bool geometry = sslrSurfaceFromDepth(frame.proj, frame.surface, px, depth, vsP);
 #endif
   vec4 material = sslrMaterialAt(px, texel);
-  if (geometry && sslrShouldTrace(frame.surface, frame.trace, depth, texel, material)) {
+  if (geometry && sslrShouldTracePixel(px, depth, texel)) {
     vec3 vsN;
     sslrDecodeNormal(frame.surface, texel, vsN);
     vec3 vsV = sslrViewDirection(frame.proj, vsP);

@@ -7,10 +7,19 @@ layout(binding = 1) uniform sampler2D uNormal;  // texel normal + material (near
 layout(binding = 2) uniform sampler2D uColor;   // lit colour (bilinear, clamped)
 layout(binding = 7) uniform sampler2D uMaterial;  // optional material texture (nearest)
 
+layout(binding = 8) uniform sampler2D uMask;      // optional: where rays may start (nearest)
+
 // The texel holding pixel px's material channels: the host's material texture if it gave one,
 // else the normal texel itself (read already).
 vec4 sslrMaterialAt(ivec2 px, vec4 normalTexel) {
   return frame.surface.separateMaterial != 0 ? texelFetch(uMaterial, px, 0) : normalTexel;
+}
+
+// sslrShouldTrace for pixel px of the G-buffer, with the host's mask (FrameInputs::maskTexture):
+// classification, the trace and the blur's neighbour test all ask this one question.
+bool sslrShouldTracePixel(ivec2 px, float depth, vec4 normalTexel) {
+  if (frame.surface.hasMask != 0 && !(texelFetch(uMask, px, 0).r > 0.5f)) return false;
+  return sslrShouldTrace(frame.surface, frame.trace, depth, normalTexel, sslrMaterialAt(px, normalTexel));
 }
 
 vec2 sslrSizePx() { return vec2(frame.surface.width, frame.surface.height); }

@@ -151,7 +151,7 @@ struct Snapshot {
     i(GL_ACTIVE_TEXTURE);
     GLint active = 0;
     glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
-    for (int u = 0; u < 8; ++u) {
+    for (int u = 0; u < 9; ++u) {
       glActiveTexture(GL_TEXTURE0 + u);
       i(GL_TEXTURE_BINDING_2D);
       i(GL_SAMPLER_BINDING);
@@ -202,7 +202,7 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   GLuint fboTex = makeTexture(GL_RGBA16F);
   glCreateFramebuffers(1, &hostFbo);
   glNamedFramebufferTexture(hostFbo, GL_COLOR_ATTACHMENT0, fboTex, 0);
-  for (int u = 0; u < 8; ++u) {  // every unit sslr uses (6: its depth pyramid, 7: material)
+  for (int u = 0; u < 9; ++u) {  // every unit sslr uses (6: its depth pyramid, 7: material, 8: mask)
     glBindTextureUnit(u, hostTex[u % 3]);
     glBindSampler(u, hostSampler);
   }
@@ -266,7 +266,7 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   glDeleteSamplers(1, &hostSampler);
   glDeleteBuffers(3, hostBuf);
   glDeleteVertexArrays(1, &hostVao);
-  for (int u = 0; u < 8; ++u) {
+  for (int u = 0; u < 9; ++u) {
     glBindTextureUnit(u, 0);
     glBindSampler(u, 0);
   }
@@ -536,6 +536,54 @@ TEST_F(Api, SeparateMaterialTextureGivesThePackedResult) {
   ASSERT_FALSE(st);
   EXPECT_NE(st.message().find("materialTexture"), std::string::npos) << st.message();
   glDeleteTextures(1, &materialTex);
+}
+
+// A mask limits where rays start: masked-out pixels get nothing (and no tile is listed for them),
+// the others get exactly what they get without a mask (the blur ignores masked-out neighbours,
+// so the pixels compared here are the mirror's, which the blur leaves alone).
+TEST_F(Api, MaskTextureLimitsWhereRaysStart) {
+  auto ctx = makeContext();
+  Frame f;
+  FrameInputs in = f.gbuffer->frameInputs();
+  Settings s;
+  s.debugOutputs = true;
+  s.collectStats = true;
+  ASSERT_TRUE(ctx->dispatch(in, s));
+  const Image hitAll = readAll(ctx->hitTexture(), 4);
+  const FrameStats statsAll = ctx->waitForStats();
+  std::vector<std::uint8_t> mask(static_cast<size_t>(W) * H, 0);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W / 2; ++x) mask[static_cast<size_t>(y) * W + x] = 255;  // left half
+  const GLuint maskTex = makeTexture(GL_R8);
+  glTextureSubImage2D(maskTex, 0, 0, 0, W, H, GL_RED, GL_UNSIGNED_BYTE, mask.data());
+  in.maskTexture = maskTex;
+  ASSERT_TRUE(ctx->dispatch(in, s));
+  const Image hitMasked = readAll(ctx->hitTexture(), 4), resolvedMasked = readAll(ctx->resolvedTexture(), 4);
+  const FrameStats statsMasked = ctx->waitForStats();
+  size_t leftTraced = 0, leftSame = 0, rightNonZero = 0;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const size_t p = static_cast<size_t>(y) * W + x;
+      if (x < W / 2) {
+        if (hitAll.pixels[p * 4 + 2] > 0.5f) {
+          ++leftTraced;
+          leftSame += std::equal(&hitAll.pixels[p * 4], &hitAll.pixels[p * 4] + 4, &hitMasked.pixels[p * 4]);
+        }
+      } else {
+        for (int c = 0; c < 4; ++c) rightNonZero += hitMasked.pixels[p * 4 + c] != 0.0f || resolvedMasked.pixels[p * 4 + c] != 0.0f;
+      }
+    }
+  ASSERT_GT(leftTraced, 300u);
+  EXPECT_EQ(leftSame, leftTraced);
+  EXPECT_EQ(rightNonZero, 0u);
+  EXPECT_LT(statsMasked.tracedPixels, statsAll.tracedPixels);
+  EXPECT_LT(statsMasked.tiles, statsAll.tiles);
+  // A mask that is not a colour texture is refused, naming it.
+  in.maskTexture = in.depthTexture;
+  const Status st = ctx->dispatch(in, s);
+  ASSERT_FALSE(st);
+  EXPECT_NE(st.message().find("maskTexture"), std::string::npos) << st.message();
+  glDeleteTextures(1, &maskTex);
 }
 
 TEST_F(Api, ArticleXyzNormalsGiveTheSameHitsAsOctahedral) {

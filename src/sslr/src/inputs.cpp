@@ -103,6 +103,9 @@ Status Context::Impl::checkInputs(const FrameInputs& in, Method method) const {
       return s;
   }
   const char* materialName = separate ? "materialTexture" : "normalTexture";
+  if (in.maskTexture != 0) {
+    if (Status s = checkTexture(in.maskTexture, "maskTexture", FormatInfo::Color, 1); !s) return s;
+  }
   auto checkChannel = [&](int channel, const char* name) -> Status {
     if (channel < -1 || channel > 3)
       return Status::error(std::string("sslr: SurfaceLayout::") + name + " = " +

@@ -16,6 +16,8 @@ void Context::Impl::bindInputs(const FrameInputs& in) const {
   gl.BindSampler(2, linearSampler);
   gl.BindTextureUnit(7, in.materialTexture);  // 0 unless the host keeps materials apart
   gl.BindSampler(7, nearestSampler);
+  gl.BindTextureUnit(8, in.maskTexture);  // 0 unless the host limits where rays start
+  gl.BindSampler(8, nearestSampler);
   gl.BindTextureUnit(6, hiz);  // read by the depth-only trace (built when a mode needs it)
   gl.BindSampler(6, nearestSampler);
   gl.BindBufferBase(GL_UNIFORM_BUFFER, SSLR_BINDING_FRAME_UBO, frameUbo);

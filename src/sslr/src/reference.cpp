@@ -23,6 +23,7 @@ Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings
   f.surface.constantRoughness = in.surface.constantRoughness;
   f.surface.constantReflectance = in.surface.constantReflectance;
   f.surface.separateMaterial = in.materialTexture != 0 ? 1 : 0;
+  f.surface.hasMask = in.maskTexture != 0 ? 1 : 0;
   f.surface.width = static_cast<float>(width);
   f.surface.height = static_cast<float>(height);
   if (in.surface.space == NormalSpace::World) {

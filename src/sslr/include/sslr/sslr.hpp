@@ -105,6 +105,8 @@ struct FrameInputs {
   GLName positionTexture = 0;  // Method::PositionBuffer only: RGBA32F/RGBA16F view position, w = 1
   GLName materialTexture = 0;  // optional: the texture SurfaceLayout's roughness/reflectance
                                // channels refer to (0: they are channels of normalTexture)
+  GLName maskTexture = 0;      // optional: rays start only where its first channel is > 0.5
+                               // (an engine's "SSR here" stencil, copied to a colour texture)
   glm::dmat4 clipFromView{1.0};  // the exact projection that rasterized the depth (jitter incl.)
   glm::dmat4 viewFromWorld{1.0}; // NormalSpace::World only: the view matrix of the frame
   DepthConvention depth{};
