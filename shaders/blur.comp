@@ -40,7 +40,7 @@ void main() {
     if (i == 0 || !sslrInside(q)) continue;
     float depth1 = texelFetch(uDepth, q, 0).r;
     vec4 packed1 = texelFetch(uNormal, q, 0);
-    if (!sslrShouldTracePixel(q, depth1, packed1)) continue;
+    if (!sslrShouldTracePixel(q, depth1, packed1, sslrMaterialAt(q, packed1))) continue;
     vec3 n1;
     sslrDecodeNormal(frame.surface, packed1, n1);
     float z1 = abs(sslrViewAtPixel(q, depth1).z);

@@ -43,7 +43,7 @@ void main() {
   if (!sslrInside(px)) return;
   float depth = texelFetch(uDepth, px, 0).r;
   vec4 packedNormal = texelFetch(uNormal, px, 0);
-  if (!sslrShouldTracePixel(px, depth, packedNormal)) return;
+  if (!sslrShouldTracePixel(px, depth, packedNormal, sslrMaterialAt(px, packedNormal))) return;
   uint stamp = sslrTileListedStamp(gl_WorkGroupID.xy);
   uint frameIndex = uint(frame.trace.frameIndex);
   // The plain read spares the atomic to all but the first few pixels of a listed tile.

@@ -94,6 +94,35 @@ SslrHit sslrTraceRay(ivec2 px, vec3 vsP, vec3 vsV, vec3 vsR) {
 #endif
 }
 
+// What shading pixel px needs, when it is to be traced: a reflective surface (mask, material,
+// a normal that decodes) facing the camera. The position comes from depth, or from the stored
+// positions for the tutorial's method.
+struct SslrPixel {
+  vec4 texel;     // the normal texel
+  vec4 material;  // the texel of the material channels (sslrMaterialAt)
+  vec3 vsP, vsN, vsV, vsR;
+  float cosVN;    // dot(-V, N)
+};
+bool sslrPixelToTrace(ivec2 px, out SslrPixel q) {
+  q.texel = sslrLoadNormal(px);
+  float depth = sslrLoadDepth(px);
+#ifdef SSLR_METHOD_POSITION_BUFFER
+  vec4 stored;
+  bool geometry = sslrLoadPosition(px, stored);
+  q.vsP = stored.xyz;
+#else
+  bool geometry = sslrSurfaceFromDepth(frame.proj, frame.surface, px, depth, q.vsP);
+#endif
+  q.material = sslrMaterialAt(px, q.texel);
+  if (!geometry || !sslrShouldTracePixel(px, depth, q.texel, q.material)) return false;
+  sslrDecodeNormal(frame.surface, q.texel, q.vsN);
+  q.vsV = sslrViewDirection(frame.proj, q.vsP);
+  q.cosVN = dot(-q.vsV, q.vsN);
+  if (!(q.cosVN > 0.0f)) return false;  // a normal facing away from the camera has nothing to reflect
+  q.vsR = reflect(q.vsV, q.vsN);
+  return true;
+}
+
 #ifdef SSLR_HALF_QUADS
 void main() {
   ivec2 quad = sslrTileOrigin(gl_WorkGroupID.x) / 2 + ivec2(gl_LocalInvocationID.xy);
@@ -105,19 +134,9 @@ void main() {
   for (int k = 0; k < 4; ++k) {
     int index = (start + k) & 3;
     ivec2 px = quad * 2 + sslrQuadOffset(index);
-    if (!sslrInside(px)) continue;
-    vec4 texel = sslrLoadNormal(px);
-    float depth = sslrLoadDepth(px);
-    vec3 vsP;
-    if (!sslrSurfaceFromDepth(frame.proj, frame.surface, px, depth, vsP) ||
-        !sslrShouldTracePixel(px, depth, texel))
-      continue;
-    vec3 vsN;
-    sslrDecodeNormal(frame.surface, texel, vsN);
-    vec3 vsV = sslrViewDirection(frame.proj, vsP);
-    if (!(dot(-vsV, vsN) > 0.0f)) continue;
-    vec3 vsR = reflect(vsV, vsN);
-    SslrHit hit = sslrTraceRay(px, vsP, vsV, vsR);
+    SslrPixel q;
+    if (!sslrInside(px) || !sslrPixelToTrace(px, q)) continue;
+    SslrHit hit = sslrTraceRay(px, q.vsP, q.vsV, q.vsR);
     float confidence = hit.status == SSLR_STATUS_HIT ? hit.confidence : 0.0f;
     vec3 vsHitNormal = vec3(0.0f, 0.0f, 1.0f);
     if (confidence > 0.0f)
@@ -127,8 +146,8 @@ void main() {
     // their own: adaptive L may converge for them). A ray the traversal gave up on stays a miss
     // for its neighbours: retracing those doubled the cost of half resolution on mirror-walls.
     float hardMiss = (confidence == 0.0f && hit.status == SSLR_STATUS_MISS && hit.hierarchical == 0) ? 8.0f : 0.0f;
-    quadHit = vec4(vsP + vsR * hit.L, min(confidence, 0.999f) + 2.0f * float(index) + hardMiss);
-    quadSurface = vec4(sslrOctEncode(vsN), sslrOctEncode(vsHitNormal));
+    quadHit = vec4(q.vsP + q.vsR * hit.L, min(confidence, 0.999f) + 2.0f * float(index) + hardMiss);
+    quadSurface = vec4(sslrOctEncode(q.vsN), sslrOctEncode(vsHitNormal));
 #ifdef SSLR_COLLECT_STATS
     atomicAdd(stats.tracedPixels, 1u);
     if (hit.hierarchical != 0) atomicAdd(stats.hierarchicalPixels, 1u);
@@ -194,51 +213,33 @@ void sslrShadePixel(ivec2 px) {
   vec4 reflection = vec4(0.0f);
   bool ranTracer = false;  // stats: half resolution answers most pixels from their quad's ray
 
-  vec4 texel = sslrLoadNormal(px);
-  float depth = sslrLoadDepth(px);
-  vec3 vsP;
-#ifdef SSLR_METHOD_POSITION_BUFFER
-  // The position-buffer method takes its position from the stored texture, as the tutorial.
-  vec4 stored;
-  bool geometry = sslrLoadPosition(px, stored);
-  vsP = stored.xyz;
-#else
-  bool geometry = sslrSurfaceFromDepth(frame.proj, frame.surface, px, depth, vsP);
-#endif
-  vec4 material = sslrMaterialAt(px, texel);
-  if (geometry && sslrShouldTracePixel(px, depth, texel)) {
-    vec3 vsN;
-    sslrDecodeNormal(frame.surface, texel, vsN);
-    vec3 vsV = sslrViewDirection(frame.proj, vsP);
-    float cosVN = dot(-vsV, vsN);
-    if (cosVN > 0.0f) {  // a normal facing away from the camera has nothing to reflect
-      vec3 vsR = reflect(vsV, vsN);
+  SslrPixel q;
+  if (sslrPixelToTrace(px, q)) {
 #ifdef SSLR_HALF_RES
-      if (!sslrReuseQuadHit(px, vsP, vsN, vsR, hit)) {
-        // Its own ray, in the retrace pass, which also writes this pixel's outputs.
-        uint slot = atomicAdd(retrace.count, 1u);
-        retrace.pixels[slot] = uint(px.x) | (uint(px.y) << 16);
-        if (slot % uint(SSLR_RETRACE_GROUP) == 0u) atomicAdd(retrace.dispatchX, 1u);
+    if (!sslrReuseQuadHit(px, q.vsP, q.vsN, q.vsR, hit)) {
+      // Its own ray, in the retrace pass, which also writes this pixel's outputs.
+      uint slot = atomicAdd(retrace.count, 1u);
+      retrace.pixels[slot] = uint(px.x) | (uint(px.y) << 16);
+      if (slot % uint(SSLR_RETRACE_GROUP) == 0u) atomicAdd(retrace.dispatchX, 1u);
 #ifdef SSLR_COLLECT_STATS
-        atomicAdd(stats.fetches, gFetches);
+      atomicAdd(stats.fetches, gFetches);
 #endif
-        return;
-      }
+      return;
+    }
 #else
-      hit = sslrTraceRay(px, vsP, vsV, vsR);
-      ranTracer = true;
+    hit = sslrTraceRay(px, q.vsP, q.vsV, q.vsR);
+    ranTracer = true;
 #endif
-      if (hit.status == SSLR_STATUS_HIT) {
-        vec2 w = sslrReflectionWeights(frame.proj, frame.surface, frame.trace, hit, vsP, vsV, vsR, cosVN,
-                                       sslrReflectance(frame.surface, material),
-                                       sslrRoughness(frame.surface, material));
-        vec3 color = textureLod(uColor, hit.uvHit, 0.0f).rgb;
-        // Poisoned colour must not spread through the blur: NaN/Inf become 0, and the value is
-        // kept inside RGBA16F's range.
-        if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0f);
-        color = clamp(color, vec3(0.0f), vec3(60000.0f));
-        reflection = vec4(color * w.x, w.y);
-      }
+    if (hit.status == SSLR_STATUS_HIT) {
+      vec2 w = sslrReflectionWeights(frame.proj, frame.surface, frame.trace, hit, q.vsP, q.vsV, q.vsR, q.cosVN,
+                                     sslrReflectance(frame.surface, q.material),
+                                     sslrRoughness(frame.surface, q.material));
+      vec3 color = textureLod(uColor, hit.uvHit, 0.0f).rgb;
+      // Poisoned colour must not spread through the blur: NaN/Inf become 0, and the value is
+      // kept inside RGBA16F's range.
+      if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0f);
+      color = clamp(color, vec3(0.0f), vec3(60000.0f));
+      reflection = vec4(color * w.x, w.y);
     }
   }
   imageStore(uReflection, px, reflection);

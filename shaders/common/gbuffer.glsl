@@ -16,10 +16,11 @@ vec4 sslrMaterialAt(ivec2 px, vec4 normalTexel) {
 }
 
 // sslrShouldTrace for pixel px of the G-buffer, with the host's mask (FrameInputs::maskTexture):
-// classification, the trace and the blur's neighbour test all ask this one question.
-bool sslrShouldTracePixel(ivec2 px, float depth, vec4 normalTexel) {
+// classification, the trace and the blur's neighbour test all ask this one question. `material`
+// is sslrMaterialAt(px, normalTexel), read by the caller (the trace needs it again).
+bool sslrShouldTracePixel(ivec2 px, float depth, vec4 normalTexel, vec4 material) {
   if (frame.surface.hasMask != 0 && !(texelFetch(uMask, px, 0).r > 0.5f)) return false;
-  return sslrShouldTrace(frame.surface, frame.trace, depth, normalTexel, sslrMaterialAt(px, normalTexel));
+  return sslrShouldTrace(frame.surface, frame.trace, depth, normalTexel, material);
 }
 
 vec2 sslrSizePx() { return vec2(frame.surface.width, frame.surface.height); }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <sstream>
 
 #include "sslr_host/embedded_shaders.hpp"
@@ -223,47 +224,76 @@ std::vector<BenchConfig> defaultConfigs(const std::vector<BenchConfig>& grid) {
   return out;
 }
 
-// Times the defaults and the baseline on one scene at one size, interleaved; appends the points.
-Status timeCurvePoint(const std::string& curve, const std::string& sceneName, int width, int height, int percent,
-                      const BenchOptions& options, Timer& timer, std::vector<CurvePoint>& out) {
+// A scene's G-buffer, rendered once: what every timed configuration reads.
+struct SceneFrame {
+  Scene scene;
+  std::unique_ptr<FrameRenderer> renderer;
+  FrameInputs inputs;
+};
+Expected<SceneFrame> renderSceneFrame(const std::string& sceneName, int width, int height) {
   auto scene = loadScene(sceneName);
   if (!scene) return Status::error(scene.error());
   GBufferOptions g;
   g.width = width;
   g.height = height;
-  g.withPosition = true;
+  g.withPosition = true;  // the position-buffer method needs it; the depth-only ones ignore it
   auto renderer = FrameRenderer::create(g);
   if (!renderer) return Status::error(renderer.error());
-  FrameRenderer& fr = *renderer.value();
-  GpuScene gpu(scene.value());
-  const Camera camera = scene.value().camera ? *scene.value().camera : scene.value().defaultCamera();
-  if (Status s = fr.render(gpu, camera, nullptr); !s) return s;
-  const FrameInputs inputs = fr.gbuffer().frameInputs();
-  std::vector<BenchConfig> configs = defaultConfigs(benchGrid(options.grid));
-  BaselinePass baseline(width, height);
+  SceneFrame f{std::move(scene.value()), std::move(renderer.value()), {}};
+  GpuScene gpu(f.scene);
+  const Camera camera = f.scene.camera ? *f.scene.camera : f.scene.defaultCamera();
+  if (Status st = f.renderer->render(gpu, camera, nullptr); !st) return Status::error(st.message());
+  f.inputs = f.renderer->gbuffer().frameInputs();
+  return f;
+}
+
+// Times every configuration (method "baseline": the baseline pass) once per round, rounds
+// interleaved (A B C A B C ...) so that all see the same machine state; the first `warmup` rounds
+// are dropped. Returns the kept times per configuration; `afterEach` is called after each timing.
+Expected<std::vector<std::vector<double>>> timeInterleaved(const std::vector<BenchConfig>& configs, SceneFrame& f,
+                                                           const BenchOptions& options, Timer& timer,
+                                                           const std::function<void(int round)>& afterEach) {
+  BaselinePass baseline(f.renderer->gbuffer().width(), f.renderer->gbuffer().height());
+  std::vector<std::vector<double>> times(configs.size());
+  for (int round = 0; round < options.warmup + options.frames; ++round)
+    for (size_t i = 0; i < configs.size(); ++i) {
+      Status st;
+      const double ms = configs[i].method == "baseline"
+                            ? timer.timeMs([&] { baseline.run(f.inputs); })
+                            : timer.timeMs([&] { st = f.renderer->sslr().dispatch(f.inputs, configs[i].settings); });
+      if (!st) return Status::error(st.message());
+      if (round >= options.warmup) times[i].push_back(ms);
+      if (afterEach) afterEach(round);
+    }
+  return times;
+}
+
+// Times the defaults and the baseline on one scene at one size, interleaved; appends the points.
+Status timeCurvePoint(const std::string& curve, const std::string& sceneName, int width, int height, int percent,
+                      const BenchOptions& options, Timer& timer, std::vector<CurvePoint>& out) {
+  auto frame = renderSceneFrame(sceneName, width, height);
+  if (!frame) return Status::error(frame.error());
+  SceneFrame& f = frame.value();
+  const std::vector<BenchConfig> grid = benchGrid(options.grid);
+  std::vector<BenchConfig> configs = defaultConfigs(grid);
+  for (const BenchConfig& c : grid)
+    if (c.method == "baseline") configs.push_back(c);
   // What the frame reflects, from the default's own count.
   Settings counting = configs.front().settings;
   counting.collectStats = true;
-  if (Status s = fr.sslr().dispatch(inputs, counting); !s) return s;
-  const double traced = double(fr.sslr().waitForStats().tracedPixels) / (double(width) * height);
-  std::vector<std::vector<double>> times(configs.size() + 1);
-  for (int round = 0; round < options.warmup + options.frames; ++round)
-    for (size_t i = 0; i <= configs.size(); ++i) {
-      Status st;
-      const double ms = i == configs.size() ? timer.timeMs([&] { baseline.run(inputs); })
-                                            : timer.timeMs([&] { st = fr.sslr().dispatch(inputs, configs[i].settings); });
-      if (!st) return st;
-      if (round >= options.warmup) times[i].push_back(ms);
-    }
-  for (size_t i = 0; i <= configs.size(); ++i) {
+  if (Status st = f.renderer->sslr().dispatch(f.inputs, counting); !st) return st;
+  const double traced = double(f.renderer->sslr().waitForStats().tracedPixels) / (double(width) * height);
+  auto times = timeInterleaved(configs, f, options, timer, nullptr);
+  if (!times) return Status::error(times.error());
+  for (size_t i = 0; i < configs.size(); ++i) {
     CurvePoint p;
     p.curve = curve;
-    p.method = i == configs.size() ? "baseline" : configs[i].method;
+    p.method = configs[i].method;
     p.width = width;
     p.height = height;
     p.percent = percent;
     p.tracedFraction = traced;
-    p.timeMedianMs = median(times[i]);
+    p.timeMedianMs = median(times.value()[i]);
     out.push_back(p);
   }
   return {};
@@ -291,27 +321,20 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
   const int total = static_cast<int>(scenes.size() * (grid.size() * (1 + options.frames + options.warmup) + 1));
   int done = 0;
   for (const std::string& sceneName : scenes) {
-    auto scene = loadScene(sceneName);
-    if (!scene) return Status::error(scene.error());
-    GBufferOptions g;
-    g.width = options.width;
-    g.height = options.height;
-    g.withPosition = true;  // the position-buffer method needs it; the depth-only one ignores it
-    auto renderer_ = FrameRenderer::create(g);
-    if (!renderer_) return Status::error(renderer_.error());
-    FrameRenderer& fr = *renderer_.value();
-    GpuScene gpu(scene.value());
-    const Camera camera = scene.value().camera ? *scene.value().camera : scene.value().defaultCamera();
-    if (Status s = fr.render(gpu, camera, nullptr); !s) return Status::error(s.message());
+    auto frame = renderSceneFrame(sceneName, options.width, options.height);
+    if (!frame) return Status::error(frame.error());
+    SceneFrame& sf = frame.value();
+    const Scene& scene = sf.scene;
+    FrameRenderer& fr = *sf.renderer;
     GBuffer& gb = fr.gbuffer();
-    const FrameInputs inputs = gb.frameInputs();
+    const FrameInputs& inputs = sf.inputs;
     const Image depth = gb.readDepth(), normal = gb.readNormalPacked(), positions = gb.readPosition(),
                 color = gb.readColor();
 
     // Ground truth (Embree), once per scene.
     progress(done, total, sceneName + ": ground truth");
     const Settings defaults;
-    auto truth = groundTruthFor(scene.value(), gb, defaults);
+    auto truth = groundTruthFor(scene, gb, defaults);
     if (!truth) return Status::error(truth.error());
     const GroundTruth& gt = truth.value();
 
@@ -347,8 +370,8 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
         ++traced;
         const bool a = hitDepth.pixels[p * 4 + 2] > kReportedConfidence,
                    b = hitStored.pixels[p * 4 + 2] > kReportedConfidence;
-        const float du = (hitDepth.pixels[p * 4] - hitStored.pixels[p * 4]) * g.width;
-        const float dv = (hitDepth.pixels[p * 4 + 1] - hitStored.pixels[p * 4 + 1]) * g.height;
+        const float du = (hitDepth.pixels[p * 4] - hitStored.pixels[p * 4]) * options.width;
+        const float dv = (hitDepth.pixels[p * 4 + 1] - hitStored.pixels[p * 4 + 1]) * options.height;
         agree += a == b && (!a || std::hypot(du, dv) <= 1.0f);
       }
       sr.hitAgreement = traced ? double(agree) / traced : 1.0;
@@ -362,15 +385,14 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
 
     // Quality pass per config (debug outputs + stats, untimed).
     std::vector<RunRecord> runs;
-    BaselinePass baseline(g.width, g.height);
     for (const BenchConfig& c : grid) {
       RunRecord r;
       r.scene = sceneName;
       r.method = c.method;
       r.label = c.label;
       r.config = c;
-      r.width = g.width;
-      r.height = g.height;
+      r.width = options.width;
+      r.height = options.height;
       r.renderer = renderer;
       r.timingMethod = timer.method();
       r.extraBytesPerPixel = c.method == "baseline" ? 8 : 24;  // 3 x RGBA16F
@@ -400,23 +422,12 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
       runs.push_back(r);
       progress(++done, total, sceneName + ": quality " + c.method + " " + c.label);
     }
-    // Timing: every config once per round, rounds interleaved (A B C A B C ...), so all
-    // configs see the same machine state; the first `warmup` rounds are dropped.
-    std::vector<std::vector<double>> times(grid.size());
-    for (int round = 0; round < options.warmup + options.frames; ++round)
-      for (size_t i = 0; i < grid.size(); ++i) {
-        const BenchConfig& c = grid[i];
-        double ms = 0.0;
-        if (c.method == "baseline") {
-          ms = timer.timeMs([&] { baseline.run(inputs); });
-        } else {
-          Status st;
-          ms = timer.timeMs([&] { st = fr.sslr().dispatch(inputs, c.settings); });
-          if (!st) return Status::error(st.message());
-        }
-        if (round >= options.warmup) times[i].push_back(ms);
-        progress(++done, total, sceneName + ": timing round " + std::to_string(round + 1));
-      }
+    // Timing, interleaved (timeInterleaved).
+    auto timed = timeInterleaved(grid, sf, options, timer, [&](int round) {
+      progress(++done, total, sceneName + ": timing round " + std::to_string(round + 1));
+    });
+    if (!timed) return Status::error(timed.error());
+    const std::vector<std::vector<double>>& times = timed.value();
     for (size_t i = 0; i < grid.size(); ++i) {
       runs[i].frames = static_cast<int>(times[i].size());
       runs[i].timeMedianMs = median(times[i]);

@@ -107,7 +107,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
                             (kTileHeader + 4 * capacity) * sizeof(GLuint), capacity * sizeof(GLuint));
   GLuint header[kHeaderUpload] = {0, 1, 1, 6, 0, 0, 0, 0, 0, 1, 1, 0};
   for (int level = 1; level <= SSLR_HIZ_MAX_LEVELS; ++level) {
-    GLuint* live = &header[12 + 3 * (level - 1)];
+    GLuint* live = &header[kHizDispatchOffset / 4 + 3 * (level - 1)];
     GLuint* real = &header[kHizGroupsIndex + 3 * (level - 1)];
     live[0] = 0, live[1] = 1, live[2] = 1;
     const int w = hizWidth >> (level - 1), h = hizHeight >> (level - 1);
