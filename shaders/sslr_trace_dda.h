@@ -28,6 +28,17 @@ SSLR_FN bool sslrDdaOverlaps(float rayZMin, float rayZMax, float sceneZ, float t
   return rayZMax >= sceneZ - thickness && rayZMin < sceneZ;
 }
 
+// One DDA sample: the ray's z extent over the step ending at (Qz, k) reaches from where the last
+// step ended (prevZ, updated) to `ahead` (half a step) further: the paper's estimate, covering the pixel
+// sampled; true when it overlaps that pixel's depth slab.
+SSLR_FN bool sslrDdaStepOverlaps(SslrProjection p, SslrSurface s, float Qz, float k, float dQz, float dk, float ahead,
+                                 ivec2 px, float thickness, SSLR_INOUT(float) prevZ) {
+  float zA = prevZ;
+  float zB = (dQz * ahead + Qz) / (dk * ahead + k);
+  prevZ = zB;
+  return sslrDdaOverlaps(min(zA, zB), max(zA, zB), sslrDdaSceneZ(p, s, px), thickness);
+}
+
 // Screen-space DDA. The ray runs from vsP along vsR for at most d.maxDistance (clipped at the near
 // plane); P (pixels), Q = vs/w and k = 1/w are linear in screen space and step together, one
 // depth fetch per step. Deviations from the paper's listing, each only a guard or bookkeeping:
@@ -87,9 +98,6 @@ SSLR_FN SslrHit sslrTraceDda(SslrProjection p, SslrSurface s, SslrDdaParams d, i
   float end = P1.x * stepDir;
 
   float prevZ = vsP.z;  // the ray's z where the last step ended
-  float rayZMin = prevZ;
-  float rayZMax = prevZ;
-  float sceneZ = 0.0f;
   bool found = false;
   vec2 hitP = P;
   for (int i = 0; i < d.maxSteps; ++i) {
@@ -99,19 +107,8 @@ SSLR_FN SslrHit sslrTraceDda(SslrProjection p, SslrSurface s, SslrDdaParams d, i
       hit.status = SSLR_STATUS_OFF_SCREEN;
       break;
     }
-    // The ray's z extent over this step: from where the last one ended to half a step ahead
-    // (the paper's estimate, which covers the pixel the step samples).
-    rayZMin = prevZ;
-    rayZMax = (dQ.z * stride * 0.5f + Q.z) / (dk * stride * 0.5f + k);
-    prevZ = rayZMax;
-    if (rayZMin > rayZMax) {
-      float tmp = rayZMin;
-      rayZMin = rayZMax;
-      rayZMax = tmp;
-    }
-    sceneZ = sslrDdaSceneZ(p, s, ivec2(floor(px2)));
     hit.iterations += 1;
-    if (sslrDdaOverlaps(rayZMin, rayZMax, sceneZ, d.thickness)) {
+    if (sslrDdaStepOverlaps(p, s, Q.z, k, dQ.z, dk, stride * 0.5f, ivec2(floor(px2)), d.thickness, prevZ)) {
       found = true;
       hitP = P;
       break;
@@ -136,17 +133,8 @@ SSLR_FN SslrHit sslrTraceDda(SslrProjection p, SslrSurface s, SslrDdaParams d, i
       kf += dk;
       vec2 pxf = permute ? vec2(Pf.y, Pf.x) : Pf;
       if (!(pxf.x >= 0.0f && pxf.y >= 0.0f && pxf.x < sizePx.x && pxf.y < sizePx.y)) break;
-      float zMin = prevFine;
-      float zMax = (dQ.z * 0.5f + Qf.z) / (dk * 0.5f + kf);
-      prevFine = zMax;
-      if (zMin > zMax) {
-        float tmp = zMin;
-        zMin = zMax;
-        zMax = tmp;
-      }
-      float zScene = sslrDdaSceneZ(p, s, ivec2(floor(pxf)));
       hit.iterations += 1;
-      if (sslrDdaOverlaps(zMin, zMax, zScene, d.thickness)) {
+      if (sslrDdaStepOverlaps(p, s, Qf.z, kf, dQ.z, dk, 0.5f, ivec2(floor(pxf)), d.thickness, prevFine)) {
         hitP = Pf;
         Q = Qf;
         k = kf;
