@@ -1,9 +1,24 @@
-// Composite: final = existing colour + resolved reflection (additive blending; alpha kept).
+// Composite, drawn with additive blending (alpha kept):
+//   default:                the resolved reflection's rgb (final = existing + reflection);
+//   SSLR_COMPOSITE_FALLBACK: coverage x the host's fallback specular, drawn first with a reverse
+//                            subtraction (final = existing - coverage x fallback), see composite.cpp.
 #include "sslr_shared.h"
 
-layout(binding = 4) uniform sampler2D uResolved;
+layout(binding = 4) uniform sampler2D uResolved;  // rgb = reflection, a = coverage
+#ifdef SSLR_COMPOSITE_FALLBACK
+layout(binding = 5) uniform sampler2D uFallbackSpecular;
+#endif
 layout(location = 0) out vec4 oColor;
 
 void main() {
-  oColor = vec4(texelFetch(uResolved, ivec2(gl_FragCoord.xy), 0).rgb, 0.0f);
+  ivec2 px = ivec2(gl_FragCoord.xy);
+  vec4 resolved = texelFetch(uResolved, px, 0);
+#ifdef SSLR_COMPOSITE_FALLBACK
+  vec3 fallback = texelFetch(uFallbackSpecular, px, 0).rgb;
+  // A poisoned fallback texel must not spread NaN into the host's frame.
+  if (any(isnan(fallback)) || any(isinf(fallback))) fallback = vec3(0.0f);
+  oColor = vec4(resolved.a * max(fallback, vec3(0.0f)), 0.0f);
+#else
+  oColor = vec4(resolved.rgb, 0.0f);
+#endif
 }

@@ -349,22 +349,33 @@ SSLR_FN float sslrReusedLength(vec3 vsP, vec3 vsR, vec3 vsH, vec3 vsNh) {
   return L > 0.0f ? L : -1.0f;
 }
 
-// Everything the pass does per pixel besides fetching: returns rgb weight (applied to the hit's
-// colour) in .x and the blur alpha in .y, given the traced hit and the pixel's material.
-// weight = Fresnel term x confidence x screen-edge fade x camera-facing fade, with the Fresnel term
-//   classic: reflectance * article Fresnel * article error term; schlick: Schlick(F0 = reflectance).
-SSLR_FN vec2 sslrReflectionWeights(SslrProjection p, SslrSurface s, SslrTraceParams t, SslrHit hit,
-                                   vec3 vsP, vec3 vsV, vec3 vsR, float cosVN, float reflectance,
-                                   float roughness) {
+// What a hit contributes to its pixel (everything the pass does per pixel besides fetching).
+//   coverage   how much of the pixel's specular the trace answers, 0..1: confidence x the tracer's
+//              own fade x screen-edge fade x camera-facing fade (x the article's error term in
+//              Classic mode). A host blends its fallback specular (probes, sky) by 1 - coverage.
+//   reflection the weight applied to the hit's colour: Fresnel term x coverage, with the Fresnel
+//              term reflectance x the article's Fresnel (Classic) or Schlick with F0 = reflectance.
+//   blurAlpha  the roughness blur's radius / blurMaxRadiusPx (stored in the reflection's alpha).
+struct SslrWeights {
+  float reflection;
+  float coverage;
+  float blurAlpha;
+};
+
+SSLR_FN SslrWeights sslrReflectionWeights(SslrProjection p, SslrSurface s, SslrTraceParams t, SslrHit hit,
+                                          vec3 vsP, vec3 vsV, vec3 vsR, float cosVN, float reflectance,
+                                          float roughness) {
   float distP = sslrViewDistance(p, vsP);
-  float fresnel = t.fresnelMode == SSLR_FRESNEL_CLASSIC
-                      ? reflectance * sslrFresnelClassic(cosVN) * sslrErrorWeight(p, vsP, hit.L, t.errorK)
-                      : sslrFresnelSchlick(reflectance, cosVN);
+  bool classic = t.fresnelMode == SSLR_FRESNEL_CLASSIC;
+  float fresnel = classic ? reflectance * sslrFresnelClassic(cosVN) : sslrFresnelSchlick(reflectance, cosVN);
+  float errorWeight = classic ? sslrErrorWeight(p, vsP, hit.L, t.errorK) : 1.0f;
   float radius = sslrBlurRadiusPx(p, s.height, distP, hit.L, roughness, t.blurConeScale);
-  float alpha = t.blurMaxRadiusPx > 0.0f ? sslrSaturate(radius / t.blurMaxRadiusPx) : 0.0f;
-  float fades = sslrEdgeFade(hit.uvHit, t.edgeFade) *
-                sslrCameraFacingFade(vsR, vsV, t.cameraFadeStart, t.cameraFadeEnd);
-  return vec2(fresnel * hit.confidence * hit.fade * fades, alpha);
+  SslrWeights w;
+  w.coverage = sslrSaturate(hit.confidence * hit.fade * errorWeight * sslrEdgeFade(hit.uvHit, t.edgeFade) *
+                            sslrCameraFacingFade(vsR, vsV, t.cameraFadeStart, t.cameraFadeEnd));
+  w.reflection = fresnel * w.coverage;
+  w.blurAlpha = t.blurMaxRadiusPx > 0.0f ? sslrSaturate(radius / t.blurMaxRadiusPx) : 0.0f;
+  return w;
 }
 
 #ifdef __cplusplus

@@ -1,5 +1,6 @@
 // Pass 2: trace over listed tiles. Writes the reflection (rgb = hit colour x weights, a = blur
-// weight) and, with SSLR_DEBUG_OUTPUTS, the hit and iteration images.
+// weight), the unblurred resolved output (same rgb, a = coverage) and, with SSLR_DEBUG_OUTPUTS,
+// the hit and iteration images.
 // Tracer: the depth-only tracer (adaptive L, with the hierarchical traversal as fallback or alone,
 // frame.trace.hizMode), or with SSLR_METHOD_POSITION_BUFFER the position-buffer march of
 // "3D Game Shaders For Beginners" on a stored position texture, or with SSLR_METHOD_DDA McGuire &
@@ -211,6 +212,7 @@ bool sslrReuseQuadHit(ivec2 px, vec3 vsP, vec3 vsN, vec3 vsR, out SslrHit hit) {
 void sslrShadePixel(ivec2 px) {
   SslrHit hit = sslrNoHit(SSLR_STATUS_NOT_TRACED);
   vec4 reflection = vec4(0.0f);
+  float coverage = 0.0f;
   bool ranTracer = false;  // stats: half resolution answers most pixels from their quad's ray
 
   SslrPixel q;
@@ -231,19 +233,21 @@ void sslrShadePixel(ivec2 px) {
     ranTracer = true;
 #endif
     if (hit.status == SSLR_STATUS_HIT) {
-      vec2 w = sslrReflectionWeights(frame.proj, frame.surface, frame.trace, hit, q.vsP, q.vsV, q.vsR, q.cosVN,
-                                     sslrReflectance(frame.surface, q.material),
-                                     sslrRoughness(frame.surface, q.material));
+      SslrWeights w = sslrReflectionWeights(frame.proj, frame.surface, frame.trace, hit, q.vsP, q.vsV, q.vsR,
+                                            q.cosVN, sslrReflectance(frame.surface, q.material),
+                                            sslrRoughness(frame.surface, q.material));
       vec3 color = textureLod(uColor, hit.uvHit, 0.0f).rgb;
       // Poisoned colour must not spread through the blur: NaN/Inf become 0, and the value is
       // kept inside RGBA16F's range.
       if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0f);
       color = clamp(color, vec3(0.0f), vec3(60000.0f));
-      reflection = vec4(color * w.x, w.y);
+      reflection = vec4(color * w.reflection, w.blurAlpha);
+      coverage = w.coverage;
     }
   }
   imageStore(uReflection, px, reflection);
-  imageStore(uResolved, px, reflection);
+  // Resolved before the blur: the same rgb with the coverage in alpha (the blur reads it from here).
+  imageStore(uResolved, px, vec4(reflection.rgb, coverage));
 #ifdef SSLR_DEBUG_OUTPUTS
   imageStore(uHit, px, vec4(hit.uvHit, hit.confidence, hit.L));
   imageStore(uIterations, px, vec4(float(hit.iterations)));

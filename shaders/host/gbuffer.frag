@@ -14,11 +14,14 @@ layout(location = 8) uniform int uHasTexture;
 layout(location = 9) uniform vec3 uVsLightDirection;  // direction the light travels, view space
 layout(location = 10) uniform vec3 uVsUp;             // world up in view space (sky ambient)
 layout(location = 11) uniform int uNormalEncoding;    // SSLR_NORMALS_*
+layout(location = 12) uniform vec3 uSky;              // the background colour: the environment
+layout(location = 13) uniform int uOrthographic;
 layout(binding = 0) uniform sampler2D uBaseColorTexture;
 
 layout(location = 0) out vec4 oColor;
 layout(location = 1) out vec4 oNormal;
 layout(location = 2) out vec4 oPosition;
+layout(location = 3) out vec4 oFallbackSpecular;
 
 void main() {
   vec3 n = normalize(vVsNormal);
@@ -30,7 +33,16 @@ void main() {
   float diffuse = max(dot(n, -uVsLightDirection), 0.0f);
   float ambient = 0.18f + 0.12f * dot(n, uVsUp);
   float kd = 1.0f - 0.85f * uMetallic;
-  oColor = vec4(base * kd * (0.85f * diffuse + ambient) + uEmission, 1.0f);
+  // Fallback specular, the stand-in for an engine's probes / IBL: the environment (the sky above the
+  // horizon, a dim ground below it) in the mirror direction, times the Fresnel term sslr's default
+  // (Classic) mode uses, so a traced reflection and the fallback meet without a seam.
+  vec3 vsV = uOrthographic != 0 ? vec3(0.0f, 0.0f, 1.0f) : normalize(-vVsPosition);
+  vec3 vsR = reflect(-vsV, n);
+  vec3 environment = mix(0.25f * uSky, uSky, smoothstep(-0.05f, 0.05f, dot(vsR, uVsUp)));
+  float cosVN = max(dot(vsV, n), 0.0f);
+  vec3 fallback = uReflectance * sslrFresnelClassic(cosVN) * environment;
+  oFallbackSpecular = vec4(fallback, 1.0f);
+  oColor = vec4(base * kd * (0.85f * diffuse + ambient) + uEmission + fallback, 1.0f);
   if (uNormalEncoding == SSLR_NORMALS_OCTAHEDRAL)
     oNormal = vec4(sslrOctEncode(n), uRoughness, uReflectance);
   else

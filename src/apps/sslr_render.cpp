@@ -146,6 +146,8 @@ int run(int argc, char** argv) {
       ("fresnel", "weighting: classic (the article) or schlick", cxxopts::value<std::string>()->default_value("classic"))
       ("iterations", "override the preset's adaptive-L iteration cap", cxxopts::value<std::string>())
       ("no-blur", "skip the roughness blur")
+      ("composite", "how the reflection enters final.png: blend (over the fallback specular, a sky/ground environment, by coverage) or add (on top of it)",
+       cxxopts::value<std::string>()->default_value("blend"))
       ("half-res", "one ray per 2x2 quad, reused by the quad's pixels on the same surface")
       ("object-thickness", "assumed depth of what the screen shows, fraction of its view depth (hierarchical traversal)", cxxopts::value<std::string>())
       ("depth", "depth convention: reversed, reversed-infinite, zero-to-one, gl-default",
@@ -186,6 +188,7 @@ int run(int argc, char** argv) {
   GBufferOptions gopt;
   Settings settings;
   bool reflections = true;
+  CompositeMode compositeMode = CompositeMode::BlendOverFallback;
   Camera camera;
   Scene scene;
   const fs::path outDir = args["out"].as<std::string>();
@@ -214,6 +217,10 @@ int run(int argc, char** argv) {
     } else if (method != "adaptive-l") {
       throw UsageError{"--method must be adaptive-l, hiz, dda, position-buffer or none (got '" + method + "')"};
     }
+    const std::string composite = args["composite"].as<std::string>();
+    if (composite == "blend") compositeMode = CompositeMode::BlendOverFallback;
+    else if (composite == "add") compositeMode = CompositeMode::Add;
+    else throw UsageError{"--composite must be blend or add (got '" + composite + "')"};
     if (args.count("no-hiz-fallback")) settings.hierarchicalFallback = false;
     if (args.count("half-res")) settings.halfResolution = true;
     settings.debugOutputs = dump || args.count("score") > 0;
@@ -274,6 +281,7 @@ int run(int argc, char** argv) {
     return kExitFailure;
   }
   FrameRenderer& r = *renderer.value();
+  r.setCompositeMode(compositeMode);
   GpuScene gpuScene(scene);
   if (Status s = r.render(gpuScene, camera, reflections ? &settings : nullptr); !s) {
     std::cerr << "sslr-render: " << s.message() << "\n";
@@ -285,6 +293,7 @@ int run(int argc, char** argv) {
     GBuffer& g = r.gbuffer();
     const Image depth = g.readDepth();
     files.push_back({"color.exr", {g.readColor(), {"R", "G", "B"}}});
+    files.push_back({"fallback.exr", {g.readFallbackSpecular(), {"R", "G", "B"}}});
     files.push_back({"normal.exr", {decodeNormals(g.readNormalPacked(), gopt.normals), {"R", "G", "B"}}});
     files.push_back({"depth.exr", {depth, {"Z"}}});
     files.push_back({"position.exr",

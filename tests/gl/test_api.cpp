@@ -246,6 +246,8 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   EXPECT_EQ(Snapshot::take().values, before.values) << "half-resolution dispatch changed GL state";
   ASSERT_TRUE(ctx->composite(hostFbo));
   EXPECT_EQ(Snapshot::take().values, before.values) << "composite changed GL state";
+  ASSERT_TRUE(ctx->composite(hostFbo, {CompositeMode::BlendOverFallback, f.gbuffer->fallbackSpecularTexture()}));
+  EXPECT_EQ(Snapshot::take().values, before.values) << "composite over the fallback changed GL state";
 
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glBindVertexArray(0);

@@ -32,14 +32,19 @@ FrameRenderer::~FrameRenderer() {
 Status FrameRenderer::render(const GpuScene& scene, const Camera& camera, const Settings* settings,
                              glm::dvec2 jitterPx) {
   if (Status s = gbuffer_->render(scene, camera, jitterPx); !s) return s;
-  // final = lit colour, then sslr adds the resolved reflection on top (additive composite).
+  // final = lit colour (which includes the fallback specular), then sslr's reflection replaces the
+  // fallback where it has coverage (BlendOverFallback), or is added on top (Add).
   const int w = gbuffer_->width(), h = gbuffer_->height();
   glNamedFramebufferReadBuffer(gbuffer_->framebuffer(), GL_COLOR_ATTACHMENT0);
   glBlitNamedFramebuffer(gbuffer_->framebuffer(), finalFbo_, 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT,
                          GL_NEAREST);
   if (settings == nullptr) return {};
   if (Status s = sslr_->dispatch(gbuffer_->frameInputs(), *settings); !s) return s;
-  return sslr_->composite(finalFbo_);
+  CompositeOptions composite;
+  composite.mode = compositeMode_;
+  if (compositeMode_ == CompositeMode::BlendOverFallback)
+    composite.fallbackSpecularTexture = gbuffer_->fallbackSpecularTexture();
+  return sslr_->composite(finalFbo_, composite);
 }
 
 Image FrameRenderer::readFinal() const { return readTexture(final_, gbuffer_->width(), gbuffer_->height(), 3); }

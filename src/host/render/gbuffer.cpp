@@ -115,13 +115,16 @@ Expected<std::unique_ptr<GBuffer>> GBuffer::create(const GBufferOptions& o) {
   g->depth_ = make(o.depth == DepthMode::GlDefault ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT32F,
                    "host.gbuffer.depth");
   if (o.withPosition) g->position_ = make(GL_RGBA32F, "host.gbuffer.position");
+  g->fallback_ = make(GL_R11F_G11F_B10F, "host.fallbackSpecular");
   glCreateFramebuffers(1, &g->fbo_);
   glNamedFramebufferTexture(g->fbo_, GL_COLOR_ATTACHMENT0, g->color_, 0);
   glNamedFramebufferTexture(g->fbo_, GL_COLOR_ATTACHMENT1, g->normal_, 0);
   if (g->position_ != 0) glNamedFramebufferTexture(g->fbo_, GL_COLOR_ATTACHMENT2, g->position_, 0);
+  glNamedFramebufferTexture(g->fbo_, GL_COLOR_ATTACHMENT3, g->fallback_, 0);
   glNamedFramebufferTexture(g->fbo_, GL_DEPTH_ATTACHMENT, g->depth_, 0);
-  const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-  glNamedFramebufferDrawBuffers(g->fbo_, g->position_ != 0 ? 3 : 2, buffers);
+  const GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
+                             g->position_ != 0 ? GLenum(GL_COLOR_ATTACHMENT2) : GLenum(GL_NONE), GL_COLOR_ATTACHMENT3};
+  glNamedFramebufferDrawBuffers(g->fbo_, 4, buffers);
   if (glCheckNamedFramebufferStatus(g->fbo_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     return Status::error("G-buffer framebuffer is incomplete");
   auto vs = compile(GL_VERTEX_SHADER, "host/gbuffer.vert");
@@ -149,8 +152,8 @@ Expected<std::unique_ptr<GBuffer>> GBuffer::create(const GBufferOptions& o) {
 
 GBuffer::~GBuffer() {
   glDeleteFramebuffers(1, &fbo_);
-  const GLuint textures[4] = {color_, normal_, depth_, position_};
-  glDeleteTextures(4, textures);
+  const GLuint textures[5] = {color_, normal_, depth_, position_, fallback_};
+  glDeleteTextures(5, textures);
   glDeleteProgram(program_);
 }
 
@@ -176,6 +179,7 @@ Status GBuffer::render(const GpuScene& gpu, const Camera& camera, glm::dvec2 jit
   glClearNamedFramebufferfv(fbo_, GL_COLOR, 0, background);
   glClearNamedFramebufferfv(fbo_, GL_COLOR, 1, zero);
   if (position_ != 0) glClearNamedFramebufferfv(fbo_, GL_COLOR, 2, zero);
+  glClearNamedFramebufferfv(fbo_, GL_COLOR, 3, zero);
   const float clearDepth = reversed ? 0.0f : 1.0f;
   glClearNamedFramebufferfv(fbo_, GL_DEPTH, 0, &clearDepth);
 
@@ -185,6 +189,8 @@ Status GBuffer::render(const GpuScene& gpu, const Camera& camera, glm::dvec2 jit
   const glm::vec3 vsUp = glm::normalize(glm::vec3(viewFromWorld_ * glm::dvec4(0.0, 1.0, 0.0, 0.0)));
   glProgramUniform3fv(program_, 9, 1, &vsLight.x);
   glProgramUniform3fv(program_, 10, 1, &vsUp.x);
+  glProgramUniform3fv(program_, 12, 1, &scene.background.x);
+  glProgramUniform1i(program_, 13, camera.orthographic ? 1 : 0);
   glProgramUniform1i(program_, 11, options_.normals == NormalEncoding::Octahedral ? SSLR_NORMALS_OCTAHEDRAL
                                                                                   : SSLR_NORMALS_XYZ_UNORM);
   for (const GpuScene::Draw& d : gpu.draws()) {
@@ -248,6 +254,7 @@ Image readTexture(GLuint texture, int width, int height, int channels, GLenum fo
 }
 
 Image GBuffer::readColor() const { return readTexture(color_, width(), height(), 3); }
+Image GBuffer::readFallbackSpecular() const { return readTexture(fallback_, width(), height(), 3); }
 Image GBuffer::readNormalPacked() const { return readTexture(normal_, width(), height(), 4); }
 Image GBuffer::readDepth() const { return readTexture(depth_, width(), height(), 1, GL_DEPTH_COMPONENT); }
 Image GBuffer::readPosition() const {

@@ -1,4 +1,4 @@
-// composite(): adds the resolved reflection to the host's framebuffer over the listed tiles.
+// composite(): puts the resolved reflection into the host's framebuffer over the listed tiles.
 #include <algorithm>
 
 #include "context_impl.hpp"
@@ -6,27 +6,48 @@
 
 namespace sslr {
 
-Status Context::Impl::composite(GLName framebuffer) {
+Status Context::Impl::composite(GLName framebuffer, const CompositeOptions& options) {
   if (!haveFrame)
     return Status::error("sslr: composite() needs a successful dispatch() first");
   if (framebuffer != 0 && !gl.IsFramebuffer(framebuffer))
     return Status::error("sslr: composite(): " + std::to_string(framebuffer) +
                          " is not a framebuffer name");
-  auto prog = program({{GL_VERTEX_SHADER, "composite.vert"}, {GL_FRAGMENT_SHADER, "composite.frag"}}, "");
-  if (!prog) return Status::error(prog.error());
+  const bool blendOverFallback = options.mode == CompositeMode::BlendOverFallback;
+  if (options.mode != CompositeMode::Add && !blendOverFallback)
+    return Status::error("sslr: composite(): CompositeOptions::mode " +
+                         std::to_string(static_cast<int>(options.mode)) + " is not a CompositeMode");
+  if (blendOverFallback) {
+    if (Status s = checkTexture(options.fallbackSpecularTexture, "CompositeOptions::fallbackSpecularTexture",
+                                FormatInfo::Color, 3);
+        !s)
+      return Status::error(s.message() + " (CompositeMode::BlendOverFallback reads it)");
+  } else if (options.fallbackSpecularTexture != 0) {
+    return Status::error("sslr: composite(): CompositeOptions::fallbackSpecularTexture is set but the mode "
+                         "is Add, which does not read it (use CompositeMode::BlendOverFallback)");
+  }
+  const std::vector<std::pair<GLenum, const char*>> stages = {{GL_VERTEX_SHADER, "composite.vert"},
+                                                               {GL_FRAGMENT_SHADER, "composite.frag"}};
+  auto addProgram = program(stages, "");
+  if (!addProgram) return Status::error(addProgram.error());
+  Expected<GLuint> fallbackProgram = GLuint(0);
+  if (blendOverFallback) {
+    fallbackProgram = program(stages, "#define SSLR_COMPOSITE_FALLBACK 1\n");
+    if (!fallbackProgram) return Status::error(fallbackProgram.error());
+  }
   detail::StateGuard guard(gl, true);
   gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
   if (gl.CheckNamedFramebufferStatus(framebuffer, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     return Status::error("sslr: composite(): framebuffer " + std::to_string(framebuffer) +
                          " is not complete");
   gl.PushDebugGroup(GL_DEBUG_SOURCE_THIRD_PARTY, 0, -1, "sslr.composite");
-  gl.UseProgram(prog.value());
   gl.BindVertexArray(vao);
   gl.BindBufferBase(GL_UNIFORM_BUFFER, SSLR_BINDING_FRAME_UBO, frameUbo);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_TILE_SSBO, tileBuffer);
   gl.BindBuffer(GL_DRAW_INDIRECT_BUFFER, tileBuffer);
   gl.BindTextureUnit(4, resolved);
   gl.BindSampler(4, nearestSampler);
+  gl.BindTextureUnit(5, blendOverFallback ? options.fallbackSpecularTexture : 0);
+  gl.BindSampler(5, nearestSampler);
   gl.Viewport(0, 0, width, height);
   gl.PolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   gl.Disable(GL_DEPTH_TEST);
@@ -34,15 +55,24 @@ Status Context::Impl::composite(GLName framebuffer) {
   gl.Disable(GL_CULL_FACE);
   gl.Disable(GL_SCISSOR_TEST);
   gl.Disable(GL_RASTERIZER_DISCARD);
-  // Draw buffer 0 gets colour + reflection (its alpha kept); other draw buffers are masked.
+  // Draw buffer 0 only (its alpha kept); other draw buffers are masked.
   gl.Enablei(GL_BLEND, 0);
   gl.BlendFuncSeparatei(0, GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
-  gl.BlendEquationSeparatei(0, GL_FUNC_ADD, GL_FUNC_ADD);
   gl.ColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   GLint maxDrawBuffers = 0;
   gl.GetIntegerv(GL_MAX_DRAW_BUFFERS, &maxDrawBuffers);
   for (GLint i = 1; i < std::min(maxDrawBuffers, 8); ++i) gl.ColorMaski(i, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   // 6 vertices per listed tile, instance count written by classification (offset 12 bytes).
+  if (blendOverFallback) {
+    // existing - coverage * fallback first, as a subtraction by the blender: a fixed-point target
+    // clamps a negative source to 0 before blending, so "reflection - coverage * fallback" cannot
+    // be one additive draw.
+    gl.UseProgram(fallbackProgram.value());
+    gl.BlendEquationSeparatei(0, GL_FUNC_REVERSE_SUBTRACT, GL_FUNC_ADD);
+    gl.DrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(kDrawArgsOffset));
+  }
+  gl.UseProgram(addProgram.value());
+  gl.BlendEquationSeparatei(0, GL_FUNC_ADD, GL_FUNC_ADD);
   gl.DrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(kDrawArgsOffset));
   gl.PopDebugGroup();
   return {};

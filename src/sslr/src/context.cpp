@@ -153,7 +153,9 @@ int Context::height() const { return impl_->height; }
 Status Context::dispatch(const FrameInputs& inputs, const Settings& settings) {
   return impl_->dispatch(inputs, settings);
 }
-Status Context::composite(GLName framebuffer) { return impl_->composite(framebuffer); }
+Status Context::composite(GLName framebuffer, const CompositeOptions& options) {
+  return impl_->composite(framebuffer, options);
+}
 GLName Context::reflectionTexture() const { return impl_->reflection; }
 GLName Context::resolvedTexture() const { return impl_->resolved; }
 GLName Context::hitTexture() const { return impl_->hit; }

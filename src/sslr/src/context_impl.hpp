@@ -94,7 +94,7 @@ struct Context::Impl {
   void buildPyramid(GLuint prog) const;
   Status dispatch(const FrameInputs& in, const Settings& settings);
   // composite.cpp
-  Status composite(GLName framebuffer);
+  Status composite(GLName framebuffer, const CompositeOptions& options);
   // stats.cpp: reads the slots whose fence has signalled (the newest wins); with `waitNewest`,
   // first waits for the newest pending one.
   void harvestStats(bool waitNewest) const;

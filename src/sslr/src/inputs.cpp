@@ -44,7 +44,7 @@ FormatInfo formatInfo(GLint f) {
 Status Context::Impl::checkTexture(GLName tex, const char* what, FormatInfo::Kind kind, int minChannels,
                                    FormatInfo* infoOut) const {
   std::ostringstream where;
-  where << "sslr: FrameInputs::" << what << " (texture " << tex << ")";
+  where << "sslr: " << what << " (texture " << tex << ")";
   if (tex == 0) return Status::error(where.str() + " is 0: the texture is required");
   if (!gl.IsTexture(tex)) return Status::error(where.str() + " is not a texture name");
   GLint target = 0;
@@ -82,15 +82,15 @@ Status Context::Impl::checkTexture(GLName tex, const char* what, FormatInfo::Kin
 }
 
 Status Context::Impl::checkInputs(const FrameInputs& in, Method method) const {
-  if (Status s = checkTexture(in.depthTexture, "depthTexture", FormatInfo::Depth, 1); !s) return s;
+  if (Status s = checkTexture(in.depthTexture, "FrameInputs::depthTexture", FormatInfo::Depth, 1); !s) return s;
   if (method == Method::PositionBuffer) {
-    if (Status s = checkTexture(in.positionTexture, "positionTexture", FormatInfo::Color, 4); !s)
+    if (Status s = checkTexture(in.positionTexture, "FrameInputs::positionTexture", FormatInfo::Color, 4); !s)
       return Status::error(s.message() + " (Method::PositionBuffer needs a view-space position texture)");
   }
-  if (Status s = checkTexture(in.colorTexture, "colorTexture", FormatInfo::Color, 3); !s) return s;
+  if (Status s = checkTexture(in.colorTexture, "FrameInputs::colorTexture", FormatInfo::Color, 3); !s) return s;
   const int normalChannels = in.surface.normals == NormalEncoding::Octahedral ? 2 : 3;
   FormatInfo normalInfo;
-  if (Status s = checkTexture(in.normalTexture, "normalTexture", FormatInfo::Color, normalChannels,
+  if (Status s = checkTexture(in.normalTexture, "FrameInputs::normalTexture", FormatInfo::Color, normalChannels,
                               &normalInfo);
       !s)
     return s;
@@ -99,12 +99,12 @@ Status Context::Impl::checkInputs(const FrameInputs& in, Method method) const {
   const bool separate = in.materialTexture != 0;
   FormatInfo materialInfo = normalInfo;
   if (separate) {
-    if (Status s = checkTexture(in.materialTexture, "materialTexture", FormatInfo::Color, 1, &materialInfo); !s)
+    if (Status s = checkTexture(in.materialTexture, "FrameInputs::materialTexture", FormatInfo::Color, 1, &materialInfo); !s)
       return s;
   }
   const char* materialName = separate ? "materialTexture" : "normalTexture";
   if (in.maskTexture != 0) {
-    if (Status s = checkTexture(in.maskTexture, "maskTexture", FormatInfo::Color, 1); !s) return s;
+    if (Status s = checkTexture(in.maskTexture, "FrameInputs::maskTexture", FormatInfo::Color, 1); !s) return s;
   }
   auto checkChannel = [&](int channel, const char* name) -> Status {
     if (channel < -1 || channel > 3)

@@ -201,19 +201,20 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
                    GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 
   timestamp(3);
-  // The trace wrote resolved = reflection everywhere; the separable blur (reflection -> blurTemp
-  // -> resolved) runs only over the tiles the trace listed as having a pixel to blur.
+  // The trace wrote resolved = (reflection rgb, coverage) everywhere; the separable blur (resolved
+  // -> blurTemp -> resolved, radii from the reflection's alpha) runs only over the tiles the trace
+  // listed as having a pixel to blur.
   if (blur) {
-    gl.BindSampler(3, nearestSampler);
-    gl.BindSampler(4, nearestSampler);
+    for (GLuint unit : {3u, 4u, 5u}) gl.BindSampler(unit, nearestSampler);
     gl.UseProgram(blurH.value());
-    gl.BindTextureUnit(3, reflection);
+    gl.BindTextureUnit(3, resolved);
+    gl.BindTextureUnit(4, reflection);
     gl.BindImageTexture(0, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl.DispatchComputeIndirect(kBlurDispatchOffset);
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     gl.UseProgram(blurV.value());
     gl.BindTextureUnit(3, blurTemp);
-    gl.BindTextureUnit(4, reflection);
+    gl.BindTextureUnit(5, resolved);  // read where blurTemp is not written (see blur.comp)
     gl.BindImageTexture(0, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl.DispatchComputeIndirect(kBlurDispatchOffset);
   }

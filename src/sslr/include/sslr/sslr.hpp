@@ -10,6 +10,8 @@
 //   if (auto st = ctx.value()->dispatch(in, sslr::Settings::preset(sslr::Preset::High)); !st)
 //     log(st.message());
 //   ctx.value()->composite(hostFramebuffer);   // adds the resolved reflection to what is there
+//   // or, where the host's lighting already added a fallback specular (probes, sky) it keeps:
+//   ctx.value()->composite(hostFramebuffer, {sslr::CompositeMode::BlendOverFallback, fallbackTex});
 //
 // The library loads its own GL function table from the host's getProcAddress (no global gl*
 // symbols, no loader clash), owns only the objects it creates, and restores every piece of GL
@@ -214,6 +216,24 @@ struct FrameStats {  // filled when Settings::collectStats is set
   double blurMs = -1.0;             // the roughness blur
 };
 
+// How composite() puts the resolved reflection into the host's framebuffer.
+enum class CompositeMode {
+  // final = existing + reflection. For hosts with no other specular source for these pixels.
+  Add,
+  // final = existing - coverage * fallback + reflection: the framebuffer already holds the host's
+  // fallback specular (probes, IBL, sky), given again as CompositeOptions::fallbackSpecularTexture;
+  // where the trace answers (coverage) the reflection replaces it, elsewhere it stays. Equivalent
+  // to blending reflection over fallback by coverage, without double-counting specular.
+  BlendOverFallback,
+};
+
+struct CompositeOptions {
+  CompositeMode mode = CompositeMode::Add;
+  // BlendOverFallback only: the host's fallback specular radiance, already weighted by its BRDF
+  // (what its lighting added to the framebuffer for reflections). rgb is read; the context's size.
+  GLName fallbackSpecularTexture = 0;
+};
+
 class Context {
  public:
   static Expected<std::unique_ptr<Context>> create(const ContextDesc& desc);
@@ -228,12 +248,16 @@ class Context {
   // Traces, blurs and resolves one frame. The inputs stay the host's; sizes must match.
   Status dispatch(const FrameInputs& inputs, const Settings& settings);
 
-  // Adds the resolved reflection to the colour attachment(s) of `framebuffer` (0 = default)
-  // over the viewport (0, 0, width, height): final = existing colour + resolved.rgb.
-  Status composite(GLName framebuffer);
+  // Puts the resolved reflection into colour attachment 0 of `framebuffer` (0 = default) over
+  // (0, 0, width, height), by options.mode (see CompositeMode); its alpha is kept. Draws only the
+  // tiles that had a reflective pixel (elsewhere coverage and reflection are 0).
+  Status composite(GLName framebuffer, const CompositeOptions& options = {});
 
-  GLName reflectionTexture() const;  // RGBA16F: rgb = weighted reflection, a = blur weight
-  GLName resolvedTexture() const;    // RGBA16F: after the roughness blur (what composite adds)
+  // The production output: rgb = reflected radiance already weighted by Fresnel and coverage,
+  // a = coverage (0..1, how much of the pixel's specular the trace answers), after the roughness
+  // blur (which blurs both alike). Valid on the tiles a dispatch traced, 0 elsewhere.
+  GLName resolvedTexture() const;    // RGBA16F
+  GLName reflectionTexture() const;  // RGBA16F, before the blur: rgb as above, a = blur weight
   GLName hitTexture() const;         // RGBA32F (debugOutputs): uvHit, confidence, L
   GLName iterationsTexture() const;  // R32F (debugOutputs): adaptive-L iterations run
   // Stats never stall the pipeline: each dispatch with collectStats records into a ring of 4

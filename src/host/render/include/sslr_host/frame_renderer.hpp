@@ -18,6 +18,10 @@ class FrameRenderer {
   Status render(const GpuScene& scene, const Camera& camera, const Settings* settings,
                 glm::dvec2 jitterPx = {0.0, 0.0});
 
+  // How the reflection enters the final image (default: over the G-buffer pass's fallback specular).
+  void setCompositeMode(CompositeMode mode) { compositeMode_ = mode; }
+  CompositeMode compositeMode() const { return compositeMode_; }
+
   GBuffer& gbuffer() { return *gbuffer_; }
   Context& sslr() { return *sslr_; }
   GLuint finalTexture() const { return final_; }
@@ -32,6 +36,7 @@ class FrameRenderer {
   std::unique_ptr<GBuffer> gbuffer_;
   std::unique_ptr<Context> sslr_;
   GLuint final_ = 0, finalFbo_ = 0;
+  CompositeMode compositeMode_ = CompositeMode::BlendOverFallback;
 };
 
 }  // namespace sslr::host

@@ -5,6 +5,9 @@
 //   depth   D32F (D24 for GlDefault)                                                 4 B/px
 // and nothing else: 16 B/px in all. A view-space position texture (RGBA32F) is added only on
 // request, for tests and the position-buffer comparison.
+// The same pass writes the host's fallback specular (R11F_G11F_B10F: Fresnel x a sky/ground
+// environment, what a probe or IBL gives an engine); it is already part of the lit colour, and
+// sslr's BlendOverFallback composite swaps it for the traced reflection where that has coverage.
 #pragma once
 
 #include <memory>
@@ -69,6 +72,7 @@ class GBuffer {
   GLuint normalTexture() const { return normal_; }
   GLuint depthTexture() const { return depth_; }
   GLuint positionTexture() const { return position_; }
+  GLuint fallbackSpecularTexture() const { return fallback_; }
   GLuint framebuffer() const { return fbo_; }
   const glm::dmat4& clipFromView() const { return clipFromView_; }
   const glm::dmat4& viewFromWorld() const { return viewFromWorld_; }
@@ -83,11 +87,12 @@ class GBuffer {
   Image readNormalPacked() const;  // RGBA as stored
   Image readDepth() const;         // 1 channel, raw window depth
   Image readPosition() const;      // RGBA32F position texture (withPosition only)
+  Image readFallbackSpecular() const;  // RGB
 
  private:
   GBuffer() = default;
   GBufferOptions options_;
-  GLuint fbo_ = 0, color_ = 0, normal_ = 0, depth_ = 0, position_ = 0, program_ = 0;
+  GLuint fbo_ = 0, color_ = 0, normal_ = 0, depth_ = 0, position_ = 0, fallback_ = 0, program_ = 0;
   glm::dmat4 clipFromView_{1.0}, viewFromWorld_{1.0};
 };
 
