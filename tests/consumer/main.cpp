@@ -9,7 +9,8 @@
 // needs the host's GL context). If it stops compiling, the documentation is wrong.
 [[maybe_unused]] static void quickStart(int width, int height, sslr::GetProcAddress eglGetProcAddress,
                                         sslr::GLName colorTex, sslr::GLName normalTex, sslr::GLName depthTex,
-                                        const glm::dmat4& clipFromView, sslr::GLName hostFramebuffer) {
+                                        const glm::dmat4& clipFromView, sslr::GLName hostFramebuffer,
+                                        sslr::GLName fallbackTex) {
   auto log = [](const std::string& text) { std::fprintf(stderr, "%s\n", text.c_str()); };
   auto ctx = sslr::Context::create({width, height, eglGetProcAddress});   // once
   if (!ctx) log(ctx.error());
@@ -19,6 +20,8 @@
   if (auto st = ctx.value()->dispatch(in, sslr::Settings::preset(sslr::Preset::High)); !st)
     log(st.message());
   ctx.value()->composite(hostFramebuffer);   // adds the resolved reflection to what is there
+  // or, where the host's lighting already added a fallback specular (probes, sky) it keeps:
+  ctx.value()->composite(hostFramebuffer, {sslr::CompositeMode::BlendOverFallback, fallbackTex});
 }
 
 int main() {
