@@ -19,8 +19,14 @@
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 
 #ifdef SSLR_CLEANUP
+#ifdef SSLR_CLEANUP_HISTORY
+// Temporal reuse, after this frame's history is stored: the tiles traced last frame and not now
+// lose their history keys, so next frame finds history only where this frame stored it.
+layout(binding = 2, r32f) uniform writeonly image2D uHistoryKey;
+#else
 layout(binding = 0, rgba16f) uniform writeonly image2D uReflection;
 layout(binding = 3, rgba16f) uniform writeonly image2D uResolved;
+#endif
 
 void main() {
   uint entry = tiles.tileCoords[4u * sslrTileCapacity() + gl_WorkGroupID.x];
@@ -28,8 +34,12 @@ void main() {
   if (tiles.tileCoords[sslrTileListedStamp(tile)] == uint(frame.trace.frameIndex)) return;  // traced again
   ivec2 px = ivec2(tile) * SSLR_TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
   if (!sslrInside(px)) return;
+#ifdef SSLR_CLEANUP_HISTORY
+  imageStore(uHistoryKey, px, vec4(0.0f));
+#else
   imageStore(uReflection, px, vec4(0.0f));
   imageStore(uResolved, px, vec4(0.0f));
+#endif
 }
 #elif defined(SSLR_PYRAMID_ARGS)
 void main() {

@@ -26,6 +26,7 @@ using glm::uvec2;
 using glm::vec2;
 using glm::vec3;
 using glm::vec4;
+using glm::mat4;
 using uint = std::uint32_t;
 using glm::abs;
 using glm::clamp;
@@ -178,6 +179,15 @@ struct SslrDdaParams {
   int pad1;
 };
 
+// Temporal reuse (Settings::temporal): the previous frame's output, reprojected.
+struct SslrTemporalParams {
+  mat4 previousClipFromView;  // this frame's view space -> the previous frame's clip space
+  float historyWeight;        // share of the (clamped) history in the output, [0, 1)
+  float keyTolerance;         // history valid where its key is within this relative difference
+  int history;                // 1: the history textures hold the previous frame (else ignore them)
+  int pad0;
+};
+
 #ifdef __cplusplus
 #define SSLR_FRAME_BLOCK_BEGIN struct SslrFrame {
 #define SSLR_FRAME_BLOCK_END };
@@ -192,6 +202,7 @@ SSLR_FRAME_BLOCK_BEGIN
   SslrTraceParams trace;
   SslrPositionParams positionBuffer;
   SslrDdaParams dda;
+  SslrTemporalParams temporal;
 SSLR_FRAME_BLOCK_END
 
 #ifdef __cplusplus
@@ -227,7 +238,9 @@ static_assert(sizeof(SslrPositionParams) == 16, "std140 mirror");
 static_assert(offsetof(SslrFrame, positionBuffer) == 240, "std140 mirror");
 static_assert(sizeof(SslrDdaParams) == 32, "std140 mirror");
 static_assert(offsetof(SslrFrame, dda) == 256, "std140 mirror");
-static_assert(sizeof(SslrFrame) == 288, "std140 mirror");
+static_assert(sizeof(SslrTemporalParams) == 80, "std140 mirror");
+static_assert(offsetof(SslrFrame, temporal) == 288, "std140 mirror");
+static_assert(sizeof(SslrFrame) == 368, "std140 mirror");
 #endif
 
 // ---- Pure math ----------------------------------------------------------------------------
@@ -467,6 +480,37 @@ SSLR_FN float sslrBlurRadiusPx(SslrProjection p, float heightPx, float dist, flo
   float spread = L * roughness * roughness * coneScale;
   float imageDist = p.orthographic != 0 ? 1.0f : dist + L;
   return spread / sslrPixelFootprint(p, heightPx, imageDist);
+}
+
+// ---- Temporal reuse ----------------------------------------------------------------------------
+// The history key of a view-space point: what tells a surface from the one that hid it. Under a
+// perspective projection the view depth (clip w), under an orthographic one NDC z (linear in
+// depth there, and clip w is 1). Always > 0 for visible geometry (0 marks "no history").
+SSLR_FN float sslrHistoryKeyFromClip(int orthographic, vec4 clip) {
+  return orthographic != 0 ? 2.0f + clip.z / clip.w : clip.w;
+}
+
+// This frame's key of view-space point P (the same quantity as sslrHistoryKeyFromClip).
+SSLR_FN float sslrHistoryKey(SslrProjection p, vec3 vsP) {
+  return p.orthographic != 0 ? 2.0f + sslrNdcFromView(p, vsP).z : sslrClipW(p, vsP);
+}
+
+// Where view-space point P (this frame) was in the previous frame: its uv there and its key
+// there. False when it was behind the previous camera or outside its screen.
+SSLR_FN bool sslrReproject(SslrProjection p, mat4 previousClipFromView, vec3 vsP, SSLR_OUT(vec2) uvPrevious,
+                           SSLR_OUT(float) keyPrevious) {
+  vec4 clip = previousClipFromView * vec4(vsP, 1.0f);
+  uvPrevious = vec2(-1.0f);
+  keyPrevious = 0.0f;
+  if (!(clip.w > 0.0f)) return false;
+  uvPrevious = sslrUvFromNdc(vec2(clip.x, clip.y) / clip.w);
+  keyPrevious = sslrHistoryKeyFromClip(p.orthographic, clip);
+  return uvPrevious.x >= 0.0f && uvPrevious.y >= 0.0f && uvPrevious.x <= 1.0f && uvPrevious.y <= 1.0f;
+}
+
+// Whether a stored history key belongs to the same surface as the expected one.
+SSLR_FN bool sslrHistoryKeyMatches(float stored, float expected, float tolerance) {
+  return stored > 0.0f && abs(stored - expected) <= tolerance * expected;
 }
 
 #ifdef __cplusplus

@@ -255,3 +255,46 @@ TEST(Weights, ClassicErrorTermIsScaleFree) {
 }
 
 }  // namespace
+
+namespace {
+
+// Temporal reuse's reprojection: a static point seen from a camera that has since moved sat
+// elsewhere in the previous view; its previous uv follows from the previous projection, and the key is the previous view depth (perspective) or 2 + NDC z (orthographic), matching what
+// sslrHistoryKey stores for the same point seen from there.
+TEST(Temporal, ReprojectionFollowsTheCamera) {
+  for (bool ortho : {false, true}) {
+    Camera cam;
+    cam.orthographic = ortho;
+    cam.nearPlane = 0.1;
+    cam.farPlane = 100.0;
+    const glm::dmat4 clipFromView = cam.clipFromView(DepthMode::Reversed, 16.0 / 9.0);
+    auto reduced = detail::reduceProjection(clipFromView, depthConvention(DepthMode::Reversed));
+    ASSERT_TRUE(reduced);
+    const SslrProjection p = reduced.value();
+    const glm::dvec3 vsNow(0.4, -0.3, -6.0), moved(0.25, 0.0, 0.5);
+    // previousViewFromView = a translation by `moved`: the static point sat at vsNow + moved.
+    const glm::dmat4 previousClipFromView = clipFromView * glm::dmat4(1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0, 0,
+                                                                      moved.x, moved.y, moved.z, 1.0);
+    glm::vec2 uv;
+    float key = 0.0f;
+    ASSERT_TRUE(sslrReproject(p, glm::mat4(previousClipFromView), glm::vec3(vsNow), uv, key));
+    const glm::dvec3 vsThen = vsNow + moved;
+    const glm::dvec4 clip = clipFromView * glm::dvec4(vsThen, 1.0);
+    EXPECT_NEAR(uv.x, clip.x / clip.w * 0.5 + 0.5, 1e-6);
+    EXPECT_NEAR(uv.y, clip.y / clip.w * 0.5 + 0.5, 1e-6);
+    EXPECT_NEAR(key, sslrHistoryKey(p, glm::vec3(vsThen)), 1e-5f * key);
+    if (!ortho) EXPECT_NEAR(key, -vsThen.z, 1e-5);
+    EXPECT_TRUE(sslrHistoryKeyMatches(sslrHistoryKey(p, glm::vec3(vsThen)), key, 0.02f));
+    // A surface 5% nearer (what hid the point) does not match; nothing stored (0) never does.
+    const float nearer = sslrHistoryKey(p, glm::vec3(vsThen * 0.95));
+    if (!ortho) EXPECT_FALSE(sslrHistoryKeyMatches(nearer, key, 0.02f));
+    EXPECT_FALSE(sslrHistoryKeyMatches(0.0f, key, 0.02f));
+    // Behind the previous camera or off its screen: no history.
+    const glm::dmat4 behind = clipFromView * glm::dmat4(1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 10.0, 1.0);
+    if (!ortho) EXPECT_FALSE(sslrReproject(p, glm::mat4(behind), glm::vec3(vsNow), uv, key));
+    const glm::dmat4 aside = clipFromView * glm::dmat4(1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0, 0, 50.0, 0, 0, 1.0);
+    EXPECT_FALSE(sslrReproject(p, glm::mat4(aside), glm::vec3(vsNow), uv, key));
+  }
+}
+
+}  // namespace

@@ -244,6 +244,12 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   half.halfResolution = true;  // three more passes, two more textures and a buffer
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), half));
   EXPECT_EQ(Snapshot::take().values, before.values) << "half-resolution dispatch changed GL state";
+  Settings temporal = s;
+  temporal.temporal = true;  // two more passes, two more textures (the second dispatch reads them)
+  FrameInputs withPrevious = f.gbuffer->frameInputs();
+  withPrevious.previousClipFromView = withPrevious.clipFromView;
+  for (int i = 0; i < 2; ++i) ASSERT_TRUE(ctx->dispatch(withPrevious, temporal));
+  EXPECT_EQ(Snapshot::take().values, before.values) << "temporal dispatch changed GL state";
   ASSERT_TRUE(ctx->composite(hostFbo));
   EXPECT_EQ(Snapshot::take().values, before.values) << "composite changed GL state";
   ASSERT_TRUE(ctx->composite(hostFbo, {CompositeMode::BlendOverFallback, f.gbuffer->fallbackSpecularTexture()}));

@@ -44,10 +44,11 @@ void Context::Impl::createTargets() {
 }
 
 void Context::Impl::destroyTargets() {
-  GLuint textures[] = {reflection, blurTemp, resolved, hit, iterations, hiz, quadHit, quadSurface};
-  gl.DeleteTextures(8, textures);
+  GLuint textures[] = {reflection, blurTemp, resolved, hit, iterations, hiz, quadHit, quadSurface, history, historyKey};
+  gl.DeleteTextures(10, textures);
   gl.DeleteBuffers(1, &retraceBuffer);
-  quadHit = quadSurface = retraceBuffer = 0;
+  quadHit = quadSurface = retraceBuffer = history = historyKey = 0;
+  historyValid = false;
   GLuint buffers[] = {tileBuffer};
   gl.DeleteBuffers(1, buffers);
   reflection = blurTemp = resolved = hit = iterations = hiz = tileBuffer = 0;
@@ -59,7 +60,7 @@ void Context::Impl::destroy() {
   gl.DeleteBuffers(1, &frameUbo);
   for (StatsSlot& slot : statsRing) {
     gl.DeleteBuffers(1, &slot.buffer);
-    gl.DeleteQueries(5, slot.queries);
+    gl.DeleteQueries(Impl::kTimestamps, slot.queries);
     if (slot.fence != nullptr) gl.DeleteSync(slot.fence);
     slot = {};
   }
@@ -111,7 +112,7 @@ Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
     gl.CreateBuffers(1, &slot.buffer);
     gl.NamedBufferStorage(slot.buffer, 8 * sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT);
     impl->label(GL_BUFFER, slot.buffer, "sslr.stats");
-    gl.CreateQueries(GL_TIMESTAMP, 5, slot.queries);
+    gl.CreateQueries(GL_TIMESTAMP, Impl::kTimestamps, slot.queries);
   }
   GLint timestampBits = 0;
   gl.GetQueryiv(GL_TIMESTAMP, GL_QUERY_COUNTER_BITS, &timestampBits);

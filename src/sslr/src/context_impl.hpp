@@ -45,14 +45,19 @@ struct Context::Impl {
   GLuint hiz = 0;
   // Half resolution: per 2x2 quad, its ray's hit and surfaces (created on first use).
   GLuint quadHit = 0, quadSurface = 0, retraceBuffer = 0;
+  // Temporal reuse: the previous frame's output and its history keys (sslrHistoryKey; 0 = none),
+  // created on first use. historyValid: the last dispatch stored them.
+  GLuint history = 0, historyKey = 0;
+  bool historyValid = false;
   int hizLevels = 0, hizWidth = 0, hizHeight = 0;
   GLuint frameUbo = 0, tileBuffer = 0;
   // Stats without a stall: a ring of slots, each a counter buffer (traced pixels, fetches,
-  // hierarchical pixels, pad, tiles, blur tiles), five GL_TIMESTAMP queries (before
-  // classification, after it, after the pyramid, after the trace, after the blur) and a fence.
+  // hierarchical pixels, pad, tiles, blur tiles), GL_TIMESTAMP queries (before classification,
+  // after it, after the pyramid, after the trace, after the blur, after temporal reuse) and a fence.
+  static constexpr int kTimestamps = 6;
   struct StatsSlot {
     GLuint buffer = 0;
-    GLuint queries[5] = {0, 0, 0, 0, 0};
+    GLuint queries[kTimestamps] = {};
     GLsync fence = nullptr;
     std::uint64_t frame = 0;
   };

@@ -41,6 +41,11 @@ void Context::Impl::buildPyramid(GLuint prog) const {
 
 Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) {
   haveFrame = false;
+  // Temporal history is the previous dispatch's only if that one stored it: a failed or
+  // non-temporal dispatch in between breaks the chain (the host's "previous" matrices would not
+  // describe the stored frame).
+  const bool hadHistory = historyValid;
+  historyValid = false;
   auto constants = frameConstants(in, settings, width, height);  // validates settings + projection
   if (!constants) return Status::error(constants.error());
   if (Status s = checkInputs(in, settings.method); !s) return s;
@@ -74,7 +79,14 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     blurH = computeProgram("blur.comp", "#define SSLR_BLUR_AXIS ivec2(1, 0)\n");
     blurV = computeProgram("blur.comp", "#define SSLR_BLUR_AXIS ivec2(0, 1)\n#define SSLR_BLUR_VERTICAL 1\n");
   }
-  for (const auto* p : {&classify, &cleanup, &hizBuild, &hizArgs, &trace, &quads, &retrace, &blurH, &blurV})
+  Expected<GLuint> temporalBlend = none, temporalStore = none, historyCleanup = none;
+  if (settings.temporal) {
+    temporalBlend = computeProgram("temporal.comp");
+    temporalStore = computeProgram("temporal.comp", "#define SSLR_TEMPORAL_STORE 1\n");
+    historyCleanup = computeProgram("classify.comp", "#define SSLR_CLEANUP 1\n#define SSLR_CLEANUP_HISTORY 1\n");
+  }
+  for (const auto* p : {&classify, &cleanup, &hizBuild, &hizArgs, &trace, &quads, &retrace, &blurH, &blurV,
+                        &temporalBlend, &temporalStore, &historyCleanup})
     if (!*p) return Status::error(p->error());
 
   if (settings.halfResolution && quadHit == 0) {
@@ -90,10 +102,19 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
                           nullptr, GL_DYNAMIC_STORAGE_BIT);
     label(GL_BUFFER, retraceBuffer, "sslr.retrace");
   }
+  // History of the previous frame only if it stored one (else its keys may be older: cleared).
+  const bool useHistory = settings.temporal && hadHistory;
+  if (settings.temporal && history == 0) {
+    history = makeTexture(GL_RGBA16F, "sslr.history");
+    historyKey = makeTexture(GL_R32F, "sslr.historyKey");
+  }
   detail::StateGuard guard(gl, false);
   gl.PushDebugGroup(GL_DEBUG_SOURCE_THIRD_PARTY, 0, -1, "sslr.dispatch");
+  const float zero[4] = {0, 0, 0, 0};
+  if (settings.temporal && !useHistory) gl.ClearTexImage(historyKey, 0, GL_RED, GL_FLOAT, zero);
 
   shared::SslrFrame frame = constants.value();
+  frame.temporal.history = useHistory ? 1 : 0;
   frameIndex = frameIndex == 0x7fffffff ? 1 : frameIndex + 1;
   frame.trace.frameIndex = frameIndex;
   gl.NamedBufferSubData(frameUbo, 0, sizeof(frame), &frame);
@@ -120,7 +141,6 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   // reflection and resolved are not cleared: the clean-up pass (classify.comp, SSLR_CLEANUP)
   // zeroes the tiles the previous frame traced and this one does not. The debug images are
   // cleared whole (debug only).
-  const float zero[4] = {0, 0, 0, 0};
   if (settings.debugOutputs) {
     gl.ClearTexImage(hit, 0, GL_RGBA, GL_FLOAT, zero);
     gl.ClearTexImage(iterations, 0, GL_RED, GL_FLOAT, zero);
@@ -219,6 +239,30 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.DispatchComputeIndirect(kBlurDispatchOffset);
   }
   timestamp(4);
+  if (settings.temporal) {
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    for (GLuint unit : {3u, 4u, 5u}) gl.BindSampler(unit, nearestSampler);
+    gl.UseProgram(temporalBlend.value());
+    gl.BindTextureUnit(3, resolved);
+    gl.BindTextureUnit(4, history);
+    gl.BindTextureUnit(5, historyKey);
+    gl.BindImageTexture(0, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    gl.DispatchComputeIndirect(0);
+    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    gl.UseProgram(temporalStore.value());
+    gl.BindTextureUnit(3, blurTemp);
+    gl.BindTextureUnit(4, 0);
+    gl.BindTextureUnit(5, 0);
+    gl.BindImageTexture(0, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    gl.BindImageTexture(1, history, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    gl.BindImageTexture(2, historyKey, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    gl.DispatchComputeIndirect(0);
+    gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    gl.UseProgram(historyCleanup.value());
+    gl.DispatchComputeIndirect(kCleanupDispatchOffset);
+    historyValid = true;
+  }
+  timestamp(5);
   // The host (and composite) may read the outputs in any way next: make all writes visible.
   gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
   if (slot != nullptr) {

@@ -77,6 +77,23 @@ Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings
   f.dda.maxSteps = s.dda.maxSteps;
   f.dda.jitter = s.dda.jitter ? 1 : 0;
   f.dda.refine = s.dda.refine ? 1 : 0;
+  if (s.temporal) {
+    bool finite = true, zero = true;
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) {
+        finite = finite && std::isfinite(in.previousClipFromView[c][r]);
+        zero = zero && in.previousClipFromView[c][r] == 0.0;
+      }
+    if (zero)
+      return Status::error("sslr: Settings::temporal needs FrameInputs::previousClipFromView (the previous "
+                           "frame's clipFromView x viewFromWorld x this frame's worldFromView); it is all zeros");
+    if (!finite) return Status::error("sslr: FrameInputs::previousClipFromView is not finite");
+    f.temporal.previousClipFromView = glm::mat4(in.previousClipFromView);
+    f.temporal.historyWeight = s.temporalWeight;
+    // 2% of the depth: a surface seen again, within a pixel's slope at grazing angles; the
+    // four history texels around the reprojected point are tried, so a slope costs nothing.
+    f.temporal.keyTolerance = 0.02f;
+  }
   return f;
 }
 

@@ -92,6 +92,8 @@ std::string validate(const Settings& s) {
   if (s.method != Method::AdaptiveL && s.method != Method::HierarchicalDepth && s.method != Method::PositionBuffer &&
       s.method != Method::ScreenSpaceDDA)
     why << "method = " << static_cast<int>(s.method) << " (not a sslr::Method); ";
+  if (!finite(s.temporalWeight) || s.temporalWeight < 0.0f || s.temporalWeight > 0.98f)
+    why << "temporalWeight = " << s.temporalWeight << " (must be 0..0.98); ";
   if (s.halfResolution && s.method == Method::PositionBuffer)
     why << "halfResolution works with the depth-only methods, not Method::PositionBuffer; ";
   std::string text = why.str();

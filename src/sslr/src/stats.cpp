@@ -37,14 +37,15 @@ void Context::Impl::harvestStats(bool waitNewest) const {
       GLint queryBuffer = 0;
       gl.GetIntegerv(GL_QUERY_BUFFER_BINDING, &queryBuffer);
       if (queryBuffer != 0) gl.BindBuffer(GL_QUERY_BUFFER, 0);
-      GLuint64 t[5] = {};
-      for (int i = 0; i < 5; ++i) gl.GetQueryObjectui64v(oldest->queries[i], GL_QUERY_RESULT, &t[i]);
+      GLuint64 t[kTimestamps] = {};
+      for (int i = 0; i < kTimestamps; ++i) gl.GetQueryObjectui64v(oldest->queries[i], GL_QUERY_RESULT, &t[i]);
       if (queryBuffer != 0) gl.BindBuffer(GL_QUERY_BUFFER, static_cast<GLuint>(queryBuffer));
       auto ms = [&](int a, int b) { return t[b] >= t[a] ? static_cast<double>(t[b] - t[a]) * 1e-6 : 0.0; };
       f.classifyMs = ms(0, 1);
       f.pyramidMs = ms(1, 2);
       f.traceMs = ms(2, 3);
       f.blurMs = ms(3, 4);
+      f.temporalMs = ms(4, 5);
     }
     gl.DeleteSync(oldest->fence);
     oldest->fence = nullptr;

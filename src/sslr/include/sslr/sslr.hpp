@@ -111,6 +111,10 @@ struct FrameInputs {
                                // (an engine's "SSR here" stencil, copied to a colour texture)
   glm::dmat4 clipFromView{1.0};  // the exact projection that rasterized the depth (jitter incl.)
   glm::dmat4 viewFromWorld{1.0}; // NormalSpace::World only: the view matrix of the frame
+  // Settings::temporal only: where this frame's view-space points were in the previous frame's
+  // clip space = previous clipFromView (its jitter included) x previous viewFromWorld x this
+  // frame's worldFromView (the inverse of viewFromWorld). All zeros = not given.
+  glm::dmat4 previousClipFromView{0.0};
   DepthConvention depth{};
   SurfaceLayout surface{};
 };
@@ -175,6 +179,10 @@ struct Settings {
   bool halfResolution = false;       // one ray per 2x2 quad (the traced pixel rotates per frame);
                                      // the quad's pixels on the same surface reuse its hit, the
                                      // others trace their own ray (depth-only methods)
+  bool temporal = false;             // blend with the previous frame's output, reprojected through
+                                     // FrameInputs::previousClipFromView (converges half
+                                     // resolution and jittered projections; see integration.md)
+  float temporalWeight = 0.8f;       // share of the history in the output, [0, 0.98]
   bool blur = true;                  // run the roughness blur (else resolved = raw reflection)
   float blurMaxRadiusPx = 8.0f;      // blur radius that alpha = 1 stands for
   float blurConeScale = 1.0f;        // cone tan(half angle) = roughness^2 * scale
@@ -214,6 +222,7 @@ struct FrameStats {  // filled when Settings::collectStats is set
   double pyramidMs = -1.0;          // the depth pyramid (0 when the mode needs none)
   double traceMs = -1.0;            // the trace (half resolution: its three passes)
   double blurMs = -1.0;             // the roughness blur
+  double temporalMs = -1.0;         // temporal reuse (0 when Settings::temporal is off)
 };
 
 // How composite() puts the resolved reflection into the host's framebuffer.

@@ -1,0 +1,81 @@
+// Pass 6 (Settings::temporal), over the listed tiles: blends this frame's resolved output with the
+// previous frame's, reprojected through FrameInputs::previousClipFromView.
+//   default:              resolved (+ history, history keys) -> blurTemp
+//   SSLR_TEMPORAL_STORE:  blurTemp -> resolved and history; this frame's keys -> history keys
+// (two passes: the blend reads history and resolved around each pixel, so it cannot write them).
+// History is used where the reprojected point lands on the same surface (its key, the view depth,
+// within keyTolerance on one of the four texels around it; only those texels are interpolated),
+// clamped to the range of this frame's 3x3 neighbourhood (what moved or appeared cannot drag old
+// colour along), then mixed in with historyWeight.
+#include "common/gbuffer.glsl"
+#include "common/tiles.glsl"
+
+layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
+
+#ifdef SSLR_TEMPORAL_STORE
+layout(binding = 3) uniform sampler2D uBlended;
+layout(binding = 0, rgba16f) uniform writeonly image2D uResolved;
+layout(binding = 1, rgba16f) uniform writeonly image2D uHistory;
+layout(binding = 2, r32f) uniform writeonly image2D uHistoryKey;
+
+void main() {
+  ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
+  if (!sslrInside(px)) return;
+  vec4 value = texelFetch(uBlended, px, 0);
+  imageStore(uResolved, px, value);
+  imageStore(uHistory, px, value);
+  float depth = texelFetch(uDepth, px, 0).r;
+  vec4 packedNormal = texelFetch(uNormal, px, 0);
+  float key = 0.0f;
+  if (sslrShouldTracePixel(px, depth, packedNormal, sslrMaterialAt(px, packedNormal)))
+    key = sslrHistoryKey(frame.proj, sslrViewAtPixel(px, depth));
+  imageStore(uHistoryKey, px, vec4(key));
+}
+#else
+layout(binding = 3) uniform sampler2D uCurrent;     // resolved: this frame, blurred
+layout(binding = 4) uniform sampler2D uHistory;     // the previous frame's output
+layout(binding = 5) uniform sampler2D uHistoryKey;  // its keys
+layout(binding = 0, rgba16f) uniform writeonly image2D uBlended;
+
+void main() {
+  ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
+  if (!sslrInside(px)) return;
+  vec4 current = texelFetch(uCurrent, px, 0);
+  vec4 blended = current;
+  float depth = texelFetch(uDepth, px, 0).r;
+  vec4 packedNormal = texelFetch(uNormal, px, 0);
+  vec2 uvPrevious;
+  float keyPrevious;
+  if (frame.temporal.history != 0 && sslrShouldTracePixel(px, depth, packedNormal, sslrMaterialAt(px, packedNormal)) &&
+      sslrReproject(frame.proj, frame.temporal.previousClipFromView, sslrViewAtPixel(px, depth), uvPrevious,
+                    keyPrevious)) {
+    // Bilinear over the texels of the same surface only.
+    vec2 sizePx = sslrSizePx();
+    vec2 f = uvPrevious * sizePx - 0.5f;
+    ivec2 base = ivec2(floor(f));
+    vec2 t = f - floor(f);
+    vec4 sum = vec4(0.0f);
+    float weightSum = 0.0f;
+    for (int i = 0; i < 4; ++i) {
+      ivec2 o = ivec2(i & 1, i >> 1);
+      ivec2 q = clamp(base + o, ivec2(0), ivec2(sizePx) - 1);
+      float w = (o.x == 1 ? t.x : 1.0f - t.x) * (o.y == 1 ? t.y : 1.0f - t.y);
+      if (w > 0.0f && sslrHistoryKeyMatches(texelFetch(uHistoryKey, q, 0).r, keyPrevious, frame.temporal.keyTolerance)) {
+        sum += texelFetch(uHistory, q, 0) * w;
+        weightSum += w;
+      }
+    }
+    if (weightSum > 1e-3f) {
+      vec4 lo = current, hi = current;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          vec4 v = texelFetch(uCurrent, clamp(px + ivec2(dx, dy), ivec2(0), ivec2(sizePx) - 1), 0);
+          lo = min(lo, v);
+          hi = max(hi, v);
+        }
+      blended = mix(current, clamp(sum / weightSum, lo, hi), frame.temporal.historyWeight);
+    }
+  }
+  imageStore(uBlended, px, blended);
+}
+#endif
