@@ -5,8 +5,10 @@
 // (two passes: the blend reads history and resolved around each pixel, so it cannot write them).
 // History is used where the reprojected point lands on the same surface (its key, the view depth,
 // within keyTolerance on one of the four texels around it; only those texels are interpolated),
-// clamped to the range of this frame's 3x3 neighbourhood (what moved or appeared cannot drag old
-// colour along), then mixed in with historyWeight.
+// clipped to this frame's 3x3 neighbourhood (mean +- one standard deviation: what moved or
+// appeared cannot drag old colour along), then mixed in with historyWeight. The reprojection
+// follows the surface, not the reflected image (docs/algorithm.md, "Temporal reuse", has what
+// that costs on fast motion and curved mirrors).
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
 
@@ -66,13 +68,19 @@ void main() {
       }
     }
     if (weightSum > 1e-3f) {
-      vec4 lo = current, hi = current;
+      // Variance clipping (Salvi 2016): the neighbourhood's mean +- one standard deviation, a
+      // tighter box than its min-max where the reflection has detail; widened to hold this
+      // pixel's own value (a history equal to it must pass unchanged).
+      vec4 m1 = vec4(0.0f), m2 = vec4(0.0f);
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           vec4 v = texelFetch(uCurrent, clamp(px + ivec2(dx, dy), ivec2(0), ivec2(sizePx) - 1), 0);
-          lo = min(lo, v);
-          hi = max(hi, v);
+          m1 += v;
+          m2 += v * v;
         }
+      vec4 mean = m1 / 9.0f;
+      vec4 sigma = sqrt(max(m2 / 9.0f - mean * mean, vec4(0.0f)));
+      vec4 lo = min(mean - sigma, current), hi = max(mean + sigma, current);
       blended = mix(current, clamp(sum / weightSum, lo, hi), frame.temporal.historyWeight);
     }
   }

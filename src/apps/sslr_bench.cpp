@@ -56,6 +56,10 @@ int main(int argc, char** argv) {
       ("warmup", "untimed warm-up rounds", cxxopts::value<std::string>())
       ("curves", "also time the cost curves (the full grid always does): resolution 480x270, 960x540, 1920x1080 (full: and 3840x2160) and reflective fraction 0, 1, 10, 50, 100%")
       ("no-curves", "skip the cost curves")
+      ("temporal", "also run the temporal study (the full grid always does): a camera path on mirror-room, curved-mirror and glossy with and without temporal reuse, jitter and half resolution")
+      ("temporal-scenes", "scenes of the temporal study, comma-separated (implies --temporal)", cxxopts::value<std::string>())
+      ("temporal-size", "size of the temporal study's frames, WxH", cxxopts::value<std::string>()->default_value("480x270"))
+      ("no-temporal", "skip the temporal study")
       ("curve-sizes", "resolutions of the resolution curve, WxH,WxH,... (implies --curves)", cxxopts::value<std::string>())
       ("curve-fractions", "reflective percentages of the fraction curve, N,N,... (implies --curves)", cxxopts::value<std::string>())
       ("out", "output directory", cxxopts::value<std::string>()->default_value("bench-out"))
@@ -131,6 +135,26 @@ int main(int argc, char** argv) {
         }
       }
     }
+    bool temporal = bo.grid == "full" || args.count("temporal") || args.count("temporal-scenes");
+    if (args.count("no-temporal")) temporal = false;
+    if (temporal) {
+      std::istringstream size(args["temporal-size"].as<std::string>());
+      char x = 0;
+      if (!(size >> bo.temporalWidth >> x >> bo.temporalHeight) || x != 'x' || !size.eof() || bo.temporalWidth < 8 ||
+          bo.temporalHeight < 8 || bo.temporalWidth > 4096 || bo.temporalHeight > 4096)
+        throw std::runtime_error("--temporal-size expects WxH with 8..4096 each (got '" +
+                                 args["temporal-size"].as<std::string>() + "')");
+      bo.temporalScenes = {"mirror-room", "curved-mirror", "glossy"};
+      if (args.count("temporal-scenes")) {
+        bo.temporalScenes.clear();
+        std::stringstream list(args["temporal-scenes"].as<std::string>());
+        for (std::string s; std::getline(list, s, ',');)
+          if (!s.empty()) {
+            if (auto check = loadScene(s); !check) throw std::runtime_error("--temporal-scenes: " + check.error());
+            bo.temporalScenes.push_back(s);
+          }
+      }
+    }
     outDir = args["out"].as<std::string>();
     device = args["device"].as<std::string>();
   } catch (const std::exception& e) {
@@ -202,6 +226,15 @@ int main(int argc, char** argv) {
       std::printf("  %-16s %-15s traced %6.4f %9.2f ms  %6.2fx baseline\n", p.method.c_str(), point.c_str(),
                   p.tracedFraction, p.timeMedianMs, base > 0 ? p.timeMedianMs / base : 0.0);
     }
+  }
+  if (!result.value().temporal.empty()) {
+    std::printf("\ntemporal study (%dx%d; RMSE against the ideal reflection; still = its last 4 frames):\n",
+                bo.temporalWidth, bo.temporalHeight);
+    std::printf("  %-14s %-22s %-6s %8s %8s %8s %8s\n", "scene", "configuration", "segment", "rmse", "rmse A",
+                "rmse B-D", "ms");
+    for (const TemporalSummary& t : summarizeTemporal(result.value().temporal))
+      std::printf("  %-14s %-22s %-6s %8.4f %8.4f %8.4f %8.2f\n", t.scene.c_str(), t.config.c_str(),
+                  t.segment.c_str(), t.rmse, t.rmseVisible, t.rmseHidden, t.dispatchMs);
   }
   std::printf("timing: %s on %s\nwrote %s/results.json, %s/results.csv, %s/report/index.html\n",
               result.value().timingMethod.c_str(), renderer.c_str(), outDir.c_str(), outDir.c_str(), outDir.c_str());

@@ -342,6 +342,24 @@ INSTANTIATE_TEST_SUITE_P(AnalyticMirrors, DdaTrace,
 // 0.997 -> 0.996).
 class HalfResolution : public sslr::test::GlTest, public ::testing::WithParamInterface<const char*> {};
 
+// RMSE of the resolved reflection against the ideal one (every visible reflection found exactly),
+// over the reflective pixels: what the hit metrics cannot see (a hit reported with a zero weight).
+double reflectionRmse(const ScoredFrame& f, const Settings& settings) {
+  GBuffer& g = f.renderer->gbuffer();
+  const Image depth = g.readDepth(), normal = g.readNormalPacked(), color = g.readColor();
+  const Image ideal = idealReflection({&depth, &normal, nullptr}, color, f.truth, g.frameInputs(), settings);
+  const Image resolved = f.renderer->readResolved();
+  double sum = 0.0;
+  size_t n = 0;
+  for (int y = 0; y < ideal.height; ++y)
+    for (int x = 0; x < ideal.width; ++x) {
+      if (f.truth.pixels[static_cast<size_t>(y) * ideal.width + x].cls == TruthClass::NotReflective) continue;
+      for (int k = 0; k < 3; ++k) sum += std::pow(double(resolved.at(x, y, k)) - ideal.at(x, y, k), 2.0);
+      n += 3;
+    }
+  return n ? std::sqrt(sum / double(n)) : 0.0;
+}
+
 TEST_P(HalfResolution, QuarterOfTheRaysSameHits) {
   auto scene = makeBuiltinScene(GetParam());
   ASSERT_TRUE(scene);
@@ -366,6 +384,13 @@ TEST_P(HalfResolution, QuarterOfTheRaysSameHits) {
   EXPECT_GE(mb.recall2px, ma.recall2px - 0.015);
   EXPECT_LE(mb.falseHitRate, ma.falseHitRate + 0.005);
   EXPECT_EQ(mb.nonFinite, 0u);
+  // The reused hits must be shaded like traced ones (a reused hit once kept a zero weight: hits
+  // right, reflection black, RMSE 0.11-0.20). Measured at 192x108: mirror-box 0.016 -> 0.023,
+  // tilted-mirror 0.0000 -> 0.0001, mirror-room 0.011 -> 0.022 (reused hits that land a pixel off
+  // across a reflected silhouette show the other side's colour; the blur plays no part).
+  const double rmseFull = reflectionRmse(a, full), rmseHalf = reflectionRmse(b, half);
+  std::printf("%s: reflection RMSE against the ideal %.4f -> %.4f\n", GetParam(), rmseFull, rmseHalf);
+  EXPECT_LE(rmseHalf, 2.5 * rmseFull + 0.005);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, HalfResolution, ::testing::Values("mirror-box", "tilted-mirror", "mirror-room"),

@@ -7,6 +7,8 @@
 #include <memory>
 #include <sstream>
 
+#include "bench_timer.hpp"
+#include "temporal_study.hpp"
 #include "sslr_host/embedded_shaders.hpp"
 #include "sslr_host/cpu_tracer.hpp"
 #include "sslr_host/frame_renderer.hpp"
@@ -131,47 +133,6 @@ class BaselinePass {
   int w_, h_;
   GLuint program_ = 0, out_ = 0, sampler_ = 0;
 };
-
-// Times one call: wall clock around glFinish on software renderers (timer queries are
-// meaningless on llvmpipe), GL_TIME_ELAPSED on hardware.
-class Timer {
- public:
-  explicit Timer(bool software) : software_(software) {
-    if (!software_) glCreateQueries(GL_TIME_ELAPSED, 1, &query_);
-  }
-  ~Timer() {
-    if (query_ != 0) glDeleteQueries(1, &query_);
-  }
-  std::string method() const {
-    return software_ ? "wall clock around glFinish (software renderer)" : "GL_TIME_ELAPSED";
-  }
-  template <typename Fn>
-  double timeMs(Fn&& fn) {
-    if (software_) {
-      glFinish();
-      const auto t0 = std::chrono::steady_clock::now();
-      fn();
-      glFinish();
-      return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    }
-    glBeginQuery(GL_TIME_ELAPSED, query_);
-    fn();
-    glEndQuery(GL_TIME_ELAPSED);
-    GLuint64 ns = 0;
-    glGetQueryObjectui64v(query_, GL_QUERY_RESULT, &ns);
-    return static_cast<double>(ns) * 1e-6;
-  }
-
- private:
-  bool software_;
-  GLuint query_ = 0;
-};
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
 
 std::string slug(std::string s) {
   for (char& c : s)
@@ -449,6 +410,11 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
                                   percent, options, timer, result.curves);
         !s)
       return Status::error(s.message());
+  }
+  for (const std::string& sceneName : options.temporalScenes) {
+    progress(done, total, "temporal study: " + sceneName);
+    if (Status s = runTemporalStudy(sceneName, options, timer, result.temporal); !s)
+      return Status::error("temporal study on " + sceneName + ": " + s.message());
   }
   return result;
 }

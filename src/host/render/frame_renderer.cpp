@@ -38,8 +38,17 @@ Status FrameRenderer::render(const GpuScene& scene, const Camera& camera, const 
   glNamedFramebufferReadBuffer(gbuffer_->framebuffer(), GL_COLOR_ATTACHMENT0);
   glBlitNamedFramebuffer(gbuffer_->framebuffer(), finalFbo_, 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT,
                          GL_NEAREST);
+  // The previous frame's matrices, as a host keeps them for temporal reuse (the first frame has
+  // none: its own stand in, and sslr has no history then anyway).
+  FrameInputs& inputs = inputs_;
+  inputs = gbuffer_->frameInputs();
+  const glm::dmat4 clipFromWorld = gbuffer_->clipFromView() * gbuffer_->viewFromWorld();
+  inputs.previousClipFromView = previousClipFromWorld_ == glm::dmat4(0.0)
+                                    ? gbuffer_->clipFromView()
+                                    : previousClipFromWorld_ * glm::inverse(gbuffer_->viewFromWorld());
+  previousClipFromWorld_ = clipFromWorld;
   if (settings == nullptr) return {};
-  if (Status s = sslr_->dispatch(gbuffer_->frameInputs(), *settings); !s) return s;
+  if (Status s = sslr_->dispatch(inputs, *settings); !s) return s;
   CompositeOptions composite;
   composite.mode = compositeMode_;
   if (compositeMode_ == CompositeMode::BlendOverFallback)

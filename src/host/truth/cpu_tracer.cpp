@@ -128,4 +128,40 @@ Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& set
   return hit;
 }
 
+Image idealReflection(const CpuGBuffer& g, const Image& color, const GroundTruth& truth, const FrameInputs& in,
+                      const Settings& settings) {
+  using namespace sslr::shared;
+  const int w = g.depth->width, h = g.depth->height;
+  Image out{w, h, 3, std::vector<float>(static_cast<size_t>(w) * h * 3, 0.0f)};
+  auto frame = frameConstants(in, settings, w, h);
+  if (!frame || truth.width != w || truth.height != h) return out;
+  const SslrProjection proj = frame.value().proj;
+  const SslrSurface surf = frame.value().surface;
+  const SslrTraceParams t = frame.value().trace;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const TruthPixel& tp = truth.pixels[static_cast<size_t>(y) * w + x];
+      if (tp.cls != TruthClass::Visible) continue;
+      const ivec2 px(x, y);
+      const Image& n = *g.normalPacked;
+      const vec4 texel(n.at(x, y, 0), n.at(x, y, 1), n.at(x, y, 2), n.at(x, y, 3));
+      vec3 vsP, vsN;
+      if (!sslrSurfaceFromDepth(proj, surf, px, g.depth->at(x, y, 0), vsP) || !sslrDecodeNormal(surf, texel, vsN))
+        continue;
+      const vec3 vsV = sslrViewDirection(proj, vsP);
+      const float cosVN = dot(-vsV, vsN);
+      if (!(cosVN > 0.0f)) continue;
+      SslrHit hit = sslrNoHit(SSLR_STATUS_HIT);
+      hit.uvHit = tp.uvHit;
+      hit.L = tp.length;
+      hit.confidence = 1.0f;
+      hit.fade = 1.0f;
+      const SslrWeights wt = sslrReflectionWeights(proj, surf, t, hit, vsP, vsV, reflect(vsV, vsN), cosVN,
+                                                   sslrReflectance(surf, texel), sslrRoughness(surf, texel));
+      const glm::vec3 c = sampleBilinear(color, tp.uvHit) * wt.reflection;
+      for (int k = 0; k < 3; ++k) out.at(x, y, k) = c[k];
+    }
+  return out;
+}
+
 }  // namespace sslr::host

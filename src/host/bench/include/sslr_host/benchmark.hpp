@@ -22,6 +22,9 @@ struct BenchOptions {
   // width x height). Empty: no resolution curve; fractions empty: no fraction curve.
   std::vector<std::pair<int, int>> curveSizes;
   std::vector<int> curveFractions;
+  // Temporal reuse over a camera path (empty: not run), at temporalWidth x temporalHeight.
+  std::vector<std::string> temporalScenes;
+  int temporalWidth = 480, temporalHeight = 270;
 };
 
 struct BenchConfig {
@@ -67,13 +70,36 @@ struct CurvePoint {
   double timeMedianMs = 0;
 };
 
+// One frame of the temporal study: a camera path (still, then a slow and a fast orbit) rendered
+// with each configuration; the resolved reflection against the ideal one (cpu_tracer.hpp's
+// idealReflection: Embree truth, confidence 1) of the same frame.
+struct TemporalPoint {
+  std::string scene;
+  std::string config;   // "full", "full+jitter", "full+jitter+temporal", "half", "half+temporal"
+  std::string segment;  // "still", "slow" (0.25 degrees per frame), "fast" (2.5 degrees per frame)
+  int frame = 0;
+  double rmse = 0;         // resolved rgb against the ideal, over every reflective pixel
+  double rmseVisible = 0;  // over the pixels whose true reflection is visible on screen (A)
+  double rmseHidden = 0;   // over the others (B, C, D: the ideal is 0): ghosts and false hits
+  double dispatchMs = 0;   // that frame's dispatch (noisy: one sample)
+};
+
 struct BenchResult {
   BenchOptions options;
   std::string renderer, timingMethod;
   std::vector<RunRecord> runs;
   std::vector<SceneRecord> scenes;
   std::vector<CurvePoint> curves;
+  std::vector<TemporalPoint> temporal;
 };
+
+// The temporal study per scene, configuration and segment: mean errors over the segment's frames
+// (the still segment's second half only, once a history has built up), median dispatch time.
+struct TemporalSummary {
+  std::string scene, config, segment;
+  double rmse = 0, rmseVisible = 0, rmseHidden = 0, dispatchMs = 0;
+};
+std::vector<TemporalSummary> summarizeTemporal(const std::vector<TemporalPoint>& points);
 
 std::vector<BenchConfig> benchGrid(const std::string& grid);
 

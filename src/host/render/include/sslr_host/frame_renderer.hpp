@@ -15,6 +15,7 @@ class FrameRenderer {
   ~FrameRenderer();
 
   // Rasterizes the G-buffer; with `settings` also traces and composites (else final = colour).
+  // FrameInputs::previousClipFromView comes from the previous render (temporal reuse).
   Status render(const GpuScene& scene, const Camera& camera, const Settings* settings,
                 glm::dvec2 jitterPx = {0.0, 0.0});
 
@@ -23,6 +24,8 @@ class FrameRenderer {
   CompositeMode compositeMode() const { return compositeMode_; }
 
   GBuffer& gbuffer() { return *gbuffer_; }
+  // What the last render handed (or, without settings, would have handed) to sslr's dispatch.
+  const FrameInputs& inputs() const { return inputs_; }
   Context& sslr() { return *sslr_; }
   GLuint finalTexture() const { return final_; }
   Image readFinal() const;                  // RGB, linear
@@ -37,6 +40,8 @@ class FrameRenderer {
   std::unique_ptr<Context> sslr_;
   GLuint final_ = 0, finalFbo_ = 0;
   CompositeMode compositeMode_ = CompositeMode::BlendOverFallback;
+  glm::dmat4 previousClipFromWorld_{0.0};  // the last render's, for temporal reuse
+  FrameInputs inputs_;
 };
 
 }  // namespace sslr::host

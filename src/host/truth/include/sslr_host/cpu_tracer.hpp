@@ -4,6 +4,7 @@
 #pragma once
 
 #include "sslr/sslr.hpp"
+#include "sslr_host/ground_truth.hpp"
 #include "sslr_host/image_io.hpp"
 
 namespace sslr::host {
@@ -23,5 +24,11 @@ enum class SurfaceSource {
 // The tracer reads surfaces from `source` (AdaptiveL only; PositionBuffer always reads positions).
 Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& settings,
                  SurfaceSource source = SurfaceSource::Depth);
+
+// The reflection a tracer that found every visible reflection exactly would write (rgb, before
+// the blur): the colour at the true hit (bilinear) x the shared header's weights for that hit
+// (Fresnel term and fades; confidence 1); 0 where the truth has nothing visible to reflect.
+Image idealReflection(const CpuGBuffer& g, const Image& color, const GroundTruth& truth, const FrameInputs& in,
+                      const Settings& settings);
 
 }  // namespace sslr::host
