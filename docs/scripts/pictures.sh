@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the rendered pictures in docs/images (not the debug views or the benchmark figures)
-# from the current build. Needs oiiotool (Debian openimageio-tools) for the side-by-side figure.
+# from the current build. Needs oiiotool (Debian openimageio-tools) for the side-by-side figure
+# and xvfb-run for the viewer's.
 # Usage: docs/scripts/pictures.sh [build-dir]
 set -euo pipefail
 build=${1:-build/release}
@@ -25,4 +26,7 @@ shot "$tmp/none.png" --size 480x270 --method none
 shot "$tmp/add.png" --size 480x270 --composite add
 shot "$tmp/blend.png" --size 480x270 --composite blend
 oiiotool "$tmp"/{none,add,blend}.png --mosaic 3x1 -o "$images/composite-modes.png"
+# The viewer (needs xvfb-run): adaptive L against the McGuire-Mara DDA, split screen.
+xvfb-run -a -s '-screen 0 1920x1080x24' "$build/src/apps/sslr-view" --size 1280x720 --frames 4 --split dda \
+  --screenshot "$images/sslr-view.png" >/dev/null 2>&1
 echo "pictures written to $images"

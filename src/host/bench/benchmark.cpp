@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <sstream>
@@ -95,15 +96,9 @@ namespace {
 class BaselinePass {
  public:
   explicit BaselinePass(int w, int h) : w_(w), h_(h) {
-    const char* body = embeddedShader("host/baseline.comp");
-    const char* sources[] = {"#version 450 core\n", body};
-    GLuint cs = glCreateShader(GL_COMPUTE_SHADER);
-    glShaderSource(cs, 2, sources, nullptr);
-    glCompileShader(cs);
-    program_ = glCreateProgram();
-    glAttachShader(program_, cs);
-    glLinkProgram(program_);
-    glDeleteShader(cs);
+    auto program = linkHostProgram({{GL_COMPUTE_SHADER, "host/baseline.comp"}});
+    if (!program) std::fprintf(stderr, "sslr-bench: the baseline pass is unavailable: %s\n", program.error().c_str());
+    program_ = program ? program.value() : 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &out_);
     glTextureStorage2D(out_, 1, GL_RGBA16F, w, h);
     glCreateSamplers(1, &sampler_);

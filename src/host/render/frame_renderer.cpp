@@ -4,7 +4,8 @@
 
 namespace sslr::host {
 
-Expected<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const GBufferOptions& options) {
+Expected<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const GBufferOptions& options,
+                                                              GetProcAddress getProcAddress) {
   auto gbuffer = GBuffer::create(options);
   if (!gbuffer) return Status::error(gbuffer.error());
   auto r = std::unique_ptr<FrameRenderer>(new FrameRenderer());
@@ -12,7 +13,7 @@ Expected<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const GBufferOpti
   ContextDesc desc;
   desc.width = options.width;
   desc.height = options.height;
-  desc.getProcAddress = HeadlessContext::getProcAddress();
+  desc.getProcAddress = getProcAddress != nullptr ? getProcAddress : HeadlessContext::getProcAddress();
   auto ctx = Context::create(desc);
   if (!ctx) return Status::error(ctx.error());
   r->sslr_ = std::move(ctx.value());

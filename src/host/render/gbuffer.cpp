@@ -16,24 +16,6 @@ struct Vertex {
   float uv[2];
 };
 
-Expected<GLuint> compile(GLenum stage, const char* entry) {
-  const char* body = embeddedShader(entry);
-  if (body == nullptr) return Status::error(std::string("no embedded host shader ") + entry);
-  const char* sources[] = {"#version 450 core\n", body};
-  GLuint shader = glCreateShader(stage);
-  glShaderSource(shader, 2, sources, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[8192] = {};
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    glDeleteShader(shader);
-    return Status::error(std::string("compiling ") + entry + " failed:\n" + annotateShaderLog(log));
-  }
-  return shader;
-}
-
 glm::mat4 toFloat(const glm::dmat4& m) { return glm::mat4(m); }
 
 }  // namespace
@@ -127,26 +109,9 @@ Expected<std::unique_ptr<GBuffer>> GBuffer::create(const GBufferOptions& o) {
   glNamedFramebufferDrawBuffers(g->fbo_, 4, buffers);
   if (glCheckNamedFramebufferStatus(g->fbo_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     return Status::error("G-buffer framebuffer is incomplete");
-  auto vs = compile(GL_VERTEX_SHADER, "host/gbuffer.vert");
-  if (!vs) return Status::error(vs.error());
-  auto fs = compile(GL_FRAGMENT_SHADER, "host/gbuffer.frag");
-  if (!fs) {
-    glDeleteShader(vs.value());
-    return Status::error(fs.error());
-  }
-  g->program_ = glCreateProgram();
-  glAttachShader(g->program_, vs.value());
-  glAttachShader(g->program_, fs.value());
-  glLinkProgram(g->program_);
-  glDeleteShader(vs.value());
-  glDeleteShader(fs.value());
-  GLint ok = 0;
-  glGetProgramiv(g->program_, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[4096] = {};
-    glGetProgramInfoLog(g->program_, sizeof log, nullptr, log);
-    return Status::error(std::string("linking the G-buffer program failed: ") + log);
-  }
+  auto program = linkHostProgram({{GL_VERTEX_SHADER, "host/gbuffer.vert"}, {GL_FRAGMENT_SHADER, "host/gbuffer.frag"}});
+  if (!program) return Status::error(program.error());
+  g->program_ = program.value();
   return g;
 }
 
@@ -303,6 +268,46 @@ Image reconstructPositions(const Image& depth, const glm::dmat4& clipFromView, D
       dst[3] = 1.0f;
     }
   return out;
+}
+
+Expected<GLuint> linkHostProgram(const std::vector<std::pair<GLenum, const char*>>& stages) {
+  std::vector<GLuint> shaders;
+  auto cleanup = [&] {
+    for (GLuint s : shaders) glDeleteShader(s);
+  };
+  for (const auto& [stage, entry] : stages) {
+    const char* body = embeddedShader(entry);
+    if (body == nullptr) {
+      cleanup();
+      return Status::error(std::string("no embedded host shader ") + entry);
+    }
+    const char* sources[] = {"#version 450 core\n", body};
+    GLuint shader = glCreateShader(stage);
+    glShaderSource(shader, 2, sources, nullptr);
+    glCompileShader(shader);
+    shaders.push_back(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+      char log[8192] = {};
+      glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+      cleanup();
+      return Status::error(std::string("compiling ") + entry + " failed:\n" + annotateShaderLog(log));
+    }
+  }
+  GLuint program = glCreateProgram();
+  for (GLuint s : shaders) glAttachShader(program, s);
+  glLinkProgram(program);
+  cleanup();
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[4096] = {};
+    glGetProgramInfoLog(program, sizeof log, nullptr, log);
+    glDeleteProgram(program);
+    return Status::error(std::string("linking ") + stages.front().second + " failed: " + log);
+  }
+  return program;
 }
 
 }  // namespace sslr::host

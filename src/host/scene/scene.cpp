@@ -511,4 +511,21 @@ Expected<Scene> loadScene(const std::string& nameOrPath) {
   return makeBuiltinScene(nameOrPath);
 }
 
+void addMirrorFloor(Scene& scene) {
+  const Bounds b = scene.worldBounds();
+  if (b.empty()) return;
+  const glm::dvec3 size = b.max - b.min;
+  const double extent = 3.0 * std::max({size.x, size.z, size.y, 1e-3});
+  Material mirror;
+  mirror.baseColor = glm::vec3(0.9f);
+  mirror.metallic = 1.0f;
+  mirror.roughness = 0.0f;
+  scene.materials.push_back(mirror);
+  // A hair below the model, so that a model standing at y = min does not z-fight with it.
+  const glm::dvec3 center(0.5 * (b.min.x + b.max.x), b.min.y - 1e-3 * std::max(size.y, 1e-3),
+                          0.5 * (b.min.z + b.max.z));
+  scene.meshes.push_back(makeQuad(center, {extent, extent}, {0.0, 1.0, 0.0},
+                                  static_cast<int>(scene.materials.size()) - 1));
+}
+
 }  // namespace sslr::host

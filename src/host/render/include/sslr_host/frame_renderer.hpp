@@ -11,7 +11,9 @@ namespace sslr::host {
 
 class FrameRenderer {
  public:
-  static Expected<std::unique_ptr<FrameRenderer>> create(const GBufferOptions& options);
+  // `getProcAddress`: the current context's (default: the headless EGL context's).
+  static Expected<std::unique_ptr<FrameRenderer>> create(const GBufferOptions& options,
+                                                         GetProcAddress getProcAddress = nullptr);
   ~FrameRenderer();
 
   // Rasterizes the G-buffer; with `settings` also traces and composites (else final = colour).

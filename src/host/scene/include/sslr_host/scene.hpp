@@ -80,6 +80,10 @@ Expected<Scene> makeBuiltinScene(const std::string& name);
 // A scene by built-in name or glTF path (.gltf/.glb).
 Expected<Scene> loadScene(const std::string& nameOrPath);
 
+// Adds a mirror floor under the scene (three times its size, just below its lowest point): most
+// models have nothing to reflect in.
+void addMirrorFloor(Scene& scene);
+
 // Mesh building helpers (also used by tests).
 Mesh makeBox(glm::dvec3 center, glm::dvec3 size, int material, double rotationYDegrees = 0.0);
 Mesh makeQuad(glm::dvec3 center, glm::dvec2 size, glm::dvec3 normal, int material);

@@ -1,0 +1,149 @@
+// sslr-view under Xvfb, as CI runs it: the window shows what sslr-render renders for the same
+// camera, the panel is drawn, the error view and the split screen run, and the failures a user
+// meets (no display, bad arguments) are clear errors.
+#include <sys/wait.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "gl/gl_fixture.hpp"
+#include "sslr_host/image_io.hpp"
+
+namespace fs = std::filesystem;
+using namespace sslr::host;
+
+namespace {
+
+struct Result {
+  int exitCode = -1;
+  std::string output;
+};
+
+Result sh(const std::string& cmd) {
+  Result r;
+  FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
+  const int status = pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+fs::path freshDir(const std::string& name) {
+  const fs::path p = fs::path(SSLR_TEST_TMP) / "viewer" / name;
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+
+// The viewer under a virtual X server (a GL 4.5 core context from Mesa's GLX, llvmpipe).
+Result view(const std::string& args) {
+  return sh("xvfb-run -a -s '-screen 0 1280x720x24' " + std::string(SSLR_VIEW_EXE) + " " + args);
+}
+
+class Viewer : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (sh("command -v xvfb-run").exitCode != 0) {
+      const char* require = std::getenv("SSLR_REQUIRE_GL");
+      if (require != nullptr && std::string(require) == "1") FAIL() << "xvfb-run is missing (.ci/install-deps installs xvfb)";
+      GTEST_SKIP() << "xvfb-run is not installed";
+    }
+  }
+};
+
+double stddev(const Image& img) {
+  double sum = 0, sum2 = 0;
+  for (float v : img.pixels) sum += v, sum2 += double(v) * v;
+  const double n = double(img.pixels.size()), mean = sum / n;
+  return std::sqrt(std::max(sum2 / n - mean * mean, 0.0));
+}
+
+// Share of pixels whose channels differ by more than `threshold` (8-bit sRGB steps / 255).
+double differing(const Image& a, const Image& b, float threshold) {
+  return double(compareImages(a, b, threshold).pixelsOver) / (double(a.width) * a.height);
+}
+
+TEST_F(Viewer, WindowShowsWhatTheHeadlessRendererRenders) {
+  const fs::path dir = freshDir("match");
+  const Result v = view("--size 320x180 --frames 3 --hide-ui --screenshot " + (dir / "view.png").string());
+  ASSERT_EQ(v.exitCode, 0) << v.output;
+  const Result r = sh(std::string(SSLR_RENDER_EXE) + " --size 320x180 --out " + (dir / "render").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const Result none = sh(std::string(SSLR_RENDER_EXE) + " --size 320x180 --method none --out " + (dir / "none").string());
+  ASSERT_EQ(none.exitCode, 0) << none.output;
+  auto shot = readImage((dir / "view.png").string());
+  auto render = readImage((dir / "render" / "final.png").string());
+  auto plain = readImage((dir / "none" / "final.png").string());
+  ASSERT_TRUE(shot && render && plain);
+  ASSERT_EQ(shot.value().width, 320);
+  ASSERT_EQ(shot.value().height, 180);
+  EXPECT_GT(stddev(shot.value()), 0.05) << "the window is (nearly) uniform";
+  // The same pipeline on the same rasterizer (GLX here, EGL there): measured 0 pixels over 3/255;
+  // allow 1% over 8/255 for another Mesa.
+  const double off = differing(shot.value(), render.value(), 8.0f / 255.0f);
+  EXPECT_LE(off, 0.01) << "window and sslr-render differ";
+  // Reflections are there: the mirror floor differs from the frame without them.
+  EXPECT_GE(differing(shot.value(), plain.value(), 8.0f / 255.0f), 0.05) << "no reflections in the window";
+}
+
+TEST_F(Viewer, PanelIsDrawnOverTheView) {
+  const fs::path dir = freshDir("panel");
+  ASSERT_EQ(view("--size 640x360 --frames 2 --screenshot " + (dir / "ui.png").string()).exitCode, 0);
+  ASSERT_EQ(view("--size 640x360 --frames 2 --hide-ui --screenshot " + (dir / "bare.png").string()).exitCode, 0);
+  auto ui = readImage((dir / "ui.png").string());
+  auto bare = readImage((dir / "bare.png").string());
+  ASSERT_TRUE(ui && bare);
+  // The panel sits at the top left (GL rows: the top is the last row); the bottom right is untouched.
+  auto region = [](const Image& img, int x0, int y0, int x1, int y1) {
+    Image out{x1 - x0, y1 - y0, 3, {}};
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x)
+        for (int k = 0; k < 3; ++k) out.pixels.push_back(img.at(x, y, k));
+    return out;
+  };
+  EXPECT_GE(differing(region(ui.value(), 20, 300, 200, 350), region(bare.value(), 20, 300, 200, 350), 0.1f), 0.3);
+  EXPECT_EQ(differing(region(ui.value(), 500, 0, 640, 100), region(bare.value(), 500, 0, 640, 100), 1.0f / 255.0f), 0.0);
+}
+
+TEST_F(Viewer, ErrorViewAndSplitScreenRun) {
+  const fs::path dir = freshDir("error");
+  const Result v = view("--size 320x180 --frames 2 --hide-ui --split dda --view error --screenshot " +
+                        (dir / "error.png").string());
+  ASSERT_EQ(v.exitCode, 0) << v.output;
+  auto shot = readImage((dir / "error.png").string());
+  ASSERT_TRUE(shot);
+  // Left: adaptive L's error map (black where exact); right: the DDA's (green: within a pixel).
+  double leftGreen = 0, rightGreen = 0;
+  for (int y = 0; y < 180; ++y)
+    for (int x = 0; x < 320; ++x) (x < 160 ? leftGreen : rightGreen) += shot.value().at(x, y, 1);
+  EXPECT_GT(rightGreen, 2.0 * leftGreen) << "the DDA's pixel steps should show as more error";
+  for (const char* view : {"reflection", "blur-weight", "coverage", "confidence", "length", "iterations", "hit-uv"}) {
+    const Result r = sh("xvfb-run -a -s '-screen 0 1280x720x24' " + std::string(SSLR_VIEW_EXE) +
+                        " --size 96x54 --frames 1 --hide-ui --view " + view + " --screenshot " +
+                        (dir / (std::string(view) + ".png")).string());
+    EXPECT_EQ(r.exitCode, 0) << view << ": " << r.output;
+  }
+}
+
+TEST_F(Viewer, NoDisplayAndBadArgumentsAreClearErrors) {
+  const Result noDisplay = sh("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(SSLR_VIEW_EXE) + " --frames 1");
+  EXPECT_EQ(noDisplay.exitCode, 1) << noDisplay.output;
+  EXPECT_NE(noDisplay.output.find("no display"), std::string::npos) << noDisplay.output;
+  EXPECT_NE(noDisplay.output.find("xvfb-run"), std::string::npos) << noDisplay.output;
+  for (const char* bad : {"--view bogus", "--split nothing", "--size 0x0", "--screenshot x.png"}) {
+    const Result r = sh(std::string(SSLR_VIEW_EXE) + " " + bad);
+    EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find("sslr-view:"), std::string::npos) << r.output;
+  }
+  const Result missing = view("--scene /nonexistent/model.gltf --frames 1");
+  EXPECT_EQ(missing.exitCode, 2) << missing.output;
+  EXPECT_NE(missing.output.find("model.gltf"), std::string::npos) << missing.output;
+}
+
+}  // namespace
