@@ -131,6 +131,27 @@ TEST_F(Viewer, ErrorViewAndSplitScreenRun) {
   }
 }
 
+// A model with nothing to reflect in gets a mirror floor with --mirror-floor (Debian's
+// assimp-testmodels BoxTextured: the box's reflection appears below it).
+TEST_F(Viewer, MirrorFloorUnderALoadedModel) {
+  const fs::path model = "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf";
+  if (!fs::exists(model)) GTEST_SKIP() << "assimp-testmodels not installed";
+  const fs::path dir = freshDir("floor");
+  const std::string common = "--scene " + model.string() + " --size 240x136 --frames 2 --hide-ui --screenshot ";
+  ASSERT_EQ(view(common + (dir / "bare.png").string()).exitCode, 0);
+  const Result floor = view("--mirror-floor " + common + (dir / "floor.png").string());
+  ASSERT_EQ(floor.exitCode, 0) << floor.output;
+  auto bare = readImage((dir / "bare.png").string());
+  auto withFloor = readImage((dir / "floor.png").string());
+  ASSERT_TRUE(bare && withFloor);
+  // Below the box (the lower third of the frame, middle columns) the floor and its reflection.
+  double reflected = 0;
+  for (int y = 30; y < 60; ++y)
+    for (int x = 100; x < 140; ++x)
+      for (int k = 0; k < 3; ++k) reflected += std::abs(withFloor.value().at(x, y, k) - bare.value().at(x, y, k));
+  EXPECT_GT(reflected, 30.0) << "no floor under the model";
+}
+
 TEST_F(Viewer, NoDisplayAndBadArgumentsAreClearErrors) {
   const Result noDisplay = sh("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(SSLR_VIEW_EXE) + " --frames 1");
   EXPECT_EQ(noDisplay.exitCode, 1) << noDisplay.output;
