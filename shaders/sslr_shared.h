@@ -185,7 +185,7 @@ struct SslrTemporalParams {
   float historyWeight;        // share of the (clamped) history in the output, [0, 1)
   float keyTolerance;         // history valid where its key is within this relative difference
   int history;                // 1: the history textures hold the previous frame (else ignore them)
-  int pad0;
+  int hasMotion;              // 1: FrameInputs::motionTexture gives where each pixel was (uv offset)
 };
 
 #ifdef __cplusplus

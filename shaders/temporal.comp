@@ -37,6 +37,7 @@ void main() {
 layout(binding = 3) uniform sampler2D uCurrent;     // resolved: this frame, blurred
 layout(binding = 4) uniform sampler2D uHistory;     // the previous frame's output
 layout(binding = 5) uniform sampler2D uHistoryKey;  // its keys
+layout(binding = 6) uniform sampler2D uMotion;      // optional: uv now - uv then (host motion vectors)
 layout(binding = 0, rgba16f) uniform writeonly image2D uBlended;
 
 void main() {
@@ -48,9 +49,20 @@ void main() {
   vec4 packedNormal = texelFetch(uNormal, px, 0);
   vec2 uvPrevious;
   float keyPrevious;
-  if (frame.temporal.history != 0 && sslrShouldTracePixel(px, depth, packedNormal, sslrMaterialAt(px, packedNormal)) &&
-      sslrReproject(frame.proj, frame.temporal.previousClipFromView, sslrViewAtPixel(px, depth), uvPrevious,
-                    keyPrevious)) {
+  bool found = false;
+  if (frame.temporal.history != 0 && sslrShouldTracePixel(px, depth, packedNormal, sslrMaterialAt(px, packedNormal))) {
+    found = sslrReproject(frame.proj, frame.temporal.previousClipFromView, sslrViewAtPixel(px, depth), uvPrevious,
+                          keyPrevious);
+    if (frame.temporal.hasMotion != 0) {
+      // The host's motion vectors say where the point was; the matrices still give the depth a
+      // static point would have had there: an object that also moved in depth by more than the
+      // key tolerance starts afresh (no history rather than a ghost).
+      uvPrevious = sslrUvFromPixel(px, sslrSizePx()) - texelFetch(uMotion, px, 0).xy;
+      found = keyPrevious > 0.0f && all(greaterThanEqual(uvPrevious, vec2(0.0f))) &&
+              all(lessThanEqual(uvPrevious, vec2(1.0f)));
+    }
+  }
+  if (found) {
     // Bilinear over the texels of the same surface only.
     vec2 sizePx = sslrSizePx();
     vec2 f = uvPrevious * sizePx - 0.5f;

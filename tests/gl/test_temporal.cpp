@@ -1,5 +1,6 @@
 // Temporal reuse: history through FrameInputs::previousClipFromView, the chain broken by anything
 // that makes the stored frame not the host's previous one, and bad inputs refused.
+#include <algorithm>
 #include <cmath>
 
 #include "gl/gl_fixture.hpp"
@@ -114,6 +115,46 @@ TEST_F(Temporal, BrokenChainsUseNoHistory) {
   expectPlain("after a resize");
 }
 
+// Host motion vectors replace the matrix reprojection where given: zero motion on a still camera
+// finds the same history as the matrices; motion that points off the screen finds none (the
+// plain output, bit for bit).
+TEST_F(Temporal, MotionVectorsChooseWhereHistoryIsRead) {
+  auto run = [](bool withMotion, glm::vec2 motion) {
+    Sequence q;
+    Settings s;
+    s.temporal = true;
+    s.halfResolution = true;  // a changing output, so that history shows
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    glTextureStorage2D(tex, 1, GL_RG16F, W, H);
+    const float value[4] = {motion.x, motion.y, 0.0f, 0.0f};
+    glClearTexImage(tex, 0, GL_RGBA, GL_FLOAT, value);
+    for (int i = 0; i < 4; ++i) {
+      EXPECT_TRUE(q.gbuffer->render(*q.gpu, q.camera));
+      FrameInputs in = q.gbuffer->frameInputs();
+      in.previousClipFromView = in.clipFromView;  // a still camera
+      if (withMotion) in.motionTexture = tex;
+      EXPECT_TRUE(q.ctx->dispatch(in, s));
+    }
+    glDeleteTextures(1, &tex);
+    return q.resolved().pixels;
+  };
+  const auto matrices = run(false, {0.0f, 0.0f});
+  const auto zeroMotion = run(true, {0.0f, 0.0f});
+  // The matrices land within float rounding of the pixel centre, zero motion on it: the bilinear
+  // weights differ in the last bits, the RGBA16F results by a rounding step at most.
+  for (size_t k = 0; k < matrices.size(); ++k)
+    ASSERT_NEAR(zeroMotion[k], matrices[k], 2e-3f * std::max(1.0f, matrices[k])) << k;
+  // No history: each frame is its own half-resolution trace (frame 4's quad pixel).
+  Sequence plain;
+  Settings half;
+  half.halfResolution = true;
+  for (int i = 0; i < 4; ++i) ASSERT_TRUE(plain.frame(half, {0.0, 0.0}));
+  const auto offScreen = run(true, {5.0f, 5.0f});
+  EXPECT_EQ(offScreen, plain.resolved().pixels);
+  EXPECT_NE(offScreen, matrices);
+}
+
 TEST_F(Temporal, MissingOrBadInputsAreRefused) {
   Sequence q;
   ASSERT_TRUE(q.gbuffer->render(*q.gpu, q.camera));
@@ -133,6 +174,15 @@ TEST_F(Temporal, MissingOrBadInputsAreRefused) {
   st = q.ctx->dispatch(in, s);
   ASSERT_FALSE(st);
   EXPECT_NE(st.message().find("temporalWeight"), std::string::npos) << st.message();
+  s.temporalWeight = 0.8f;
+  GLuint oneChannel = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &oneChannel);
+  glTextureStorage2D(oneChannel, 1, GL_R16F, W, H);
+  in.motionTexture = oneChannel;
+  st = q.ctx->dispatch(in, s);
+  ASSERT_FALSE(st);
+  EXPECT_NE(st.message().find("FrameInputs::motionTexture"), std::string::npos) << st.message();
+  glDeleteTextures(1, &oneChannel);
   EXPECT_EQ(sslr::test::glContext()->glErrorCount(), 0);
 }
 

@@ -106,6 +106,9 @@ Status Context::Impl::checkInputs(const FrameInputs& in, Method method) const {
   if (in.maskTexture != 0) {
     if (Status s = checkTexture(in.maskTexture, "FrameInputs::maskTexture", FormatInfo::Color, 1); !s) return s;
   }
+  if (in.motionTexture != 0) {
+    if (Status s = checkTexture(in.motionTexture, "FrameInputs::motionTexture", FormatInfo::Color, 2); !s) return s;
+  }
   auto checkChannel = [&](int channel, const char* name) -> Status {
     if (channel < -1 || channel > 3)
       return Status::error(std::string("sslr: SurfaceLayout::") + name + " = " +

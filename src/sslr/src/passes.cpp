@@ -243,6 +243,8 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     for (GLuint unit : {3u, 4u, 5u}) gl.BindSampler(unit, nearestSampler);
     gl.UseProgram(temporalBlend.value());
+    gl.BindTextureUnit(6, in.motionTexture);  // unit 6 (the pyramid's) is free after the trace
+    gl.BindSampler(6, nearestSampler);
     gl.BindTextureUnit(3, resolved);
     gl.BindTextureUnit(4, history);
     gl.BindTextureUnit(5, historyKey);

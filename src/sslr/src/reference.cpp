@@ -93,6 +93,7 @@ Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings
     // 2% of the depth: a surface seen again, within a pixel's slope at grazing angles; the
     // four history texels around the reprojected point are tried, so a slope costs nothing.
     f.temporal.keyTolerance = 0.02f;
+    f.temporal.hasMotion = in.motionTexture != 0 ? 1 : 0;
   }
   return f;
 }

@@ -109,6 +109,10 @@ struct FrameInputs {
                                // channels refer to (0: they are channels of normalTexture)
   GLName maskTexture = 0;      // optional: rays start only where its first channel is > 0.5
                                // (an engine's "SSR here" stencil, copied to a colour texture)
+  GLName motionTexture = 0;    // optional, Settings::temporal: RG = this pixel's uv minus the uv the
+                               // same surface point had in the previous frame (the host's motion
+                               // vectors, uv units); where history is looked up instead of the
+                               // matrix reprojection, so moving objects are followed
   glm::dmat4 clipFromView{1.0};  // the exact projection that rasterized the depth (jitter incl.)
   glm::dmat4 viewFromWorld{1.0}; // NormalSpace::World only: the view matrix of the frame
   // Settings::temporal only: where this frame's view-space points were in the previous frame's
