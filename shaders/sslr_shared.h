@@ -186,6 +186,8 @@ struct SslrTemporalParams {
   float keyTolerance;         // history valid where its key is within this relative difference
   int history;                // 1: the history textures hold the previous frame (else ignore them)
   int hasMotion;              // 1: FrameInputs::motionTexture gives where each pixel was (uv offset)
+  vec4 previousEye;           // the previous camera's position in this frame's view space; w = 1
+                              // when known (perspective), 0 otherwise (no virtual-point reprojection)
 };
 
 #ifdef __cplusplus
@@ -238,9 +240,9 @@ static_assert(sizeof(SslrPositionParams) == 16, "std140 mirror");
 static_assert(offsetof(SslrFrame, positionBuffer) == 240, "std140 mirror");
 static_assert(sizeof(SslrDdaParams) == 32, "std140 mirror");
 static_assert(offsetof(SslrFrame, dda) == 256, "std140 mirror");
-static_assert(sizeof(SslrTemporalParams) == 80, "std140 mirror");
+static_assert(sizeof(SslrTemporalParams) == 96, "std140 mirror");
 static_assert(offsetof(SslrFrame, temporal) == 288, "std140 mirror");
-static_assert(sizeof(SslrFrame) == 368, "std140 mirror");
+static_assert(sizeof(SslrFrame) == 384, "std140 mirror");
 #endif
 
 // ---- Pure math ----------------------------------------------------------------------------
@@ -506,6 +508,24 @@ SSLR_FN bool sslrReproject(SslrProjection p, mat4 previousClipFromView, vec3 vsP
   uvPrevious = sslrUvFromNdc(vec2(clip.x, clip.y) / clip.w);
   keyPrevious = sslrHistoryKeyFromClip(p.orthographic, clip);
   return uvPrevious.x >= 0.0f && uvPrevious.y >= 0.0f && uvPrevious.x <= 1.0f && uvPrevious.y <= 1.0f;
+}
+
+// Where a mirror's reflection was in the previous frame. The reflection of hit Q seen at P
+// (normal N, reflected length L) is the virtual point V = P + L * (P - eye) / |P - eye|, behind
+// the mirror; the previous camera saw it through the mirror plane at X, where the segment from
+// its eye to V crosses the plane. X is returned (view space, this frame); false when the previous
+// eye is unknown or on the plane's far side.
+SSLR_FN bool sslrVirtualPointOnMirror(vec4 previousEye, vec3 vsP, vec3 vsN, float L, SSLR_OUT(vec3) vsX) {
+  vsX = vsP;
+  if (previousEye.w == 0.0f || !(L > 0.0f)) return false;
+  vec3 eye = vec3(previousEye.x, previousEye.y, previousEye.z);
+  vec3 vsVirtual = vsP + normalize(vsP) * L;
+  vec3 d = vsVirtual - eye;
+  float denom = dot(d, vsN);
+  float t = dot(vsP - eye, vsN) / denom;
+  if (!(dot(eye - vsP, vsN) > 0.0f) || !(t > 0.0f && t < 1.0f)) return false;
+  vsX = eye + d * t;
+  return true;
 }
 
 // Whether a stored history key belongs to the same surface as the expected one.

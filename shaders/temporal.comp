@@ -6,9 +6,10 @@
 // History is used where the reprojected point lands on the same surface (its key, the view depth,
 // within keyTolerance on one of the four texels around it; only those texels are interpolated),
 // clipped to this frame's 3x3 neighbourhood (mean +- one standard deviation: what moved or
-// appeared cannot drag old colour along), then mixed in with historyWeight. The reprojection
-// follows the surface, not the reflected image (docs/algorithm.md, "Temporal reuse", has what
-// that costs on fast motion and curved mirrors).
+// appeared cannot drag old colour along), then mixed in with historyWeight. Where the pixel has a
+// hit, history is first looked up where the reflected image was (its virtual point, seen by the
+// previous camera through the mirror plane), else where the surface was (docs/algorithm.md,
+// "Temporal reuse").
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
 
@@ -38,7 +39,32 @@ layout(binding = 3) uniform sampler2D uCurrent;     // resolved: this frame, blu
 layout(binding = 4) uniform sampler2D uHistory;     // the previous frame's output
 layout(binding = 5) uniform sampler2D uHistoryKey;  // its keys
 layout(binding = 6) uniform sampler2D uMotion;      // optional: uv now - uv then (host motion vectors)
+layout(binding = 9) uniform sampler2D uHitRecord;   // this frame's hits: uv, confidence, L
 layout(binding = 0, rgba16f) uniform writeonly image2D uBlended;
+
+// The history at uvPrevious, bilinear over the four texels around it whose key matches
+// keyPrevious (the same surface); false when none does.
+bool sslrHistoryAt(vec2 uvPrevious, float keyPrevious, out vec4 history) {
+  vec2 sizePx = sslrSizePx();
+  vec2 f = uvPrevious * sizePx - 0.5f;
+  ivec2 base = ivec2(floor(f));
+  vec2 t = f - floor(f);
+  vec4 sum = vec4(0.0f);
+  float weightSum = 0.0f;
+  for (int i = 0; i < 4; ++i) {
+    ivec2 o = ivec2(i & 1, i >> 1);
+    ivec2 q = clamp(base + o, ivec2(0), ivec2(sizePx) - 1);
+    float w = (o.x == 1 ? t.x : 1.0f - t.x) * (o.y == 1 ? t.y : 1.0f - t.y);
+    if (w > 0.0f && sslrHistoryKeyMatches(texelFetch(uHistoryKey, q, 0).r, keyPrevious, frame.temporal.keyTolerance)) {
+      sum += texelFetch(uHistory, q, 0) * w;
+      weightSum += w;
+    }
+  }
+  history = weightSum > 1e-3f ? sum / weightSum : vec4(0.0f);
+  return weightSum > 1e-3f;
+}
+
+bool sslrInsideUv(vec2 uv) { return all(greaterThanEqual(uv, vec2(0.0f))) && all(lessThanEqual(uv, vec2(1.0f))); }
 
 void main() {
   ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
@@ -47,54 +73,60 @@ void main() {
   vec4 blended = current;
   float depth = texelFetch(uDepth, px, 0).r;
   vec4 packedNormal = texelFetch(uNormal, px, 0);
-  vec2 uvPrevious;
-  float keyPrevious;
+  vec4 history = vec4(0.0f);
   bool found = false;
   if (frame.temporal.history != 0 && sslrShouldTracePixel(px, depth, packedNormal, sslrMaterialAt(px, packedNormal))) {
-    found = sslrReproject(frame.proj, frame.temporal.previousClipFromView, sslrViewAtPixel(px, depth), uvPrevious,
-                          keyPrevious);
+    vec3 vsP = sslrViewAtPixel(px, depth);
+    // Where the surface point was: through the matrices, or the host's motion vectors when given
+    // (the matrices still give the depth a static point would have had there: an object that
+    // also moved in depth starts afresh).
+    vec2 uvSurface;
+    float keySurface;
+    bool surfaceOnScreen = sslrReproject(frame.proj, frame.temporal.previousClipFromView, vsP, uvSurface, keySurface);
+    bool staticSurface = true;
     if (frame.temporal.hasMotion != 0) {
-      // The host's motion vectors say where the point was; the matrices still give the depth a
-      // static point would have had there: an object that also moved in depth by more than the
-      // key tolerance starts afresh (no history rather than a ghost).
-      uvPrevious = sslrUvFromPixel(px, sslrSizePx()) - texelFetch(uMotion, px, 0).xy;
-      found = keyPrevious > 0.0f && all(greaterThanEqual(uvPrevious, vec2(0.0f))) &&
-              all(lessThanEqual(uvPrevious, vec2(1.0f)));
+      vec2 uvMoved = sslrUvFromPixel(px, sslrSizePx()) - texelFetch(uMotion, px, 0).xy;
+      staticSurface = length((uvMoved - uvSurface) * sslrSizePx()) < 0.5f;
+      uvSurface = uvMoved;
+      surfaceOnScreen = keySurface > 0.0f && sslrInsideUv(uvSurface);
     }
+    // 1. A reflection in a static plane moves with its virtual point (behind the mirror), not with
+    //    the mirror: look where the previous camera saw that point through the mirror plane. Only
+    //    on planes (the normal one pixel right and up agrees): on a curved mirror the tangent
+    //    plane sends the lookup astray (measured: curved-mirror's error rose by a quarter).
+    vec3 vsN;
+    if (current.a > 0.0f && staticSurface && sslrDecodeNormal(frame.surface, packedNormal, vsN)) {
+      ivec2 maxPx = ivec2(sslrSizePx()) - 1;
+      vec3 nRight, nUp;
+      bool planar = sslrDecodeNormal(frame.surface, texelFetch(uNormal, min(px + ivec2(1, 0), maxPx), 0), nRight) &&
+                    sslrDecodeNormal(frame.surface, texelFetch(uNormal, min(px + ivec2(0, 1), maxPx), 0), nUp) &&
+                    dot(nRight, vsN) > 0.9999f && dot(nUp, vsN) > 0.9999f;
+      vec3 vsX;
+      vec2 uvVirtual;
+      float keyVirtual;
+      if (planar && sslrVirtualPointOnMirror(frame.temporal.previousEye, vsP, vsN, texelFetch(uHitRecord, px, 0).a, vsX) &&
+          sslrReproject(frame.proj, frame.temporal.previousClipFromView, vsX, uvVirtual, keyVirtual))
+        found = sslrHistoryAt(uvVirtual, keyVirtual, history);
+    }
+    // 2. Else the surface point itself.
+    if (!found && surfaceOnScreen) found = sslrHistoryAt(uvSurface, keySurface, history);
   }
   if (found) {
-    // Bilinear over the texels of the same surface only.
-    vec2 sizePx = sslrSizePx();
-    vec2 f = uvPrevious * sizePx - 0.5f;
-    ivec2 base = ivec2(floor(f));
-    vec2 t = f - floor(f);
-    vec4 sum = vec4(0.0f);
-    float weightSum = 0.0f;
-    for (int i = 0; i < 4; ++i) {
-      ivec2 o = ivec2(i & 1, i >> 1);
-      ivec2 q = clamp(base + o, ivec2(0), ivec2(sizePx) - 1);
-      float w = (o.x == 1 ? t.x : 1.0f - t.x) * (o.y == 1 ? t.y : 1.0f - t.y);
-      if (w > 0.0f && sslrHistoryKeyMatches(texelFetch(uHistoryKey, q, 0).r, keyPrevious, frame.temporal.keyTolerance)) {
-        sum += texelFetch(uHistory, q, 0) * w;
-        weightSum += w;
+    // Variance clipping (Salvi 2016): the neighbourhood's mean +- one standard deviation, a
+    // tighter box than its min-max where the reflection has detail; widened to hold this
+    // pixel's own value (a history equal to it must pass unchanged).
+    ivec2 maxPx = ivec2(sslrSizePx()) - 1;
+    vec4 m1 = vec4(0.0f), m2 = vec4(0.0f);
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        vec4 v = texelFetch(uCurrent, clamp(px + ivec2(dx, dy), ivec2(0), maxPx), 0);
+        m1 += v;
+        m2 += v * v;
       }
-    }
-    if (weightSum > 1e-3f) {
-      // Variance clipping (Salvi 2016): the neighbourhood's mean +- one standard deviation, a
-      // tighter box than its min-max where the reflection has detail; widened to hold this
-      // pixel's own value (a history equal to it must pass unchanged).
-      vec4 m1 = vec4(0.0f), m2 = vec4(0.0f);
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          vec4 v = texelFetch(uCurrent, clamp(px + ivec2(dx, dy), ivec2(0), ivec2(sizePx) - 1), 0);
-          m1 += v;
-          m2 += v * v;
-        }
-      vec4 mean = m1 / 9.0f;
-      vec4 sigma = sqrt(max(m2 / 9.0f - mean * mean, vec4(0.0f)));
-      vec4 lo = min(mean - sigma, current), hi = max(mean + sigma, current);
-      blended = mix(current, clamp(sum / weightSum, lo, hi), frame.temporal.historyWeight);
-    }
+    vec4 mean = m1 / 9.0f;
+    vec4 sigma = sqrt(max(m2 / 9.0f - mean * mean, vec4(0.0f)));
+    vec4 lo = min(mean - sigma, current), hi = max(mean + sigma, current);
+    blended = mix(current, clamp(history, lo, hi), frame.temporal.historyWeight);
   }
   imageStore(uBlended, px, blended);
 }

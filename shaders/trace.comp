@@ -41,8 +41,11 @@ layout(binding = 0, rgba16f) uniform writeonly image2D uReflection;
 // The resolved image gets the reflection too: tiles without a pixel to blur are final here,
 // and the blur passes then run only over the tiles listed for them.
 layout(binding = 3, rgba16f) uniform writeonly image2D uResolved;
-#ifdef SSLR_DEBUG_OUTPUTS
+// The hit record: a debug output, and what temporal reuse (SSLR_TEMPORAL_HITS) reprojects by.
+#if defined(SSLR_DEBUG_OUTPUTS) || defined(SSLR_TEMPORAL_HITS)
 layout(binding = 1, rgba32f) uniform writeonly image2D uHit;
+#endif
+#ifdef SSLR_DEBUG_OUTPUTS
 layout(binding = 2, r32f) uniform writeonly image2D uIterations;
 #endif
 #ifdef SSLR_COLLECT_STATS
@@ -249,8 +252,10 @@ void sslrShadePixel(ivec2 px) {
   imageStore(uReflection, px, reflection);
   // Resolved before the blur: the same rgb with the coverage in alpha (the blur reads it from here).
   imageStore(uResolved, px, vec4(reflection.rgb, coverage));
-#ifdef SSLR_DEBUG_OUTPUTS
+#if defined(SSLR_DEBUG_OUTPUTS) || defined(SSLR_TEMPORAL_HITS)
   imageStore(uHit, px, vec4(hit.uvHit, hit.confidence, hit.L));
+#endif
+#ifdef SSLR_DEBUG_OUTPUTS
   imageStore(uIterations, px, vec4(float(hit.iterations)));
 #endif
 #ifdef SSLR_COLLECT_STATS

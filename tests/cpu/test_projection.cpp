@@ -298,3 +298,33 @@ TEST(Temporal, ReprojectionFollowsTheCamera) {
 }
 
 }  // namespace
+
+namespace {
+
+// The virtual-point lookup for mirrors: the point X where the previous camera saw the reflection
+// of Q in a plane mirror lies on the mirror, and the previous camera's ray reflected at X passes
+// through Q (the law of reflection, checked against Q directly).
+TEST(Temporal, VirtualPointObeysTheLawOfReflection) {
+  const glm::vec3 n(0.0f, 1.0f, 0.0f);
+  const glm::vec3 vsQ(-0.8f, 0.7f, -9.0f);  // a point above the floor plane y = -1
+  // The current camera (at the origin) sees Q's mirror image through the point P of the floor on
+  // the line to that image; then the reflected length is L = |Q - P|.
+  const glm::vec3 mirrored(vsQ.x, -2.0f - vsQ.y, vsQ.z);
+  const glm::vec3 p = mirrored * (-1.0f / mirrored.y);
+  ASSERT_NEAR(p.y, -1.0f, 1e-5f);
+  const float L = glm::length(vsQ - p);
+  for (glm::vec3 eye : {glm::vec3(0.0f), glm::vec3(0.4f, 0.1f, 0.3f), glm::vec3(-1.0f, 0.5f, -0.5f)}) {
+    glm::vec3 x;
+    ASSERT_TRUE(sslrVirtualPointOnMirror(glm::vec4(eye, 1.0f), p, n, L, x));
+    EXPECT_NEAR(x.y, -1.0f, 1e-4f) << "X lies on the mirror";
+    const glm::vec3 reflected = glm::reflect(glm::normalize(x - eye), n);
+    const glm::vec3 toQ = glm::normalize(vsQ - x);
+    EXPECT_GT(glm::dot(reflected, toQ), 1.0f - 1e-5f) << "the reflected ray from the previous eye meets Q";
+  }
+  // Unknown eye (orthographic) or an eye below the mirror: no lookup.
+  glm::vec3 x;
+  EXPECT_FALSE(sslrVirtualPointOnMirror(glm::vec4(0.0f), p, n, L, x));
+  EXPECT_FALSE(sslrVirtualPointOnMirror(glm::vec4(0.0f, -3.0f, 0.0f, 1.0f), p, n, L, x));
+}
+
+}  // namespace

@@ -151,7 +151,7 @@ struct Snapshot {
     i(GL_ACTIVE_TEXTURE);
     GLint active = 0;
     glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
-    for (int u = 0; u < 9; ++u) {
+    for (int u = 0; u < 10; ++u) {
       glActiveTexture(GL_TEXTURE0 + u);
       i(GL_TEXTURE_BINDING_2D);
       i(GL_SAMPLER_BINDING);
@@ -202,7 +202,7 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   GLuint fboTex = makeTexture(GL_RGBA16F);
   glCreateFramebuffers(1, &hostFbo);
   glNamedFramebufferTexture(hostFbo, GL_COLOR_ATTACHMENT0, fboTex, 0);
-  for (int u = 0; u < 9; ++u) {  // every unit sslr uses (6: its depth pyramid, 7: material, 8: mask)
+  for (int u = 0; u < 10; ++u) {  // every unit sslr uses (6: its depth pyramid, 7: material, 8: mask, 9: hit)
     glBindTextureUnit(u, hostTex[u % 3]);
     glBindSampler(u, hostSampler);
   }
@@ -274,7 +274,7 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   glDeleteSamplers(1, &hostSampler);
   glDeleteBuffers(3, hostBuf);
   glDeleteVertexArrays(1, &hostVao);
-  for (int u = 0; u < 9; ++u) {
+  for (int u = 0; u < 10; ++u) {
     glBindTextureUnit(u, 0);
     glBindSampler(u, 0);
   }

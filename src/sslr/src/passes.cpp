@@ -57,6 +57,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   const std::string statsDefine = settings.collectStats ? "#define SSLR_COLLECT_STATS 1\n" : "";
   std::string traceDefines = methodDefines + statsDefine;
   if (settings.debugOutputs) traceDefines += "#define SSLR_DEBUG_OUTPUTS 1\n";
+  if (settings.temporal) traceDefines += "#define SSLR_TEMPORAL_HITS 1\n";
   // Half resolution: a quad pass (the tracer, one ray per 2x2 quad) before the full-resolution
   // pass, which reuses those rays.
   const std::string quadDefines = "#define SSLR_HALF_QUADS 1\n" + methodDefines + statsDefine;
@@ -205,10 +206,9 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   gl.UseProgram(trace.value());
   gl.BindImageTexture(0, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   gl.BindImageTexture(3, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  if (settings.debugOutputs) {
+  if (settings.debugOutputs || settings.temporal)
     gl.BindImageTexture(1, hit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    gl.BindImageTexture(2, iterations, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-  }
+  if (settings.debugOutputs) gl.BindImageTexture(2, iterations, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
   gl.DispatchComputeIndirect(0);
   if (settings.halfResolution) {  // the pixels whose quad's ray did not answer them
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
@@ -245,6 +245,8 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.UseProgram(temporalBlend.value());
     gl.BindTextureUnit(6, in.motionTexture);  // unit 6 (the pyramid's) is free after the trace
     gl.BindSampler(6, nearestSampler);
+    gl.BindTextureUnit(9, hit);  // written by the trace on the listed tiles (SSLR_TEMPORAL_HITS)
+    gl.BindSampler(9, nearestSampler);
     gl.BindTextureUnit(3, resolved);
     gl.BindTextureUnit(4, history);
     gl.BindTextureUnit(5, historyKey);

@@ -94,6 +94,14 @@ Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings
     // four history texels around the reprojected point are tried, so a slope costs nothing.
     f.temporal.keyTolerance = 0.02f;
     f.temporal.hasMotion = in.motionTexture != 0 ? 1 : 0;
+    // The previous eye: the point the previous projection sends to clip w = 0 with x = y = 0, i.e.
+    // inverse(previousClipFromView) (0, 0, 1, 0) (perspective only; orthographic has no eye).
+    if (f.proj.orthographic == 0) {
+      const glm::dvec4 e = glm::inverse(in.previousClipFromView) * glm::dvec4(0.0, 0.0, 1.0, 0.0);
+      const glm::dvec3 eye = glm::dvec3(e) / e.w;
+      if (std::abs(e.w) > 1e-12 && std::isfinite(eye.x) && std::isfinite(eye.y) && std::isfinite(eye.z))
+        f.temporal.previousEye = glm::vec4(glm::vec3(eye), 1.0f);
+    }
   }
   return f;
 }

@@ -271,7 +271,8 @@ class Context {
   // blur (which blurs both alike). Valid on the tiles a dispatch traced, 0 elsewhere.
   GLName resolvedTexture() const;    // RGBA16F
   GLName reflectionTexture() const;  // RGBA16F, before the blur: rgb as above, a = blur weight
-  GLName hitTexture() const;         // RGBA32F (debugOutputs): uvHit, confidence, L
+  GLName hitTexture() const;         // RGBA32F (debugOutputs): uvHit, confidence, L (temporal reuse
+                                     // also writes it on the traced tiles, for its own use)
   GLName iterationsTexture() const;  // R32F (debugOutputs): adaptive-L iterations run
   // Stats never stall the pipeline: each dispatch with collectStats records into a ring of 4
   // slots, and lastStats() returns the newest whose GPU work has finished (FrameStats::frame says
