@@ -1,10 +1,8 @@
 // sslr-bench end to end: the quick grid runs, every record has every field, the report exists
 // and references images that exist, and (where Chromium is installed) renders headless.
-#include <sys/wait.h>
 
 #include <nlohmann/json.hpp>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +10,7 @@
 #include <regex>
 #include <set>
 
+#include "common/shell.hpp"
 #include "gl/gl_fixture.hpp"
 #include "sslr_host/image_io.hpp"
 
@@ -20,15 +19,9 @@ namespace fs = std::filesystem;
 namespace {
 
 int runCommand(const std::string& cmd, std::string* output = nullptr) {
-  FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
-  if (pipe == nullptr) return -1;
-  std::array<char, 4096> buf;
-  size_t n;
-  std::string out;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  if (output) *output = out;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  const sslr::test::ShellResult r = sslr::test::runShell(cmd);
+  if (output) *output = r.output;
+  return r.exitCode;
 }
 
 class Bench : public sslr::test::GlTest {};

@@ -1,12 +1,11 @@
 // sslr-render as a user runs it: help, exit codes, messages, files written (or not).
-#include <sys/wait.h>
 
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 
 #include "common/gltf_writer.hpp"
+#include "common/shell.hpp"
 #include "gl/gl_fixture.hpp"
 #include "sslr_host/image_io.hpp"
 
@@ -14,25 +13,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int exitCode = -1;
-  std::string output;
-};
+using Result = sslr::test::ShellResult;
 
 // `prefix` runs before the program in the same shell (limits, traps).
 Result run(const std::string& args, const std::string& prefix = "") {
-  const std::string cmd =
-      prefix.empty() ? std::string(SSLR_RENDER_EXE) + " " + args + " 2>&1"
-                     : "bash -c '" + prefix + "; exec " + std::string(SSLR_RENDER_EXE) + " " + args + "' 2>&1";
-  Result r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (pipe == nullptr) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
-  const int status = pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return sslr::test::runShell(prefix.empty() ? std::string(SSLR_RENDER_EXE) + " " + args
+                                             : "bash -c '" + prefix + "; exec " + std::string(SSLR_RENDER_EXE) +
+                                                   " " + args + "'");
 }
 
 fs::path freshDir(const std::string& name) {

@@ -1,14 +1,13 @@
 // sslr-view under Xvfb, as CI runs it: the window shows what sslr-render renders for the same
 // camera, the panel is drawn, the error view and the split screen run, and the failures a user
 // meets (no display, bad arguments) are clear errors.
-#include <sys/wait.h>
 
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 
+#include "common/shell.hpp"
 #include "gl/gl_fixture.hpp"
 #include "sslr_host/image_io.hpp"
 
@@ -17,22 +16,8 @@ using namespace sslr::host;
 
 namespace {
 
-struct Result {
-  int exitCode = -1;
-  std::string output;
-};
-
-Result sh(const std::string& cmd) {
-  Result r;
-  FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
-  if (pipe == nullptr) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
-  const int status = pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using Result = sslr::test::ShellResult;
+Result sh(const std::string& cmd) { return sslr::test::runShell(cmd); }
 
 fs::path freshDir(const std::string& name) {
   const fs::path p = fs::path(SSLR_TEST_TMP) / "viewer" / name;
