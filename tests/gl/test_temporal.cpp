@@ -153,6 +153,9 @@ TEST_F(Temporal, MotionVectorsChooseWhereHistoryIsRead) {
   const auto offScreen = run(true, {5.0f, 5.0f});
   EXPECT_EQ(offScreen, plain.resolved().pixels);
   EXPECT_NE(offScreen, matrices);
+  // Poisoned motion vectors find no history either, and spread nothing.
+  EXPECT_EQ(run(true, {NAN, 0.0f}), plain.resolved().pixels);
+  EXPECT_EQ(run(true, {INFINITY, -INFINITY}), plain.resolved().pixels);
 }
 
 TEST_F(Temporal, MissingOrBadInputsAreRefused) {
