@@ -75,6 +75,7 @@ void main() {
   vec4 packedNormal = texelFetch(uNormal, px, 0);
   vec4 history = vec4(0.0f);
   bool found = false;
+  bool curved = false;
   if (frame.temporal.history != 0 && sslrShouldTracePixel(px, depth, packedNormal, sslrMaterialAt(px, packedNormal))) {
     vec3 vsP = sslrViewAtPixel(px, depth);
     // Where the surface point was: through the matrices, or the host's motion vectors when given
@@ -95,21 +96,27 @@ void main() {
     //    on planes (the normal one pixel right and up agrees): on a curved mirror the tangent
     //    plane sends the lookup astray (measured: curved-mirror's error rose by a quarter).
     vec3 vsN;
-    if (current.a > 0.0f && staticSurface && sslrDecodeNormal(frame.surface, packedNormal, vsN)) {
+    bool planar = false;
+    if (sslrDecodeNormal(frame.surface, packedNormal, vsN)) {
       ivec2 maxPx = ivec2(sslrSizePx()) - 1;
       vec3 nRight, nUp;
-      bool planar = sslrDecodeNormal(frame.surface, texelFetch(uNormal, min(px + ivec2(1, 0), maxPx), 0), nRight) &&
-                    sslrDecodeNormal(frame.surface, texelFetch(uNormal, min(px + ivec2(0, 1), maxPx), 0), nUp) &&
-                    dot(nRight, vsN) > 0.9999f && dot(nUp, vsN) > 0.9999f;
-      vec3 vsX;
-      vec2 uvVirtual;
-      float keyVirtual;
-      if (planar && sslrVirtualPointOnMirror(frame.temporal.previousEye, vsP, vsN, texelFetch(uHitRecord, px, 0).a, vsX) &&
-          sslrReproject(frame.proj, frame.temporal.previousClipFromView, vsX, uvVirtual, keyVirtual))
-        found = sslrHistoryAt(uvVirtual, keyVirtual, history);
+      planar = sslrDecodeNormal(frame.surface, texelFetch(uNormal, min(px + ivec2(1, 0), maxPx), 0), nRight) &&
+               sslrDecodeNormal(frame.surface, texelFetch(uNormal, min(px + ivec2(0, 1), maxPx), 0), nUp) &&
+               dot(nRight, vsN) > 0.9999f && dot(nUp, vsN) > 0.9999f;
     }
-    // 2. Else the surface point itself.
-    if (!found && surfaceOnScreen) found = sslrHistoryAt(uvSurface, keySurface, history);
+    curved = !planar;
+    vec3 vsX;
+    vec2 uvVirtual;
+    float keyVirtual;
+    if (current.a > 0.0f && staticSurface && planar &&
+        sslrVirtualPointOnMirror(frame.temporal.previousEye, vsP, vsN, texelFetch(uHitRecord, px, 0).a, vsX) &&
+        sslrReproject(frame.proj, frame.temporal.previousClipFromView, vsX, uvVirtual, keyVirtual))
+      found = sslrHistoryAt(uvVirtual, keyVirtual, history);
+    // 2. Else the surface point itself. On a curved mirror only where this frame found a hit (a
+    //    neighbour's old hit there is another reflection: with it curved-mirror's error on pixels
+    //    with nothing to reflect doubled).
+    if (!found && surfaceOnScreen && (planar || current.a > 0.0f))
+      found = sslrHistoryAt(uvSurface, keySurface, history);
   }
   if (found) {
     // Variance clipping (Salvi 2016): the neighbourhood's mean +- one standard deviation, a
@@ -126,7 +133,10 @@ void main() {
     vec4 mean = m1 / 9.0f;
     vec4 sigma = sqrt(max(m2 / 9.0f - mean * mean, vec4(0.0f)));
     vec4 lo = min(mean - sigma, current), hi = max(mean + sigma, current);
-    blended = mix(current, clamp(history, lo, hi), frame.temporal.historyWeight);
+    // A curved mirror's reflection changes within a pixel, and resampled history blurs it: there
+    // history gets a quarter of the weight (curved-mirror under jitter: error 2.0x without
+    // temporal reuse at full weight, 1.2x at half, 1.04x at a quarter).
+    blended = mix(current, clamp(history, lo, hi), frame.temporal.historyWeight * (curved ? 0.25f : 1.0f));
   }
   imageStore(uBlended, px, blended);
 }
