@@ -70,8 +70,8 @@ TEST_F(Temporal, HistoryDampsHalfResolutionFlicker) {
   std::printf("half resolution, static view, frame-to-frame change: %.2f without, %.2f with temporal reuse\n",
               without, with);
   EXPECT_GT(without, 10.0) << "the rotating quad pixel should change the reflection";
-  // Weight 0.8 would cut an exactly repeating change to about 0.2x; the clamp and the reduced
-  // weight at the floor's edges give some back (measured 369.5 -> 66.6: 0.18x).
+  // Weight 0.8 cuts a change that history can average to about 0.2x (measured 369.5 -> 66.6:
+  // 0.18x); unused or clamped history would leave it near 1x.
   EXPECT_LT(with, 0.5 * without);
 }
 
