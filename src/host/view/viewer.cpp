@@ -272,6 +272,7 @@ struct App {
       ImGui::SliderFloat("thicknessRelative", &t.thicknessRelative, 0.0f, 0.02f, "%.4f");
       ImGui::SliderFloat("thicknessPixels", &t.thicknessPixels, 0.0f, 8.0f);
       ImGui::SliderFloat("errorK", &t.errorK, 0.0f, 1.0f);
+      ImGui::SliderFloat("maxDistance", &t.maxDistance, 0.1f, 1.0e30f, "%.3g", ImGuiSliderFlags_Logarithmic);
       ImGui::TreePop();
     }
     if (ImGui::TreeNode("fades and material")) {
