@@ -266,6 +266,8 @@ SSLR_FN bool sslrIsGeometryDepth(SslrSurface s, float depth) {
 
 SSLR_FN vec2 sslrNdcFromUv(vec2 uv) { return uv * 2.0f - 1.0f; }
 SSLR_FN vec2 sslrUvFromNdc(vec2 ndc) { return ndc * 0.5f + 0.5f; }
+// Whether uv lies on the screen (borders included); false for NaN.
+SSLR_FN bool sslrInsideUv(vec2 uv) { return uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f; }
 SSLR_FN vec2 sslrUvFromPixel(ivec2 px, vec2 sizePx) { return (vec2(px) + 0.5f) / sizePx; }
 SSLR_FN ivec2 sslrPixelFromUv(vec2 uv, vec2 sizePx) {
   return clamp(ivec2(floor(uv * sizePx)), ivec2(0), ivec2(sizePx) - 1);
@@ -462,7 +464,7 @@ SSLR_FN float sslrErrorWeight(SslrProjection p, vec3 vsP, float L, float k) {
 
 // 1 inside, falling linearly to 0 over `width` (fraction of the screen) at each border.
 SSLR_FN float sslrEdgeFade(vec2 uv, float width) {
-  if (width <= 0.0f) return (uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f) ? 1.0f : 0.0f;
+  if (width <= 0.0f) return sslrInsideUv(uv) ? 1.0f : 0.0f;
   vec2 d = min(uv, 1.0f - uv) / width;
   return sslrSaturate(min(d.x, d.y));
 }
@@ -507,7 +509,7 @@ SSLR_FN bool sslrReproject(SslrProjection p, mat4 previousClipFromView, vec3 vsP
   if (!(clip.w > 0.0f)) return false;
   uvPrevious = sslrUvFromNdc(vec2(clip.x, clip.y) / clip.w);
   keyPrevious = sslrHistoryKeyFromClip(p.orthographic, clip);
-  return uvPrevious.x >= 0.0f && uvPrevious.y >= 0.0f && uvPrevious.x <= 1.0f && uvPrevious.y <= 1.0f;
+  return sslrInsideUv(uvPrevious);
 }
 
 // Where a mirror's reflection was in the previous frame. The reflection of hit Q seen at P

@@ -41,7 +41,7 @@ SSLR_FN SslrHit sslrNoHit(int status) {
   hit.L = 0.0f;
   hit.iterations = 0;
   hit.status = status;
-  hit.fade = 0.0f;
+  hit.fade = 1.0f;  // the depth-only tracers' weight; the tutorial's method sets its own
   hit.hierarchical = 0;
   return hit;
 }
@@ -145,7 +145,7 @@ SSLR_FN SslrHit sslrFinishHit(SslrProjection p, SslrHit hit, vec3 vsP, vec3 vsR,
   hit.uvHit = sslrUvFromNdc(vec2(ndcQ.x, ndcQ.y));
   hit.L = L;
   // The refined hit may lie just outside the screen (its pixel was the border one): no colour.
-  if (!(hit.uvHit.x >= 0.0f && hit.uvHit.x <= 1.0f && hit.uvHit.y >= 0.0f && hit.uvHit.y <= 1.0f)) {
+  if (!sslrInsideUv(hit.uvHit)) {
     hit.uvHit = clamp(hit.uvHit, vec2(0.0f), vec2(1.0f));
     hit.status = SSLR_STATUS_OFF_SCREEN;
     return hit;
@@ -176,7 +176,6 @@ SSLR_FN SslrHit sslrFinishHit(SslrProjection p, SslrHit hit, vec3 vsP, vec3 vsR,
 SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTraceParams t,
                                    ivec2 pxOrigin, vec3 vsP, vec3 vsR) {
   SslrHit hit = sslrNoHit(SSLR_STATUS_MISS);
-  hit.fade = 1.0f;
 
   vec2 sizePx = vec2(s.width, s.height);
   float distP = p.orthographic != 0 ? 1.0f : sslrViewDistance(p, vsP);
@@ -212,8 +211,7 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
     float depthQ = sslrDepthFromNdcZ(p, ndcQ.z);
     // Written so that NaN fails: a probe outside the screen or the depth range (behind the
     // near plane, beyond a finite far plane) has nothing to read.
-    if (!(uvQ.x >= 0.0f && uvQ.x <= 1.0f && uvQ.y >= 0.0f && uvQ.y <= 1.0f && depthQ >= 0.0f &&
-          depthQ <= 1.0f)) {
+    if (!(sslrInsideUv(uvQ) && depthQ >= 0.0f && depthQ <= 1.0f)) {
       // A step that overshot the screen from free space may have jumped over the hit: step
       // back towards lo a few times (SSLR_MAX_RETREATS) before giving up.
       if (lo > 0.0f && hi < 0.0f && L > 1.05f * lo && retreats < SSLR_MAX_RETREATS) {

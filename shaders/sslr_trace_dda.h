@@ -149,7 +149,6 @@ SSLR_FN SslrHit sslrTraceDda(SslrProjection p, SslrSurface s, SslrDdaParams d, i
   hit.uvHit = clamp(pxHit / sizePx, vec2(0.0f), vec2(1.0f));
   hit.L = length(vsHit - vsP);
   hit.confidence = 1.0f;
-  hit.fade = 1.0f;
   hit.status = SSLR_STATUS_HIT;
   return hit;
 }

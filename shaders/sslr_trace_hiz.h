@@ -45,7 +45,6 @@ SSLR_FN int sslrHiZNextLevel(vec3 o, vec3 d, float tRay, vec2 cell, int level, i
 SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin,
                                       vec3 vsP, vec3 vsR) {
   SslrHit hit = sslrNoHit(SSLR_STATUS_MISS);
-  hit.fade = 1.0f;
   hit.hierarchical = 1;
   vec2 sizePx = vec2(s.width, s.height);
   float keySign = s.reversedZ != 0 ? -1.0f : 1.0f;

@@ -98,7 +98,7 @@ SSLR_FN SslrHit sslrTracePositionBuffer(SslrProjection p, SslrSurface s, SslrPos
     }
   }
   vec2 uv = frag / sizePx;
-  bool onScreen = uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f;
+  bool onScreen = sslrInsideUv(uv);
   hit.uvHit = clamp(uv, vec2(0.0f), vec2(1.0f));
   hit.L = length(vec3(positionTo.x, positionTo.y, positionTo.z) - vsP);
   // The tutorial's visibility: hit * position.w * (1 - max(dot(-V, R), 0)) *

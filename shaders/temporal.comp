@@ -64,8 +64,6 @@ bool sslrHistoryAt(vec2 uvPrevious, float keyPrevious, out vec4 history) {
   return weightSum > 1e-3f;
 }
 
-bool sslrInsideUv(vec2 uv) { return all(greaterThanEqual(uv, vec2(0.0f))) && all(lessThanEqual(uv, vec2(1.0f))); }
-
 void main() {
   ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
   if (!sslrInside(px)) return;
@@ -75,7 +73,7 @@ void main() {
   vec4 packedNormal = texelFetch(uNormal, px, 0);
   vec4 history = vec4(0.0f);
   bool found = false;
-  bool curved = false;
+  bool planar = false;  // the surface is flat here (see below); else it is curved
   if (frame.temporal.history != 0 && sslrShouldTracePixel(px, depth, packedNormal, sslrMaterialAt(px, packedNormal))) {
     vec3 vsP = sslrViewAtPixel(px, depth);
     // Where the surface point was: through the matrices, or the host's motion vectors when given
@@ -96,7 +94,6 @@ void main() {
     //    on planes (the normal one pixel right and up agrees): on a curved mirror the tangent
     //    plane sends the lookup astray (measured: curved-mirror's error rose by a quarter).
     vec3 vsN;
-    bool planar = false;
     if (sslrDecodeNormal(frame.surface, packedNormal, vsN)) {
       ivec2 maxPx = ivec2(sslrSizePx()) - 1;
       vec3 nRight, nUp;
@@ -104,7 +101,6 @@ void main() {
                sslrDecodeNormal(frame.surface, texelFetch(uNormal, min(px + ivec2(0, 1), maxPx), 0), nUp) &&
                dot(nRight, vsN) > 0.9999f && dot(nUp, vsN) > 0.9999f;
     }
-    curved = !planar;
     vec3 vsX;
     vec2 uvVirtual;
     float keyVirtual;
@@ -136,7 +132,7 @@ void main() {
     // A curved mirror's reflection changes within a pixel, and resampled history blurs it: there
     // history gets a quarter of the weight (curved-mirror under jitter: error 2.0x without
     // temporal reuse at full weight, 1.2x at half, 1.04x at a quarter).
-    blended = mix(current, clamp(history, lo, hi), frame.temporal.historyWeight * (curved ? 0.25f : 1.0f));
+    blended = mix(current, clamp(history, lo, hi), frame.temporal.historyWeight * (planar ? 1.0f : 0.25f));
   }
   imageStore(uBlended, px, blended);
 }

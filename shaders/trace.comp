@@ -206,7 +206,6 @@ bool sslrReuseQuadHit(ivec2 px, vec3 vsP, vec3 vsN, vec3 vsR, out SslrHit hit) {
                                        sslrSlopeTan(frame.proj, vsSurface, vsHitNormal));
     if (length(vsQ - vsSurface) > tolerance) return false;
   }
-  hit.fade = 1.0f;  // the depth-only tracers' (half resolution runs no other)
   hit = sslrFinishHit(frame.proj, hit, vsP, vsR, L, confidence);
   return true;
 }

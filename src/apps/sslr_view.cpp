@@ -11,15 +11,20 @@
 
 int main(int argc, char** argv) {
   using namespace sslr::host;
+  auto joined = [](const std::vector<std::string>& names) {
+    std::string out;
+    for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+    return out;
+  };
   cxxopts::Options options("sslr-view", "Interactive viewer: sslr in a GLFW window with a Dear ImGui panel.");
   options.add_options()
       ("scene", "built-in scene or a .gltf/.glb file (files can also be dropped on the window)",
        cxxopts::value<std::string>()->default_value("mirror-room"))
       ("mirror-floor", "add a mirror floor under the scene (most models have nothing to reflect in)")
       ("size", "window size WxH", cxxopts::value<std::string>()->default_value("1280x720"))
-      ("view", "initial view: final, reflection, blur-weight, resolved, coverage, confidence, length, iterations, hit-uv, error",
+      ("view", "initial view: " + joined(viewerViewNames()),
        cxxopts::value<std::string>()->default_value("final"))
-      ("split", "compare against this method on the right half: adaptive-l, hiz, dda, position-buffer, none",
+      ("split", "compare against this method on the right half: " + joined(viewerMethodNames()),
        cxxopts::value<std::string>())
       ("frames", "render this many frames, then exit (0: until the window is closed)",
        cxxopts::value<int>()->default_value("0"))
@@ -43,14 +48,13 @@ int main(int argc, char** argv) {
         vo.width > 8192 || vo.height > 8192)
       throw std::runtime_error("--size expects WxH with 16..8192 each (got '" + args["size"].as<std::string>() + "')");
     vo.debugView = args["view"].as<std::string>();
-    const std::string views[] = {"final",      "reflection", "blur-weight", "resolved", "coverage",
-                                 "confidence", "length",     "iterations",  "hit-uv",   "error"};
-    if (std::find(std::begin(views), std::end(views), vo.debugView) == std::end(views))
+    const auto& views = viewerViewNames();
+    if (std::find(views.begin(), views.end(), vo.debugView) == views.end())
       throw std::runtime_error("--view: unknown view '" + vo.debugView + "'");
     if (args.count("split")) {
       vo.split = args["split"].as<std::string>();
-      const std::string methods[] = {"adaptive-l", "hiz", "dda", "position-buffer", "none"};
-      if (std::find(std::begin(methods), std::end(methods), vo.split) == std::end(methods))
+      const auto& methods = viewerMethodNames();
+      if (std::find(methods.begin(), methods.end(), vo.split) == methods.end())
         throw std::runtime_error("--split: unknown method '" + vo.split + "'");
     }
     vo.frames = args["frames"].as<int>();

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -66,6 +68,13 @@ Status runTemporalStudy(const std::string& sceneName, const BenchOptions& option
   const Camera start = scene.value().camera ? *scene.value().camera : scene.value().defaultCamera();
   GpuScene gpu(scene.value());
   const int frames = kStillFrames + kSlowFrames + kFastFrames;
+  // Truth and the ideal reflection depend only on the frame (camera and jitter), not on the
+  // configuration: computed once per frame for the jittered configurations and once for the rest.
+  struct Reference {
+    GroundTruth truth;
+    Image ideal;
+  };
+  std::map<std::pair<int, bool>, Reference> references;
   for (const TemporalConfig& config : kConfigs) {
     GBufferOptions g;
     g.width = options.temporalWidth;
@@ -85,19 +94,27 @@ Status runTemporalStudy(const std::string& sceneName, const BenchOptions& option
       Status st;
       const double ms = timer.timeMs([&] { st = fr.sslr().dispatch(fr.inputs(), settings); });
       if (!st) return st;
-      // Truth and the ideal reflection read the frame alone (no previous matrices).
-      Settings single = settings;
-      single.temporal = false;
-      auto truth = groundTruthFor(scene.value(), fr.gbuffer(), single);
-      if (!truth) return Status::error(truth.error());
-      const Image depth = fr.gbuffer().readDepth(), normal = fr.gbuffer().readNormalPacked();
-      const Image color = fr.gbuffer().readColor(), resolved = fr.readResolved();
-      const Image ideal = idealReflection({&depth, &normal, nullptr}, color, truth.value(), fr.inputs(), single);
+      auto ref = references.find({frame, config.jitter});
+      if (ref == references.end()) {
+        // They read the frame alone (no previous matrices); the traced pixels do not depend on
+        // half resolution.
+        const Settings single;
+        auto truth = groundTruthFor(scene.value(), fr.gbuffer(), single);
+        if (!truth) return Status::error(truth.error());
+        const Image depth = fr.gbuffer().readDepth(), normal = fr.gbuffer().readNormalPacked();
+        const Image color = fr.gbuffer().readColor();
+        Image ideal = idealReflection({&depth, &normal, nullptr}, color, truth.value(), fr.inputs(), single);
+        ref = references.emplace(std::pair{frame, config.jitter}, Reference{std::move(truth.value()), std::move(ideal)})
+                  .first;
+      }
+      const GroundTruth& truth = ref->second.truth;
+      const Image& ideal = ref->second.ideal;
+      const Image resolved = fr.readResolved();
       double sumAll = 0, sumVisible = 0, sumHidden = 0;
       size_t nAll = 0, nVisible = 0, nHidden = 0;
       for (int y = 0; y < g.height; ++y)
         for (int x = 0; x < g.width; ++x) {
-          const TruthClass cls = truth.value().pixels[static_cast<size_t>(y) * g.width + x].cls;
+          const TruthClass cls = truth.pixels[static_cast<size_t>(y) * g.width + x].cls;
           if (cls == TruthClass::NotReflective) continue;
           double e = 0;
           for (int k = 0; k < 3; ++k) {
@@ -117,32 +134,30 @@ Status runTemporalStudy(const std::string& sceneName, const BenchOptions& option
 }
 
 std::vector<TemporalSummary> summarizeTemporal(const std::vector<TemporalPoint>& points) {
-  std::vector<TemporalSummary> out;
-  std::vector<std::vector<double>> times;
-  std::vector<int> counts;
+  struct Group {
+    TemporalSummary sum;
+    std::vector<double> times;
+  };
+  std::vector<Group> groups;  // in the order the points come (scene, configuration, segment)
   for (const TemporalPoint& p : points) {
     if (p.segment == std::string("still") && p.frame < kStillFrames / 2) continue;
-    auto it = std::find_if(out.begin(), out.end(), [&](const TemporalSummary& s) {
-      return s.scene == p.scene && s.config == p.config && s.segment == p.segment;
+    auto it = std::find_if(groups.begin(), groups.end(), [&](const Group& g) {
+      return g.sum.scene == p.scene && g.sum.config == p.config && g.sum.segment == p.segment;
     });
-    if (it == out.end()) {
-      out.push_back({p.scene, p.config, p.segment});
-      times.emplace_back();
-      counts.push_back(0);
-      it = out.end() - 1;
-    }
-    const size_t i = static_cast<size_t>(it - out.begin());
-    it->rmse += p.rmse;
-    it->rmseVisible += p.rmseVisible;
-    it->rmseHidden += p.rmseHidden;
-    times[i].push_back(p.dispatchMs);
-    ++counts[i];
+    if (it == groups.end()) it = groups.insert(groups.end(), Group{{p.scene, p.config, p.segment}, {}});
+    it->sum.rmse += p.rmse;
+    it->sum.rmseVisible += p.rmseVisible;
+    it->sum.rmseHidden += p.rmseHidden;
+    it->times.push_back(p.dispatchMs);
   }
-  for (size_t i = 0; i < out.size(); ++i) {
-    out[i].rmse /= counts[i];
-    out[i].rmseVisible /= counts[i];
-    out[i].rmseHidden /= counts[i];
-    out[i].dispatchMs = median(times[i]);
+  std::vector<TemporalSummary> out;
+  for (Group& g : groups) {
+    const double n = static_cast<double>(g.times.size());
+    g.sum.rmse /= n;
+    g.sum.rmseVisible /= n;
+    g.sum.rmseHidden /= n;
+    g.sum.dispatchMs = median(g.times);
+    out.push_back(g.sum);
   }
   return out;
 }

@@ -53,6 +53,12 @@ constexpr View kViews[] = {
 };
 
 const char* kMethods[] = {"adaptive-l", "hiz", "dda", "position-buffer", "none"};
+
+std::vector<std::string> namesOf(auto first, auto last, auto name) {
+  std::vector<std::string> out;
+  for (; first != last; ++first) out.push_back(name(*first));
+  return out;
+}
 const char* kPresets[] = {"low", "medium", "high", "ultra"};
 const char* kDepths[] = {"reversed", "reversed-infinite", "zero-to-one", "gl-default"};
 
@@ -425,6 +431,18 @@ struct App {
 App* gApp = nullptr;  // for GLFW's C callbacks
 
 }  // namespace
+
+const std::vector<std::string>& viewerViewNames() {
+  static const std::vector<std::string> names =
+      namesOf(std::begin(kViews), std::end(kViews), [](const View& v) { return std::string(v.name); });
+  return names;
+}
+
+const std::vector<std::string>& viewerMethodNames() {
+  static const std::vector<std::string> names =
+      namesOf(std::begin(kMethods), std::end(kMethods), [](const char* m) { return std::string(m); });
+  return names;
+}
 
 int runViewer(const ViewerOptions& options) {
   glfwSetErrorCallback([](int, const char* text) { std::fprintf(stderr, "sslr-view: GLFW: %s\n", text); });

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace sslr::host {
 
@@ -21,6 +22,10 @@ struct ViewerOptions {
   std::string split;        // "" or a method name: compare it on the right half from the start
   std::string debugView;    // "" (final) or a debug view name, see viewer.cpp kViews
 };
+
+// The names --view and --split accept (in the panel's order).
+const std::vector<std::string>& viewerViewNames();
+const std::vector<std::string>& viewerMethodNames();
 
 // Runs the viewer; returns the process exit code (0, 1 on a GL/window failure with a message on
 // stderr, 2 on a bad scene).
