@@ -1,7 +1,6 @@
 #include "sslr_host/image_io.hpp"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include "image_codecs.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -27,48 +26,32 @@ bool endsWith(const std::string& s, const std::string& suffix) {
 }  // namespace
 
 Expected<std::vector<unsigned char>> encodeImage(const std::string& path, const Image& image,
-                                                 const std::vector<std::string>& channelNames) {
+                                                 const std::vector<std::string>& channelNames, ImageCodec codec) {
   if (image.width <= 0 || image.height <= 0 || image.channels <= 0 ||
       image.pixels.size() != static_cast<size_t>(image.width) * image.height * image.channels)
     return Status::error(path + ": refusing to write an empty or inconsistent image");
   const bool png = endsWith(path, ".png");
   const bool exr = endsWith(path, ".exr");
   if (!png && !exr) return Status::error(path + ": unsupported image extension (use .png or .exr)");
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) return Status::error(path + ": cannot create image writer: " + OIIO::geterror());
-  OIIO::ImageSpec spec(image.width, image.height, image.channels, png ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT);
-  if (exr && channelNames.size() == static_cast<size_t>(image.channels)) spec.channelnames = channelNames;
-  if (exr) spec.attribute("compression", "zip");
-  // Encoded into memory: the file itself is written (and every write checked) by writeFiles.
-  OIIO::Filesystem::IOVecOutput memory;
-  if (!out->supports("ioproxy") || !out->set_ioproxy(&memory))
-    return Status::error(path + ": the image writer cannot encode into memory");
-  if (!out->open(path, spec)) return Status::error(path + ": cannot encode: " + out->geterror());
-  const size_t row = static_cast<size_t>(image.width) * image.channels;
-  bool ok = true;
+  if (!hasImageCodec(codec))
+    return Status::error(path + ": this build has no " + imageCodecName(codec) + " image codec");
+  // PNG rows are stored top first, 8-bit sRGB; alpha stays linear.
+  std::vector<unsigned char> srgb;
   if (png) {
-    std::vector<unsigned char> bytes(row * image.height);
+    const size_t row = static_cast<size_t>(image.width) * image.channels;
+    srgb.resize(row * image.height);
     for (int y = 0; y < image.height; ++y)
       for (size_t i = 0; i < row; ++i) {
         float v = image.pixels[static_cast<size_t>(image.height - 1 - y) * row + i];
         const bool alpha = image.channels == 4 && i % 4 == 3;
         v = alpha ? std::clamp(std::isfinite(v) ? v : 0.0f, 0.0f, 1.0f) : linearToSrgb(v);
-        bytes[static_cast<size_t>(y) * row + i] = static_cast<unsigned char>(std::lround(v * 255.0f));
+        srgb[static_cast<size_t>(y) * row + i] = static_cast<unsigned char>(std::lround(v * 255.0f));
       }
-    ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
-  } else {
-    // Flip rows so the file's first row is the top of the picture (negative y stride).
-    const auto stride = static_cast<OIIO::stride_t>(row * sizeof(float));
-    ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data() + row * (image.height - 1),
-                          OIIO::AutoStride, -stride);
   }
-  if (!ok) {
-    std::string err = out->geterror();
-    out->close();
-    return Status::error(path + ": encoding failed: " + err);
-  }
-  if (!out->close()) return Status::error(path + ": encoding failed: " + out->geterror());
-  return memory.buffer();
+#ifdef SSLR_HAVE_OPENIMAGEIO
+  if (codec == ImageCodec::OpenImageIO) return detail::encodeOiio(path, image, srgb, channelNames);
+#endif
+  return detail::encodeTinyExrStb(path, image, srgb, channelNames);
 }
 
 Status writeFiles(const std::vector<std::pair<std::string, std::vector<unsigned char>>>& files) {
@@ -115,21 +98,32 @@ Status writeImage(const std::string& path, const Image& image, const std::vector
   return writeFiles({{path, std::move(bytes.value())}});
 }
 
-Expected<Image> readImage(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) return Status::error(path + ": cannot open image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  Image image;
-  image.width = spec.width;
-  image.height = spec.height;
-  image.channels = spec.nchannels;
-  const size_t row = static_cast<size_t>(image.width) * image.channels;
-  image.pixels.resize(row * image.height);
-  const auto stride = static_cast<OIIO::stride_t>(row * sizeof(float));
-  if (!in->read_image(0, 0, 0, image.channels, OIIO::TypeDesc::FLOAT,
-                      image.pixels.data() + row * (image.height - 1), OIIO::AutoStride, -stride))
-    return Status::error(path + ": read failed: " + in->geterror());
-  return image;
+Expected<Image> readImage(const std::string& path, ImageCodec codec) {
+  if (!hasImageCodec(codec))
+    return Status::error(path + ": this build has no " + imageCodecName(codec) + " image codec");
+#ifdef SSLR_HAVE_OPENIMAGEIO
+  if (codec == ImageCodec::OpenImageIO) return detail::readOiio(path);
+#endif
+  return detail::readTinyExrStb(path);
+}
+
+const char* imageCodecName(ImageCodec codec) {
+  return codec == ImageCodec::OpenImageIO ? "OpenImageIO" : "tinyexr + stb";
+}
+
+bool hasImageCodec(ImageCodec codec) {
+#ifdef SSLR_HAVE_OPENIMAGEIO
+  if (codec == ImageCodec::OpenImageIO) return true;
+#endif
+  return codec == ImageCodec::TinyExrStb;
+}
+
+ImageCodec defaultImageCodec() {
+#ifdef SSLR_HAVE_OPENIMAGEIO
+  return ImageCodec::OpenImageIO;
+#else
+  return ImageCodec::TinyExrStb;
+#endif
 }
 
 ImageDiff compareImages(const Image& a, const Image& b, float threshold) {

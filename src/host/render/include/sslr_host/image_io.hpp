@@ -1,5 +1,5 @@
 // Images on the host side: float pixels in GL row order (row 0 = bottom), read and written
-// through OpenImageIO. Files are stored top row first, as every viewer expects.
+// through OpenImageIO or tinyexr + stb. Files are stored top row first, as every viewer expects.
 #pragma once
 
 #include <string>
@@ -20,6 +20,15 @@ struct Image {
   float at(int x, int y, int c) const { return pixels[(static_cast<size_t>(y) * width + x) * channels + c]; }
 };
 
+// Two codecs behind one interface. OpenImageIO is the default where it is installed; tinyexr +
+// stb (a few hundred kB instead of OpenImageIO's ~400 MB of dependencies) is always built, is
+// the default without OpenImageIO (cmake -DSSLR_WITH_OPENIMAGEIO=OFF), and lets the tests check
+// each codec's files against the other's.
+enum class ImageCodec { OpenImageIO, TinyExrStb };
+const char* imageCodecName(ImageCodec codec);
+bool hasImageCodec(ImageCodec codec);
+ImageCodec defaultImageCodec();
+
 // .exr: 32-bit float, values as they are. .png: 8-bit, linear -> sRGB, clamped to [0,1].
 // `channelNames` (optional) name the EXR channels, e.g. {"R","G","B","A"}.
 // The file is written in full under a temporary name and renamed into place: a failed write (disk
@@ -28,11 +37,14 @@ Status writeImage(const std::string& path, const Image& image,
                   const std::vector<std::string>& channelNames = {});
 // The image encoded as the file `path` would hold it (the extension picks the format).
 Expected<std::vector<unsigned char>> encodeImage(const std::string& path, const Image& image,
-                                                 const std::vector<std::string>& channelNames = {});
+                                                 const std::vector<std::string>& channelNames = {},
+                                                 ImageCodec codec = defaultImageCodec());
 // Writes every file under a temporary name, checking each write, then renames them all into
 // place; on any failure every temporary is removed and no file is touched.
 Status writeFiles(const std::vector<std::pair<std::string, std::vector<unsigned char>>>& files);
-Expected<Image> readImage(const std::string& path);
+// PNG (8 or 16 bit) reads as stored, scaled to [0,1] (no sRGB decoding); EXR channels R, G, B, A
+// come first in that order whatever the file's order.
+Expected<Image> readImage(const std::string& path, ImageCodec codec = defaultImageCodec());
 
 // Per-channel statistics of the difference of two images (same size and channels).
 struct ImageDiff {
