@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -165,6 +166,9 @@ int run(int argc, char** argv) {
        cxxopts::value<std::string>()->default_value(""))
       ("export-gltf", "write the scene (with the camera as given) as a self-contained glTF 2.0 file and exit, without rendering", cxxopts::value<std::string>())
       ("stats", "print tiles, traced pixels and depth (or position) fetches")
+      ("frames", "render the same view N times; with --stats the pass times are the median of frames 2..N "
+                 "(the first compiles shaders)", cxxopts::value<int>()->default_value("1"))
+      ("temporal", "temporal reuse (Settings::temporal) from the second frame on")
       ("score", "score the traced hits against Embree ground truth (recall, error, false hits), print them and write DIR/error.png")
       ("h,help", "show this help");
   cxxopts::ParseResult args;
@@ -193,6 +197,7 @@ int run(int argc, char** argv) {
   Scene scene;
   const fs::path outDir = args["out"].as<std::string>();
   const bool dump = args.count("dump") > 0;
+  int frames = 1;
   try {
     parseSize(args["size"].as<std::string>(), gopt.width, gopt.height);
     checkMemory(gopt.width, gopt.height, args.count("dump") > 0);
@@ -225,6 +230,9 @@ int run(int argc, char** argv) {
     if (args.count("half-res")) settings.halfResolution = true;
     settings.debugOutputs = dump || args.count("score") > 0;
     settings.collectStats = args.count("stats") > 0;
+    if (args.count("temporal")) settings.temporal = true;
+    frames = args["frames"].as<int>();
+    if (frames < 1 || frames > 10000) throw UsageError{"--frames must be 1..10000 (got " + std::to_string(frames) + ")"};
 
     auto loaded = loadScene(args["scene"].as<std::string>());
     if (!loaded) throw UsageError{loaded.error()};
@@ -283,9 +291,14 @@ int run(int argc, char** argv) {
   FrameRenderer& r = *renderer.value();
   r.setCompositeMode(compositeMode);
   GpuScene gpuScene(scene);
-  if (Status s = r.render(gpuScene, camera, reflections ? &settings : nullptr); !s) {
-    std::cerr << "sslr-render: " << s.message() << "\n";
-    return kExitFailure;
+  // Per-pass GPU times of every frame after the first (which compiles the shaders).
+  std::vector<FrameStats> laterStats;
+  for (int frame = 0; frame < frames; ++frame) {
+    if (Status s = r.render(gpuScene, camera, reflections ? &settings : nullptr); !s) {
+      std::cerr << "sslr-render: " << s.message() << "\n";
+      return kExitFailure;
+    }
+    if (frame > 0 && settings.collectStats && reflections) laterStats.push_back(r.sslr().waitForStats());
   }
   std::vector<std::pair<std::string, std::pair<Image, std::vector<std::string>>>> files;
   files.push_back({"final.png", {r.readFinal(), {}}});
@@ -345,11 +358,24 @@ int run(int argc, char** argv) {
               << st.fetches << " (" << (st.tracedPixels ? double(st.fetches) / st.tracedPixels : 0.0)
               << " per traced pixel), hierarchical traversal on " << st.hierarchicalPixels << " ("
               << (st.tracedPixels ? 100.0 * st.hierarchicalPixels / st.tracedPixels : 0.0) << "% of traced)\n";
-    if (st.classifyMs >= 0.0)
+    if (st.classifyMs >= 0.0 && laterStats.empty())
       std::printf("  pass times (GL_TIMESTAMP%s): classify %.2f ms, pyramid %.2f ms, trace %.2f ms, blur %.2f ms\n",
                   gl.value()->isSoftware() ? "; a software renderer: CPU work; the first frame, with shader compilation"
                                            : "; the first frame, with shader compilation",
                   st.classifyMs, st.pyramidMs, st.traceMs, st.blurMs);
+    if (st.classifyMs >= 0.0 && !laterStats.empty()) {
+      auto median = [&](double FrameStats::*field) {
+        std::vector<double> v;
+        for (const FrameStats& f : laterStats) v.push_back(f.*field);
+        std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+        return v[v.size() / 2];
+      };
+      std::printf("  pass times (GL_TIMESTAMP, median of frames 2..%d%s): classify %.3f ms, pyramid %.3f ms, "
+                  "trace %.3f ms, blur %.3f ms, temporal %.3f ms\n",
+                  frames, gl.value()->isSoftware() ? "; a software renderer: CPU work" : "",
+                  median(&FrameStats::classifyMs), median(&FrameStats::pyramidMs), median(&FrameStats::traceMs),
+                  median(&FrameStats::blurMs), median(&FrameStats::temporalMs));
+    }
   }
   if (score) {
     const HitMetrics& m = *score;

@@ -69,7 +69,14 @@ TEST_P(ReconstructionGl, MatchesRasterizedPositionWithinFormatBound) {
       worstRatio = std::max(worstRatio, err / bound);
       ASSERT_LE(err, bound) << toString(c.mode) << " pixel " << x << "," << y << " dist " << dist;
       const double lateral = std::hypot(rebuilt.at(x, y, 0) - exact.at(x, y, 0), rebuilt.at(x, y, 1) - exact.at(x, y, 1));
-      ASSERT_LE(lateral, (c.ortho ? 0.0 : err * 2.0) + 2e-6 * dist + 1e-5) << "x/y at " << x << "," << y;
+      // x/y follow from the pixel centre (exact) and the depth error (persp: up to 2x); the
+      // reference is the rasterizer's interpolated varying, whose own error depends on the
+      // driver: llvmpipe's stays under 2e-6 relative, NVIDIA's reached 1.6e-4 view units on a
+      // 0.094-unit pixel (H100, driver 580). Allowed: 1/256 of the pixel's footprint.
+      const double pixelFootprint = c.ortho ? cam.orthoHeight / o.height
+                                            : 2.0 * dist * std::tan(glm::radians(cam.fovyDegrees) / 2.0) / o.height;
+      ASSERT_LE(lateral, (c.ortho ? 0.0 : err * 2.0) + pixelFootprint / 256.0 + 1e-6)
+          << "x/y at " << x << "," << y << " dist " << dist;
     }
   EXPECT_GT(pixels, size_t(o.width * o.height / 2));
   std::printf("%s %s: max |dz| %.3g view units, worst error/bound %.3f over %zu pixels\n", toString(c.mode),
