@@ -13,6 +13,11 @@ TARGET = 0.95
 METHODS = ["adaptive-l", "hiz", "dda", "position-buffer"]
 
 
+def ms(v):
+    """Milliseconds with three significant digits (a GPU's 0.123 ms and llvmpipe's 123 ms alike)."""
+    return f"{v:.3g}" if v < 100 else f"{v:.0f}"
+
+
 def main(path):
     with open(path) as f:
         r = json.load(f)
@@ -31,7 +36,7 @@ def main(path):
             d = next((x for x in of(s, m) if x["default"]), None)
             if d is None:
                 continue
-            print(f"| {s} | {m} {d['label']} | {d['timeMedianMs']:.1f} | {d['timeMedianMs'] / tut['timeMedianMs']:.2f} | "
+            print(f"| {s} | {m} {d['label']} | {ms(d['timeMedianMs'])} | {d['timeMedianMs'] / tut['timeMedianMs']:.2f} | "
                   f"{d['recall1px']:.3f} | {d['p95ErrorPx']:.3f} | {100 * d['falseHitRate']:.2f}% | {d['fetchesPerTracedPixel']:.1f} |")
 
     print(f"\n### Fastest configuration of each method reaching recall@1px ≥ {TARGET}\n")
@@ -44,7 +49,7 @@ def main(path):
             if ok:
                 b = min(ok, key=lambda x: x["timeMedianMs"])
                 best[m] = b
-                cells.append(f"{b['label']}: {b['timeMedianMs']:.1f} ms ({b['recall1px']:.3f}, {100 * b['falseHitRate']:.2f}% false)")
+                cells.append(f"{b['label']}: {ms(b['timeMedianMs'])} ms ({b['recall1px']:.3f}, {100 * b['falseHitRate']:.2f}% false)")
             else:
                 top = max(x["recall1px"] for x in of(s, m))
                 cells.append(f"none (best {top:.3f})")
@@ -60,7 +65,7 @@ def main(path):
         row = []
         for s in scenes:
             x = next((x for x in of(s, "adaptive-l") if x["label"] == p), None)
-            row.append(f"{x['timeMedianMs']:.1f} ms, {x['recall1px']:.3f}" if x else "–")
+            row.append(f"{ms(x['timeMedianMs'])} ms, {x['recall1px']:.3f}" if x else "–")
         print(f"| {p} | " + " | ".join(row) + " |")
 
     curves = r.get("costCurves", [])
@@ -78,7 +83,7 @@ def main(path):
             name = f"reflective-{k[2]}" if k[2] >= 0 else f"{k[0]}×{k[1]}"
             share = next(iter(row.values()))["tracedFraction"]
             ratio = row["adaptive-l"]["timeMedianMs"] / row["baseline"]["timeMedianMs"]
-            print(f"| {name} | {share:.3f} | " + " | ".join(f"{row[m]['timeMedianMs']:.1f}" for m in methods)
+            print(f"| {name} | {share:.3f} | " + " | ".join(f"{ms(row[m]['timeMedianMs'])}" for m in methods)
                   + f" | {ratio:.2f} |")
 
 
