@@ -54,6 +54,9 @@ int main(int argc, char** argv) {
       ("size", "resolution WxH", cxxopts::value<std::string>())
       ("frames", "timed frames per configuration (median reported)", cxxopts::value<std::string>())
       ("warmup", "untimed warm-up rounds", cxxopts::value<std::string>())
+      ("batch", "dispatches timed back to back per sample, the sample being their mean (default 8 on a GPU, "
+                "where a lone dispatch also times the CPU issuing it; 1 on a software renderer)",
+       cxxopts::value<std::string>())
       ("curves", "also time the cost curves (the full grid always does): resolution 480x270, 960x540, 1920x1080 (full: and 3840x2160) and reflective fraction 0, 1, 10, 50, 100%")
       ("no-curves", "skip the cost curves")
       ("temporal", "also run the temporal study (the full grid always does): a camera path on mirror-room, curved-mirror and glossy with and without temporal reuse, jitter and half resolution")
@@ -91,6 +94,7 @@ int main(int argc, char** argv) {
     };
     positiveInt("frames", bo.frames, 1, 1000);
     positiveInt("warmup", bo.warmup, 0, 100);
+    positiveInt("batch", bo.batch, 1, 64);
     if (args.count("size")) {
       std::istringstream in(args["size"].as<std::string>());
       char x = 0;

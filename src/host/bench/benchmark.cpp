@@ -215,8 +215,9 @@ Expected<std::vector<std::vector<double>>> timeInterleaved(const std::vector<Ben
     for (size_t i = 0; i < configs.size(); ++i) {
       Status st;
       const double ms = configs[i].method == "baseline"
-                            ? timer.timeMs([&] { baseline.run(f.inputs); })
-                            : timer.timeMs([&] { st = f.renderer->sslr().dispatch(f.inputs, configs[i].settings); });
+                            ? timer.timeMs([&] { baseline.run(f.inputs); }, timer.repeats(options.batch))
+                            : timer.timeMs([&] { if (st) st = f.renderer->sslr().dispatch(f.inputs, configs[i].settings); },
+                                           timer.repeats(options.batch));
       if (!st) return Status::error(st.message());
       if (round >= options.warmup) times[i].push_back(ms);
       if (afterEach) afterEach(round);
@@ -269,7 +270,8 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
               "facing-mirror", "mirror-walls",  "curved-mirror", "glossy"};
   const std::vector<BenchConfig> grid = benchGrid(options.grid);
   Timer timer(software);
-  result.timingMethod = timer.method();
+  const int repeats = timer.repeats(options.batch);
+  result.timingMethod = timer.method() + (repeats > 1 ? ", mean of " + std::to_string(repeats) + " dispatches back to back" : "");
   std::error_code ec;
   fs::create_directories(reportDir, ec);
   if (ec) return Status::error("cannot create " + reportDir + ": " + ec.message());
@@ -350,7 +352,7 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
       r.width = options.width;
       r.height = options.height;
       r.renderer = renderer;
-      r.timingMethod = timer.method();
+      r.timingMethod = result.timingMethod;
       r.extraBytesPerPixel = c.method == "baseline" ? 8 : 24;  // 3 x RGBA16F
       r.gbufferBytesPerPixel = gb.bytesPerPixel() + (c.method == "position-buffer" ? 16 : 0);
       if (c.method != "baseline") {

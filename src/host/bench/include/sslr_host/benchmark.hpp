@@ -17,6 +17,9 @@ struct BenchOptions {
   int width = 320, height = 180;
   int frames = 7;                   // timed frames per config (median reported)
   int warmup = 1;
+  // Dispatches timed back to back per sample (the sample is their mean); 0: 8 on a GPU, 1 on a
+  // software renderer. 1 times a lone dispatch, which on a GPU includes the CPU issuing it.
+  int batch = 0;
   // Cost curves: each method's default and the baseline pass, timed against resolution (on
   // mirror-room) and against the reflective fraction of the frame (reflective-N scenes at
   // width x height). Empty: no resolution curve; fractions empty: no fraction curve.
