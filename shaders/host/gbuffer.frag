@@ -23,6 +23,8 @@ layout(location = 1) out vec4 oNormal;
 layout(location = 2) out vec4 oPosition;
 layout(location = 3) out vec4 oFallbackSpecular;
 
+float unorm(float v, float steps) { return roundEven(clamp(v, 0.0f, 1.0f) * steps) / steps; }
+
 void main() {
   vec3 n = normalize(vVsNormal);
   if (!gl_FrontFacing) n = -n;  // two-sided: the visible side's normal
@@ -43,9 +45,13 @@ void main() {
   vec3 fallback = uReflectance * sslrFresnelClassic(cosVN) * environment;
   oFallbackSpecular = vec4(fallback, 1.0f);
   oColor = vec4(base * kd * (0.85f * diffuse + ambient) + uEmission + fallback, 1.0f);
+  // Material values quantized here, halves to even: a value on a half-step (roughness 0.5 is
+  // 32767.5 of RGBA16's steps, 0.3 is 19660.5 in float) is rounded by each driver its own way, and
+  // the glossy scene's panels sit on the presets' cutoffs (an H100 traced the 0.5 panel at cutoff
+  // 0.5, llvmpipe did not). Half to even is what llvmpipe does.
   if (uNormalEncoding == SSLR_NORMALS_OCTAHEDRAL)
-    oNormal = vec4(sslrOctEncode(n), uRoughness, uReflectance);
+    oNormal = vec4(sslrOctEncode(n), unorm(uRoughness, 65535.0f), unorm(uReflectance, 65535.0f));
   else
-    oNormal = vec4(n * 0.5f + 0.5f, uReflectance);
+    oNormal = vec4(n * 0.5f + 0.5f, unorm(uReflectance, 255.0f));
   oPosition = vec4(vVsPosition, 1.0f);
 }
