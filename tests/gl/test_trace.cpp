@@ -4,8 +4,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <tuple>
 
 #include "gl/gl_fixture.hpp"
+#include "sslr/reference.hpp"
 #include "sslr_host/cpu_tracer.hpp"
 #include "sslr_host/frame_renderer.hpp"
 #include "sslr_host/ground_truth.hpp"
@@ -461,5 +463,90 @@ TEST_F(ContactLine, ReflectionsWithinTwoPixelsAreFound) {
     EXPECT_GE(double(found) / contact, 0.9);
   }
 }
+
+}  // namespace
+
+namespace {
+
+// The depth pyramid hiz.comp builds (two levels per dispatch) against the same reduction on the
+// CPU from the depth buffer read back: every level, cell for cell, on sizes whose halvings leave
+// odd remainders (padded cells must be neutral) and with both float depth conventions.
+class DepthPyramid : public sslr::test::GlTest,
+                     public ::testing::WithParamInterface<std::tuple<int, int, DepthMode>> {};
+
+GLuint textureLabelled(const std::string& wanted) {
+  for (GLuint name = 1; name < 4096; ++name) {
+    if (!glIsTexture(name)) continue;
+    char label[64] = {};
+    GLsizei length = 0;
+    glGetObjectLabel(GL_TEXTURE, name, sizeof label, &length, label);
+    if (wanted == std::string(label, static_cast<size_t>(length))) return name;
+  }
+  return 0;
+}
+
+TEST_P(DepthPyramid, EveryLevelIsTheMinMaxOfItsChildren) {
+  const auto [width, height, mode] = GetParam();
+  auto scene = makeBuiltinScene("mirror-room");
+  ASSERT_TRUE(scene);
+  GBufferOptions o;
+  o.width = width;
+  o.height = height;
+  o.depth = mode;
+  auto r = FrameRenderer::create(o);
+  ASSERT_TRUE(r);
+  GpuScene gpu(scene.value());
+  Settings s;  // adaptive L with the traversal behind it: the pyramid is built
+  ASSERT_TRUE(r.value()->render(gpu, *scene.value().camera, &s));
+  const GLuint pyramid = textureLabelled("sslr.depthPyramid");
+  ASSERT_NE(pyramid, 0u);
+  const Image depth = r.value()->gbuffer().readDepth();
+  auto frame = frameConstants(r.value()->gbuffer().frameInputs(), s, width, height);
+  ASSERT_TRUE(frame) << frame.error();
+  const int levels = shared::sslrHiZLevelCount(width, height);
+  ASSERT_GE(levels, 2) << "two levels per dispatch need two levels";
+  // Level 0 is the depth buffer as the pyramid sees it; each level reduces 2x2 of the one below,
+  // cells outside it neutral.
+  std::vector<glm::vec2> below(static_cast<size_t>(width) * height);
+  int belowW = width, belowH = height;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      below[static_cast<size_t>(y) * width + x] = shared::sslrHiZTexel(frame.value().surface, depth.at(x, y, 0));
+  size_t cells = 0;
+  for (int level = 1; level <= levels; ++level) {
+    GLint w = 0, h = 0;
+    glGetTextureLevelParameteriv(pyramid, level - 1, GL_TEXTURE_WIDTH, &w);
+    glGetTextureLevelParameteriv(pyramid, level - 1, GL_TEXTURE_HEIGHT, &h);
+    ASSERT_GE(2 * w, belowW);
+    ASSERT_GE(2 * h, belowH);
+    std::vector<glm::vec2> gpuLevel(static_cast<size_t>(w) * h);
+    glGetTextureImage(pyramid, level - 1, GL_RG, GL_FLOAT, static_cast<GLsizei>(gpuLevel.size() * sizeof(glm::vec2)),
+                      gpuLevel.data());
+    std::vector<glm::vec2> cpuLevel(gpuLevel.size());
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        glm::vec2 m = shared::sslrHiZEmpty();
+        for (int k = 0; k < 4; ++k) {
+          const int cx = 2 * x + (k & 1), cy = 2 * y + (k >> 1);
+          if (cx < belowW && cy < belowH) m = shared::sslrHiZReduce(m, below[static_cast<size_t>(cy) * belowW + cx]);
+        }
+        cpuLevel[static_cast<size_t>(y) * w + x] = m;
+        const glm::vec2 g = gpuLevel[static_cast<size_t>(y) * w + x];
+        ASSERT_EQ(g.x, m.x) << "level " << level << " cell " << x << "," << y;
+        ASSERT_EQ(g.y, m.y) << "level " << level << " cell " << x << "," << y;
+        ++cells;
+      }
+    below = std::move(cpuLevel);
+    belowW = w;
+    belowH = h;
+  }
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  std::printf("%dx%d: %d levels, %zu cells equal\n", width, height, levels, cells);
+}
+
+INSTANTIATE_TEST_SUITE_P(Sizes, DepthPyramid,
+                         ::testing::Values(std::make_tuple(100, 60, DepthMode::Reversed),
+                                           std::make_tuple(97, 53, DepthMode::Reversed),
+                                           std::make_tuple(250, 131, DepthMode::ZeroToOne)));
 
 }  // namespace

@@ -25,17 +25,24 @@ void Context::Impl::bindInputs(const FrameInputs& in) const {
   gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
 }
 
-// The min-max depth pyramid, one dispatch per level (each reads the level below), indirect: the
-// group counts are zero unless classification listed a tile (common/tiles.glsl).
+// The min-max depth pyramid, two levels per dispatch (each dispatch reads the level below its
+// pair), indirect: the group counts are zero unless classification listed a tile
+// (common/tiles.glsl).
 void Context::Impl::buildPyramid(GLuint prog) const {
   gl.UseProgram(prog);
   gl.BindTextureUnit(6, hiz);
   gl.BindSampler(6, nearestSampler);
-  for (int level = 1; level <= hizLevels; ++level) {
+  // Two levels per dispatch (hiz.comp), over the upper level's cells: its dispatch arguments.
+  for (int level = 1; level <= hizLevels;) {
+    const bool two = level + 1 <= hizLevels;
     gl.ProgramUniform1i(prog, 0, level - 1);  // uSourceLevel
+    gl.ProgramUniform1i(prog, 1, two ? 1 : 0);  // uTwoLevels
     gl.BindImageTexture(0, hiz, level - 1, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-    gl.DispatchComputeIndirect(kHizDispatchOffset + static_cast<GLintptr>(3 * 4 * (level - 1)));
+    if (two) gl.BindImageTexture(1, hiz, level, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+    const int top = two ? level + 1 : level;
+    gl.DispatchComputeIndirect(kHizDispatchOffset + static_cast<GLintptr>(3 * 4 * (top - 1)));
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    level = top + 1;
   }
 }
 
