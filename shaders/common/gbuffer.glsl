@@ -12,14 +12,20 @@ layout(binding = 8) uniform sampler2D uMask;      // optional: where rays may st
 // The texel holding pixel px's material channels: the host's material texture if it gave one,
 // else the normal texel itself (read already).
 vec4 sslrMaterialAt(ivec2 px, vec4 normalTexel) {
-  return frame.surface.separateMaterial != 0 ? texelFetch(uMaterial, px, 0) : normalTexel;
+#ifdef SSLR_SEPARATE_MATERIAL  // FrameInputs::materialTexture given (frame.surface.separateMaterial)
+  return texelFetch(uMaterial, px, 0);
+#else
+  return normalTexel;
+#endif
 }
 
 // sslrShouldTrace for pixel px of the G-buffer, with the host's mask (FrameInputs::maskTexture):
 // classification, the trace and the blur's neighbour test all ask this one question. `material`
 // is sslrMaterialAt(px, normalTexel), read by the caller (the trace needs it again).
 bool sslrShouldTracePixel(ivec2 px, float depth, vec4 normalTexel, vec4 material) {
-  if (frame.surface.hasMask != 0 && !(texelFetch(uMask, px, 0).r > 0.5f)) return false;
+#ifdef SSLR_HAS_MASK  // FrameInputs::maskTexture given (frame.surface.hasMask)
+  if (!(texelFetch(uMask, px, 0).r > 0.5f)) return false;
+#endif
   return sslrShouldTrace(frame.surface, frame.trace, depth, normalTexel, material);
 }
 

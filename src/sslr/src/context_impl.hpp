@@ -68,6 +68,9 @@ struct Context::Impl {
   mutable FrameStats stats;        // the newest harvested
   GLuint nearestSampler = 0, linearSampler = 0, vao = 0;
   std::map<std::string, GLuint> programs;  // key: entry files + defines
+  // The current dispatch's optional inputs as #defines, prefixed to every compute program
+  // (SSLR_HAS_MASK, SSLR_SEPARATE_MATERIAL: common/gbuffer.glsl).
+  std::string inputDefines;
   bool haveFrame = false;  // a dispatch filled the tile list, so composite has work to draw
   int frameIndex = 0;      // per-dispatch stamp for the blur tile list (1, 2, ...)
 

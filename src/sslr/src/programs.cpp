@@ -75,7 +75,7 @@ Expected<GLuint> Context::Impl::program(const std::vector<std::pair<GLenum, cons
 }
 
 Expected<GLuint> Context::Impl::computeProgram(const char* entry, const std::string& defines) {
-  return program({{GL_COMPUTE_SHADER, entry}}, defines);
+  return program({{GL_COMPUTE_SHADER, entry}}, inputDefines + defines);
 }
 
 }  // namespace sslr
