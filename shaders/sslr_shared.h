@@ -360,8 +360,8 @@ SSLR_FN vec3 sslrOctDecode(vec2 e01) {
 //
 // sslr's compute passes get the encoding and the world-space flag as #defines (the dispatch's
 // inputDefines, equal to these uniforms): a CPU rasterizer runs both sides of a uniform branch
-// under lane masks (llvmpipe 960x540: classification 6.9 -> 5.5 ms, mirror-room's trace 65.9 ->
-// 61.4 ms, glossy's blur 51.4 -> 41.3 ms once the other side is compiled out).
+// under lane masks (llvmpipe 960x540: classification 6.9 -> 5.8 ms, mirror-room's trace 65.9 ->
+// 62.4 ms, glossy's blur 51.4 -> 42.4 ms once the other side is compiled out).
 SSLR_FN bool sslrDecodeNormal(SslrSurface s, vec4 texel, SSLR_OUT(vec3) vsNormal) {
 #ifdef SSLR_NORMAL_ENCODING
   const bool octahedral = SSLR_NORMAL_ENCODING == SSLR_NORMALS_OCTAHEDRAL;
