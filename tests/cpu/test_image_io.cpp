@@ -35,6 +35,15 @@ std::vector<ImageCodec> codecs() {
   return all;
 }
 
+// `image` encoded by `writer` into the file `path`, read back by `reader`.
+sslr::Expected<Image> roundTrip(const fs::path& path, const Image& image, const std::vector<std::string>& channelNames,
+                          ImageCodec writer, ImageCodec reader) {
+  auto bytes = encodeImage(path.string(), image, channelNames, writer);
+  if (!bytes) return sslr::Status::error(bytes.error());
+  if (sslr::Status st = writeFiles({{path.string(), bytes.value()}}); !st) return sslr::Status::error(st.message());
+  return readImage(path.string(), reader);
+}
+
 float srgb8(float linear) {  // what a PNG holds for `linear`, read back as stored / 255
   const float v = std::clamp(linear, 0.0f, 1.0f);
   const float s = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
@@ -54,11 +63,7 @@ TEST(ImageIo, ExrRoundTripsExactlyAcrossCodecs) {
         SCOPED_TRACE(std::string(imageCodecName(writer)) + " -> " + imageCodecName(reader) + ", " +
                      std::to_string(channels) + " channels");
         const Image img = testImage(13, 6, channels);
-        const fs::path path = tmpDir() / ("x" + std::to_string(channels) + ".exr");
-        auto bytes = encodeImage(path.string(), img, {}, writer);
-        ASSERT_TRUE(bytes) << bytes.error();
-        ASSERT_TRUE(writeFiles({{path.string(), bytes.value()}}));
-        auto back = readImage(path.string(), reader);
+        auto back = roundTrip(tmpDir() / ("x" + std::to_string(channels) + ".exr"), img, {}, writer, reader);
         ASSERT_TRUE(back) << back.error();
         ASSERT_EQ(back.value().width, 13);
         ASSERT_EQ(back.value().height, 6);
@@ -72,9 +77,7 @@ TEST(ImageIo, ExrChannelsComeBackInRgbaOrder) {
   for (ImageCodec writer : codecs())
     for (ImageCodec reader : codecs()) {
       Image img = testImage(4, 3, 4);
-      const fs::path path = tmpDir() / "rgba.exr";
-      ASSERT_TRUE(writeFiles({{path.string(), encodeImage(path.string(), img, {"R", "G", "B", "A"}, writer).value()}}));
-      auto back = readImage(path.string(), reader);
+      auto back = roundTrip(tmpDir() / "rgba.exr", img, {"R", "G", "B", "A"}, writer, reader);
       ASSERT_TRUE(back) << back.error();
       for (int c = 0; c < 4; ++c) EXPECT_EQ(back.value().at(3, 2, c), img.at(3, 2, c)) << imageCodecName(writer) << c;
     }
@@ -86,11 +89,7 @@ TEST(ImageIo, PngHoldsSrgbBytesAcrossCodecs) {
       SCOPED_TRACE(std::string(imageCodecName(writer)) + " -> " + imageCodecName(reader));
       Image img = testImage(9, 5, 4);
       img.at(0, 0, 0) = NAN;  // NaN colour -> 0, alpha clamped and linear
-      const fs::path path = tmpDir() / "x.png";
-      auto bytes = encodeImage(path.string(), img, {}, writer);
-      ASSERT_TRUE(bytes) << bytes.error();
-      ASSERT_TRUE(writeFiles({{path.string(), bytes.value()}}));
-      auto back = readImage(path.string(), reader);
+      auto back = roundTrip(tmpDir() / "x.png", img, {}, writer, reader);
       ASSERT_TRUE(back) << back.error();
       ASSERT_EQ(back.value().channels, 4);
       for (int y = 0; y < 5; ++y)

@@ -8,7 +8,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <iterator>
 #include <numeric>
 
 #include "image_codecs.hpp"
@@ -16,16 +15,18 @@
 namespace sslr::host::detail {
 
 namespace {
+// Channel names in our order: R, G, B, A first (as OpenImageIO reads them), and the names given
+// to the first four channels when the caller names none.
+constexpr std::array<const char*, 4> kRgba{"R", "G", "B", "A"};
+
 std::string exrError(const char* err) {
   std::string s = err != nullptr ? err : "unknown error";
   if (err != nullptr) FreeEXRErrorMessage(err);
   return s;
 }
 
-// Where a channel goes in our order: R, G, B, A first (as OpenImageIO reads them), then the
-// others in file order.
+// Where a channel goes in our order: kRgba first, then the others in file order.
 int canonicalRank(const char* name) {
-  static constexpr std::array<const char*, 4> kRgba{"R", "G", "B", "A"};
   for (int i = 0; i < 4; ++i)
     if (std::strcmp(name, kRgba[static_cast<size_t>(i)]) == 0) return i;
   return 4;
@@ -49,9 +50,8 @@ Expected<std::vector<unsigned char>> encodeTinyExrStb(const std::string& path, c
   const size_t n = static_cast<size_t>(image.channels);
   std::vector<std::string> names(n);
   for (size_t c = 0; c < n; ++c) {
-    static constexpr std::array<const char*, 4> kDefault{"R", "G", "B", "A"};
     names[c] = channelNames.size() == n ? channelNames[c]
-               : c < 4                  ? std::string(kDefault[c])
+               : c < 4                  ? std::string(kRgba[c])
                                         : "channel" + std::to_string(c);
     if (names[c].empty() || names[c].size() > 255) return Status::error(path + ": bad EXR channel name");
   }
@@ -96,10 +96,13 @@ Expected<std::vector<unsigned char>> encodeTinyExrStb(const std::string& path, c
 }
 
 Expected<Image> readTinyExrStb(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
+  std::ifstream file(path, std::ios::binary | std::ios::ate);
   if (!file) return Status::error(path + ": cannot open image");
-  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  std::vector<unsigned char> bytes(static_cast<size_t>(std::max<std::streamoff>(file.tellg(), 0)));
+  file.seekg(0);
   if (bytes.empty()) return Status::error(path + ": empty file");
+  if (!file.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size())))
+    return Status::error(path + ": read failed");
   Image image;
   EXRVersion version;
   if (ParseEXRVersionFromMemory(&version, bytes.data(), bytes.size()) == TINYEXR_SUCCESS) {
