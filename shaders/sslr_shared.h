@@ -68,6 +68,8 @@ using glm::sqrt;
 #define SSLR_HIZ_OFF 0       // adaptive L alone (the article's method, made robust)
 #define SSLR_HIZ_FALLBACK 1  // adaptive L first; the hierarchical traversal where it finds no hit
 #define SSLR_HIZ_ONLY 2      // the hierarchical traversal alone (Method::HierarchicalDepth)
+#define SSLR_HIZ_VERIFY 3    // as FALLBACK, and the traversal also checks every adaptive-L hit for an
+                             // earlier crossing (Settings::hierarchicalVerify)
 
 // Most levels of the min-max depth pyramid above the depth buffer (level l: 2^l-pixel cells).
 #define SSLR_HIZ_MAX_LEVELS 8
@@ -149,13 +151,13 @@ struct SslrTraceParams {
   float blurNormalPower;      // bilateral: weight max(0, dot(n0, n1))^power
   int maxIterations;          // adaptive-L iteration cap
   int fresnelMode;            // SSLR_FRESNEL_*
-  int hizMode;                // SSLR_HIZ_* : hierarchical traversal off, as fallback, or alone
+  int hizMode;                // SSLR_HIZ_* : hierarchical traversal off, as fallback (+ verify), or alone
   int frameIndex;             // increments per dispatch (never 0): per-tile "listed" stamps
   int hizMaxSteps;            // hierarchical traversal: cell visits (each one fetch) at most
   int hizLevels;              // pyramid levels above the depth buffer (sslrHiZLevelCount)
   float objectThickness;      // hierarchical: a ray less than this fraction of the view depth
                               // behind a surface is inside the object (stops); farther: behind it
-  int pad1;
+  int outlineThinning;        // 1: that depth shrinks near the object's outline (sslrSlabNearOutline)
   int pad2;
 };
 

@@ -59,6 +59,11 @@ SSLR_FN float sslrSlopeTan(SslrProjection p, vec3 vsSurface, vec3 vsSurfaceNorma
 
 // Hit tolerance (view units) on a surface at view depth `dist` seen at tan(angle) `tanView`: a
 // fraction of the distance (depth precision) plus pixel footprints stretched by the slope.
+// Whether the hierarchical traversal stands behind adaptive L (answers what it leaves).
+SSLR_FN bool sslrHasHiZFallback(SslrTraceParams t) {
+  return t.hizMode == SSLR_HIZ_FALLBACK || t.hizMode == SSLR_HIZ_VERIFY;
+}
+
 SSLR_FN float sslrHitTolerance(SslrProjection p, SslrSurface s, SslrTraceParams t, float dist, float tanView) {
   float footprint = sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : dist);
   return t.thicknessRelative * abs(dist) + t.thicknessPixels * footprint * (1.0f + tanView);
@@ -305,7 +310,7 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
   float valid = (normalOk && !selfHit && L <= t.maxDistance)
                     ? sslrHitValidation(p, s, t, vsQ, vsSurface, vsSurfaceNormal, vsR)
                     : 0.0f;
-  if (valid > 0.0f && t.hizMode == SSLR_HIZ_FALLBACK && dot(vsR, vsSurfaceNormal) < -0.05f) {
+  if (valid > 0.0f && sslrHasHiZFallback(t) && dot(vsR, vsSurfaceNormal) < -0.05f) {
     // With the hierarchical traversal behind it, a hit must also pass the plane check: a
     // rejected one gets its second chance there (measured: most false hits of adaptive L on
     // facing-mirror and mirror-walls fail it, docs/algorithm.md).

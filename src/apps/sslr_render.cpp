@@ -127,6 +127,13 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
     if (!(in >> s.maxIterations) || !in.eof())
       throw UsageError{"--iterations expects an integer (got '" + text + "')"};
   }
+  if (args.count("no-outline-thinning")) s.outlineThinning = false;
+  if (args.count("hiz-steps")) {
+    const std::string text = args["hiz-steps"].as<std::string>();
+    std::istringstream in(text);
+    if (!(in >> s.hierarchicalMaxSteps) || !in.eof())
+      throw UsageError{"--hiz-steps expects an integer (got '" + text + "')"};
+  }
   if (std::string why = validate(s); !why.empty()) throw UsageError{why};
   return s;
 }
@@ -143,9 +150,14 @@ int run(int argc, char** argv) {
       ("dump", "also write every buffer as EXR (color, normal, depth, position, hit, reflection, iterations, resolved)")
       ("method", "tracer: adaptive-l (depth-only SSLR, hierarchical fallback), hiz (the depth pyramid traversal alone), dda (McGuire & Mara 2014's screen-space DDA) or position-buffer (the tutorial's), for comparison, or none", cxxopts::value<std::string>()->default_value("adaptive-l"))
       ("no-hiz-fallback", "adaptive-l alone, without the hierarchical traversal where it finds nothing")
+      ("hiz-verify", "adaptive-l: also run the hierarchical traversal over every hit and keep an earlier one it "
+                     "finds (the ultra preset's default)")
       ("preset", "quality preset: low, medium, high, ultra", cxxopts::value<std::string>()->default_value("high"))
       ("fresnel", "weighting: classic (the article) or schlick", cxxopts::value<std::string>()->default_value("classic"))
       ("iterations", "override the preset's adaptive-L iteration cap", cxxopts::value<std::string>())
+      ("hiz-steps", "override the preset's cap on hierarchical traversal steps", cxxopts::value<std::string>())
+      ("no-outline-thinning", "keep the assumed object thickness constant up to objects' outlines (hierarchical "
+                              "traversal)")
       ("no-blur", "skip the roughness blur")
       ("composite", "how the reflection enters final.png: blend (over the fallback specular, a sky/ground environment, by coverage) or add (on top of it)",
        cxxopts::value<std::string>()->default_value("blend"))
@@ -226,11 +238,17 @@ int run(int argc, char** argv) {
     if (composite == "blend") compositeMode = CompositeMode::BlendOverFallback;
     else if (composite == "add") compositeMode = CompositeMode::Add;
     else throw UsageError{"--composite must be blend or add (got '" + composite + "')"};
-    if (args.count("no-hiz-fallback")) settings.hierarchicalFallback = false;
+    if (args.count("hiz-verify")) settings.hierarchicalVerify = true;
+    if (args.count("no-hiz-fallback")) {  // adaptive L alone: no traversal at all
+      if (args.count("hiz-verify")) throw UsageError{"--hiz-verify and --no-hiz-fallback exclude each other"};
+      settings.hierarchicalFallback = false;
+      settings.hierarchicalVerify = false;
+    }
     if (args.count("half-res")) settings.halfResolution = true;
     settings.debugOutputs = dump || args.count("score") > 0;
     settings.collectStats = args.count("stats") > 0;
     if (args.count("temporal")) settings.temporal = true;
+    if (std::string why = validate(settings); !why.empty()) throw UsageError{why};  // after every flag
     frames = args["frames"].as<int>();
     if (frames < 1 || frames > 10000) throw UsageError{"--frames must be 1..10000 (got " + std::to_string(frames) + ")"};
 
@@ -379,11 +397,12 @@ int run(int argc, char** argv) {
   }
   if (score) {
     const HitMetrics& m = *score;
-    std::printf("  truth: %zu visible (A), %zu occluded (B), %zu off screen (C), %zu escaped (D)\n", m.visible,
-                m.occluded, m.offScreen, m.escaped);
-    std::printf("  recall@1px %.4f @2px %.4f @4px %.4f  median %.3f px  p95 %.3f px  false hits %.4f "
-                "(%.4f beyond 1 px of the true hit)  reflection RMSE %.4f  non-finite %zu\n",
-                m.recall1px, m.recall2px, m.recall4px, m.medianErrorPx, m.p95ErrorPx, m.falseHitRate,
+    std::printf("  truth: %zu visible (A; %zu of them shown by no pixel within 1 px), %zu occluded (B), %zu off "
+                "screen (C), %zu escaped (D)\n",
+                m.visible, m.unshown, m.occluded, m.offScreen, m.escaped);
+    std::printf("  recall@1px %.4f (of the shown: %.4f) @2px %.4f @4px %.4f  median %.3f px  p95 %.3f px  false hits "
+                "%.4f (%.4f beyond 1 px of the true hit)  reflection RMSE %.4f  non-finite %zu\n",
+                m.recall1px, m.recallShown1px, m.recall2px, m.recall4px, m.medianErrorPx, m.p95ErrorPx, m.falseHitRate,
                 m.falseHitRateBeyond1px, m.reflectionRmse, m.nonFinite);
   }
   return 0;

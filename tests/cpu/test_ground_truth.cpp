@@ -70,6 +70,47 @@ TEST(GroundTruth, ClassifiesVisibleOccludedOffScreenAndEscaped) {
     }
 }
 
+// A shelf just above the eye is seen edge-on: thinner than a pixel, so no pixel shows it, yet the
+// floor mirror's rays hit its underside in plain view of the camera. Those visible hits are
+// "unshown" (no screen-space method can find them); raised well above the eye, it is shown.
+TEST(GroundTruth, VisibleHitsNoPixelShowsAreUnshown) {
+  auto truthWithShelfAt = [](double shelfY, glm::dvec2& shelfUv) {
+    Scene s;
+    s.materials.push_back(Material{});
+    s.meshes.push_back(makeQuad({0, 0, -10}, {40, 40}, {0, 1, 0}, 0));    // mirror floor
+    s.meshes.push_back(makeQuad({0, 5, -12}, {40, 10}, {0, 0, 1}, 0));    // back wall
+    s.meshes.push_back(makeQuad({0, shelfY, -4.5}, {6, 3}, {0, -1, 0}, 0));  // shelf, facing down
+    Camera cam;
+    cam.eye = {0, 1, 0};
+    cam.target = {0, 0.6, -5};
+    cam.fovyDegrees = 60;
+    const int w = 64, h = 48;
+    auto rt = RayTracer::create(s, cam.viewFromWorld());
+    EXPECT_TRUE(rt);
+    const glm::dmat4 clipFromView = cam.clipFromView(DepthMode::Reversed, double(w) / h);
+    const glm::dvec4 clip = clipFromView * cam.viewFromWorld() * glm::dvec4(0, shelfY, -4.5, 1);
+    shelfUv = glm::dvec2(clip) / clip.w * 0.5 + 0.5;
+    return computeGroundTruth(*rt.value(), clipFromView, w, h, std::vector<std::uint8_t>(size_t(w) * h, 1));
+  };
+  glm::dvec2 shelfUv;
+  const GroundTruth sliver = truthWithShelfAt(1.01, shelfUv);
+  size_t unshown = 0;
+  for (const TruthPixel& p : sliver.pixels)
+    if (p.cls == TruthClass::Visible && !p.shown) {
+      ++unshown;
+      EXPECT_NEAR(p.uvHit.y * sliver.height, shelfUv.y * sliver.height, 1.5) << "an unshown hit off the shelf";
+    }
+  EXPECT_GT(unshown, 10u) << "the floor reflects the shelf's underside";
+  const GroundTruth raised = truthWithShelfAt(1.6, shelfUv);
+  size_t raisedVisible = 0, raisedUnshown = 0;
+  for (const TruthPixel& p : raised.pixels) {
+    raisedVisible += p.cls == TruthClass::Visible;
+    raisedUnshown += p.cls == TruthClass::Visible && !p.shown;
+  }
+  EXPECT_GT(raisedVisible, 100u);
+  EXPECT_EQ(raisedUnshown, 0u) << "a shelf several pixels tall is shown wherever the floor reflects it";
+}
+
 TEST(HitMetrics, KnownAnswers) {
   GroundTruth gt;
   gt.width = 10;
@@ -107,6 +148,14 @@ TEST(HitMetrics, KnownAnswers) {
   EXPECT_NEAR(m.p95ErrorPx, 3.0, 1e-5);
   EXPECT_DOUBLE_EQ(m.falseHitRate, 0.25);
   EXPECT_EQ(m.nonFinite, 1u);
+  EXPECT_EQ(m.unshown, 0u);
+  EXPECT_DOUBLE_EQ(m.recallShown1px, 0.5);
+  // The exact hit's pixel shown by no pixel: it leaves the shown recall (1 of 3 within 1 px).
+  gt.pixels[0].shown = false;
+  const HitMetrics u = compareHits(gt, hit);
+  EXPECT_EQ(u.unshown, 1u);
+  EXPECT_DOUBLE_EQ(u.recall1px, 0.5) << "recall still counts every visible pixel";
+  EXPECT_DOUBLE_EQ(u.recallShown1px, 1.0 / 3.0);
 }
 
 }  // namespace

@@ -30,6 +30,7 @@ TEST(Settings, EveryInvalidFieldIsNamed) {
   const Bad cases[] = {
       {"maxIterations", [](Settings& s) { s.maxIterations = 0; }},
       {"maxIterations", [](Settings& s) { s.maxIterations = 100000; }},
+      {"hierarchicalVerify", [](Settings& s) { s.hierarchicalVerify = true; s.hierarchicalFallback = false; }},
       {"convergenceEps", [](Settings& s) { s.convergenceEps = -1.0f; }},
       {"initialLengthScreen", [](Settings& s) { s.initialLengthScreen = 0.0f; }},
       {"initialLengthScreen", [](Settings& s) { s.initialLengthScreen = 2.0f; }},

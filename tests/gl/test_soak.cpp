@@ -117,6 +117,7 @@ TEST_F(Soak, ObjectsErrorsAndMemoryStayFlat) {
     s.method = static_cast<Method>(pick(4));
     s.fresnel = pick(2) ? FresnelMode::Classic : FresnelMode::Schlick;
     s.hierarchicalFallback = pick(2) == 0;
+    s.hierarchicalVerify = s.hierarchicalFallback && pick(2) == 0;  // verify without fallback is refused
     s.hierarchicalMaxSteps = 1 + pick(200);
     s.maxIterations = 1 + pick(40);
     s.objectThickness = uniform(0.0f, 0.5f);

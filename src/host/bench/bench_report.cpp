@@ -30,7 +30,9 @@ json settingsJson(const BenchConfig& c) {
             {"maxDistance", s.dda.maxDistance}, {"jitter", s.dda.jitter},   {"refine", s.dda.refine}};
   if (c.method == "baseline") return json::object();
   return {{"maxIterations", s.maxIterations},       {"hierarchicalFallback", s.hierarchicalFallback},
-          {"hierarchicalMaxSteps", s.hierarchicalMaxSteps}, {"objectThickness", s.objectThickness},       {"convergenceEps", s.convergenceEps},
+          {"hierarchicalVerify", s.hierarchicalVerify},
+          {"hierarchicalMaxSteps", s.hierarchicalMaxSteps}, {"objectThickness", s.objectThickness},
+          {"outlineThinning", s.outlineThinning},       {"convergenceEps", s.convergenceEps},
           {"initialLengthScreen", s.initialLengthScreen}, {"thicknessRelative", s.thicknessRelative},
           {"thicknessPixels", s.thicknessPixels},   {"blurMaxRadiusPx", s.blurMaxRadiusPx},
           {"roughnessCutoff", s.roughnessCutoff},   {"fresnel", s.fresnel == FresnelMode::Classic ? "classic" : "schlick"}};
@@ -55,8 +57,10 @@ json runJson(const RunRecord& r) {
           {"timeMinMs", num(r.timeMinMs)},
           {"timeMaxMs", num(r.timeMaxMs)},
           {"frames", r.frames},
-          {"classes", {{"visible", m.visible}, {"occluded", m.occluded}, {"offScreen", m.offScreen}, {"escaped", m.escaped}}},
+          {"classes", {{"visible", m.visible}, {"occluded", m.occluded}, {"offScreen", m.offScreen}, {"escaped", m.escaped},
+                       {"visibleUnshown", m.unshown}}},
           {"recall1px", traced ? num(m.recall1px) : json(nullptr)},
+          {"recall1pxShown", traced ? num(m.recallShown1px) : json(nullptr)},
           {"recall2px", traced ? num(m.recall2px) : json(nullptr)},
           {"recall4px", traced ? num(m.recall4px) : json(nullptr)},
           {"medianErrorPx", traced ? num(m.medianErrorPx) : json(nullptr)},

@@ -35,11 +35,20 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
       BenchConfig half{"adaptive-l", "high-half", Settings::preset(preset), false};  // one ray per quad
       half.settings.halfResolution = true;
       configs.push_back(half);
+      if (full) {  // every hit checked by the traversal (ultra's), alone
+        BenchConfig verify{"adaptive-l", "high-verify", Settings::preset(preset), false};
+        verify.settings.hierarchicalVerify = true;
+        configs.push_back(verify);
+      }
     }
   }
-  // The hierarchical traversal alone (Method::HierarchicalDepth) at a few step caps.
-  for (int steps : full ? std::vector<int>{40, 80, 160} : std::vector<int>{80}) {
-    BenchConfig c{"hiz", "steps" + std::to_string(steps), Settings::preset(Preset::High), steps == 80};
+  // The hierarchical traversal alone (Method::HierarchicalDepth) at the presets' step caps (medium,
+  // high, ultra).
+  const int defaultSteps = Settings::preset(Preset::High).hierarchicalMaxSteps;
+  const std::vector<int> allSteps{Settings::preset(Preset::Medium).hierarchicalMaxSteps, defaultSteps,
+                                  Settings::preset(Preset::Ultra).hierarchicalMaxSteps};
+  for (int steps : full ? allSteps : std::vector<int>{defaultSteps}) {
+    BenchConfig c{"hiz", "steps" + std::to_string(steps), Settings::preset(Preset::High), steps == defaultSteps};
     c.settings.method = Method::HierarchicalDepth;
     c.settings.hierarchicalMaxSteps = steps;
     configs.push_back(c);

@@ -80,6 +80,7 @@ RayTracer::Hit RayTracer::intersect(glm::vec3 o, glm::vec3 d, float tFar) const 
   Hit h;
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
   h.hit = true;
+  h.mesh = rh.hit.geomID;
   h.t = rh.ray.tfar;
   h.vsPosition = o + d * h.t;
   const auto& idx = impl_->indices[rh.hit.geomID];
@@ -130,18 +131,34 @@ GroundTruth computeGroundTruth(const RayTracer& tracer, const glm::dmat4& clipFr
   gt.pixels.resize(static_cast<size_t>(width) * height);
   const bool ortho = clipFromView[3][3] == 1.0;
   const glm::dmat4 viewFromClip = glm::inverse(clipFromView);
+  // Primary ray through a pixel centre, built in double from the exact matrix.
+  auto primaryRay = [&](int x, int y, glm::dvec3& origin, glm::dvec3& dir) {
+    const glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0, (y + 0.5) / height * 2.0 - 1.0);
+    glm::dvec4 nearPt = viewFromClip * glm::dvec4(ndc, -1.0, 1.0);
+    glm::dvec4 farPt = viewFromClip * glm::dvec4(ndc, 0.5, 1.0);
+    nearPt /= nearPt.w;
+    farPt /= farPt.w;
+    origin = ortho ? glm::dvec3(nearPt.x, nearPt.y, 0.0) : glm::dvec3(0.0);
+    dir = ortho ? glm::dvec3(0, 0, -1) : glm::normalize(glm::dvec3(farPt));
+  };
+  // Whether a pixel within 1 px of `hit` (at uv) shows its surface: same mesh, normals within 25 deg.
+  auto shownNear = [&](glm::dvec2 uv, const RayTracer::Hit& hit) {
+    const int cx = static_cast<int>(std::floor(uv.x * width)), cy = static_cast<int>(std::floor(uv.y * height));
+    for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, height - 1); ++y)
+      for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, width - 1); ++x) {
+        glm::dvec3 o, d;
+        primaryRay(x, y, o, d);
+        const RayTracer::Hit seen = tracer.intersect(glm::vec3(o), glm::vec3(d));
+        if (seen.hit && seen.mesh == hit.mesh && glm::dot(seen.vsNormal, hit.vsNormal) > 0.906f) return true;
+      }
+    return false;
+  };
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const size_t p = static_cast<size_t>(y) * width + x;
       if (!reflective[p]) continue;
-      // Primary ray through the pixel centre, built in double from the exact matrix.
-      const glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0, (y + 0.5) / height * 2.0 - 1.0);
-      glm::dvec4 nearPt = viewFromClip * glm::dvec4(ndc, -1.0, 1.0);
-      glm::dvec4 farPt = viewFromClip * glm::dvec4(ndc, 0.5, 1.0);
-      nearPt /= nearPt.w;
-      farPt /= farPt.w;
-      const glm::dvec3 origin = ortho ? glm::dvec3(nearPt.x, nearPt.y, 0.0) : glm::dvec3(0.0);
-      const glm::dvec3 dir = ortho ? glm::dvec3(0, 0, -1) : glm::normalize(glm::dvec3(farPt));
+      glm::dvec3 origin, dir;
+      primaryRay(x, y, origin, dir);
       const RayTracer::Hit primary = tracer.intersect(glm::vec3(origin), glm::vec3(dir));
       TruthPixel& tp = gt.pixels[p];
       if (!primary.hit) {
@@ -178,6 +195,12 @@ GroundTruth computeGroundTruth(const RayTracer& tracer, const glm::dmat4& clipFr
       const float dist = glm::length(toHit);
       const bool hidden = tracer.occluded(camOrigin, toHit / dist, dist * (1.0f - 1e-4f));
       tp.cls = hidden ? TruthClass::Occluded : TruthClass::Visible;
+      if (!hidden) {
+        // The hit's normal as the camera sees it (the tracer's faces the reflected ray's origin).
+        RayTracer::Hit facingCamera = refl;
+        if (glm::dot(facingCamera.vsNormal, toHit) > 0.0f) facingCamera.vsNormal = -facingCamera.vsNormal;
+        tp.shown = shownNear(uv, facingCamera);
+      }
     }
   return gt;
 }
@@ -194,7 +217,7 @@ HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float thresho
   double sqErr = 0.0;
   size_t sqCount = 0;
   std::vector<double> errors;
-  size_t within1 = 0, within2 = 0, within4 = 0, falseHits = 0, hiddenByHair = 0;
+  size_t within1 = 0, within2 = 0, within4 = 0, falseHits = 0, hiddenByHair = 0, shownWithin1 = 0;
   for (size_t p = 0; p < truth.pixels.size(); ++p) {
     const float* h = &hit.pixels[p * hit.channels];
     bool finite = true;
@@ -206,6 +229,7 @@ HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float thresho
       case TruthClass::NotReflective: break;
       case TruthClass::Visible: {
         ++m.visible;
+        m.unshown += t.shown ? 0 : 1;
         if (color != nullptr) {
           const glm::vec3 ref = sampleBilinear(*color, t.uvHit);
           const glm::vec3 got = reported ? sampleBilinear(*color, glm::vec2(h[0], h[1])) : glm::vec3(0.0f);
@@ -218,6 +242,7 @@ HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float thresho
         const double e = std::sqrt(ex * ex + ey * ey);
         errors.push_back(e);
         within1 += e <= 1.0;
+        shownWithin1 += t.shown && e <= 1.0;
         within2 += e <= 2.0;
         within4 += e <= 4.0;
         break;
@@ -239,6 +264,7 @@ HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float thresho
     m.recall2px = double(within2) / m.visible;
     m.recall4px = double(within4) / m.visible;
   }
+  if (m.visible > m.unshown) m.recallShown1px = double(shownWithin1) / double(m.visible - m.unshown);
   if (!errors.empty()) {
     std::sort(errors.begin(), errors.end());
     m.medianErrorPx = errors[errors.size() / 2];

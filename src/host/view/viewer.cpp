@@ -260,7 +260,15 @@ struct App {
       s.settings.temporal = keep.temporal;
     }
     Settings& t = s.settings;
-    if (s.method == 0) ImGui::Checkbox("hierarchical fallback", &t.hierarchicalFallback);
+    if (s.method == 0) {
+      ImGui::Checkbox("hierarchical fallback", &t.hierarchicalFallback);
+      if (t.hierarchicalFallback) {
+        ImGui::SameLine();
+        ImGui::Checkbox("verify hits", &t.hierarchicalVerify);
+      } else {
+        t.hierarchicalVerify = false;  // verification runs the fallback's traversal
+      }
+    }
     ImGui::Checkbox("half resolution", &t.halfResolution);
     ImGui::SameLine();
     ImGui::Checkbox("temporal", &t.temporal);
@@ -273,6 +281,7 @@ struct App {
       ImGui::SliderInt("maxIterations", &t.maxIterations, 1, 64);
       ImGui::SliderInt("hierarchicalMaxSteps", &t.hierarchicalMaxSteps, 1, 256);
       ImGui::SliderFloat("objectThickness", &t.objectThickness, 0.0f, 0.5f);
+      ImGui::Checkbox("outline thinning", &t.outlineThinning);
       ImGui::SliderFloat("convergenceEps", &t.convergenceEps, 0.0001f, 0.05f, "%.4f");
       ImGui::SliderFloat("initialLengthScreen", &t.initialLengthScreen, 0.005f, 0.2f);
       ImGui::SliderFloat("thicknessRelative", &t.thicknessRelative, 0.0f, 0.02f, "%.4f");

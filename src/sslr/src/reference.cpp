@@ -61,9 +61,12 @@ Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings
   t.blurNormalPower = s.blurNormalPower;
   t.maxIterations = s.maxIterations;
   t.fresnelMode = s.fresnel == FresnelMode::Classic ? SSLR_FRESNEL_CLASSIC : SSLR_FRESNEL_SCHLICK;
+  t.outlineThinning = s.outlineThinning ? 1 : 0;
   t.hizMode = s.method == Method::HierarchicalDepth
                   ? SSLR_HIZ_ONLY
-                  : (s.method == Method::AdaptiveL && s.hierarchicalFallback ? SSLR_HIZ_FALLBACK : SSLR_HIZ_OFF);
+                  : (s.method == Method::AdaptiveL && s.hierarchicalFallback
+                         ? (s.hierarchicalVerify ? SSLR_HIZ_VERIFY : SSLR_HIZ_FALLBACK)
+                         : SSLR_HIZ_OFF);
   t.hizMaxSteps = s.hierarchicalMaxSteps;
   t.objectThickness = s.objectThickness;
   t.hizLevels = shared::sslrHiZLevelCount(width, height);

@@ -165,10 +165,16 @@ struct Settings {
   FresnelMode fresnel = FresnelMode::Classic;
   int maxIterations = 16;            // adaptive-L iterations (each one depth fetch); article: 10
   bool hierarchicalFallback = true;  // AdaptiveL: trace the pyramid where adaptive L finds no hit
-  int hierarchicalMaxSteps = 80;     // pyramid cells visited per ray at most (each one fetch)
+  bool hierarchicalVerify = false;   // ... and over every adaptive-L hit, keeping an earlier crossing
+                                     // it finds (thin occluders adaptive L steps over; costs about
+                                     // the traversal alone; on in Preset::Ultra)
+  int hierarchicalMaxSteps = 128;    // pyramid cells visited per ray at most (each one fetch)
   float objectThickness = 0.075f;    // depth of what the screen shows, fraction of its view depth:
                                      // a ray less deep behind it ran into it (hidden: no hit), a
                                      // deeper one passes behind (hierarchical traversal)
+  bool outlineThinning = true;       // ... and less deep near the outline of what a pixel shows
+                                     // (a box is no deeper at its edge than its faces' corner
+                                     // allows: rays pass behind edges; docs/algorithm.md)
   float convergenceEps = 0.002f;     // stop when |L_new - L| <= eps * L
   float initialLengthScreen = 0.03f; // first L moves the probe this fraction of the height (>= 4 px)
   float errorK = 0.15f;              // the article's LDelmiter (Classic only): fade ~ L / distance * k

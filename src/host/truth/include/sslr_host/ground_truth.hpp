@@ -26,6 +26,10 @@ struct TruthPixel {
   TruthClass cls = TruthClass::NotReflective;
   glm::vec2 uvHit{0.0f};   // true hit projected to uv (classes A, B)
   float length = 0.0f;     // reflected ray length to the hit (view units)
+  // Class A: a pixel within 1 px of the hit shows the hit's surface (its primary ray hits the same
+  // mesh with a normal within 25 degrees). When none does (a face seen edge-on, thinner than a
+  // pixel) the G-buffer holds no sample of the hit: no screen-space method can find it.
+  bool shown = true;
 };
 
 struct GroundTruth {
@@ -48,6 +52,7 @@ class RayTracer {
     float t = 0.0f;
     glm::vec3 vsPosition{0.0f};
     glm::vec3 vsNormal{0.0f};  // interpolated vertex normal (facing the ray origin side)
+    unsigned mesh = 0;         // index of the scene mesh hit
   };
   Hit intersect(glm::vec3 vsOrigin, glm::vec3 vsDirection, float tFar = 1e30f) const;
   bool occluded(glm::vec3 vsOrigin, glm::vec3 vsDirection, float tFar) const;
@@ -78,6 +83,8 @@ inline constexpr float kReportedConfidence = 0.5f;
 struct HitMetrics {
   size_t visible = 0, occluded = 0, offScreen = 0, escaped = 0;
   double recall1px = 0, recall2px = 0, recall4px = 0;  // A pixels reported within N px
+  size_t unshown = 0;            // A pixels whose hit no pixel within 1 px shows (TruthPixel::shown)
+  double recallShown1px = 0;     // recall1px over the other A pixels: what screen space can find
   double medianErrorPx = 0, p95ErrorPx = 0;            // over A pixels that reported a hit
   double falseHitRate = 0;                             // B+C+D pixels reporting a hit
   // The same, less the B pixels that report their true hit point within 1 px: a point hidden by
