@@ -59,9 +59,20 @@ SSLR_FN float sslrSlopeTan(SslrProjection p, vec3 vsSurface, vec3 vsSurfaceNorma
 
 // Hit tolerance (view units) on a surface at view depth `dist` seen at tan(angle) `tanView`: a
 // fraction of the distance (depth precision) plus pixel footprints stretched by the slope.
+// The traversal's role (SSLR_HIZ_*). The GPU passes get it compiled in (SSLR_HIZ_MODE, like the
+// inputs in sslrDecodeNormal), so that the paths a mode never takes are not in the program; the
+// C++ run reads the uniform.
+SSLR_FN int sslrHiZMode(SslrTraceParams t) {
+#ifdef SSLR_HIZ_MODE
+  return SSLR_HIZ_MODE;
+#else
+  return t.hizMode;
+#endif
+}
+
 // Whether the hierarchical traversal stands behind adaptive L (answers what it leaves).
 SSLR_FN bool sslrHasHiZFallback(SslrTraceParams t) {
-  return t.hizMode == SSLR_HIZ_FALLBACK || t.hizMode == SSLR_HIZ_VERIFY;
+  return sslrHiZMode(t) == SSLR_HIZ_FALLBACK || sslrHiZMode(t) == SSLR_HIZ_VERIFY;
 }
 
 SSLR_FN float sslrHitTolerance(SslrProjection p, SslrSurface s, SslrTraceParams t, float dist, float tanView) {

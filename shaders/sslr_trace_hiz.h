@@ -213,7 +213,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
 // traversal's own misses (a slab it stopped in, steps run out) are no better evidence.
 SSLR_FN SslrHit sslrTraceDepthOnly(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
                                    vec3 vsR) {
-  if (t.hizMode == SSLR_HIZ_ONLY) return sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
+  if (sslrHiZMode(t) == SSLR_HIZ_ONLY) return sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
   // Rays that come back towards the camera, or run within ~17 degrees of the image plane, are where
   // adaptive L jumps over what stands between (its probes see the front of the occluders, not
   // the ray): they go to the traversal at once (mirror-walls false hits 3.0% -> 0.9%, 960x540).
@@ -221,7 +221,7 @@ SSLR_FN SslrHit sslrTraceDepthOnly(SslrProjection p, SslrSurface s, SslrTracePar
     return sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
   SslrHit first = sslrTraceAdaptiveL(p, s, t, pxOrigin, vsP, vsR);
   bool firstHit = first.status == SSLR_STATUS_HIT && first.confidence >= 0.5f;
-  if (firstHit && t.hizMode == SSLR_HIZ_VERIFY) {
+  if (firstHit && sslrHiZMode(t) == SSLR_HIZ_VERIFY) {
     SslrHit check = sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
     check.iterations += first.iterations;
     if (check.status == SSLR_STATUS_HIT && check.confidence >= 0.5f && check.L < 0.97f * first.L) return check;

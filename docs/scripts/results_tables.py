@@ -3,7 +3,8 @@
 
 Usage: docs/scripts/results_tables.py BENCH_OUT/results.json > tables.md
 Prints: the defaults per scene, the fastest configuration of each method reaching recall 0.95
-(with ratios), the presets, and the cost curves.
+(with ratios), the presets, the representations (depth against stored positions) and the cost
+curves.
 """
 import json
 import sys
@@ -58,7 +59,7 @@ def main(path):
         print(f"| {s} | " + " | ".join(cells) + f" | {ratio} |")
 
     print("\n### Presets (time, recall@1px)\n")
-    presets = ["low", "medium", "high", "high-no-fallback", "ultra"]
+    presets = ["low", "medium", "high", "high-no-fallback", "high-verify", "ultra"]
     print("| preset | " + " | ".join(scenes) + " |")
     print("|---|" + "---|" * len(scenes))
     for p in presets:
@@ -67,6 +68,14 @@ def main(path):
             x = next((x for x in of(s, "adaptive-l") if x["label"] == p), None)
             row.append(f"{ms(x['timeMedianMs'])} ms, {x['recall1px']:.3f}" if x else "–")
         print(f"| {p} | " + " | ".join(row) + " |")
+
+    print("\n### Representations alone: depth versus stored position\n")
+    print("| scene | median position error | max (relative) | hit agreement | recall@1px depth / stored |")
+    print("|---|---|---|---|---|")
+    for sc in r.get("scenes", []):
+        print(f"| {sc['scene']} | {sc['positionErrorMedian']:.1e} | {sc['positionErrorMax']:.1e} "
+              f"({sc['positionErrorMaxRelative']:.1e}) | {100 * sc['hitAgreementDepthVsStored']:.3f}% | "
+              f"{sc['recall1pxDepth']:.4f} / {sc['recall1pxStored']:.4f} |")
 
     curves = r.get("costCurves", [])
     for curve in ("resolution", "fraction"):
