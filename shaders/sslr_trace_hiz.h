@@ -211,32 +211,54 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
 // traversal walks every cell, so a hit it finds clearly earlier (L 3% shorter: the same surface
 // found twice differs by less) replaces adaptive L's. Anything else keeps adaptive L's hit: the
 // traversal's own misses (a slab it stopped in, steps run out) are no better evidence.
-SSLR_FN SslrHit sslrTraceDepthOnly(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
-                                   vec3 vsR) {
-  if (sslrHiZMode(t) == SSLR_HIZ_ONLY) return sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
-  // Rays that come back towards the camera, or run within ~17 degrees of the image plane, are where
-  // adaptive L jumps over what stands between (its probes see the front of the occluders, not
-  // the ray): they go to the traversal at once (mirror-walls false hits 3.0% -> 0.9%, 960x540).
-  if (sslrHasHiZFallback(t) && dot(vsR, -sslrViewDirection(p, vsP)) > -0.3f)
-    return sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
+//
+// Two stages, so that a pass can run the first alone and leave the traversal to a pass of its own
+// (Settings::traversalPass): sslrTraceFirstStage answers the pixel or says it needs the second.
+
+// Rays that come back towards the camera, or run within ~17 degrees of the image plane, are where
+// adaptive L jumps over what stands between (its probes see the front of the occluders, not the
+// ray): they go to the traversal at once (mirror-walls false hits 3.0% -> 0.9%, 960x540).
+SSLR_FN bool sslrTraversalFirst(SslrProjection p, SslrTraceParams t, vec3 vsP, vec3 vsR) {
+  return sslrHiZMode(t) == SSLR_HIZ_ONLY ||
+         (sslrHasHiZFallback(t) && dot(vsR, -sslrViewDirection(p, vsP)) > -0.3f);
+}
+
+SSLR_FN bool sslrConfidentHit(SslrHit h) { return h.status == SSLR_STATUS_HIT && h.confidence >= 0.5f; }
+
+// Adaptive L's answer; needsTraversal: the pixel's answer is sslrTraceSecondStage's instead.
+SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
+                                    vec3 vsR, SSLR_OUT(bool) needsTraversal) {
+  needsTraversal = true;
+  if (sslrTraversalFirst(p, t, vsP, vsR)) return sslrNoHit(SSLR_STATUS_MISS);
   SslrHit first = sslrTraceAdaptiveL(p, s, t, pxOrigin, vsP, vsR);
-  bool firstHit = first.status == SSLR_STATUS_HIT && first.confidence >= 0.5f;
-  if (firstHit && sslrHiZMode(t) == SSLR_HIZ_VERIFY) {
-    SslrHit check = sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
-    check.iterations += first.iterations;
-    if (check.status == SSLR_STATUS_HIT && check.confidence >= 0.5f && check.L < 0.97f * first.L) return check;
-    first.iterations = check.iterations;
-    first.hierarchical = 1;
-    return first;
-  }
-  if (!sslrHasHiZFallback(t) || firstHit || first.status == SSLR_STATUS_SKY || first.status == SSLR_STATUS_OFF_SCREEN)
-    return first;
+  bool firstHit = sslrConfidentHit(first);
+  needsTraversal = sslrHasHiZFallback(t) && (firstHit ? sslrHiZMode(t) == SSLR_HIZ_VERIFY
+                                                      : first.status != SSLR_STATUS_SKY &&
+                                                            first.status != SSLR_STATUS_OFF_SCREEN);
+  return first;
+}
+
+// The traversal's part, given the first stage's answer `first` for a pixel that needs it.
+SSLR_FN SslrHit sslrTraceSecondStage(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
+                                     vec3 vsR, SslrHit first) {
   SslrHit second = sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
+  if (sslrTraversalFirst(p, t, vsP, vsR)) return second;
   second.iterations += first.iterations;
-  if (second.status == SSLR_STATUS_HIT && second.confidence > first.confidence) return second;
+  if (sslrConfidentHit(first)) {  // verification (SSLR_HIZ_VERIFY)
+    if (sslrConfidentHit(second) && second.L < 0.97f * first.L) return second;
+  } else if (second.status == SSLR_STATUS_HIT && second.confidence > first.confidence) {
+    return second;
+  }
   first.iterations = second.iterations;
   first.hierarchical = 1;
   return first;
+}
+
+SSLR_FN SslrHit sslrTraceDepthOnly(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
+                                   vec3 vsR) {
+  bool needsTraversal;
+  SslrHit first = sslrTraceFirstStage(p, s, t, pxOrigin, vsP, vsR, needsTraversal);
+  return needsTraversal ? sslrTraceSecondStage(p, s, t, pxOrigin, vsP, vsR, first) : first;
 }
 
 #ifdef __cplusplus

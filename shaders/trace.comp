@@ -14,6 +14,10 @@
 // traces and shades the listed pixels. The middle pass holds no tracer code: llvmpipe would run
 // it under lane masks for every pixel (measured: with the tracer inline, half resolution was
 // slower than full on mirror-room).
+// A deferred traversal (Settings::traversalPass, SSLR_DEFER_TRAVERSAL) works the same way at full
+// resolution: this pass runs adaptive L alone (sslrTraceFirstStage) and lists the pixels that need
+// the traversal; SSLR_HALF_RETRACE traces those with the whole tracer. The traversal's code is
+// then in no program that every pixel runs.
 #ifdef SSLR_HALF_QUADS
 layout(local_size_x = SSLR_TILE_SIZE / 2, local_size_y = SSLR_TILE_SIZE / 2) in;
 layout(binding = 1, rgba32f) uniform writeonly image2D uQuadHitOut;      // see uQuadHit
@@ -27,7 +31,7 @@ layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 layout(binding = 3) uniform sampler2D uQuadHit;      // xyz: view-space hit point; w: see SSLR_HALF_QUADS
 layout(binding = 4) uniform sampler2D uQuadSurface;  // xy: traced pixel's octahedral normal; zw: hit surface's
 #endif
-#if defined(SSLR_HALF_RES) || defined(SSLR_HALF_RETRACE)
+#if defined(SSLR_HALF_RES) || defined(SSLR_HALF_RETRACE) || defined(SSLR_DEFER_TRAVERSAL)
 layout(std430, binding = SSLR_BINDING_RETRACE_SSBO) buffer SslrRetrace {
   uint dispatchX;  // DispatchIndirectCommand of the retrace pass: ceil(count / SSLR_RETRACE_GROUP)
   uint dispatchY;
@@ -220,8 +224,16 @@ void sslrShadePixel(ivec2 px) {
 
   SslrPixel q;
   if (sslrPixelToTrace(px, q)) {
+#if defined(SSLR_HALF_RES) || defined(SSLR_DEFER_TRAVERSAL)
 #ifdef SSLR_HALF_RES
-    if (!sslrReuseQuadHit(px, q.vsP, q.vsN, q.vsR, hit)) {
+    bool answered = sslrReuseQuadHit(px, q.vsP, q.vsN, q.vsR, hit);
+#else
+    bool needsTraversal;
+    hit = sslrTraceFirstStage(frame.proj, frame.surface, frame.trace, px, q.vsP, q.vsR, needsTraversal);
+    bool answered = !needsTraversal;
+    ranTracer = answered;
+#endif
+    if (!answered) {
       // Its own ray, in the retrace pass, which also writes this pixel's outputs.
       uint slot = atomicAdd(retrace.count, 1u);
       retrace.pixels[slot] = uint(px.x) | (uint(px.y) << 16);

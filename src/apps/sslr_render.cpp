@@ -128,6 +128,13 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
       throw UsageError{"--iterations expects an integer (got '" + text + "')"};
   }
   if (args.count("no-outline-thinning")) s.outlineThinning = false;
+  if (args.count("traversal-pass")) {
+    const std::string pass = args["traversal-pass"].as<std::string>();
+    if (pass == "auto") s.traversalPass = TraversalPass::Auto;
+    else if (pass == "inline") s.traversalPass = TraversalPass::Inline;
+    else if (pass == "deferred") s.traversalPass = TraversalPass::Deferred;
+    else throw UsageError{"--traversal-pass must be auto, inline or deferred (got '" + pass + "')"};
+  }
   if (args.count("hiz-steps")) {
     const std::string text = args["hiz-steps"].as<std::string>();
     std::istringstream in(text);
@@ -156,6 +163,9 @@ int run(int argc, char** argv) {
       ("fresnel", "weighting: classic (the article) or schlick", cxxopts::value<std::string>()->default_value("classic"))
       ("iterations", "override the preset's adaptive-L iteration cap", cxxopts::value<std::string>())
       ("hiz-steps", "override the preset's cap on hierarchical traversal steps", cxxopts::value<std::string>())
+      ("traversal-pass", "where the hierarchical traversal runs: auto (deferred on a software renderer), inline "
+                         "or deferred (a pass of its own); the hits are the same",
+       cxxopts::value<std::string>())
       ("no-outline-thinning", "keep the assumed object thickness constant up to objects' outlines (hierarchical "
                               "traversal)")
       ("no-blur", "skip the roughness blur")

@@ -31,6 +31,7 @@ TEST(Settings, EveryInvalidFieldIsNamed) {
       {"maxIterations", [](Settings& s) { s.maxIterations = 0; }},
       {"maxIterations", [](Settings& s) { s.maxIterations = 100000; }},
       {"hierarchicalVerify", [](Settings& s) { s.hierarchicalVerify = true; s.hierarchicalFallback = false; }},
+      {"traversalPass", [](Settings& s) { s.traversalPass = static_cast<TraversalPass>(7); }},
       {"convergenceEps", [](Settings& s) { s.convergenceEps = -1.0f; }},
       {"initialLengthScreen", [](Settings& s) { s.initialLengthScreen = 0.0f; }},
       {"initialLengthScreen", [](Settings& s) { s.initialLengthScreen = 2.0f; }},

@@ -333,6 +333,63 @@ INSTANTIATE_TEST_SUITE_P(
                                  [](Settings& s, bool on) { s.hierarchicalVerify = on; }, 0.01, 0.0005}),
     [](const ::testing::TestParamInfo<OptionCase>& info) { return std::string(info.param.name); });
 
+// The traversal inline or in a pass of its own (Settings::traversalPass) runs the same functions on
+// the same pixels: the hit images must agree, and so must the reflections and the stats' count
+// of traversed pixels. Scenes: every ray to the traversal first (facing-mirror), most pixels
+// answered by adaptive L (mirror-room), hit verification on every hit (thin-objects, ultra).
+class TraversalPasses : public sslr::test::GlTest, public ::testing::WithParamInterface<const char*> {};
+
+TEST_P(TraversalPasses, DeferredAndInlineGiveTheSameHits) {
+  auto scene = makeBuiltinScene(GetParam());
+  ASSERT_TRUE(scene);
+  GBufferOptions o;
+  o.width = 192;
+  o.height = 108;
+  Settings inlined = std::string(GetParam()) == "thin-objects" ? Settings::preset(Preset::Ultra) : Settings{};
+  inlined.debugOutputs = true;
+  inlined.collectStats = true;
+  inlined.traversalPass = TraversalPass::Inline;
+  Settings deferred = inlined;
+  deferred.traversalPass = TraversalPass::Deferred;
+  Image hits[2], reflections[2];
+  FrameStats stats[2];
+  for (int k = 0; k < 2; ++k) {
+    auto r = FrameRenderer::create(o);
+    ASSERT_TRUE(r) << r.error();
+    GpuScene gpu(scene.value());
+    ASSERT_TRUE(r.value()->render(gpu, *scene.value().camera, k == 0 ? &inlined : &deferred));
+    hits[k] = r.value()->readHit();
+    reflections[k] = r.value()->readReflection();
+    stats[k] = r.value()->sslr().waitForStats();
+  }
+  size_t reported = 0, differing = 0;
+  for (size_t i = 0; i < hits[0].pixels.size(); i += 4) {
+    reported += hits[0].pixels[i + 2] > 0.5f;
+    bool same = true;
+    for (int c = 0; c < 4; ++c) {
+      same = same && std::abs(hits[0].pixels[i + c] - hits[1].pixels[i + c]) <= 1e-5f * (1.0f + std::abs(hits[0].pixels[i + c]));
+      same = same && std::abs(reflections[0].pixels[i + c] - reflections[1].pixels[i + c]) <= 1e-3f;
+    }
+    differing += same ? 0 : 1;
+  }
+  std::printf("%s: %zu hits, %zu pixels differ; traversed %u / %u of %u / %u traced\n", GetParam(), reported,
+              differing, stats[0].hierarchicalPixels, stats[1].hierarchicalPixels, stats[0].tracedPixels,
+              stats[1].tracedPixels);
+  EXPECT_GT(reported, 500u);
+  EXPECT_EQ(differing, 0u);
+  EXPECT_EQ(stats[0].hierarchicalPixels, stats[1].hierarchicalPixels);
+  EXPECT_GT(stats[1].hierarchicalPixels, 0u);
+  EXPECT_EQ(stats[0].tracedPixels, stats[1].tracedPixels);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, TraversalPasses, ::testing::Values("facing-mirror", "mirror-room", "thin-objects"),
+                         [](const ::testing::TestParamInfo<const char*>& info) {
+                           std::string n = info.param;
+                           for (char& ch : n)
+                             if (ch == '-') ch = '_';
+                           return n;
+                         });
+
 // McGuire & Mara's DDA reports the pixel of the step that overlapped the depth slab. Marching
 // every pixel (stride 1) it misses nothing on the analytic mirrors (nothing in front, nothing
 // behind) and its hit lies within a pixel step of the true one. A stride of 4 skips pixels: a

@@ -32,7 +32,10 @@ json settingsJson(const BenchConfig& c) {
   return {{"maxIterations", s.maxIterations},       {"hierarchicalFallback", s.hierarchicalFallback},
           {"hierarchicalVerify", s.hierarchicalVerify},
           {"hierarchicalMaxSteps", s.hierarchicalMaxSteps}, {"objectThickness", s.objectThickness},
-          {"outlineThinning", s.outlineThinning},       {"convergenceEps", s.convergenceEps},
+          {"outlineThinning", s.outlineThinning},
+          {"traversalPass", s.traversalPass == TraversalPass::Auto     ? "auto"
+                            : s.traversalPass == TraversalPass::Inline ? "inline"
+                                                                       : "deferred"},       {"convergenceEps", s.convergenceEps},
           {"initialLengthScreen", s.initialLengthScreen}, {"thicknessRelative", s.thicknessRelative},
           {"thicknessPixels", s.thicknessPixels},   {"blurMaxRadiusPx", s.blurMaxRadiusPx},
           {"roughnessCutoff", s.roughnessCutoff},   {"fresnel", s.fresnel == FresnelMode::Classic ? "classic" : "schlick"}};

@@ -282,6 +282,9 @@ struct App {
       ImGui::SliderInt("hierarchicalMaxSteps", &t.hierarchicalMaxSteps, 1, 256);
       ImGui::SliderFloat("objectThickness", &t.objectThickness, 0.0f, 0.5f);
       ImGui::Checkbox("outline thinning", &t.outlineThinning);
+      int pass = static_cast<int>(t.traversalPass);
+      const char* passes[] = {"auto", "inline", "deferred"};
+      if (ImGui::Combo("traversal pass", &pass, passes, 3)) t.traversalPass = static_cast<TraversalPass>(pass);
       ImGui::SliderFloat("convergenceEps", &t.convergenceEps, 0.0001f, 0.05f, "%.4f");
       ImGui::SliderFloat("initialLengthScreen", &t.initialLengthScreen, 0.005f, 0.2f);
       ImGui::SliderFloat("thicknessRelative", &t.thicknessRelative, 0.0f, 0.02f, "%.4f");

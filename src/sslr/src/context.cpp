@@ -96,6 +96,11 @@ Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
     return Status::error("sslr: needs OpenGL 4.5, the current context is " + std::to_string(major) +
                          "." + std::to_string(minor));
   }
+  if (const GLubyte* renderer = gl.GetString(GL_RENDERER)) {
+    const std::string name(reinterpret_cast<const char*>(renderer));
+    for (const char* cpu : {"llvmpipe", "softpipe", "SwiftShader"})
+      if (name.find(cpu) != std::string::npos) impl->softwareRenderer = true;
+  }
   GLint vertexSsbos = 0;
   gl.GetIntegerv(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, &vertexSsbos);
   if (vertexSsbos < 1) {

@@ -37,6 +37,7 @@ FormatInfo formatInfo(GLint internalFormat);
 struct Context::Impl {
   detail::Gl gl;
   LogCallback log;
+  bool softwareRenderer = false;  // GL_RENDERER names a CPU rasterizer (TraversalPass::Auto)
   int width = 0, height = 0;
 
   GLuint reflection = 0, blurTemp = 0, resolved = 0, hit = 0, iterations = 0;

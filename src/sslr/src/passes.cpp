@@ -82,6 +82,15 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   const std::string quadDefines = "#define SSLR_HALF_QUADS 1\n" + methodDefines + statsDefine;
   const std::string retraceDefines = traceDefines + "#define SSLR_HALF_RETRACE 1\n";
   if (settings.halfResolution) traceDefines += "#define SSLR_HALF_RES 1\n";
+  // The traversal in a pass of its own (trace.comp, SSLR_DEFER_TRAVERSAL), at full resolution
+  // (half resolution keeps its quad pass inline).
+  const bool deferTraversal =
+      settings.method == Method::AdaptiveL && constants.value().trace.hizMode != SSLR_HIZ_OFF &&
+      !settings.halfResolution &&
+      (settings.traversalPass == TraversalPass::Deferred ||
+       (settings.traversalPass == TraversalPass::Auto && softwareRenderer));
+  if (deferTraversal) traceDefines += "#define SSLR_DEFER_TRAVERSAL 1\n";
+  const bool retracePass = settings.halfResolution || deferTraversal;
   auto classify = computeProgram("classify.comp");
   auto cleanup = computeProgram("classify.comp", "#define SSLR_CLEANUP 1\n");
   // frameConstants decided whether the trace uses the traversal; the pyramid follows it.
@@ -92,7 +101,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   auto trace = computeProgram("trace.comp", traceDefines);
   const Expected<GLuint> none = GLuint(0);
   Expected<GLuint> quads = settings.halfResolution ? computeProgram("trace.comp", quadDefines) : none;
-  Expected<GLuint> retrace = settings.halfResolution ? computeProgram("trace.comp", retraceDefines) : none;
+  Expected<GLuint> retrace = retracePass ? computeProgram("trace.comp", retraceDefines) : none;
   const bool blur = settings.blur && settings.blurMaxRadiusPx > 0.0f;
   Expected<GLuint> blurH = GLuint(0), blurV = GLuint(0);
   if (blur) {
@@ -117,6 +126,8 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.CreateTextures(GL_TEXTURE_2D, 1, &quadSurface);
     gl.TextureStorage2D(quadSurface, 1, GL_RGBA16F, qw, qh);
     label(GL_TEXTURE, quadSurface, "sslr.quadSurface");
+  }
+  if (retracePass && retraceBuffer == 0) {
     gl.CreateBuffers(1, &retraceBuffer);
     gl.NamedBufferStorage(retraceBuffer, static_cast<GLsizeiptr>((4 + static_cast<size_t>(width) * height) * sizeof(GLuint)),
                           nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -208,10 +219,12 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   }
 
   timestamp(2);
-  if (settings.halfResolution) {
+  if (retracePass) {
     const GLuint retraceHeader[4] = {0, 1, 1, 0};  // dispatch (0, 1, 1), count 0
     gl.NamedBufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_RETRACE_SSBO, retraceBuffer);
+  }
+  if (settings.halfResolution) {
     gl.UseProgram(quads.value());
     gl.BindImageTexture(1, quadHit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     gl.BindImageTexture(2, quadSurface, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -229,7 +242,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.BindImageTexture(1, hit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   if (settings.debugOutputs) gl.BindImageTexture(2, iterations, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
   gl.DispatchComputeIndirect(0);
-  if (settings.halfResolution) {  // the pixels whose quad's ray did not answer them
+  if (retracePass) {  // the pixels whose quad's ray did not answer them, or that need the traversal
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     gl.UseProgram(retrace.value());
     gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, retraceBuffer);

@@ -46,6 +46,9 @@ std::string validate(const Settings& s) {
     why << "maxIterations = " << s.maxIterations << " (must be 1..256); ";
   if (s.method == Method::AdaptiveL && s.hierarchicalVerify && !s.hierarchicalFallback)
     why << "hierarchicalVerify needs hierarchicalFallback (both run the hierarchical traversal); ";
+  if (s.traversalPass != TraversalPass::Auto && s.traversalPass != TraversalPass::Inline &&
+      s.traversalPass != TraversalPass::Deferred)
+    why << "traversalPass = " << static_cast<int>(s.traversalPass) << " (not a TraversalPass); ";
   if (s.hierarchicalMaxSteps < 1 || s.hierarchicalMaxSteps > 1024)
     why << "hierarchicalMaxSteps = " << s.hierarchicalMaxSteps << " (must be 1..1024); ";
   if (!finite(s.objectThickness) || s.objectThickness < 0.0f)

@@ -140,6 +140,14 @@ enum class Method {
   ScreenSpaceDDA,      // comparison, depth-only: McGuire & Mara 2014's perspective-correct DDA
 };
 
+// Where the hierarchical traversal of Method::AdaptiveL runs (the answers are the same).
+enum class TraversalPass {
+  Auto,      // Deferred on a software rasterizer (llvmpipe, softpipe, SwiftShader), else Inline
+  Inline,    // in the pixel's own invocation, after adaptive L: GPUs (deferred was slower on an H100)
+  Deferred,  // a pass of its own over the pixels that need it: CPU rasterizers run code a pixel
+             // does not take under lane masks, so the traversal inline slows every pixel
+};
+
 // Parameters of Method::PositionBuffer, with the tutorial's demo values.
 struct PositionBufferSettings {
   float maxDistance = 8.0f;  // ray length, view units
@@ -169,6 +177,7 @@ struct Settings {
                                      // it finds (thin occluders adaptive L steps over; costs about
                                      // the traversal alone; on in Preset::Ultra)
   int hierarchicalMaxSteps = 128;    // pyramid cells visited per ray at most (each one fetch)
+  TraversalPass traversalPass = TraversalPass::Auto;  // inline or in a pass of its own (same hits)
   float objectThickness = 0.075f;    // depth of what the screen shows, fraction of its view depth:
                                      // a ray less deep behind it ran into it (hidden: no hit), a
                                      // deeper one passes behind (hierarchical traversal)
