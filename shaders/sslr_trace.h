@@ -57,8 +57,6 @@ SSLR_FN float sslrSlopeTan(SslrProjection p, vec3 vsSurface, vec3 vsSurfaceNorma
   return min(sqrt(max(1.0f - cosView * cosView, 0.0f)) / max(cosView, 0.0625f), 16.0f);
 }
 
-// Hit tolerance (view units) on a surface at view depth `dist` seen at tan(angle) `tanView`: a
-// fraction of the distance (depth precision) plus pixel footprints stretched by the slope.
 // The traversal's role (SSLR_HIZ_*). The GPU passes get it compiled in (SSLR_HIZ_MODE, like the
 // inputs in sslrDecodeNormal), so that the paths a mode never takes are not in the program; the
 // C++ run reads the uniform.
@@ -75,6 +73,8 @@ SSLR_FN bool sslrHasHiZFallback(SslrTraceParams t) {
   return sslrHiZMode(t) == SSLR_HIZ_FALLBACK || sslrHiZMode(t) == SSLR_HIZ_VERIFY;
 }
 
+// Hit tolerance (view units) on a surface at view depth `dist` seen at tan(angle) `tanView`: a
+// fraction of the distance (depth precision) plus pixel footprints stretched by the slope.
 SSLR_FN float sslrHitTolerance(SslrProjection p, SslrSurface s, SslrTraceParams t, float dist, float tanView) {
   float footprint = sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : dist);
   return t.thicknessRelative * abs(dist) + t.thicknessPixels * footprint * (1.0f + tanView);

@@ -79,8 +79,8 @@ void checkOutputDirectory(const fs::path& dir) {
 // What a size needs, estimated before anything is allocated: on llvmpipe every texture lives in
 // system memory. Per pixel: G-buffer 16 B (+16 position) and the final RGBA8/RGBA16F targets,
 // sslr's targets 51 B (reflection, blur, resolved, hit, iterations, pyramid, the deferred
-// traversal's pixel list), the read-back
-// float images and their encoded files (~30 B; ~250 B more with --dump).
+// traversal's pixel list), the read-back float images and their encoded files (~30 B; ~250 B
+// more with --dump).
 void checkMemory(int width, int height, bool dump) {
   const double pixels = double(width) * height;
   const double need = pixels * (16.0 + 16.0 + 16.0 + 51.0 + 30.0 + (dump ? 250.0 : 0.0));

@@ -54,6 +54,11 @@ TEST(RenderCliNoGl, BadArgumentsExitTwoWithAMessageAndWriteNothing) {
       {"--near 10 --far 1", "far plane must be"},
       {"--iterations 0", "maxIterations"},
       {"--iterations abc", "iterations"},
+      {"--hiz-steps 0", "hierarchicalMaxSteps"},
+      {"--hiz-steps many", "--hiz-steps expects an integer"},
+      {"--traversal-pass sideways", "--traversal-pass must be"},
+      {"--hiz-verify --no-hiz-fallback", "exclude each other"},
+      {"--preset low --hiz-verify", "hierarchicalVerify needs hierarchicalFallback"},
       {"--no-such-option", "no-such-option"},
       {"--method raymarch", "--method must be"},
   };

@@ -29,6 +29,14 @@ void PrintTo(const TraceCase& c, std::ostream* os) {
       << (c.method == Method::HierarchicalDepth ? " hierarchical" : "");
 }
 
+// gtest parameter names may not hold '-': scene names get '_' instead.
+std::string gtestName(std::string name) {
+  for (char& ch : name)
+    if (ch == '-') ch = '_';
+  return name;
+}
+std::string sceneParamName(const ::testing::TestParamInfo<const char*>& info) { return gtestName(info.param); }
+
 // A frame rendered with debug outputs and the exact reflections traced by Embree: what every
 // accuracy test in this file starts from. Failures are reported; `renderer` is null then.
 struct ScoredFrame {
@@ -114,10 +122,9 @@ INSTANTIATE_TEST_SUITE_P(
                       TraceCase{"tilted-mirror", DepthMode::ZeroToOne, false, Method::HierarchicalDepth},
                       TraceCase{"mirror-box", DepthMode::Reversed, true, Method::HierarchicalDepth}),
     [](const ::testing::TestParamInfo<TraceCase>& info) {
-      std::string n = std::string(info.param.scene) + "_" + toString(info.param.depth) + (info.param.ortho ? "_ortho" : "") +
-                      (info.param.method == Method::HierarchicalDepth ? "_hiz" : "");
-      for (char& ch : n) if (ch == '-') ch = '_';
-      return n;
+      return gtestName(std::string(info.param.scene) + "_" + toString(info.param.depth) +
+                       (info.param.ortho ? "_ortho" : "") +
+                       (info.param.method == Method::HierarchicalDepth ? "_hiz" : ""));
     });
 
 // Golden image of the default scene on llvmpipe. Re-bless with assets/golden/bless.sh (it sets
@@ -383,12 +390,7 @@ TEST_P(TraversalPasses, DeferredAndInlineGiveTheSameHits) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, TraversalPasses, ::testing::Values("facing-mirror", "mirror-room", "thin-objects"),
-                         [](const ::testing::TestParamInfo<const char*>& info) {
-                           std::string n = info.param;
-                           for (char& ch : n)
-                             if (ch == '-') ch = '_';
-                           return n;
-                         });
+                         sceneParamName);
 
 // McGuire & Mara's DDA reports the pixel of the step that overlapped the depth slab. Marching
 // every pixel (stride 1) it misses nothing on the analytic mirrors (nothing in front, nothing
@@ -427,11 +429,8 @@ INSTANTIATE_TEST_SUITE_P(AnalyticMirrors, DdaTrace,
                          ::testing::Values(DdaCase{"tilted-mirror", 1.0f, 0.97}, DdaCase{"mirror-box", 1.0f, 0.97},
                                            DdaCase{"tilted-mirror", 4.0f, 0.88}, DdaCase{"mirror-box", 4.0f, 0.93}),
                          [](const ::testing::TestParamInfo<DdaCase>& info) {
-                           std::string n = std::string(info.param.scene) + "_stride" +
-                                           std::to_string(static_cast<int>(info.param.stride));
-                           for (char& ch : n)
-                             if (ch == '-') ch = '_';
-                           return n;
+                           return gtestName(std::string(info.param.scene) + "_stride" +
+                                            std::to_string(static_cast<int>(info.param.stride)));
                          });
 
 // Half resolution: one ray per 2x2 quad, reused by the quad's pixels on the traced pixel's
@@ -495,12 +494,7 @@ TEST_P(HalfResolution, QuarterOfTheRaysSameHits) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, HalfResolution, ::testing::Values("mirror-box", "tilted-mirror", "mirror-room"),
-                         [](const ::testing::TestParamInfo<const char*>& info) {
-                           std::string n = info.param;
-                           for (char& ch : n)
-                             if (ch == '-') ch = '_';
-                           return n;
-                         });
+                         sceneParamName);
 
 INSTANTIATE_TEST_SUITE_P(
     Scenes, RobustScenes,
@@ -518,10 +512,7 @@ INSTANTIATE_TEST_SUITE_P(
                       RobustCase{"glossy", Method::AdaptiveL, 0.94, 0.01},
                       RobustCase{"glossy", Method::HierarchicalDepth, 0.95, 0.01}),
     [](const ::testing::TestParamInfo<RobustCase>& info) {
-      std::string n = std::string(info.param.scene) + (info.param.method == Method::AdaptiveL ? "_AdaptiveL" : "_Hiz");
-      for (char& ch : n)
-        if (ch == '-') ch = '_';
-      return n;
+      return gtestName(std::string(info.param.scene) + (info.param.method == Method::AdaptiveL ? "_AdaptiveL" : "_Hiz"));
     });
 
 }  // namespace

@@ -29,13 +29,13 @@ json settingsJson(const BenchConfig& c) {
     return {{"stride", s.dda.stride},     {"thickness", s.dda.thickness}, {"maxSteps", s.dda.maxSteps},
             {"maxDistance", s.dda.maxDistance}, {"jitter", s.dda.jitter},   {"refine", s.dda.refine}};
   if (c.method == "baseline") return json::object();
+  const char* traversalPass = s.traversalPass == TraversalPass::Auto     ? "auto"
+                              : s.traversalPass == TraversalPass::Inline ? "inline"
+                                                                         : "deferred";
   return {{"maxIterations", s.maxIterations},       {"hierarchicalFallback", s.hierarchicalFallback},
-          {"hierarchicalVerify", s.hierarchicalVerify},
-          {"hierarchicalMaxSteps", s.hierarchicalMaxSteps}, {"objectThickness", s.objectThickness},
-          {"outlineThinning", s.outlineThinning},
-          {"traversalPass", s.traversalPass == TraversalPass::Auto     ? "auto"
-                            : s.traversalPass == TraversalPass::Inline ? "inline"
-                                                                       : "deferred"},       {"convergenceEps", s.convergenceEps},
+          {"hierarchicalVerify", s.hierarchicalVerify}, {"hierarchicalMaxSteps", s.hierarchicalMaxSteps},
+          {"traversalPass", traversalPass},         {"objectThickness", s.objectThickness},
+          {"outlineThinning", s.outlineThinning},   {"convergenceEps", s.convergenceEps},
           {"initialLengthScreen", s.initialLengthScreen}, {"thicknessRelative", s.thicknessRelative},
           {"thicknessPixels", s.thicknessPixels},   {"blurMaxRadiusPx", s.blurMaxRadiusPx},
           {"roughnessCutoff", s.roughnessCutoff},   {"fresnel", s.fresnel == FresnelMode::Classic ? "classic" : "schlick"}};
