@@ -17,9 +17,15 @@
 // A deferred traversal (Settings::traversalPass, SSLR_DEFER_TRAVERSAL) works the same way at full
 // resolution: this pass runs adaptive L alone (sslrTraceFirstStage) and lists the pixels that need
 // the traversal; SSLR_HALF_RETRACE traces those with the whole tracer. The traversal's code is
-// then in no program that every pixel runs.
+// then in no program that every pixel runs. Half resolution defers it the same way: the quad pass
+// lists the quads whose ray needs the traversal, and SSLR_HALF_QUAD_RETRACE traces those before
+// the full-resolution pass reads the quads.
 #ifdef SSLR_HALF_QUADS
+#ifdef SSLR_HALF_QUAD_RETRACE
+layout(local_size_x = SSLR_RETRACE_GROUP) in;
+#else
 layout(local_size_x = SSLR_TILE_SIZE / 2, local_size_y = SSLR_TILE_SIZE / 2) in;
+#endif
 layout(binding = 1, rgba32f) uniform writeonly image2D uQuadHitOut;      // see uQuadHit
 layout(binding = 2, rgba16f) uniform writeonly image2D uQuadSurfaceOut;  // see uQuadSurface
 #elif defined(SSLR_HALF_RETRACE)
@@ -31,14 +37,22 @@ layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 layout(binding = 3) uniform sampler2D uQuadHit;      // xyz: view-space hit point; w: see SSLR_HALF_QUADS
 layout(binding = 4) uniform sampler2D uQuadSurface;  // xy: traced pixel's octahedral normal; zw: hit surface's
 #endif
-#if defined(SSLR_HALF_RES) || defined(SSLR_HALF_RETRACE) || defined(SSLR_DEFER_TRAVERSAL)
+#if defined(SSLR_HALF_RES) || defined(SSLR_HALF_RETRACE) || defined(SSLR_DEFER_TRAVERSAL) || \
+    defined(SSLR_HALF_QUAD_RETRACE)
 layout(std430, binding = SSLR_BINDING_RETRACE_SSBO) buffer SslrRetrace {
   uint dispatchX;  // DispatchIndirectCommand of the retrace pass: ceil(count / SSLR_RETRACE_GROUP)
   uint dispatchY;
   uint dispatchZ;
-  uint count;      // pixels listed
+  uint count;      // pixels (or quads) listed
   uint pixels[];   // x | y << 16
 } retrace;
+
+// Lists a pixel (or a quad) for the retrace pass.
+void sslrListForRetrace(ivec2 px) {
+  uint slot = atomicAdd(retrace.count, 1u);
+  retrace.pixels[slot] = uint(px.x) | (uint(px.y) << 16);
+  if (slot % uint(SSLR_RETRACE_GROUP) == 0u) atomicAdd(retrace.dispatchX, 1u);
+}
 #endif
 
 layout(binding = 0, rgba16f) uniform writeonly image2D uReflection;
@@ -132,8 +146,7 @@ bool sslrPixelToTrace(ivec2 px, out SslrPixel q) {
 }
 
 #ifdef SSLR_HALF_QUADS
-void main() {
-  ivec2 quad = sslrTileOrigin(gl_WorkGroupID.x) / 2 + ivec2(gl_LocalInvocationID.xy);
+void sslrTraceQuad(ivec2 quad) {
   // The traced pixel rotates through the quad frame by frame (the first of the four, in that
   // order, that needs tracing), so that a temporal filter would see every pixel's own ray.
   int start = frame.trace.frameIndex & 3;
@@ -144,7 +157,19 @@ void main() {
     ivec2 px = quad * 2 + sslrQuadOffset(index);
     SslrPixel q;
     if (!sslrInside(px) || !sslrPixelToTrace(px, q)) continue;
+#if defined(SSLR_DEFER_TRAVERSAL) && !defined(SSLR_HALF_QUAD_RETRACE)
+    bool needsTraversal;
+    SslrHit hit = sslrTraceFirstStage(frame.proj, frame.surface, frame.trace, px, q.vsP, q.vsR, needsTraversal);
+    if (needsTraversal) {  // the quad retrace pass traces it (and finds the same pixel of the quad)
+      sslrListForRetrace(quad);
+#ifdef SSLR_COLLECT_STATS
+      atomicAdd(stats.fetches, gFetches);
+#endif
+      return;
+    }
+#else
     SslrHit hit = sslrTraceRay(px, q.vsP, q.vsV, q.vsR);
+#endif
     float confidence = hit.status == SSLR_STATUS_HIT ? hit.confidence : 0.0f;
     vec3 vsHitNormal = vec3(0.0f, 0.0f, 1.0f);
     if (confidence > 0.0f)
@@ -166,6 +191,16 @@ void main() {
   imageStore(uQuadSurfaceOut, quad, quadSurface);
 #ifdef SSLR_COLLECT_STATS
   atomicAdd(stats.fetches, gFetches);
+#endif
+}
+
+void main() {
+#ifdef SSLR_HALF_QUAD_RETRACE
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= retrace.count) return;
+  sslrTraceQuad(ivec2(int(retrace.pixels[i] & 0xffffu), int(retrace.pixels[i] >> 16)));
+#else
+  sslrTraceQuad(sslrTileOrigin(gl_WorkGroupID.x) / 2 + ivec2(gl_LocalInvocationID.xy));
 #endif
 }
 #else
@@ -235,9 +270,7 @@ void sslrShadePixel(ivec2 px) {
 #endif
     if (!answered) {
       // Its own ray, in the retrace pass, which also writes this pixel's outputs.
-      uint slot = atomicAdd(retrace.count, 1u);
-      retrace.pixels[slot] = uint(px.x) | (uint(px.y) << 16);
-      if (slot % uint(SSLR_RETRACE_GROUP) == 0u) atomicAdd(retrace.dispatchX, 1u);
+      sslrListForRetrace(px);
 #ifdef SSLR_COLLECT_STATS
       atomicAdd(stats.fetches, gFetches);
 #endif

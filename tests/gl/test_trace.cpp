@@ -343,16 +343,24 @@ INSTANTIATE_TEST_SUITE_P(
 // The traversal inline or in a pass of its own (Settings::traversalPass) runs the same functions on
 // the same pixels: the hit images must agree, and so must the reflections and the stats' count
 // of traversed pixels. Scenes: every ray to the traversal first (facing-mirror), most pixels
-// answered by adaptive L (mirror-room), hit verification on every hit (thin-objects, ultra).
-class TraversalPasses : public sslr::test::GlTest, public ::testing::WithParamInterface<const char*> {};
+// answered by adaptive L (mirror-room), hit verification on every hit (thin-objects, ultra);
+// half resolution (its quad pass defers too) on mirror-room and facing-mirror.
+struct PassCase {
+  const char* scene;
+  bool half;
+};
+void PrintTo(const PassCase& c, std::ostream* os) { *os << c.scene << (c.half ? " half resolution" : ""); }
+class TraversalPasses : public sslr::test::GlTest, public ::testing::WithParamInterface<PassCase> {};
 
 TEST_P(TraversalPasses, DeferredAndInlineGiveTheSameHits) {
-  auto scene = makeBuiltinScene(GetParam());
+  const PassCase c = GetParam();
+  auto scene = makeBuiltinScene(c.scene);
   ASSERT_TRUE(scene);
   GBufferOptions o;
   o.width = 192;
   o.height = 108;
-  Settings inlined = std::string(GetParam()) == "thin-objects" ? Settings::preset(Preset::Ultra) : Settings{};
+  Settings inlined = std::string(c.scene) == "thin-objects" ? Settings::preset(Preset::Ultra) : Settings{};
+  inlined.halfResolution = c.half;
   inlined.debugOutputs = true;
   inlined.collectStats = true;
   inlined.traversalPass = TraversalPass::Inline;
@@ -379,7 +387,8 @@ TEST_P(TraversalPasses, DeferredAndInlineGiveTheSameHits) {
     }
     differing += same ? 0 : 1;
   }
-  std::printf("%s: %zu hits, %zu pixels differ; traversed %u / %u of %u / %u traced\n", GetParam(), reported,
+  std::printf("%s%s: %zu hits, %zu pixels differ; traversed %u / %u of %u / %u traced\n", c.scene,
+              c.half ? " (half resolution)" : "", reported,
               differing, stats[0].hierarchicalPixels, stats[1].hierarchicalPixels, stats[0].tracedPixels,
               stats[1].tracedPixels);
   EXPECT_GT(reported, 500u);
@@ -389,8 +398,13 @@ TEST_P(TraversalPasses, DeferredAndInlineGiveTheSameHits) {
   EXPECT_EQ(stats[0].tracedPixels, stats[1].tracedPixels);
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, TraversalPasses, ::testing::Values("facing-mirror", "mirror-room", "thin-objects"),
-                         sceneParamName);
+INSTANTIATE_TEST_SUITE_P(Scenes, TraversalPasses,
+                         ::testing::Values(PassCase{"facing-mirror", false}, PassCase{"mirror-room", false},
+                                           PassCase{"thin-objects", false}, PassCase{"mirror-room", true},
+                                           PassCase{"facing-mirror", true}),
+                         [](const ::testing::TestParamInfo<PassCase>& info) {
+                           return gtestName(std::string(info.param.scene) + (info.param.half ? "_half" : ""));
+                         });
 
 // McGuire & Mara's DDA reports the pixel of the step that overlapped the depth slab. Marching
 // every pixel (stride 1) it misses nothing on the analytic mirrors (nothing in front, nothing

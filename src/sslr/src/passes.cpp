@@ -1,6 +1,7 @@
 // The passes of a frame: classify (tile list) -> clean-up of last frame's tiles -> depth pyramid
-// (when a mode traces it) -> trace (half resolution: quads -> reuse -> retrace) -> blur H -> blur
-// V. Everything after classification runs over the listed tiles (or listed pixels) only.
+// (when a mode traces it) -> trace (deferred traversal: first stage -> retrace of the listed
+// pixels; half resolution: quads [-> quad retrace] -> reuse -> retrace) -> blur H -> blur V.
+// Everything after classification runs over the listed tiles (or listed pixels) only.
 #include "context_impl.hpp"
 #include "gl_state.hpp"
 #include "sslr/reference.hpp"
@@ -77,20 +78,21 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   std::string traceDefines = methodDefines + statsDefine;
   if (settings.debugOutputs) traceDefines += "#define SSLR_DEBUG_OUTPUTS 1\n";
   if (settings.temporal) traceDefines += "#define SSLR_TEMPORAL_HITS 1\n";
-  // Half resolution: a quad pass (the tracer, one ray per 2x2 quad) before the full-resolution
-  // pass, which reuses those rays.
+  // The traversal in a pass of its own (trace.comp, SSLR_DEFER_TRAVERSAL): the pixels (or, at half
+  // resolution, the quads) that need it are listed for a retrace pass.
+  const bool deferTraversal =
+      settings.method == Method::AdaptiveL && constants.value().trace.hizMode != SSLR_HIZ_OFF &&
+      (settings.traversalPass == TraversalPass::Deferred ||
+       (settings.traversalPass == TraversalPass::Auto && softwareRenderer));
+  const std::string deferDefine = deferTraversal ? "#define SSLR_DEFER_TRAVERSAL 1\n" : "";
+  // Half resolution: a quad pass (the tracer, one ray per 2x2 quad; deferred: its first stage, and
+  // a quad retrace pass for the rest) before the full-resolution pass, which reuses those rays.
   const std::string quadDefines = "#define SSLR_HALF_QUADS 1\n" + methodDefines + statsDefine;
   const std::string retraceDefines = traceDefines + "#define SSLR_HALF_RETRACE 1\n";
   if (settings.halfResolution) traceDefines += "#define SSLR_HALF_RES 1\n";
-  // The traversal in a pass of its own (trace.comp, SSLR_DEFER_TRAVERSAL), at full resolution
-  // (half resolution keeps its quad pass inline).
-  const bool deferTraversal =
-      settings.method == Method::AdaptiveL && constants.value().trace.hizMode != SSLR_HIZ_OFF &&
-      !settings.halfResolution &&
-      (settings.traversalPass == TraversalPass::Deferred ||
-       (settings.traversalPass == TraversalPass::Auto && softwareRenderer));
-  if (deferTraversal) traceDefines += "#define SSLR_DEFER_TRAVERSAL 1\n";
+  else traceDefines += deferDefine;
   const bool retracePass = settings.halfResolution || deferTraversal;
+  const bool quadRetracePass = settings.halfResolution && deferTraversal;
   auto classify = computeProgram("classify.comp");
   auto cleanup = computeProgram("classify.comp", "#define SSLR_CLEANUP 1\n");
   // frameConstants decided whether the trace uses the traversal; the pyramid follows it.
@@ -100,7 +102,9 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
       pyramid ? computeProgram("classify.comp", "#define SSLR_PYRAMID_ARGS 1\n") : Expected<GLuint>(GLuint(0));
   auto trace = computeProgram("trace.comp", traceDefines);
   const Expected<GLuint> none = GLuint(0);
-  Expected<GLuint> quads = settings.halfResolution ? computeProgram("trace.comp", quadDefines) : none;
+  Expected<GLuint> quads = settings.halfResolution ? computeProgram("trace.comp", quadDefines + deferDefine) : none;
+  Expected<GLuint> quadRetrace =
+      quadRetracePass ? computeProgram("trace.comp", quadDefines + "#define SSLR_HALF_QUAD_RETRACE 1\n") : none;
   Expected<GLuint> retrace = retracePass ? computeProgram("trace.comp", retraceDefines) : none;
   const bool blur = settings.blur && settings.blurMaxRadiusPx > 0.0f;
   Expected<GLuint> blurH = GLuint(0), blurV = GLuint(0);
@@ -114,7 +118,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     temporalStore = computeProgram("temporal.comp", "#define SSLR_TEMPORAL_STORE 1\n");
     historyCleanup = computeProgram("classify.comp", "#define SSLR_CLEANUP 1\n#define SSLR_CLEANUP_HISTORY 1\n");
   }
-  for (const auto* p : {&classify, &cleanup, &hizBuild, &hizArgs, &trace, &quads, &retrace, &blurH, &blurV,
+  for (const auto* p : {&classify, &cleanup, &hizBuild, &hizArgs, &trace, &quads, &quadRetrace, &retrace, &blurH, &blurV,
                         &temporalBlend, &temporalStore, &historyCleanup})
     if (!*p) return Status::error(p->error());
 
@@ -219,8 +223,8 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   }
 
   timestamp(2);
+  const GLuint retraceHeader[4] = {0, 1, 1, 0};  // dispatch (0, 1, 1), count 0
   if (retracePass) {
-    const GLuint retraceHeader[4] = {0, 1, 1, 0};  // dispatch (0, 1, 1), count 0
     gl.NamedBufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_RETRACE_SSBO, retraceBuffer);
   }
@@ -229,6 +233,15 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.BindImageTexture(1, quadHit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     gl.BindImageTexture(2, quadSurface, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl.DispatchComputeIndirect(0);  // one 4x4 group per listed tile
+    if (quadRetracePass) {  // the quads whose ray needs the traversal; then the list is the pixels'
+      gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+      gl.UseProgram(quadRetrace.value());
+      gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, retraceBuffer);
+      gl.DispatchComputeIndirect(0);
+      gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
+      gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+      gl.NamedBufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
+    }
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     gl.BindTextureUnit(3, quadHit);  // units 3 and 4 are the blur's, free during the trace
     gl.BindSampler(3, nearestSampler);
