@@ -103,6 +103,16 @@ void checkMemory(int width, int height, bool dump) {
   }
 }
 
+// A numeric option, when given: the whole text must parse as the field's type.
+template <typename T>
+void numberOption(const cxxopts::ParseResult& args, const char* name, const char* kind, T& field) {
+  if (!args.count(name)) return;
+  const std::string text = args[name].as<std::string>();
+  std::istringstream in(text);
+  if (!(in >> field) || !in.eof())
+    throw UsageError{"--" + std::string(name) + " expects " + kind + " (got '" + text + "')"};
+}
+
 Settings parseSettings(const cxxopts::ParseResult& args) {
   const std::string preset = args["preset"].as<std::string>();
   Settings s;
@@ -116,18 +126,9 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
   else if (fresnel == "schlick") s.fresnel = FresnelMode::Schlick;
   else throw UsageError{"--fresnel must be classic or schlick (got '" + fresnel + "')"};
   if (args.count("no-blur")) s.blur = false;
-  if (args.count("object-thickness")) {
-    const std::string text = args["object-thickness"].as<std::string>();
-    std::istringstream in(text);
-    if (!(in >> s.objectThickness) || !in.eof())
-      throw UsageError{"--object-thickness expects a number (got '" + text + "')"};
-  }
-  if (args.count("iterations")) {
-    const std::string text = args["iterations"].as<std::string>();
-    std::istringstream in(text);
-    if (!(in >> s.maxIterations) || !in.eof())
-      throw UsageError{"--iterations expects an integer (got '" + text + "')"};
-  }
+  numberOption(args, "object-thickness", "a number", s.objectThickness);
+  numberOption(args, "iterations", "an integer", s.maxIterations);
+  numberOption(args, "hiz-steps", "an integer", s.hierarchicalMaxSteps);
   if (args.count("no-outline-thinning")) s.outlineThinning = false;
   if (args.count("traversal-pass")) {
     const std::string pass = args["traversal-pass"].as<std::string>();
@@ -136,14 +137,7 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
     else if (pass == "deferred") s.traversalPass = TraversalPass::Deferred;
     else throw UsageError{"--traversal-pass must be auto, inline or deferred (got '" + pass + "')"};
   }
-  if (args.count("hiz-steps")) {
-    const std::string text = args["hiz-steps"].as<std::string>();
-    std::istringstream in(text);
-    if (!(in >> s.hierarchicalMaxSteps) || !in.eof())
-      throw UsageError{"--hiz-steps expects an integer (got '" + text + "')"};
-  }
-  if (std::string why = validate(s); !why.empty()) throw UsageError{why};
-  return s;
+  return s;  // validated by the caller, once every flag is applied
 }
 
 int run(int argc, char** argv) {

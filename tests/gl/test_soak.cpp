@@ -1,6 +1,7 @@
 // Long runs: thousands of dispatches with random settings, sizes (1x1 to 1024x576), methods,
 // composites and context re-creation. What must stay flat: live GL objects, GL errors (none) and
 // process memory. SSLR_SOAK_ITERATIONS raises the count for a run by hand (docs/results.md).
+#include <malloc.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -30,7 +31,12 @@ size_t liveGlObjects() {
   return n;
 }
 
+// Resident memory after the allocator hands back what it holds free: freed memory kept in
+// malloc's pools is not a leak, and whether a sample caught such a transient (a large frame's
+// buffers just released) moved the reading by up to 30 MiB between identical runs.
 double residentMiB() {
+  glFinish();
+  malloc_trim(0);
   std::ifstream statm("/proc/self/statm");
   size_t pages = 0, resident = 0;
   statm >> pages >> resident;

@@ -141,15 +141,31 @@ GroundTruth computeGroundTruth(const RayTracer& tracer, const glm::dmat4& clipFr
     origin = ortho ? glm::dvec3(nearPt.x, nearPt.y, 0.0) : glm::dvec3(0.0);
     dir = ortho ? glm::dvec3(0, 0, -1) : glm::normalize(glm::dvec3(farPt));
   };
+  // What a pixel shows (mesh and normal), traced once on first use: neighbouring visible hits
+  // ask for the same pixels many times over.
+  struct Shown {
+    glm::vec3 vsNormal{0.0f};
+    std::int32_t mesh = -2;  // -2: not traced yet; -1: nothing (16 bytes a pixel)
+  };
+  std::vector<Shown> shown(static_cast<size_t>(width) * height);
+  auto shownAt = [&](int x, int y) -> const Shown& {
+    Shown& s = shown[static_cast<size_t>(y) * width + x];
+    if (s.mesh == -2) {
+      glm::dvec3 origin, dir;
+      primaryRay(x, y, origin, dir);
+      const RayTracer::Hit h = tracer.intersect(glm::vec3(origin), glm::vec3(dir));
+      s.mesh = h.hit ? std::int32_t(h.mesh) : -1;
+      s.vsNormal = h.vsNormal;
+    }
+    return s;
+  };
   // Whether a pixel within 1 px of `hit` (at uv) shows its surface: same mesh, normals within 25 deg.
   auto shownNear = [&](glm::dvec2 uv, const RayTracer::Hit& hit) {
     const int cx = static_cast<int>(std::floor(uv.x * width)), cy = static_cast<int>(std::floor(uv.y * height));
     for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, height - 1); ++y)
       for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, width - 1); ++x) {
-        glm::dvec3 o, d;
-        primaryRay(x, y, o, d);
-        const RayTracer::Hit seen = tracer.intersect(glm::vec3(o), glm::vec3(d));
-        if (seen.hit && seen.mesh == hit.mesh && glm::dot(seen.vsNormal, hit.vsNormal) > 0.906f) return true;
+        const Shown& seen = shownAt(x, y);
+        if (seen.mesh == std::int32_t(hit.mesh) && glm::dot(seen.vsNormal, hit.vsNormal) > 0.906f) return true;
       }
     return false;
   };

@@ -78,10 +78,12 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   std::string traceDefines = methodDefines + statsDefine;
   if (settings.debugOutputs) traceDefines += "#define SSLR_DEBUG_OUTPUTS 1\n";
   if (settings.temporal) traceDefines += "#define SSLR_TEMPORAL_HITS 1\n";
+  // frameConstants decided whether the trace uses the traversal; the pyramid follows it.
+  const bool pyramid = constants.value().trace.hizMode != SSLR_HIZ_OFF;
   // The traversal in a pass of its own (trace.comp, SSLR_DEFER_TRAVERSAL): the pixels (or, at half
   // resolution, the quads) that need it are listed for a retrace pass.
   const bool deferTraversal =
-      settings.method == Method::AdaptiveL && constants.value().trace.hizMode != SSLR_HIZ_OFF &&
+      settings.method == Method::AdaptiveL && pyramid &&
       (settings.traversalPass == TraversalPass::Deferred ||
        (settings.traversalPass == TraversalPass::Auto && softwareRenderer));
   const std::string deferDefine = deferTraversal ? "#define SSLR_DEFER_TRAVERSAL 1\n" : "";
@@ -95,8 +97,6 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   const bool quadRetracePass = settings.halfResolution && deferTraversal;
   auto classify = computeProgram("classify.comp");
   auto cleanup = computeProgram("classify.comp", "#define SSLR_CLEANUP 1\n");
-  // frameConstants decided whether the trace uses the traversal; the pyramid follows it.
-  const bool pyramid = constants.value().trace.hizMode != SSLR_HIZ_OFF;
   Expected<GLuint> hizBuild = pyramid ? computeProgram("hiz.comp") : Expected<GLuint>(GLuint(0));
   Expected<GLuint> hizArgs =
       pyramid ? computeProgram("classify.comp", "#define SSLR_PYRAMID_ARGS 1\n") : Expected<GLuint>(GLuint(0));

@@ -30,7 +30,7 @@ Settings Settings::preset(Preset preset) {
     case Preset::Ultra:
       s.maxIterations = 32;
       s.convergenceEps = 0.0005f;
-      s.hierarchicalVerify = true;  // thin-objects recall 0.956 -> 0.977 at 960x540 (docs/results.md)
+      s.hierarchicalVerify = true;  // thin-objects recall 0.963 -> 0.984 at 960x540 (docs/algorithm.md)
       s.hierarchicalMaxSteps = 256;
       s.blurMaxRadiusPx = 12.0f;
       s.roughnessCutoff = 0.6f;
