@@ -1,8 +1,12 @@
-// Pass 1: tile classification, one invocation per pixel: the first pixel of an 8x8 tile found to
-// need tracing appends the tile to the tile list (a per-tile stamp says "listed this frame"); all
-// later passes run over listed tiles only. No shared memory and no barrier: on CPU rasterizers a
-// barrier splits the shader (an empty frame took 1.12x as long with the group flag and barriers,
-// in an interleaved A/B).
+// Pass 1: tile classification, one invocation per 2x2 quad: the first quad of an 8x8 tile found
+// to need tracing appends the tile to the tile list (a per-tile stamp says "listed this frame");
+// all later passes run over listed tiles only. No shared memory and no barrier: on CPU
+// rasterizers a barrier splits the shader (an empty frame took 1.12x as long with the group flag
+// and barriers, in an interleaved A/B). With SSLR_CLASSIFY_LEVEL1 (the traversal is on) each quad
+// also writes its (min, max) depth: level 1 of the depth pyramid, from the reads classification
+// makes anyway (a separate pass read every depth a second time; sky-heavy 960x540 on llvmpipe:
+// the default 1.74-1.91x -> 1.28-1.33x the tutorial's time, an empty frame 0.73 -> 0.85x the
+// baseline pass).
 //
 // With SSLR_CLEANUP the same file is the clean-up pass, run after classification over the
 // previous frame's traced tiles: those not listed again are zeroed. The outputs are never cleared
@@ -16,7 +20,11 @@
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
 
+#if defined(SSLR_CLEANUP) || defined(SSLR_PYRAMID_ARGS)
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
+#else
+layout(local_size_x = SSLR_TILE_SIZE / 2, local_size_y = SSLR_TILE_SIZE / 2) in;
+#endif
 
 #ifdef SSLR_CLEANUP
 #ifdef SSLR_CLEANUP_HISTORY
@@ -48,15 +56,36 @@ void main() {
     for (int i = 0; i < 3 * SSLR_HIZ_MAX_LEVELS; ++i) tiles.hizDispatch[i] = tiles.hizGroups[i];
 }
 #else
+#ifdef SSLR_CLASSIFY_LEVEL1
+layout(binding = 0, rg32f) uniform writeonly image2D uLevel1;  // the pyramid's level 1 (mip 0)
+#endif
+
 void main() {
-  ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-  if (!sslrInside(px)) return;
-  float depth = texelFetch(uDepth, px, 0).r;
-  vec4 packedNormal = texelFetch(uNormal, px, 0);
-  if (!sslrShouldTracePixel(px, depth, packedNormal, sslrMaterialAt(px, packedNormal))) return;
+  // One invocation per 2x2 quad: the quad's four depths are level 1 of the depth pyramid.
+  ivec2 cell = ivec2(gl_GlobalInvocationID.xy);
+  // Straight-line code over the quad (a loop with per-pixel branches ran 2x slower on llvmpipe).
+  ivec2 last = ivec2(frame.surface.width, frame.surface.height) - 1;
+  ivec2 p0 = min(cell * 2, last), p1 = min(cell * 2 + ivec2(1, 0), last);
+  ivec2 p2 = min(cell * 2 + ivec2(0, 1), last), p3 = min(cell * 2 + ivec2(1, 1), last);
+  float d0 = texelFetch(uDepth, p0, 0).r, d1 = texelFetch(uDepth, p1, 0).r;
+  float d2 = texelFetch(uDepth, p2, 0).r, d3 = texelFetch(uDepth, p3, 0).r;
+  vec4 n0 = texelFetch(uNormal, p0, 0), n1 = texelFetch(uNormal, p1, 0);
+  vec4 n2 = texelFetch(uNormal, p2, 0), n3 = texelFetch(uNormal, p3, 0);
+  // A clamped coordinate repeats a pixel of the same quad when the quad straddles the screen's
+  // edge (neutral for the min-max, harmless for the flag); a quad wholly outside is empty.
+  vec2 level1 = any(greaterThan(cell * 2, last)) ? sslrHiZEmpty() : sslrHiZReduce(sslrHiZReduce(sslrHiZTexel(frame.surface, d0), sslrHiZTexel(frame.surface, d1)),
+                              sslrHiZReduce(sslrHiZTexel(frame.surface, d2), sslrHiZTexel(frame.surface, d3)));
+  bool trace = sslrShouldTracePixel(p0, d0, n0, sslrMaterialAt(p0, n0)) ||
+               sslrShouldTracePixel(p1, d1, n1, sslrMaterialAt(p1, n1)) ||
+               sslrShouldTracePixel(p2, d2, n2, sslrMaterialAt(p2, n2)) ||
+               sslrShouldTracePixel(p3, d3, n3, sslrMaterialAt(p3, n3));
+#ifdef SSLR_CLASSIFY_LEVEL1
+  if (all(lessThan(cell, imageSize(uLevel1)))) imageStore(uLevel1, cell, vec4(level1, 0.0f, 0.0f));
+#endif
+  if (!trace) return;
   uint stamp = sslrTileListedStamp(gl_WorkGroupID.xy);
   uint frameIndex = uint(frame.trace.frameIndex);
-  // The plain read spares the atomic to all but the first few pixels of a listed tile.
+  // The plain read spares the atomic to all but the first few quads of a listed tile.
   if (tiles.tileCoords[stamp] == frameIndex || atomicExchange(tiles.tileCoords[stamp], frameIndex) == frameIndex)
     return;
   uint slot = atomicAdd(tiles.dispatchX, 1u);

@@ -30,6 +30,9 @@ void Context::Impl::createTargets() {
   gl.CreateTextures(GL_TEXTURE_2D, 1, &hiz);
   gl.TextureStorage2D(hiz, hizLevels, GL_RG32F, hizWidth, hizHeight);
   label(GL_TEXTURE, hiz, "sslr.depthPyramid");
+  // Level 1's cells past the last tile (padding) are never written: neutral once and for all.
+  const float hizEmpty[4] = {2.0f, -1.0f, 0.0f, 0.0f};  // sslrHiZEmpty
+  gl.ClearTexImage(hiz, 0, GL_RG, GL_FLOAT, hizEmpty);
   const GLsizeiptr tiles = static_cast<GLsizeiptr>(tilesX()) * tilesY();
   gl.CreateBuffers(1, &tileBuffer);
   // Header (see common/tiles.glsl), traced tiles, tiles to blur, per-tile stamps (zero: frame

@@ -34,7 +34,7 @@ void Context::Impl::buildPyramid(GLuint prog) const {
   gl.BindTextureUnit(6, hiz);
   gl.BindSampler(6, nearestSampler);
   // Two levels per dispatch (hiz.comp), over the upper level's cells: its dispatch arguments.
-  for (int level = 1; level <= hizLevels;) {
+  for (int level = 2; level <= hizLevels;) {  // level 1: classification (classify.comp)
     const bool two = level + 1 <= hizLevels;
     gl.ProgramUniform1i(prog, 0, level - 1);  // uSourceLevel
     gl.ProgramUniform1i(prog, 1, two ? 1 : 0);  // uTwoLevels
@@ -95,7 +95,8 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   else traceDefines += deferDefine;
   const bool retracePass = settings.halfResolution || deferTraversal;
   const bool quadRetracePass = settings.halfResolution && deferTraversal;
-  auto classify = computeProgram("classify.comp");
+  // With the pyramid, classification (which reads every depth anyway) writes its level 1.
+  auto classify = computeProgram("classify.comp", pyramid ? "#define SSLR_CLASSIFY_LEVEL1 1\n" : "");
   auto cleanup = computeProgram("classify.comp", "#define SSLR_CLEANUP 1\n");
   Expected<GLuint> hizBuild = pyramid ? computeProgram("hiz.comp") : Expected<GLuint>(GLuint(0));
   Expected<GLuint> hizArgs =
@@ -205,8 +206,10 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
 
   // Classification covers the screen; everything after runs over the listed tiles only.
   gl.UseProgram(classify.value());
+  if (pyramid) gl.BindImageTexture(0, hiz, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
   gl.DispatchCompute(static_cast<GLuint>(tilesX()), static_cast<GLuint>(tilesY()), 1);
-  gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+  gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+                   GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   // Zero the tiles the previous frame traced and this one does not (classify.comp).
   gl.UseProgram(cleanup.value());
   gl.BindImageTexture(0, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
