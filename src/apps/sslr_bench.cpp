@@ -51,6 +51,9 @@ int main(int argc, char** argv) {
       ("grid", "parameter grid: quick (CI) or full (docs)", cxxopts::value<std::string>()->default_value("quick"))
       ("scenes", "comma-separated scenes (default: mirror-room,grazing-plane,thin-objects,sky-heavy,facing-mirror,mirror-walls,curved-mirror,glossy)",
        cxxopts::value<std::string>()->default_value(""))
+      ("configs", "run only these configurations of the grid, comma-separated, each a method (adaptive-l, hiz, dda, "
+                  "position-buffer) or method/label (e.g. adaptive-l/high); the baseline pass always runs",
+       cxxopts::value<std::string>())
       ("size", "resolution WxH", cxxopts::value<std::string>())
       ("frames", "timed frames per configuration (median reported)", cxxopts::value<std::string>())
       ("warmup", "untimed warm-up rounds", cxxopts::value<std::string>())
@@ -84,6 +87,12 @@ int main(int argc, char** argv) {
       bo.height = 540;
       bo.frames = 15;
       bo.warmup = 2;
+    }
+    if (args.count("configs")) {
+      std::stringstream list(args["configs"].as<std::string>());
+      for (std::string name; std::getline(list, name, ',');)
+        if (!name.empty()) bo.configs.push_back(name);
+      if (auto check = selectConfigs(benchGrid(bo.grid), bo.configs); !check) throw std::runtime_error(check.error());
     }
     auto positiveInt = [&](const char* name, int& value, int lo, int hi) {
       if (!args.count(name)) return;
@@ -186,15 +195,27 @@ int main(int argc, char** argv) {
     std::cerr << "sslr-bench: " << s.message() << "\n";
     return 1;
   }
-  // A short summary on stdout: the defaults per scene.
-  std::printf("%-14s %-16s %9s %8s %8s %8s %8s %9s\n", "scene", "method", "time ms", "ratio", "rec@1px", "p95 px",
-              "false", "fetch/px");
+  // A short summary on stdout: the defaults per scene (with --configs: every configuration run).
+  // The method column fits the longest name shown (method/label with --configs).
+  int nameWidth = 16;
+  if (!bo.configs.empty())
+    for (const RunRecord& r : result.value().runs)
+      nameWidth = std::max(nameWidth, static_cast<int>(r.method.size() + 1 + r.label.size()));
+  std::printf("%-14s %-*s %9s %8s %8s %8s %8s %9s\n", "scene", nameWidth, "method", "time ms", "ratio", "rec@1px",
+              "p95 px", "false", "fetch/px");
   for (const auto& sc : result.value().scenes) {
     const SceneDefaults defaults = defaultRuns(result.value(), sc.scene);
     const RunRecord* p = defaults.tutorial;  // time ratios are to the tutorial's configuration
-    for (const RunRecord* r : defaults.runs)
-      std::printf("%-14s %-16s %9.2f %8.2f %8.4f %8.3f %8.4f %9.1f\n", sc.scene.c_str(), r->method.c_str(),
-                  r->timeMedianMs, p ? r->timeMedianMs / p->timeMedianMs : 0.0, r->metrics.recall1px,
+    std::vector<const RunRecord*> shown = defaults.runs;
+    if (!bo.configs.empty()) {
+      shown.clear();
+      for (const RunRecord& r : result.value().runs)
+        if (r.scene == sc.scene && r.method != "baseline") shown.push_back(&r);
+    }
+    for (const RunRecord* r : shown)
+      std::printf("%-14s %-*s %9.2f %8s %8.4f %8.3f %8.4f %9.1f\n", sc.scene.c_str(), nameWidth,
+                  (bo.configs.empty() ? r->method : r->method + "/" + r->label).c_str(), r->timeMedianMs,
+                  p ? std::to_string(r->timeMedianMs / p->timeMedianMs).substr(0, 4).c_str() : "-", r->metrics.recall1px,
                   r->metrics.p95ErrorPx, r->metrics.falseHitRate, r->fetchesPerTracedPixel);
   }
   std::printf("\nfastest configuration per method reaching recall@1px >= %.2f (ratio to adaptive-l's):\n", kParetoRecall);

@@ -112,6 +112,32 @@ TEST_F(Bench, ReportRendersInHeadlessChromium) {
 namespace {
 
 // The temporal study: every configuration scores every frame of the path, and the result the docs
+// --configs runs exactly the chosen configurations (a method, or method/label) and the baseline;
+// a name that selects nothing is refused before anything runs, and the error lists the grid.
+TEST_F(Bench, ConfigsSelectsConfigurations) {
+  const fs::path out = fs::path(SSLR_TEST_TMP) / "bench-configs";
+  fs::remove_all(out);
+  std::string log;
+  ASSERT_EQ(runCommand(std::string(SSLR_BENCH_EXE) +
+                           " --configs adaptive-l/high,dda --scenes sky-heavy --size 64x36 --frames 1 --no-curves"
+                           " --out " + out.string(),
+                       &log),
+            0)
+      << log;
+  std::ifstream in(out / "results.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  std::multiset<std::string> names;
+  for (const auto& r : j["runs"]) names.insert(r["method"].get<std::string>() + "/" + r["label"].get<std::string>());
+  const std::multiset<std::string> expected{"adaptive-l/high", "dda/stride2-thick0.5", "dda/stride8-thick0.5",
+                                            "baseline/read G-buffer, write 1 texel"};
+  EXPECT_EQ(names, expected) << log;
+  EXPECT_NE(log.find("adaptive-l/high "), std::string::npos) << log;  // the summary lists each one by name
+
+  EXPECT_EQ(runCommand(std::string(SSLR_BENCH_EXE) + " --configs adaptive-l/nope --out " + out.string(), &log), 2);
+  EXPECT_NE(log.find("'adaptive-l/nope' is no configuration"), std::string::npos) << log;
+  EXPECT_NE(log.find("position-buffer/tutorial"), std::string::npos) << log;
+}
+
 // draw from it holds: with half resolution on a still camera temporal reuse brings the error
 // down (measured at 160x90 on mirror-room: 0.0248 -> 0.0185 RMSE; full resolution 0.0177).
 TEST_F(Bench, TemporalStudyScoresEveryFrame) {

@@ -39,6 +39,13 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
         BenchConfig verify{"adaptive-l", "high-verify", Settings::preset(preset), false};
         verify.settings.hierarchicalVerify = true;
         configs.push_back(verify);
+        // Where the traversal runs (Settings::traversalPass; the default, Auto, is one of the two).
+        for (auto [label, pass] : {std::pair{"high-inline", TraversalPass::Inline},
+                                   std::pair{"high-deferred", TraversalPass::Deferred}}) {
+          BenchConfig where{"adaptive-l", label, Settings::preset(preset), false};
+          where.settings.traversalPass = pass;
+          configs.push_back(where);
+        }
       }
     }
   }
@@ -179,6 +186,27 @@ Image methodImage(const GroundTruth& gt, const Image& hit, const Image& color) {
 
 }  // namespace
 
+Expected<std::vector<BenchConfig>> selectConfigs(const std::vector<BenchConfig>& grid,
+                                                 const std::vector<std::string>& names) {
+  if (names.empty()) return grid;
+  auto selects = [](const std::string& name, const BenchConfig& c) {
+    return name == c.method || name == c.method + "/" + c.label;
+  };
+  for (const std::string& name : names)
+    if (std::none_of(grid.begin(), grid.end(), [&](const BenchConfig& c) { return selects(name, c); })) {
+      std::string known;
+      for (const BenchConfig& c : grid)
+        if (c.method != "baseline") known += (known.empty() ? "" : ", ") + c.method + "/" + c.label;
+      return Status::error("--configs: '" + name + "' is no configuration of this grid (" + known + ")");
+    }
+  std::vector<BenchConfig> out;
+  for (const BenchConfig& c : grid)
+    if (c.method == "baseline" ||
+        std::any_of(names.begin(), names.end(), [&](const std::string& n) { return selects(n, c); }))
+      out.push_back(c);
+  return out;
+}
+
 namespace {
 
 // The configurations the cost curves time: each method's default.
@@ -240,8 +268,11 @@ Status timeCurvePoint(const std::string& curve, const std::string& sceneName, in
   auto frame = renderSceneFrame(sceneName, width, height);
   if (!frame) return Status::error(frame.error());
   SceneFrame& f = frame.value();
-  const std::vector<BenchConfig> grid = benchGrid(options.grid);
+  auto selected = selectConfigs(benchGrid(options.grid), options.configs);
+  if (!selected) return Status::error(selected.error());
+  const std::vector<BenchConfig>& grid = selected.value();
   std::vector<BenchConfig> configs = defaultConfigs(grid);
+  if (configs.empty()) return {};  // --configs chose no method's default
   for (const BenchConfig& c : grid)
     if (c.method == "baseline") configs.push_back(c);
   // What the frame reflects, from the default's own count.
@@ -277,7 +308,9 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
   if (scenes.empty())
     scenes = {"mirror-room",   "grazing-plane", "thin-objects",  "sky-heavy",
               "facing-mirror", "mirror-walls",  "curved-mirror", "glossy"};
-  const std::vector<BenchConfig> grid = benchGrid(options.grid);
+  auto selected = selectConfigs(benchGrid(options.grid), options.configs);
+  if (!selected) return Status::error(selected.error());
+  const std::vector<BenchConfig>& grid = selected.value();
   Timer timer(software);
   const int repeats = timer.repeats(options.batch);
   result.timingMethod = timer.method() + (repeats > 1 ? ", mean of " + std::to_string(repeats) + " dispatches back to back" : "");

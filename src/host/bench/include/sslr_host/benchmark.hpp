@@ -13,6 +13,9 @@ namespace sslr::host {
 
 struct BenchOptions {
   std::string grid = "quick";       // "quick" (CI) or "full" (docs)
+  // Configurations of the grid to run, each "method" (all its configurations) or "method/label"
+  // (selectConfigs); empty: the whole grid. The baseline pass always runs.
+  std::vector<std::string> configs;
   std::vector<std::string> scenes;  // empty: every built-in scene but the analytic test scenes
   int width = 320, height = 180;
   int frames = 7;                   // timed frames per config (median reported)
@@ -105,6 +108,12 @@ struct TemporalSummary {
 std::vector<TemporalSummary> summarizeTemporal(const std::vector<TemporalPoint>& points);
 
 std::vector<BenchConfig> benchGrid(const std::string& grid);
+
+// The configurations of `grid` that `names` select ("method" or "method/label", see
+// BenchOptions::configs), in grid order, with the baseline; an error names a name that selects
+// nothing and lists what the grid holds.
+Expected<std::vector<BenchConfig>> selectConfigs(const std::vector<BenchConfig>& grid,
+                                                 const std::vector<std::string>& names);
 
 // Runs everything; `reportDir` receives the image strips while running. Needs a current GL
 // context (HeadlessContext). `progress(done, total, what)` is called as work proceeds.
