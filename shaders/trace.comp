@@ -38,7 +38,7 @@ layout(binding = 3) uniform sampler2D uQuadHit;      // xyz: view-space hit poin
 layout(binding = 4) uniform sampler2D uQuadSurface;  // xy: traced pixel's octahedral normal; zw: hit surface's
 #endif
 #if defined(SSLR_HALF_RES) || defined(SSLR_HALF_RETRACE) || defined(SSLR_DEFER_TRAVERSAL) || \
-    defined(SSLR_HALF_QUAD_RETRACE)
+    defined(SSLR_HALF_QUAD_RETRACE) || defined(SSLR_COUNT_TRAVERSAL)
 layout(std430, binding = SSLR_BINDING_RETRACE_SSBO) buffer SslrRetrace {
   uint dispatchX;  // DispatchIndirectCommand of the retrace pass: ceil(count / SSLR_RETRACE_GROUP)
   uint dispatchY;
@@ -276,6 +276,15 @@ void sslrShadePixel(ivec2 px) {
 #endif
       return;
     }
+#elif defined(SSLR_COUNT_TRAVERSAL)
+    // Inline, counting the pixels that need the traversal (TraversalPass::Auto's feedback).
+    bool needsTraversal;
+    hit = sslrTraceFirstStage(frame.proj, frame.surface, frame.trace, px, q.vsP, q.vsR, needsTraversal);
+    if (needsTraversal) {
+      atomicAdd(retrace.count, 1u);
+      hit = sslrTraceSecondStage(frame.proj, frame.surface, frame.trace, px, q.vsP, q.vsR, hit);
+    }
+    ranTracer = true;
 #else
     hit = sslrTraceRay(px, q.vsP, q.vsV, q.vsR);
     ranTracer = true;

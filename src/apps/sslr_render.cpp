@@ -380,7 +380,8 @@ int run(int argc, char** argv) {
     std::cout << "  tiles " << st.tiles << " (blurred " << st.blurTiles << "), traced pixels " << st.tracedPixels << ", fetches "
               << st.fetches << " (" << (st.tracedPixels ? double(st.fetches) / st.tracedPixels : 0.0)
               << " per traced pixel), hierarchical traversal on " << st.hierarchicalPixels << " ("
-              << (st.tracedPixels ? 100.0 * st.hierarchicalPixels / st.tracedPixels : 0.0) << "% of traced)\n";
+              << (st.tracedPixels ? 100.0 * st.hierarchicalPixels / st.tracedPixels : 0.0) << "% of traced"
+              << (st.hierarchicalPixels ? (st.traversalDeferred ? ", in a pass of its own" : ", inline") : "") << ")\n";
     if (st.classifyMs >= 0.0 && laterStats.empty())
       std::printf("  pass times (GL_TIMESTAMP%s): classify %.2f ms, pyramid %.2f ms, trace %.2f ms, blur %.2f ms\n",
                   gl.value()->isSoftware() ? "; a software renderer: CPU work; the first frame, with shader compilation"

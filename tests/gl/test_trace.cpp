@@ -406,6 +406,45 @@ INSTANTIATE_TEST_SUITE_P(Scenes, TraversalPasses,
                            return gtestName(std::string(info.param.scene) + (info.param.half ? "_half" : ""));
                          });
 
+// TraversalPass::Auto on a software renderer defers the traversal, and runs it inline while the
+// last frame had most of its traced tiles' pixels needing it (facing-mirror: all of them; then
+// mirror-room, ~5%: deferred again one frame later). On a GPU it is always inline. The answers are
+// the same whichever pass runs them.
+class TraversalAuto : public sslr::test::GlTest {};
+
+TEST_F(TraversalAuto, FollowsTheLastFramesShareOfTraversalPixels) {
+  const bool software = sslr::test::glContext()->isSoftware();
+  GBufferOptions o;
+  o.width = 192;
+  o.height = 108;
+  auto r = FrameRenderer::create(o);
+  ASSERT_TRUE(r) << r.error();
+  Settings s;
+  s.collectStats = true;
+  s.debugOutputs = true;
+  auto facing = makeBuiltinScene("facing-mirror");
+  auto room = makeBuiltinScene("mirror-room");
+  ASSERT_TRUE(facing && room);
+  GpuScene facingGpu(facing.value()), roomGpu(room.value());
+  const bool isFacing[] = {true, true, true, false, false};
+  const bool deferredOnSoftware[] = {true, false, false, false, true};
+  Image hits[5];
+  for (int k = 0; k < 5; ++k) {
+    const Scene& scene = isFacing[k] ? facing.value() : room.value();
+    ASSERT_TRUE(r.value()->render(isFacing[k] ? facingGpu : roomGpu, *scene.camera, &s));
+    hits[k] = r.value()->readHit();
+    const FrameStats st = r.value()->sslr().waitForStats();
+    EXPECT_GT(st.hierarchicalPixels, 0u) << "frame " << k;
+    EXPECT_EQ(st.traversalDeferred, software && deferredOnSoftware[k]) << "frame " << k;
+  }
+  for (auto [a, b] : {std::pair{0, 1}, std::pair{3, 4}}) {
+    size_t differing = 0;
+    for (size_t i = 0; i < hits[a].pixels.size(); ++i)
+      differing += std::abs(hits[a].pixels[i] - hits[b].pixels[i]) > 1e-5f * (1.0f + std::abs(hits[a].pixels[i]));
+    EXPECT_EQ(differing, 0u) << "frames " << a << " and " << b;
+  }
+}
+
 // McGuire & Mara's DDA reports the pixel of the step that overlapped the depth slab. Marching
 // every pixel (stride 1) it misses nothing on the analytic mirrors (nothing in front, nothing
 // behind) and its hit lies within a pixel step of the true one. A stride of 4 skips pixels: a

@@ -50,7 +50,11 @@ void Context::Impl::destroyTargets() {
   GLuint textures[] = {reflection, blurTemp, resolved, hit, iterations, hiz, quadHit, quadSurface, history, historyKey};
   gl.DeleteTextures(10, textures);
   gl.DeleteBuffers(1, &retraceBuffer);
-  quadHit = quadSurface = retraceBuffer = history = historyKey = 0;
+  gl.DeleteBuffers(1, &feedbackBuffer);
+  if (feedbackFence != nullptr) gl.DeleteSync(feedbackFence);
+  feedbackFence = nullptr;
+  traversalInline = false;
+  quadHit = quadSurface = retraceBuffer = feedbackBuffer = history = historyKey = 0;
   historyValid = false;
   GLuint buffers[] = {tileBuffer};
   gl.DeleteBuffers(1, buffers);

@@ -25,6 +25,10 @@ constexpr GLsizeiptr kTileHeader = kHeaderUpload + 4;                // uints be
 constexpr GLsizeiptr kTileArrays = 5;                                // per-tile arrays after it
 constexpr GLintptr kDrawArgsOffset = 3 * 4;           // DrawArraysIndirectCommand (composite)
 constexpr GLintptr kBlurDispatchOffset = 8 * 4;       // DispatchIndirectCommand (blur)
+// TraversalPass::Auto on a software renderer runs the traversal inline above this share of the
+// traced tiles' pixels needing it (+-0.05 hysteresis). llvmpipe 960x540, deferred / inline time:
+// 0.58-0.86 at shares 0.001-0.26 (sky-heavy 0.71), 1.13-1.19 at 0.68-0.96.
+constexpr double kInlineTraversalShare = 0.5;
 
 // What sslr needs to know of a host texture's internal format.
 struct FormatInfo {
@@ -46,6 +50,12 @@ struct Context::Impl {
   GLuint hiz = 0;
   // Half resolution: per 2x2 quad, its ray's hit and surfaces (created on first use).
   GLuint quadHit = 0, quadSurface = 0, retraceBuffer = 0;
+  // TraversalPass::Auto on a software renderer chooses per frame from the last frame's share of
+  // pixels that needed the traversal: feedback holds (listed tiles, 0, 0, such pixels), fenced,
+  // read without waiting at the next dispatch; traversalInline is the current choice.
+  GLuint feedbackBuffer = 0;
+  GLsync feedbackFence = nullptr;
+  bool traversalInline = false;
   // Temporal reuse: the previous frame's output and its history keys (sslrHistoryKey; 0 = none),
   // created on first use. historyValid: the last dispatch stored them.
   GLuint history = 0, historyKey = 0;
@@ -61,6 +71,7 @@ struct Context::Impl {
     GLuint queries[kTimestamps] = {};
     GLsync fence = nullptr;
     std::uint64_t frame = 0;
+    bool traversalDeferred = false;
   };
   static constexpr int kStatsRing = 4;
   mutable StatsSlot statsRing[kStatsRing];
@@ -101,6 +112,7 @@ struct Context::Impl {
   // passes.cpp
   void bindInputs(const FrameInputs& in) const;
   void buildPyramid(GLuint prog) const;
+  void readTraversalFeedback();
   Status dispatch(const FrameInputs& in, const Settings& settings);
   // composite.cpp
   Status composite(GLName framebuffer, const CompositeOptions& options);

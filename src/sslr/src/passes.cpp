@@ -47,6 +47,22 @@ void Context::Impl::buildPyramid(GLuint prog) const {
   }
 }
 
+// Auto's choice on a software renderer, from the last fed-back frame (without waiting: a frame
+// still in flight leaves the choice as it is). Hysteresis keeps a scene near the threshold from
+// switching every frame; the answers are the same either way.
+void Context::Impl::readTraversalFeedback() {
+  if (feedbackFence == nullptr) return;
+  const GLenum r = gl.ClientWaitSync(feedbackFence, 0, 0);
+  if (r != GL_ALREADY_SIGNALED && r != GL_CONDITION_SATISFIED) return;
+  gl.DeleteSync(feedbackFence);
+  feedbackFence = nullptr;
+  GLuint counts[4] = {};
+  gl.GetNamedBufferSubData(feedbackBuffer, 0, sizeof(counts), counts);
+  const double tilePixels = double(counts[0]) * SSLR_TILE_SIZE * SSLR_TILE_SIZE;
+  const double share = tilePixels > 0.0 ? double(counts[3]) / tilePixels : 0.0;
+  traversalInline = share > (traversalInline ? kInlineTraversalShare - 0.05 : kInlineTraversalShare + 0.05);
+}
+
 Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) {
   haveFrame = false;
   // Temporal history is the previous dispatch's only if that one stored it: a failed or
@@ -82,17 +98,27 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   const bool pyramid = constants.value().trace.hizMode != SSLR_HIZ_OFF;
   // The traversal in a pass of its own (trace.comp, SSLR_DEFER_TRAVERSAL): the pixels (or, at half
   // resolution, the quads) that need it are listed for a retrace pass.
+  // Auto defers it on software renderers, unless most pixels needed it last frame (then it runs
+  // inline: the pass of its own costs more than it saves, measured); at half resolution it stays
+  // deferred. The share is fed back from each such frame (readTraversalFeedback).
+  const bool autoSoftware = settings.method == Method::AdaptiveL && pyramid &&
+                            settings.traversalPass == TraversalPass::Auto && softwareRenderer;
+  const bool feedback = autoSoftware && !settings.halfResolution;
+  if (feedback) readTraversalFeedback();
   const bool deferTraversal =
       settings.method == Method::AdaptiveL && pyramid &&
       (settings.traversalPass == TraversalPass::Deferred ||
-       (settings.traversalPass == TraversalPass::Auto && softwareRenderer));
+       (autoSoftware && (settings.halfResolution || !traversalInline)));
   const std::string deferDefine = deferTraversal ? "#define SSLR_DEFER_TRAVERSAL 1\n" : "";
+  // Inline under Auto: the trace counts the pixels that needed the traversal (the retrace buffer's
+  // count, as deferred would have listed them).
+  const bool countTraversal = feedback && !deferTraversal;
   // Half resolution: a quad pass (the tracer, one ray per 2x2 quad; deferred: its first stage, and
   // a quad retrace pass for the rest) before the full-resolution pass, which reuses those rays.
   const std::string quadDefines = "#define SSLR_HALF_QUADS 1\n" + methodDefines + statsDefine;
   const std::string retraceDefines = traceDefines + "#define SSLR_HALF_RETRACE 1\n";
   if (settings.halfResolution) traceDefines += "#define SSLR_HALF_RES 1\n";
-  else traceDefines += deferDefine;
+  else traceDefines += deferDefine + (countTraversal ? "#define SSLR_COUNT_TRAVERSAL 1\n" : "");
   const bool retracePass = settings.halfResolution || deferTraversal;
   const bool quadRetracePass = settings.halfResolution && deferTraversal;
   // With the pyramid, classification (which reads every depth anyway) writes its level 1.
@@ -132,7 +158,12 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.TextureStorage2D(quadSurface, 1, GL_RGBA16F, qw, qh);
     label(GL_TEXTURE, quadSurface, "sslr.quadSurface");
   }
-  if (retracePass && retraceBuffer == 0) {
+  if (feedback && feedbackBuffer == 0) {
+    gl.CreateBuffers(1, &feedbackBuffer);
+    gl.NamedBufferStorage(feedbackBuffer, 4 * sizeof(GLuint), nullptr, 0);
+    label(GL_BUFFER, feedbackBuffer, "sslr.traversalFeedback");
+  }
+  if ((retracePass || countTraversal) && retraceBuffer == 0) {
     gl.CreateBuffers(1, &retraceBuffer);
     gl.NamedBufferStorage(retraceBuffer, static_cast<GLsizeiptr>((4 + static_cast<size_t>(width) * height) * sizeof(GLuint)),
                           nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -227,7 +258,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
 
   timestamp(2);
   const GLuint retraceHeader[4] = {0, 1, 1, 0};  // dispatch (0, 1, 1), count 0
-  if (retracePass) {
+  if (retracePass || countTraversal) {
     gl.NamedBufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_RETRACE_SSBO, retraceBuffer);
   }
@@ -317,7 +348,13 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   timestamp(5);
   // The host (and composite) may read the outputs in any way next: make all writes visible.
   gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+  if (feedback && feedbackFence == nullptr) {  // (listed tiles, -, -, pixels that needed the traversal)
+    gl.CopyNamedBufferSubData(tileBuffer, feedbackBuffer, 0, 0, sizeof(GLuint));
+    gl.CopyNamedBufferSubData(retraceBuffer, feedbackBuffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
+    feedbackFence = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  }
   if (slot != nullptr) {
+    slot->traversalDeferred = deferTraversal;
     // The tile counts join the counters on the GPU (no read-back), then a fence marks the slot.
     gl.CopyNamedBufferSubData(tileBuffer, slot->buffer, 0, 4 * sizeof(GLuint), sizeof(GLuint));
     gl.CopyNamedBufferSubData(tileBuffer, slot->buffer, kBlurDispatchOffset, 5 * sizeof(GLuint), sizeof(GLuint));

@@ -142,7 +142,9 @@ enum class Method {
 
 // Where the hierarchical traversal of Method::AdaptiveL runs (the answers are the same).
 enum class TraversalPass {
-  Auto,      // Deferred on a software rasterizer (llvmpipe, softpipe, SwiftShader), else Inline
+  Auto,      // Inline on GPUs. On a software rasterizer (llvmpipe, softpipe, SwiftShader) Deferred,
+             // but Inline while more than about half the pixels of the traced tiles needed the
+             // traversal in the previous frame (deferring then costs more than it saves)
   Inline,    // in the pixel's own invocation, after adaptive L: GPUs (deferred was slower on an H100)
   Deferred,  // a pass of its own over the pixels that need it: CPU rasterizers run code a pixel
              // does not take under lane masks, so the traversal inline slows every pixel
@@ -235,6 +237,7 @@ struct FrameStats {  // filled when Settings::collectStats is set
   std::uint32_t tracedPixels = 0;   // pixels that ran the tracer
   std::uint32_t fetches = 0;        // depth (or position) texels read by the trace pass
   std::uint32_t hierarchicalPixels = 0;  // traced pixels that ran the hierarchical traversal
+  bool traversalDeferred = false;   // the traversal ran in a pass of its own (Settings::traversalPass)
   // GPU time between the passes from GL_TIMESTAMP queries (-1 where the GL has no timestamps).
   // On software renderers (llvmpipe) these measure the CPU doing the work, not a GPU.
   double classifyMs = -1.0;         // classification and clean-up
