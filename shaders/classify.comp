@@ -71,15 +71,16 @@ void main() {
   float d2 = texelFetch(uDepth, p2, 0).r, d3 = texelFetch(uDepth, p3, 0).r;
   vec4 n0 = texelFetch(uNormal, p0, 0), n1 = texelFetch(uNormal, p1, 0);
   vec4 n2 = texelFetch(uNormal, p2, 0), n3 = texelFetch(uNormal, p3, 0);
-  // A clamped coordinate repeats a pixel of the same quad when the quad straddles the screen's
-  // edge (neutral for the min-max, harmless for the flag); a quad wholly outside is empty.
-  vec2 level1 = any(greaterThan(cell * 2, last)) ? sslrHiZEmpty() : sslrHiZReduce(sslrHiZReduce(sslrHiZTexel(frame.surface, d0), sslrHiZTexel(frame.surface, d1)),
-                              sslrHiZReduce(sslrHiZTexel(frame.surface, d2), sslrHiZTexel(frame.surface, d3)));
   bool trace = sslrShouldTracePixel(p0, d0, n0, sslrMaterialAt(p0, n0)) ||
                sslrShouldTracePixel(p1, d1, n1, sslrMaterialAt(p1, n1)) ||
                sslrShouldTracePixel(p2, d2, n2, sslrMaterialAt(p2, n2)) ||
                sslrShouldTracePixel(p3, d3, n3, sslrMaterialAt(p3, n3));
 #ifdef SSLR_CLASSIFY_LEVEL1
+  // A clamped coordinate repeats a pixel of the same quad when the quad straddles the screen's
+  // edge (neutral for the min-max, harmless for the flag); a quad wholly outside is empty.
+  vec2 level1 = sslrHiZReduce(sslrHiZReduce(sslrHiZTexel(frame.surface, d0), sslrHiZTexel(frame.surface, d1)),
+                              sslrHiZReduce(sslrHiZTexel(frame.surface, d2), sslrHiZTexel(frame.surface, d3)));
+  if (any(greaterThan(cell * 2, last))) level1 = sslrHiZEmpty();
   if (all(lessThan(cell, imageSize(uLevel1)))) imageStore(uLevel1, cell, vec4(level1, 0.0f, 0.0f));
 #endif
   if (!trace) return;

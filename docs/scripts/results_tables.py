@@ -59,7 +59,7 @@ def main(path):
         print(f"| {s} | " + " | ".join(cells) + f" | {ratio} |")
 
     print("\n### Presets (time, recall@1px)\n")
-    presets = ["low", "medium", "high", "high-no-fallback", "high-verify", "ultra"]
+    presets = ["low", "medium", "high", "high-no-fallback", "high-verify", "high-inline", "high-deferred", "ultra"]
     print("| preset | " + " | ".join(scenes) + " |")
     print("|---|" + "---|" * len(scenes))
     for p in presets:
