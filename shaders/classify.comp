@@ -5,8 +5,8 @@
 // and barriers, in an interleaved A/B). With SSLR_CLASSIFY_LEVEL1 (the traversal is on) each quad
 // also writes its (min, max) depth: level 1 of the depth pyramid, from the reads classification
 // makes anyway (a separate pass read every depth a second time; sky-heavy 960x540 on llvmpipe:
-// the default 1.74-1.91x -> 1.28-1.33x the tutorial's time, an empty frame 0.73 -> 0.85x the
-// baseline pass).
+// the default 1.67-1.91x -> 1.28-1.49x the tutorial's time, an empty frame 0.73 -> 0.85x the
+// baseline pass in one A/B).
 //
 // With SSLR_CLEANUP the same file is the clean-up pass, run after classification over the
 // previous frame's traced tiles: those not listed again are zeroed. The outputs are never cleared

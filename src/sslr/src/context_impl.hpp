@@ -26,8 +26,8 @@ constexpr GLsizeiptr kTileArrays = 5;                                // per-tile
 constexpr GLintptr kDrawArgsOffset = 3 * 4;           // DrawArraysIndirectCommand (composite)
 constexpr GLintptr kBlurDispatchOffset = 8 * 4;       // DispatchIndirectCommand (blur)
 // TraversalPass::Auto on a software renderer runs the traversal inline above this share of the
-// traced tiles' pixels needing it (+-0.05 hysteresis). llvmpipe 960x540, deferred / inline time:
-// 0.58-0.86 at shares 0.001-0.26 (sky-heavy 0.71), 1.13-1.19 at 0.68-0.96.
+// traced tiles' pixels needing it (+-0.05 hysteresis). llvmpipe 960x540, deferred / inline time
+// in two runs: 0.59-0.95 at shares 0.001-0.26, 1.04-1.32 at 0.68-0.96 (docs/algorithm.md).
 constexpr double kInlineTraversalShare = 0.5;
 
 // What sslr needs to know of a host texture's internal format.
