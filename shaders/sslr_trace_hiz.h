@@ -190,10 +190,12 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
     // inside it (deeper than the hit tolerance: pixel snapping) ran into the hidden part of the
     // object, from the front or from behind: nothing on screen is its reflection. Deeper than the
     // slab it passes behind; within the tolerance it goes on.
-    float slab = t.objectThickness * distSurface;
-    if (t.outlineThinning != 0 && normalOk && behind > tolerance && !ownPixel && behind < slab)
-      slab = sslrSlabNearOutline(p, s, t, px, vsSurface, vsSurfaceNormal, segFar, keySign, slab);
-    if (behind > tolerance && !ownPixel && behind < max(tolerance, slab)) return hit;
+    if (behind > tolerance && !ownPixel) {
+      float slab = t.objectThickness * distSurface;
+      if (t.outlineThinning != 0 && normalOk && behind < slab)
+        slab = sslrSlabNearOutline(p, s, t, px, vsSurface, vsSurfaceNormal, segFar, keySign, slab);
+      if (behind < slab) return hit;
+    }
     tRay = tExit + nudge;
   }
   return hit;

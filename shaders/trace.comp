@@ -43,7 +43,7 @@ layout(std430, binding = SSLR_BINDING_RETRACE_SSBO) buffer SslrRetrace {
   uint dispatchX;  // DispatchIndirectCommand of the retrace pass: ceil(count / SSLR_RETRACE_GROUP)
   uint dispatchY;
   uint dispatchZ;
-  uint count;      // pixels (or quads) listed
+  uint count;      // pixels (or quads) listed; inline under Auto: pixels the traversal ran for
   uint pixels[];   // x | y << 16
 } retrace;
 
@@ -276,18 +276,13 @@ void sslrShadePixel(ivec2 px) {
 #endif
       return;
     }
-#elif defined(SSLR_COUNT_TRAVERSAL)
-    // Inline, counting the pixels that need the traversal (TraversalPass::Auto's feedback).
-    bool needsTraversal;
-    hit = sslrTraceFirstStage(frame.proj, frame.surface, frame.trace, px, q.vsP, q.vsR, needsTraversal);
-    if (needsTraversal) {
-      atomicAdd(retrace.count, 1u);
-      hit = sslrTraceSecondStage(frame.proj, frame.surface, frame.trace, px, q.vsP, q.vsR, hit);
-    }
-    ranTracer = true;
 #else
     hit = sslrTraceRay(px, q.vsP, q.vsV, q.vsR);
     ranTracer = true;
+#ifdef SSLR_COUNT_TRAVERSAL
+    // Inline under TraversalPass::Auto: count the pixels the traversal ran for (its feedback).
+    if (hit.hierarchical != 0) atomicAdd(retrace.count, 1u);
+#endif
 #endif
     if (hit.status == SSLR_STATUS_HIT) {
       SslrWeights w = sslrReflectionWeights(frame.proj, frame.surface, frame.trace, hit, q.vsP, q.vsV, q.vsR,

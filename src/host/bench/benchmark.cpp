@@ -264,13 +264,11 @@ Expected<std::vector<std::vector<double>>> timeInterleaved(const std::vector<Ben
 
 // Times the defaults and the baseline on one scene at one size, interleaved; appends the points.
 Status timeCurvePoint(const std::string& curve, const std::string& sceneName, int width, int height, int percent,
-                      const BenchOptions& options, Timer& timer, std::vector<CurvePoint>& out) {
+                      const std::vector<BenchConfig>& grid, const BenchOptions& options, Timer& timer,
+                      std::vector<CurvePoint>& out) {
   auto frame = renderSceneFrame(sceneName, width, height);
   if (!frame) return Status::error(frame.error());
   SceneFrame& f = frame.value();
-  auto selected = selectConfigs(benchGrid(options.grid), options.configs);
-  if (!selected) return Status::error(selected.error());
-  const std::vector<BenchConfig>& grid = selected.value();
   std::vector<BenchConfig> configs = defaultConfigs(grid);
   if (configs.empty()) return {};  // --configs chose no method's default
   for (const BenchConfig& c : grid)
@@ -440,13 +438,13 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
   // Cost curves: time against resolution (mirror-room) and against reflective fraction.
   for (const auto& [w, h] : options.curveSizes) {
     progress(done, total, "cost curve: " + std::to_string(w) + "x" + std::to_string(h));
-    if (Status s = timeCurvePoint("resolution", "mirror-room", w, h, -1, options, timer, result.curves); !s)
+    if (Status s = timeCurvePoint("resolution", "mirror-room", w, h, -1, grid, options, timer, result.curves); !s)
       return Status::error(s.message());
   }
   for (int percent : options.curveFractions) {
     progress(done, total, "cost curve: reflective-" + std::to_string(percent));
     if (Status s = timeCurvePoint("fraction", "reflective-" + std::to_string(percent), options.width, options.height,
-                                  percent, options, timer, result.curves);
+                                  percent, grid, options, timer, result.curves);
         !s)
       return Status::error(s.message());
   }

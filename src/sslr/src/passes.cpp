@@ -101,14 +101,14 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   // Auto defers it on software renderers, unless most pixels needed it last frame (then it runs
   // inline: the pass of its own costs more than it saves, measured); at half resolution it stays
   // deferred. The share is fed back from each such frame (readTraversalFeedback).
-  const bool autoSoftware = settings.method == Method::AdaptiveL && pyramid &&
-                            settings.traversalPass == TraversalPass::Auto && softwareRenderer;
+  const bool adaptiveWithTraversal = settings.method == Method::AdaptiveL && pyramid;
+  const bool autoSoftware =
+      adaptiveWithTraversal && settings.traversalPass == TraversalPass::Auto && softwareRenderer;
   const bool feedback = autoSoftware && !settings.halfResolution;
   if (feedback) readTraversalFeedback();
   const bool deferTraversal =
-      settings.method == Method::AdaptiveL && pyramid &&
-      (settings.traversalPass == TraversalPass::Deferred ||
-       (autoSoftware && (settings.halfResolution || !traversalInline)));
+      adaptiveWithTraversal && (settings.traversalPass == TraversalPass::Deferred ||
+                                (autoSoftware && (settings.halfResolution || !traversalInline)));
   const std::string deferDefine = deferTraversal ? "#define SSLR_DEFER_TRAVERSAL 1\n" : "";
   // Inline under Auto: the trace counts the pixels that needed the traversal (the retrace buffer's
   // count, as deferred would have listed them).
