@@ -58,6 +58,9 @@ void main() {
 #else
 #ifdef SSLR_CLASSIFY_LEVEL1
 layout(binding = 0, rg32f) uniform writeonly image2D uLevel1;  // the pyramid's level 1 (mip 0)
+#if SSLR_CURVED_SOLIDS
+layout(binding = 1, rgba32f) uniform writeonly image2D uCurvedExtra;  // per quad, its pixels' extra depth
+#endif
 #endif
 
 void main() {
@@ -78,10 +81,19 @@ void main() {
 #ifdef SSLR_CLASSIFY_LEVEL1
   // A clamped coordinate repeats a pixel of the same quad when the quad straddles the screen's
   // edge (neutral for the min-max, harmless for the flag); a quad wholly outside is empty.
-  vec2 level1 = sslrHiZReduce(sslrHiZReduce(sslrHiZTexel(frame.surface, d0), sslrHiZTexel(frame.surface, d1)),
-                              sslrHiZReduce(sslrHiZTexel(frame.surface, d2), sslrHiZTexel(frame.surface, d3)));
+  // Curved surfaces reach deeper than the slab: their cells hold the back of their solids
+  // (sslr_shared.h, "Curved solids"), so that no coarse cell lets a ray pass behind a sphere
+  // the traversal's pixels would stop it in.
+  vec4 extra;
+  vec2 level1 = sslrHiZLevel1Cell(frame.proj, frame.surface, frame.trace, p0, p1, p2, p3, vec4(d0, d1, d2, d3),
+                                  n0, n1, n2, n3, extra);
   if (any(greaterThan(cell * 2, last))) level1 = sslrHiZEmpty();
-  if (all(lessThan(cell, imageSize(uLevel1)))) imageStore(uLevel1, cell, vec4(level1, 0.0f, 0.0f));
+  if (all(lessThan(cell, imageSize(uLevel1)))) {
+    imageStore(uLevel1, cell, vec4(level1, 0.0f, 0.0f));
+#if SSLR_CURVED_SOLIDS
+    imageStore(uCurvedExtra, cell, extra);
+#endif
+  }
 #endif
   if (!trace) return;
   uint stamp = sslrTileListedStamp(gl_WorkGroupID.xy);

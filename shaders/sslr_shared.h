@@ -22,6 +22,7 @@
 namespace sslr::shared {
 using glm::ivec2;
 using glm::ivec4;
+using glm::bvec4;
 using glm::uvec2;
 using glm::vec2;
 using glm::vec3;
@@ -158,7 +159,7 @@ struct SslrTraceParams {
   float objectThickness;      // hierarchical: a ray less than this fraction of the view depth
                               // behind a surface is inside the object (stops); farther: behind it
   int outlineThinning;        // 1: that depth shrinks near the object's outline (sslrSlabNearOutline)
-  int pad2;
+  int curvedSolids;           // 1: ... and grows behind convex curved surfaces (sslrCurvedExtraDepth)
 };
 
 // The position-buffer comparison method ("3D Game Shaders For Beginners", SSR chapter).
@@ -453,6 +454,116 @@ SSLR_FN vec2 sslrHiZReduce(vec2 a, vec2 b) { return vec2(min(a.x, b.x), max(a.y,
 // of the traversal work in view units, like the adaptive-L tracer's.
 SSLR_FN float sslrViewDepthFromDepth(SslrProjection p, float depth) {
   return -sslrViewFromNdc(p, vec2(0.0f), sslrNdcZFromDepth(p, depth)).z;
+}
+
+// Window depth of a view depth (-z): sslrViewDepthFromDepth's inverse.
+SSLR_FN float sslrDepthFromViewDepth(SslrProjection p, float dist) {
+  if (p.orthographic != 0) return sslrDepthFromNdcZ(p, p.zOffset - p.zScale * dist);
+  float ndcScale = p.ndcZeroToOne != 0 ? 1.0f : 2.0f;
+  return (p.zOffset / (ndcScale * dist) + p.infDepthLo) + p.infDepthHi;
+}
+
+// ---- Curved solids (hierarchical traversal) ---------------------------------------------------
+// A depth buffer has no thickness; the traversal assumes what a pixel shows to be objectThickness x
+// its distance deep. A convex curved surface tells more: it is taken to be the surface of a solid
+// as curved as it looks, a sphere of its own radius of curvature r, which extends 2 r cos(a)
+// behind the pixel along the view ray (a: the view ray's angle to the normal). A mirror sphere of
+// radius 1 seen from 8 units is 2 deep at its centre, the default slab 0.6: rays that run into its
+// hidden side were let through to the wall behind (curved-mirror's false hits, docs/algorithm.md).
+// Flat faces (a box) keep the slab. Settings::curvedSolids (ultra); the GPU passes get it compiled
+// in (SSLR_CURVED_SOLIDS): on llvmpipe the extra work cost every traversal step (facing-mirror's
+// trace 1.6x) and classification 1.35x, whether a frame holds a curved surface or not.
+SSLR_FN bool sslrCurvedSolids(SslrTraceParams t) {
+#ifdef SSLR_CURVED_SOLIDS
+  return SSLR_CURVED_SOLIDS != 0;
+#else
+  return t.curvedSolids != 0;
+#endif
+}
+
+// The radius of curvature between two neighbouring pixels, or 0 where they do not look like one
+// convex curved surface. On a sphere P_a - P_b = r (N_a - N_b) exactly; the two differences must
+// point the same way (convex) and the normals turn by more than their encoding's noise (8-bit xyz:
+// ~0.5 deg per component) and less than an edge's ~20 deg; a step of more than 8 footprints between
+// the pixels is a depth jump (a silhouette), not a surface.
+SSLR_FN float sslrConvexRadius(SslrProjection p, SslrSurface s, vec3 vsA, vec3 vsNa, vec3 vsB, vec3 vsNb) {
+#ifdef SSLR_NORMAL_ENCODING
+  const bool octahedral = SSLR_NORMAL_ENCODING == SSLR_NORMALS_OCTAHEDRAL;
+#else
+  bool octahedral = s.normalEncoding == SSLR_NORMALS_OCTAHEDRAL;
+#endif
+  float minTurn2 = octahedral ? 3e-5f : 1.2e-3f;  // (0.3 deg)^2, (2 deg)^2 in radians^2
+  vec3 dN = vsNa - vsNb;
+  float dn2 = dot(dN, dN);
+  vec3 dP = vsA - vsB;
+  float along = dot(dP, dN);
+  float dp = length(dP);
+  bool curved = dn2 > minTurn2 && dn2 < 0.12f && along > 0.95f * dp * sqrt(dn2) &&
+                dp <= 8.0f * sslrPixelFootprint(p, s.height, sslrViewDistance(p, vsA));
+  return curved ? along / dn2 : 0.0f;
+}
+
+// How much deeper than the slab (objectThickness x view depth) a pixel's solid extends, in view
+// depth: max(0, min(2 r cos a, 4 x slab) |v.z| - slab), v the unit view direction. The cap keeps a
+// gently curved wall from becoming a solid hill. r: the largest radius the pixel shares with a
+// neighbour (sslrConvexRadius).
+SSLR_FN float sslrCurvedExtraDepth(SslrProjection p, SslrTraceParams t, vec3 vsPos, vec3 vsNormal, float r) {
+  vec3 v = sslrViewDirection(p, vsPos);
+  float slab = t.objectThickness * -vsPos.z;
+  float chord = min(2.0f * r * abs(dot(vsNormal, v)), 4.0f * slab) * abs(v.z);
+  return max(chord - slab, 0.0f);
+}
+
+// The extra depth of each pixel of a 2x2 quad (x, y, z, w: pixels (0,0), (1,0), (0,1), (1,1)),
+// from its horizontal and vertical neighbour in the quad. ok: the pixel holds geometry with a
+// trusted normal. Classification computes it once for the pyramid's level 1 and for the traversal's
+// pixels (sslrLoadCurvedExtra), so a cell's farthest key bounds what its pixels' solids reach.
+SSLR_FN vec4 sslrQuadCurvedExtraDepth(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vs0, vec3 vs1,
+                                      vec3 vs2, vec3 vs3, vec3 n0, vec3 n1, vec3 n2, vec3 n3, bvec4 ok) {
+  float r01 = ok.x && ok.y ? sslrConvexRadius(p, s, vs0, n0, vs1, n1) : 0.0f;
+  float r23 = ok.z && ok.w ? sslrConvexRadius(p, s, vs2, n2, vs3, n3) : 0.0f;
+  float r02 = ok.x && ok.z ? sslrConvexRadius(p, s, vs0, n0, vs2, n2) : 0.0f;
+  float r13 = ok.y && ok.w ? sslrConvexRadius(p, s, vs1, n1, vs3, n3) : 0.0f;
+  return vec4(ok.x ? sslrCurvedExtraDepth(p, t, vs0, n0, max(r01, r02)) : 0.0f,
+              ok.y ? sslrCurvedExtraDepth(p, t, vs1, n1, max(r01, r13)) : 0.0f,
+              ok.z ? sslrCurvedExtraDepth(p, t, vs2, n2, max(r23, r02)) : 0.0f,
+              ok.w ? sslrCurvedExtraDepth(p, t, vs3, n3, max(r23, r13)) : 0.0f);
+}
+
+// A pixel's texel of level 1 when its solid reaches extra deeper than the slab: (min, max) of its
+// depth and of the depth of the solid's back (clamped to the depth range).
+SSLR_FN vec2 sslrHiZSolidTexel(SslrProjection p, SslrSurface s, float depth, vec3 vsPos, float extra) {
+  vec2 texel = sslrHiZTexel(s, depth);
+  if (!(extra > 0.0f) || !sslrIsGeometryDepth(s, depth)) return texel;
+  float back = clamp(sslrDepthFromViewDepth(p, -vsPos.z + extra), 0.0f, 1.0f);
+  return vec2(min(texel.x, back), max(texel.y, back));
+}
+
+// Level 1 of the pyramid, one cell from its 2x2 quad (pixel coordinates clamped to the screen,
+// their depth and packed normal texels): classify.comp on the GPU, the CPU tracer's pyramid and the
+// tests all build it here. With curved solids, `extra` receives the quad's pixels' extra depths
+// (sslrQuadCurvedExtraDepth), which classification stores for the traversal's pixels (one fetch
+// there: the quad's math inside the traversal's loop cost every step on llvmpipe, taken or not).
+SSLR_FN vec2 sslrHiZLevel1Cell(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 p0, ivec2 p1, ivec2 p2,
+                               ivec2 p3, vec4 depths, vec4 n0, vec4 n1, vec4 n2, vec4 n3, SSLR_OUT(vec4) extra) {
+  extra = vec4(0.0f);
+  if (!sslrCurvedSolids(t))
+    return sslrHiZReduce(sslrHiZReduce(sslrHiZTexel(s, depths.x), sslrHiZTexel(s, depths.y)),
+                         sslrHiZReduce(sslrHiZTexel(s, depths.z), sslrHiZTexel(s, depths.w)));
+  vec3 vs0, vs1, vs2, vs3, m0, m1, m2, m3;
+  bool ok0 = sslrSurfaceFromDepth(p, s, p0, depths.x, vs0);
+  ok0 = sslrDecodeNormal(s, n0, m0) && ok0;
+  bool ok1 = sslrSurfaceFromDepth(p, s, p1, depths.y, vs1);
+  ok1 = sslrDecodeNormal(s, n1, m1) && ok1;
+  bool ok2 = sslrSurfaceFromDepth(p, s, p2, depths.z, vs2);
+  ok2 = sslrDecodeNormal(s, n2, m2) && ok2;
+  bool ok3 = sslrSurfaceFromDepth(p, s, p3, depths.w, vs3);
+  ok3 = sslrDecodeNormal(s, n3, m3) && ok3;
+  extra = sslrQuadCurvedExtraDepth(p, s, t, vs0, vs1, vs2, vs3, m0, m1, m2, m3, bvec4(ok0, ok1, ok2, ok3));
+  return sslrHiZReduce(sslrHiZReduce(sslrHiZSolidTexel(p, s, depths.x, vs0, extra.x),
+                                     sslrHiZSolidTexel(p, s, depths.y, vs1, extra.y)),
+                       sslrHiZReduce(sslrHiZSolidTexel(p, s, depths.z, vs2, extra.z),
+                                     sslrHiZSolidTexel(p, s, depths.w, vs3, extra.w)));
 }
 
 // ---- Weights ------------------------------------------------------------------------------

@@ -4,6 +4,7 @@
 // Besides the loaders of sslr_trace.h, the includer defines
 //   vec2 sslrLoadDepthMinMax(int level, ivec2 cell);  // level 0: sslrHiZTexel of the depth texel;
 //                                                     // level >= 1: the pyramid (sslr_shared.h)
+//   float sslrLoadCurvedExtra(ivec2 px);  // curved solids: the pixel's sslrQuadCurvedExtraDepth
 //
 // The traversal (in the spirit of Uludag's Hi-Z tracing, GPU Pro 5, and FidelityFX SSSR) runs in
 // window space: x, y in pixels and the raw window depth. Both kinds of projection map the view-
@@ -132,11 +133,13 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
     // Behind everything the cell shows, deeper than any tolerance and than the objects' assumed
     // thickness: the ray passes behind what the cell shows. (The slope term of the tolerance is
     // unknown before a pixel is looked at: the largest one, tan = 16, is assumed.)
+    // A pixel on a curved surface reaches deeper than the slab (coarse cells' far keys hold it).
+    float extra = level == 0 && sslrCurvedSolids(t) ? sslrLoadCurvedExtra(ivec2(cell)) : 0.0f;
     float farDepth = keySign * keyFar;
     if (segNear > keyFar && sslrIsGeometryDepth(s, farDepth)) {
       float distFar = sslrViewDepthFromDepth(p, farDepth);
       float distRay = sslrViewDepthFromDepth(p, keySign * segNear);
-      float passBehind = max(sslrHitTolerance(p, s, t, distFar, 16.0f), t.objectThickness * distFar);
+      float passBehind = max(sslrHitTolerance(p, s, t, distFar, 16.0f), t.objectThickness * distFar) + extra;
       if (distRay - distFar > passBehind) {
         tRay = tExit + nudge;
         level = sslrHiZNextLevel(o, d, tRay, cell, level, topLevel);
@@ -192,7 +195,10 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
     // slab it passes behind; within the tolerance it goes on.
     if (behind > tolerance && !ownPixel) {
       float slab = t.objectThickness * distSurface;
-      if (t.outlineThinning != 0 && normalOk && behind < slab)
+      // A curved surface's solid reaches deeper; a flat face's gets thinner near its outline (the
+      // outline rule reads the pyramid's far keys, which on curved surfaces hold their backs).
+      if (extra > 0.0f) slab += extra;
+      else if (t.outlineThinning != 0 && normalOk && behind < slab)
         slab = sslrSlabNearOutline(p, s, t, px, vsSurface, vsSurfaceNormal, segFar, keySign, slab);
       if (behind < slab) return hit;
     }

@@ -130,6 +130,7 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
   numberOption(args, "iterations", "an integer", s.maxIterations);
   numberOption(args, "hiz-steps", "an integer", s.hierarchicalMaxSteps);
   if (args.count("no-outline-thinning")) s.outlineThinning = false;
+  if (args.count("curved-solids")) s.curvedSolids = true;
   if (args.count("traversal-pass")) {
     const std::string pass = args["traversal-pass"].as<std::string>();
     if (pass == "auto") s.traversalPass = TraversalPass::Auto;
@@ -163,6 +164,8 @@ int run(int argc, char** argv) {
        cxxopts::value<std::string>())
       ("no-outline-thinning", "keep the assumed object thickness constant up to objects' outlines (hierarchical "
                               "traversal)")
+      ("curved-solids", "take convex curved surfaces to be solids as deep as their curvature says, not the "
+                        "assumed object thickness (hierarchical traversal; the ultra preset's default)")
       ("no-blur", "skip the roughness blur")
       ("composite", "how the reflection enters final.png: blend (over the fallback specular, a sky/ground environment, by coverage) or add (on top of it)",
        cxxopts::value<std::string>()->default_value("blend"))

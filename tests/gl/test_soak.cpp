@@ -126,6 +126,7 @@ TEST_F(Soak, ObjectsErrorsAndMemoryStayFlat) {
     s.hierarchicalVerify = s.hierarchicalFallback && pick(2) == 0;  // verify without fallback is refused
     s.traversalPass = static_cast<TraversalPass>(pick(3));
     s.outlineThinning = pick(2) == 0;
+    s.curvedSolids = pick(2) == 0;
     s.hierarchicalMaxSteps = 1 + pick(200);
     s.maxIterations = 1 + pick(40);
     s.objectThickness = uniform(0.0f, 0.5f);

@@ -35,7 +35,8 @@ json settingsJson(const BenchConfig& c) {
   return {{"maxIterations", s.maxIterations},       {"hierarchicalFallback", s.hierarchicalFallback},
           {"hierarchicalVerify", s.hierarchicalVerify}, {"hierarchicalMaxSteps", s.hierarchicalMaxSteps},
           {"traversalPass", traversalPass},         {"objectThickness", s.objectThickness},
-          {"outlineThinning", s.outlineThinning},   {"convergenceEps", s.convergenceEps},
+          {"outlineThinning", s.outlineThinning},   {"curvedSolids", s.curvedSolids},
+          {"convergenceEps", s.convergenceEps},
           {"initialLengthScreen", s.initialLengthScreen}, {"thicknessRelative", s.thicknessRelative},
           {"thicknessPixels", s.thicknessPixels},   {"blurMaxRadiusPx", s.blurMaxRadiusPx},
           {"roughnessCutoff", s.roughnessCutoff},   {"fresnel", s.fresnel == FresnelMode::Classic ? "classic" : "schlick"}};

@@ -16,6 +16,8 @@ thread_local bool tStored = false;
 // tPyramid[l - 1] is level l, tPyramidWidth[l - 1] its cells per row.
 thread_local std::vector<std::vector<vec2>> tPyramid;
 thread_local std::vector<int> tPyramidWidth, tPyramidHeight;
+// Curved solids: per quad (level 1's cells), its pixels' extra depth, as classify.comp stores it.
+thread_local std::vector<vec4> tCurvedExtra;
 }  // namespace
 float sslrLoadDepth(ivec2 px) { return tG->depth->at(px.x, px.y, 0); }
 vec4 sslrLoadNormal(ivec2 px) {
@@ -32,6 +34,10 @@ vec2 sslrLoadDepthMinMax(int level, ivec2 cell) {
   const int w = tPyramidWidth[level - 1], h = tPyramidHeight[level - 1];
   if (cell.x < 0 || cell.y < 0 || cell.x >= w || cell.y >= h) return sslrHiZEmpty();
   return tPyramid[level - 1][static_cast<size_t>(cell.y) * w + cell.x];
+}
+float sslrLoadCurvedExtra(ivec2 px) {
+  const vec4 e = tCurvedExtra[static_cast<size_t>(px.y >> 1) * tPyramidWidth[0] + (px.x >> 1)];
+  return (px.y & 1) == 0 ? ((px.x & 1) == 0 ? e.x : e.y) : ((px.x & 1) == 0 ? e.z : e.w);
 }
 bool sslrLoadSurface(ivec2 px, vec3& vsPos) {
   if (tStored) {
@@ -73,13 +79,26 @@ Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& set
   tPyramid.clear();
   tPyramidWidth.clear();
   tPyramidHeight.clear();
+  tCurvedExtra.clear();
   const int levels = t.hizMode != SSLR_HIZ_OFF ? t.hizLevels : 0;
   for (int level = 1; level <= levels; ++level) {
     const int pw = (w + (1 << level) - 1) >> level, ph = (h + (1 << level) - 1) >> level;
     std::vector<vec2> cells(static_cast<size_t>(pw) * ph);
+    if (level == 1) tCurvedExtra.assign(cells.size(), vec4(0.0f));
     for (int cy = 0; cy < ph; ++cy)
       for (int cx = 0; cx < pw; ++cx) {
         vec2 m = sslrHiZEmpty();
+        if (level == 1) {  // classification's level 1 (with the curved solids' backs)
+          const ivec2 last(w - 1, h - 1);
+          const ivec2 q0 = glm::min(ivec2(2 * cx, 2 * cy), last), q1 = glm::min(ivec2(2 * cx + 1, 2 * cy), last);
+          const ivec2 q2 = glm::min(ivec2(2 * cx, 2 * cy + 1), last), q3 = glm::min(ivec2(2 * cx + 1, 2 * cy + 1), last);
+          m = sslrHiZLevel1Cell(proj, surf, t, q0, q1, q2, q3,
+                                vec4(sslrLoadDepth(q0), sslrLoadDepth(q1), sslrLoadDepth(q2), sslrLoadDepth(q3)),
+                                sslrLoadNormal(q0), sslrLoadNormal(q1), sslrLoadNormal(q2), sslrLoadNormal(q3),
+                                tCurvedExtra[static_cast<size_t>(cy) * pw + cx]);
+          cells[static_cast<size_t>(cy) * pw + cx] = m;
+          continue;
+        }
         for (int k = 0; k < 4; ++k) {
           const ivec2 child(2 * cx + (k & 1), 2 * cy + (k >> 1));
           const int srcW = level == 1 ? w : tPyramidWidth[level - 2];

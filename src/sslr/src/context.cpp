@@ -47,14 +47,15 @@ void Context::Impl::createTargets() {
 }
 
 void Context::Impl::destroyTargets() {
-  GLuint textures[] = {reflection, blurTemp, resolved, hit, iterations, hiz, quadHit, quadSurface, history, historyKey};
-  gl.DeleteTextures(10, textures);
+  GLuint textures[] = {reflection, blurTemp, resolved, hit,     iterations,
+                       hiz,        quadHit,  quadSurface, history, historyKey, curvedExtra};
+  gl.DeleteTextures(11, textures);
   gl.DeleteBuffers(1, &retraceBuffer);
   gl.DeleteBuffers(1, &feedbackBuffer);
   if (feedbackFence != nullptr) gl.DeleteSync(feedbackFence);
   feedbackFence = nullptr;
   traversalInline = false;
-  quadHit = quadSurface = retraceBuffer = feedbackBuffer = history = historyKey = 0;
+  quadHit = quadSurface = retraceBuffer = feedbackBuffer = history = historyKey = curvedExtra = 0;
   historyValid = false;
   GLuint buffers[] = {tileBuffer};
   gl.DeleteBuffers(1, buffers);

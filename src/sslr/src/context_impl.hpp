@@ -48,6 +48,9 @@ struct Context::Impl {
   // Min-max depth pyramid: mip m holds level m + 1 (sslr_shared.h). Its base is padded so that
   // every mip halves exactly: mip m has at least ceil(size / 2^(m+1)) cells per axis.
   GLuint hiz = 0;
+  // Settings::curvedSolids: per level-1 cell (2x2 quad), its pixels' extra depth behind curved
+  // surfaces (classify.comp writes it with level 1; created on first use).
+  GLuint curvedExtra = 0;
   // Half resolution: per 2x2 quad, its ray's hit and surfaces (created on first use).
   GLuint quadHit = 0, quadSurface = 0, retraceBuffer = 0;
   // TraversalPass::Auto on a software renderer chooses per frame from the last frame's share of

@@ -88,6 +88,11 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   // run under lane masks (the verification's second inlined traversal made every trace ~12%
   // slower on llvmpipe while switched off).
   std::string methodDefines = "#define SSLR_HIZ_MODE " + std::to_string(constants.value().trace.hizMode) + "\n";
+  // The curved solids (sslr_shared.h) likewise: their work is in every traversal step.
+  const bool curvedSolids =
+      constants.value().trace.hizMode != SSLR_HIZ_OFF && constants.value().trace.curvedSolids != 0;
+  const std::string curvedDefine = std::string("#define SSLR_CURVED_SOLIDS ") + (curvedSolids ? "1\n" : "0\n");
+  methodDefines += curvedDefine;
   if (settings.method == Method::PositionBuffer) methodDefines += "#define SSLR_METHOD_POSITION_BUFFER 1\n";
   if (settings.method == Method::ScreenSpaceDDA) methodDefines += "#define SSLR_METHOD_DDA 1\n";
   const std::string statsDefine = settings.collectStats ? "#define SSLR_COLLECT_STATS 1\n" : "";
@@ -122,7 +127,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   const bool retracePass = settings.halfResolution || deferTraversal;
   const bool quadRetracePass = settings.halfResolution && deferTraversal;
   // With the pyramid, classification (which reads every depth anyway) writes its level 1.
-  auto classify = computeProgram("classify.comp", pyramid ? "#define SSLR_CLASSIFY_LEVEL1 1\n" : "");
+  auto classify = computeProgram("classify.comp", pyramid ? "#define SSLR_CLASSIFY_LEVEL1 1\n" + curvedDefine : "");
   auto cleanup = computeProgram("classify.comp", "#define SSLR_CLEANUP 1\n");
   Expected<GLuint> hizBuild = pyramid ? computeProgram("hiz.comp") : Expected<GLuint>(GLuint(0));
   Expected<GLuint> hizArgs =
@@ -157,6 +162,11 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.CreateTextures(GL_TEXTURE_2D, 1, &quadSurface);
     gl.TextureStorage2D(quadSurface, 1, GL_RGBA16F, qw, qh);
     label(GL_TEXTURE, quadSurface, "sslr.quadSurface");
+  }
+  if (curvedSolids && curvedExtra == 0) {  // level 1's size: every quad of the screen has a cell
+    gl.CreateTextures(GL_TEXTURE_2D, 1, &curvedExtra);
+    gl.TextureStorage2D(curvedExtra, 1, GL_RGBA32F, hizWidth, hizHeight);
+    label(GL_TEXTURE, curvedExtra, "sslr.curvedExtra");
   }
   if (feedback && feedbackBuffer == 0) {
     gl.CreateBuffers(1, &feedbackBuffer);
@@ -238,6 +248,11 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   // Classification covers the screen; everything after runs over the listed tiles only.
   gl.UseProgram(classify.value());
   if (pyramid) gl.BindImageTexture(0, hiz, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+  if (curvedSolids) {
+    gl.BindImageTexture(1, curvedExtra, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    gl.BindTextureUnit(9, curvedExtra);  // read by the traversal (unit 9 is temporal reuse's after the trace)
+    gl.BindSampler(9, nearestSampler);
+  }
   gl.DispatchCompute(static_cast<GLuint>(tilesX()), static_cast<GLuint>(tilesY()), 1);
   gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);

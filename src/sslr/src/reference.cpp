@@ -62,6 +62,7 @@ Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings
   t.maxIterations = s.maxIterations;
   t.fresnelMode = s.fresnel == FresnelMode::Classic ? SSLR_FRESNEL_CLASSIC : SSLR_FRESNEL_SCHLICK;
   t.outlineThinning = s.outlineThinning ? 1 : 0;
+  t.curvedSolids = s.curvedSolids ? 1 : 0;
   t.hizMode = s.method == Method::HierarchicalDepth
                   ? SSLR_HIZ_ONLY
                   : (s.method == Method::AdaptiveL && s.hierarchicalFallback

@@ -187,6 +187,9 @@ struct Settings {
   bool outlineThinning = true;       // ... and less deep near the outline of what a pixel shows
                                      // (a box is no deeper at its edge than its faces' corner
                                      // allows: rays pass behind edges; docs/algorithm.md)
+  bool curvedSolids = false;         // ... and deeper behind convex curved surfaces: a sphere of
+                                     // the surface's own curvature (curved-mirror false hits 2.2% ->
+                                     // 0.85% at 320x180; costs every traversal step; on in Ultra)
   float convergenceEps = 0.002f;     // stop when |L_new - L| <= eps * L
   float initialLengthScreen = 0.03f; // first L moves the probe this fraction of the height (>= 4 px)
   float errorK = 0.15f;              // the article's LDelmiter (Classic only): fade ~ L / distance * k
