@@ -20,7 +20,24 @@
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
 
-#if defined(SSLR_CLEANUP) || defined(SSLR_PYRAMID_ARGS)
+#if defined(SSLR_CURVED_SOLIDS) && SSLR_CURVED_SOLIDS
+// Curved solids (sslr_shared.h): classification lists the quads whose normals turn; the curved
+// pass (SSLR_CURVED_PASS) computes their cells. Their math in classification itself cost every
+// quad of the screen (llvmpipe runs it under lane masks): sky-heavy's classification 4.0 -> 5.9 ms.
+layout(std430, binding = SSLR_BINDING_CURVED_SSBO) buffer SslrCurvedQuads {
+  uint dispatchX;  // DispatchIndirectCommand of the curved pass: the pyramid-args pass sets x
+  uint dispatchY;
+  uint dispatchZ;
+  uint groups;     // groups of 64 listed quads (classification counts them)
+  uint count;      // listed quads
+  uint pad0, pad1, pad2;
+  uint quads[];    // cell x | cell y << 16
+} curved;
+#endif
+
+#if defined(SSLR_CURVED_PASS)
+layout(local_size_x = 64) in;
+#elif defined(SSLR_CLEANUP) || defined(SSLR_PYRAMID_ARGS) || defined(SSLR_LEVEL1_PASS)
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 #else
 layout(local_size_x = SSLR_TILE_SIZE / 2, local_size_y = SSLR_TILE_SIZE / 2) in;
@@ -52,21 +69,71 @@ void main() {
 #elif defined(SSLR_PYRAMID_ARGS)
 void main() {
   // A frame that traces needs the pyramid: its dispatches get their real group counts.
-  if (gl_LocalInvocationIndex == 0u && tiles.dispatchX != 0u)
+  if (gl_LocalInvocationIndex == 0u && tiles.dispatchX != 0u) {
     for (int i = 0; i < 3 * SSLR_HIZ_MAX_LEVELS; ++i) tiles.hizDispatch[i] = tiles.hizGroups[i];
+#if defined(SSLR_CURVED_SOLIDS) && SSLR_CURVED_SOLIDS
+    curved.dispatchX = curved.groups;  // and the curved quads' cells
+#endif
+  }
 }
-#else
-#ifdef SSLR_CLASSIFY_LEVEL1
-layout(binding = 0, rg32f) uniform writeonly image2D uLevel1;  // the pyramid's level 1 (mip 0)
-#if SSLR_CURVED_SOLIDS
-layout(binding = 1, rgba32f) uniform writeonly image2D uCurvedExtra;  // per quad, its pixels' extra depth
-#endif
-#endif
+#elif defined(SSLR_CURVED_PASS)
+layout(binding = 0, rg32f) uniform writeonly image2D uLevel1;
+layout(binding = 1, rgba32ui) uniform writeonly uimage2D uCurvedExtra;  // sslrPackCurvedExtra
 
 void main() {
-  // One invocation per 2x2 quad: the quad's four depths are level 1 of the depth pyramid.
+  // The listed quads' level-1 cells with their solids, and their pixels' extra depths (over the
+  // plain cells and zeros classification wrote).
+  if (gl_GlobalInvocationID.x >= curved.count) return;
+  uint entry = curved.quads[gl_GlobalInvocationID.x];
+  ivec2 cell = ivec2(int(entry & 0xffffu), int(entry >> 16));
+  ivec2 last = ivec2(frame.surface.width, frame.surface.height) - 1;
+  ivec2 p0 = min(cell * 2, last), p1 = min(cell * 2 + ivec2(1, 0), last);
+  ivec2 p2 = min(cell * 2 + ivec2(0, 1), last), p3 = min(cell * 2 + ivec2(1, 1), last);
+  vec4 depths = vec4(texelFetch(uDepth, p0, 0).r, texelFetch(uDepth, p1, 0).r, texelFetch(uDepth, p2, 0).r,
+                     texelFetch(uDepth, p3, 0).r);
+  vec4 extra;
+  vec2 level1 = sslrHiZLevel1Cell(frame.proj, frame.surface, frame.trace, p0, p1, p2, p3, depths,
+                                  texelFetch(uNormal, p0, 0), texelFetch(uNormal, p1, 0), texelFetch(uNormal, p2, 0),
+                                  texelFetch(uNormal, p3, 0), extra);
+  imageStore(uLevel1, cell, vec4(level1, 0.0f, 0.0f));
+  imageStore(uCurvedExtra, cell, sslrPackCurvedExtra(extra, frame.trace.frameIndex));
+}
+#else
+#if defined(SSLR_CLASSIFY_LEVEL1) || defined(SSLR_LEVEL1_PASS)
+layout(binding = 0, rg32f) uniform writeonly image2D uLevel1;  // the pyramid's level 1 (mip 0)
+
+// Level 1's cell of a quad (clamped pixel coordinates p0..p3, their depths and normal texels).
+void writeLevel1(ivec2 cell, ivec2 last, float d0, float d1, float d2, float d3, vec4 n0, vec4 n1, vec4 n2, vec4 n3) {
+  // A clamped coordinate repeats a pixel of the same quad when the quad straddles the screen's
+  // edge (neutral for the min-max, harmless for the flag); a quad wholly outside is empty.
+  vec2 level1 = sslrHiZLevel1Plain(frame.surface, vec4(d0, d1, d2, d3));
+  bool outside = any(greaterThan(cell * 2, last));
+  if (outside) level1 = sslrHiZEmpty();
+  if (all(lessThan(cell, imageSize(uLevel1)))) {
+    imageStore(uLevel1, cell, vec4(level1, 0.0f, 0.0f));
+#if SSLR_CURVED_SOLIDS
+    // Curved surfaces reach deeper than the slab (sslr_shared.h, "Curved solids"): a quad whose
+    // normals turn is listed for the curved pass, which overwrites its cell with the solids' backs
+    // and stores its pixels' extra depths (stamped with the frame: the others need no clearing).
+    if (!outside && sslrQuadNormalsTurn(n0, n1, n2, n3)) {
+      uint slot = atomicAdd(curved.count, 1u);
+#ifdef SSLR_LEVEL1_PASS
+      if ((slot & 63u) == 0u) atomicAdd(curved.dispatchX, 1u);  // this pass runs only when a tile is listed
+#else
+      if ((slot & 63u) == 0u) atomicAdd(curved.groups, 1u);  // the pyramid-args pass turns them on
+#endif
+      curved.quads[slot] = uint(cell.x) | (uint(cell.y) << 16);
+    }
+#endif
+  }
+}
+#endif
+
+// One invocation per 2x2 quad (one 4x4 group per 8x8 tile; SSLR_LEVEL1_PASS: per 8x8 cells of
+// level 1). Straight-line code over the quad (a loop with per-pixel branches ran 2x slower on
+// llvmpipe).
+void main() {
   ivec2 cell = ivec2(gl_GlobalInvocationID.xy);
-  // Straight-line code over the quad (a loop with per-pixel branches ran 2x slower on llvmpipe).
   ivec2 last = ivec2(frame.surface.width, frame.surface.height) - 1;
   ivec2 p0 = min(cell * 2, last), p1 = min(cell * 2 + ivec2(1, 0), last);
   ivec2 p2 = min(cell * 2 + ivec2(0, 1), last), p3 = min(cell * 2 + ivec2(1, 1), last);
@@ -74,26 +141,17 @@ void main() {
   float d2 = texelFetch(uDepth, p2, 0).r, d3 = texelFetch(uDepth, p3, 0).r;
   vec4 n0 = texelFetch(uNormal, p0, 0), n1 = texelFetch(uNormal, p1, 0);
   vec4 n2 = texelFetch(uNormal, p2, 0), n3 = texelFetch(uNormal, p3, 0);
+#ifdef SSLR_LEVEL1_PASS
+  // Level 1 alone, in a frame whose classification skipped it (the frame before listed no tile):
+  // dispatched through the pyramid's arguments, so only when this frame lists a tile.
+  writeLevel1(cell, last, d0, d1, d2, d3, n0, n1, n2, n3);
+#else
   bool trace = sslrShouldTracePixel(p0, d0, n0, sslrMaterialAt(p0, n0)) ||
                sslrShouldTracePixel(p1, d1, n1, sslrMaterialAt(p1, n1)) ||
                sslrShouldTracePixel(p2, d2, n2, sslrMaterialAt(p2, n2)) ||
                sslrShouldTracePixel(p3, d3, n3, sslrMaterialAt(p3, n3));
 #ifdef SSLR_CLASSIFY_LEVEL1
-  // A clamped coordinate repeats a pixel of the same quad when the quad straddles the screen's
-  // edge (neutral for the min-max, harmless for the flag); a quad wholly outside is empty.
-  // Curved surfaces reach deeper than the slab: their cells hold the back of their solids
-  // (sslr_shared.h, "Curved solids"), so that no coarse cell lets a ray pass behind a sphere
-  // the traversal's pixels would stop it in.
-  vec4 extra;
-  vec2 level1 = sslrHiZLevel1Cell(frame.proj, frame.surface, frame.trace, p0, p1, p2, p3, vec4(d0, d1, d2, d3),
-                                  n0, n1, n2, n3, extra);
-  if (any(greaterThan(cell * 2, last))) level1 = sslrHiZEmpty();
-  if (all(lessThan(cell, imageSize(uLevel1)))) {
-    imageStore(uLevel1, cell, vec4(level1, 0.0f, 0.0f));
-#if SSLR_CURVED_SOLIDS
-    imageStore(uCurvedExtra, cell, extra);
-#endif
-  }
+  writeLevel1(cell, last, d0, d1, d2, d3, n0, n1, n2, n3);
 #endif
   if (!trace) return;
   uint stamp = sslrTileListedStamp(gl_WorkGroupID.xy);
@@ -104,5 +162,6 @@ void main() {
   uint slot = atomicAdd(tiles.dispatchX, 1u);
   atomicAdd(tiles.drawInstances, 1u);
   tiles.tileCoords[slot] = gl_WorkGroupID.x | (gl_WorkGroupID.y << 16);
+#endif
 }
 #endif

@@ -24,6 +24,7 @@ using glm::ivec2;
 using glm::ivec4;
 using glm::bvec4;
 using glm::uvec2;
+using glm::uvec4;
 using glm::vec2;
 using glm::vec3;
 using glm::vec4;
@@ -40,6 +41,9 @@ using glm::max;
 using glm::min;
 using glm::mix;
 using glm::normalize;
+using glm::inversesqrt;
+using glm::packHalf2x16;
+using glm::unpackHalf2x16;
 using glm::reflect;
 using glm::sign;
 using glm::smoothstep;
@@ -82,6 +86,7 @@ using glm::sqrt;
 #define SSLR_BINDING_TILE_SSBO 0
 #define SSLR_BINDING_STATS_SSBO 1
 #define SSLR_BINDING_RETRACE_SSBO 2  // half resolution: pixels that trace their own ray
+#define SSLR_BINDING_CURVED_SSBO 2   // curved solids: the quads whose normals turn (classification only)
 #define SSLR_RETRACE_GROUP 64        // invocations per group of the retrace pass
 
 // ---- Uniform block structs (std140: every member 4 bytes, every struct a multiple of 16) ----
@@ -483,10 +488,12 @@ SSLR_FN bool sslrCurvedSolids(SslrTraceParams t) {
 
 // The radius of curvature between two neighbouring pixels, or 0 where they do not look like one
 // convex curved surface. On a sphere P_a - P_b = r (N_a - N_b) exactly; the two differences must
-// point the same way (convex) and the normals turn by more than their encoding's noise (8-bit xyz:
-// ~0.5 deg per component) and less than an edge's ~20 deg; a step of more than 8 footprints between
-// the pixels is a depth jump (a silhouette), not a surface.
-SSLR_FN float sslrConvexRadius(SslrProjection p, SslrSurface s, vec3 vsA, vec3 vsNa, vec3 vsB, vec3 vsNb) {
+// point the same way (convex, within ~18 deg) and the normals turn by more than their encoding's
+// noise (8-bit xyz: ~0.5 deg per component) and less than an edge's ~20 deg; a step of more than
+// 8 footprints (footprintA: pixel A's) is a depth jump (a silhouette), not a surface. Squared
+// forms: classification runs this for every quad of the screen, and on a CPU rasterizer each
+// square root and division shows in its time.
+SSLR_FN float sslrConvexRadius(SslrSurface s, vec3 vsA, vec3 vsNa, vec3 vsB, vec3 vsNb, float footprintA) {
 #ifdef SSLR_NORMAL_ENCODING
   const bool octahedral = SSLR_NORMAL_ENCODING == SSLR_NORMALS_OCTAHEDRAL;
 #else
@@ -497,9 +504,9 @@ SSLR_FN float sslrConvexRadius(SslrProjection p, SslrSurface s, vec3 vsA, vec3 v
   float dn2 = dot(dN, dN);
   vec3 dP = vsA - vsB;
   float along = dot(dP, dN);
-  float dp = length(dP);
-  bool curved = dn2 > minTurn2 && dn2 < 0.12f && along > 0.95f * dp * sqrt(dn2) &&
-                dp <= 8.0f * sslrPixelFootprint(p, s.height, sslrViewDistance(p, vsA));
+  float dp2 = dot(dP, dP);
+  bool curved = dn2 > minTurn2 && dn2 < 0.12f && along > 0.0f && along * along > 0.9025f * dp2 * dn2 &&
+                dp2 <= 64.0f * footprintA * footprintA;
   return curved ? along / dn2 : 0.0f;
 }
 
@@ -508,7 +515,7 @@ SSLR_FN float sslrConvexRadius(SslrProjection p, SslrSurface s, vec3 vsA, vec3 v
 // gently curved wall from becoming a solid hill. r: the largest radius the pixel shares with a
 // neighbour (sslrConvexRadius).
 SSLR_FN float sslrCurvedExtraDepth(SslrProjection p, SslrTraceParams t, vec3 vsPos, vec3 vsNormal, float r) {
-  vec3 v = sslrViewDirection(p, vsPos);
+  vec3 v = p.orthographic != 0 ? vec3(0.0f, 0.0f, -1.0f) : vsPos * inversesqrt(dot(vsPos, vsPos));
   float slab = t.objectThickness * -vsPos.z;
   float chord = min(2.0f * r * abs(dot(vsNormal, v)), 4.0f * slab) * abs(v.z);
   return max(chord - slab, 0.0f);
@@ -520,14 +527,32 @@ SSLR_FN float sslrCurvedExtraDepth(SslrProjection p, SslrTraceParams t, vec3 vsP
 // pixels (sslrLoadCurvedExtra), so a cell's farthest key bounds what its pixels' solids reach.
 SSLR_FN vec4 sslrQuadCurvedExtraDepth(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vs0, vec3 vs1,
                                       vec3 vs2, vec3 vs3, vec3 n0, vec3 n1, vec3 n2, vec3 n3, bvec4 ok) {
-  float r01 = ok.x && ok.y ? sslrConvexRadius(p, s, vs0, n0, vs1, n1) : 0.0f;
-  float r23 = ok.z && ok.w ? sslrConvexRadius(p, s, vs2, n2, vs3, n3) : 0.0f;
-  float r02 = ok.x && ok.z ? sslrConvexRadius(p, s, vs0, n0, vs2, n2) : 0.0f;
-  float r13 = ok.y && ok.w ? sslrConvexRadius(p, s, vs1, n1, vs3, n3) : 0.0f;
-  return vec4(ok.x ? sslrCurvedExtraDepth(p, t, vs0, n0, max(r01, r02)) : 0.0f,
-              ok.y ? sslrCurvedExtraDepth(p, t, vs1, n1, max(r01, r13)) : 0.0f,
-              ok.z ? sslrCurvedExtraDepth(p, t, vs2, n2, max(r23, r02)) : 0.0f,
-              ok.w ? sslrCurvedExtraDepth(p, t, vs3, n3, max(r23, r13)) : 0.0f);
+  // One footprint per quad, its farthest pixel's (sslrPixelFootprint with one division per quad;
+  // a pixel without geometry has vs = 0).
+  float farthest = max(max(-vs0.z, -vs1.z), max(-vs2.z, -vs3.z));
+  float footprint = 2.0f * (p.orthographic != 0 ? 1.0f : max(farthest, 0.0f)) / (abs(p.yScale) * s.height);
+  float r01 = ok.x && ok.y ? sslrConvexRadius(s, vs0, n0, vs1, n1, footprint) : 0.0f;
+  float r23 = ok.z && ok.w ? sslrConvexRadius(s, vs2, n2, vs3, n3, footprint) : 0.0f;
+  float r02 = ok.x && ok.z ? sslrConvexRadius(s, vs0, n0, vs2, n2, footprint) : 0.0f;
+  float r13 = ok.y && ok.w ? sslrConvexRadius(s, vs1, n1, vs3, n3, footprint) : 0.0f;
+  vec4 extra = vec4(ok.x ? sslrCurvedExtraDepth(p, t, vs0, n0, max(r01, r02)) : 0.0f,
+                    ok.y ? sslrCurvedExtraDepth(p, t, vs1, n1, max(r01, r13)) : 0.0f,
+                    ok.z ? sslrCurvedExtraDepth(p, t, vs2, n2, max(r23, r02)) : 0.0f,
+                    ok.w ? sslrCurvedExtraDepth(p, t, vs3, n3, max(r23, r13)) : 0.0f);
+  // Stored as half floats (sslrPackCurvedExtra); the cell's backs come from the stored values.
+  return vec4(unpackHalf2x16(packHalf2x16(vec2(extra.x, extra.y))), unpackHalf2x16(packHalf2x16(vec2(extra.z, extra.w))));
+}
+
+// A quad's extra depths as the traversal reads them: four half floats and the frame index that
+// wrote them (an older texel reads as no extra, so classification need not clear the quads it
+// does not list).
+SSLR_FN uvec4 sslrPackCurvedExtra(vec4 extra, int frameIndex) {
+  return uvec4(packHalf2x16(vec2(extra.x, extra.y)), packHalf2x16(vec2(extra.z, extra.w)), uint(frameIndex), 0u);
+}
+SSLR_FN float sslrUnpackCurvedExtra(uvec4 texel, int frameIndex, ivec2 px) {
+  if (texel.z != uint(frameIndex)) return 0.0f;
+  vec2 pair = unpackHalf2x16((px.y & 1) == 0 ? texel.x : texel.y);
+  return (px.x & 1) == 0 ? pair.x : pair.y;
 }
 
 // A pixel's texel of level 1 when its solid reaches extra deeper than the slab: (min, max) of its
@@ -544,12 +569,22 @@ SSLR_FN vec2 sslrHiZSolidTexel(SslrProjection p, SslrSurface s, float depth, vec
 // tests all build it here. With curved solids, `extra` receives the quad's pixels' extra depths
 // (sslrQuadCurvedExtraDepth), which classification stores for the traversal's pixels (one fetch
 // there: the quad's math inside the traversal's loop cost every step on llvmpipe, taken or not).
+SSLR_FN vec2 sslrHiZLevel1Plain(SslrSurface s, vec4 depths) {
+  return sslrHiZReduce(sslrHiZReduce(sslrHiZTexel(s, depths.x), sslrHiZTexel(s, depths.y)),
+                       sslrHiZReduce(sslrHiZTexel(s, depths.z), sslrHiZTexel(s, depths.w)));
+}
+
+// Whether a quad's normals turn at all (packed texels compared): only such quads can hold a curved
+// solid (sslrConvexRadius needs a turn), so classification lists them for the curved pass and
+// gives the others the plain cell, which is what sslrHiZLevel1Cell computes for them.
+SSLR_FN bool sslrQuadNormalsTurn(vec4 n0, vec4 n1, vec4 n2, vec4 n3) {
+  return n0 != n1 || n0 != n2 || n0 != n3;
+}
+
 SSLR_FN vec2 sslrHiZLevel1Cell(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 p0, ivec2 p1, ivec2 p2,
                                ivec2 p3, vec4 depths, vec4 n0, vec4 n1, vec4 n2, vec4 n3, SSLR_OUT(vec4) extra) {
   extra = vec4(0.0f);
-  if (!sslrCurvedSolids(t))
-    return sslrHiZReduce(sslrHiZReduce(sslrHiZTexel(s, depths.x), sslrHiZTexel(s, depths.y)),
-                         sslrHiZReduce(sslrHiZTexel(s, depths.z), sslrHiZTexel(s, depths.w)));
+  if (!sslrCurvedSolids(t)) return sslrHiZLevel1Plain(s, depths);
   vec3 vs0, vs1, vs2, vs3, m0, m1, m2, m3;
   bool ok0 = sslrSurfaceFromDepth(p, s, p0, depths.x, vs0);
   ok0 = sslrDecodeNormal(s, n0, m0) && ok0;

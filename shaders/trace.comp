@@ -103,11 +103,10 @@ vec2 sslrLoadDepthMinMax(int level, ivec2 cell) {
   return texelFetch(uHiZ, cell, level - 1).rg;
 }
 // Per 2x2 quad, its pixels' extra depth behind curved surfaces (classify.comp, SSLR_CURVED_SOLIDS).
-layout(binding = 9) uniform sampler2D uCurvedExtra;
+layout(binding = 9) uniform usampler2D uCurvedExtra;
 float sslrLoadCurvedExtra(ivec2 px) {
   gFetches += 1u;
-  vec4 e = texelFetch(uCurvedExtra, px >> 1, 0);
-  return (px.y & 1) == 0 ? ((px.x & 1) == 0 ? e.x : e.y) : ((px.x & 1) == 0 ? e.z : e.w);
+  return sslrUnpackCurvedExtra(texelFetch(uCurvedExtra, px >> 1, 0), frame.trace.frameIndex, px);
 }
 #include "sslr_trace_hiz.h"
 #endif

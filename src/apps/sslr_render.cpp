@@ -130,7 +130,7 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
   numberOption(args, "iterations", "an integer", s.maxIterations);
   numberOption(args, "hiz-steps", "an integer", s.hierarchicalMaxSteps);
   if (args.count("no-outline-thinning")) s.outlineThinning = false;
-  if (args.count("curved-solids")) s.curvedSolids = true;
+  if (args.count("no-curved-solids")) s.curvedSolids = false;
   if (args.count("traversal-pass")) {
     const std::string pass = args["traversal-pass"].as<std::string>();
     if (pass == "auto") s.traversalPass = TraversalPass::Auto;
@@ -164,8 +164,8 @@ int run(int argc, char** argv) {
        cxxopts::value<std::string>())
       ("no-outline-thinning", "keep the assumed object thickness constant up to objects' outlines (hierarchical "
                               "traversal)")
-      ("curved-solids", "take convex curved surfaces to be solids as deep as their curvature says, not the "
-                        "assumed object thickness (hierarchical traversal; the ultra preset's default)")
+      ("no-curved-solids", "keep the assumed object thickness behind convex curved surfaces too, instead of "
+                           "the depth of a sphere of their curvature (hierarchical traversal)")
       ("no-blur", "skip the roughness blur")
       ("composite", "how the reflection enters final.png: blend (over the fallback specular, a sky/ground environment, by coverage) or add (on top of it)",
        cxxopts::value<std::string>()->default_value("blend"))
@@ -384,7 +384,9 @@ int run(int argc, char** argv) {
               << st.fetches << " (" << (st.tracedPixels ? double(st.fetches) / st.tracedPixels : 0.0)
               << " per traced pixel), hierarchical traversal on " << st.hierarchicalPixels << " ("
               << (st.tracedPixels ? 100.0 * st.hierarchicalPixels / st.tracedPixels : 0.0) << "% of traced"
-              << (st.hierarchicalPixels ? (st.traversalDeferred ? ", in a pass of its own" : ", inline") : "") << ")\n";
+              << (st.hierarchicalPixels ? (st.traversalDeferred ? ", in a pass of its own" : ", inline") : "") << ")"
+              << (st.level1Pass ? "; the pyramid's level 1 in a pass of its own (the frame before listed no tile)" : "")
+              << "\n";
     if (st.classifyMs >= 0.0 && laterStats.empty())
       std::printf("  pass times (GL_TIMESTAMP%s): classify %.2f ms, pyramid %.2f ms, trace %.2f ms, blur %.2f ms\n",
                   gl.value()->isSoftware() ? "; a software renderer: CPU work; the first frame, with shader compilation"

@@ -449,6 +449,52 @@ TEST_F(TraversalAuto, FollowsTheLastFramesShareOfTraversalPixels) {
   }
 }
 
+// After a frame that listed no tile, classification leaves the pyramid's level 1 (and the curved
+// quads' list) to a pass of its own that runs only if the frame lists a tile: an empty frame after
+// an empty one pays for no level 1. The frame that follows an empty one must trace exactly what a
+// fresh context traces (same pyramid, same curved solids); the one after it is back to the usual
+// path. curved-mirror: its sphere and cylinder are listed by the level-1 pass there.
+class Level1Pass : public sslr::test::GlTest {};
+
+TEST_F(Level1Pass, FollowsAnEmptyFrameWithTheSameHits) {
+  GBufferOptions o;
+  o.width = 161;
+  o.height = 91;
+  auto scene = makeBuiltinScene("curved-mirror");
+  ASSERT_TRUE(scene);
+  GpuScene gpu(scene.value());
+  Settings s;
+  s.collectStats = true;
+  s.debugOutputs = true;
+  ASSERT_TRUE(s.curvedSolids);
+  Settings empty = s;
+  empty.minReflectance = 1.0f;  // no pixel reflects enough to be traced
+  auto fresh = FrameRenderer::create(o);
+  ASSERT_TRUE(fresh) << fresh.error();
+  ASSERT_TRUE(fresh.value()->render(gpu, *scene.value().camera, &s));
+  const Image reference = fresh.value()->readHit();
+  EXPECT_FALSE(fresh.value()->sslr().waitForStats().level1Pass) << "a context's first frame";
+
+  auto r = FrameRenderer::create(o);
+  ASSERT_TRUE(r) << r.error();
+  const Settings* frames[] = {&empty, &empty, &s, &s};
+  const bool level1Pass[] = {false, true, true, false};
+  for (int k = 0; k < 4; ++k) {
+    ASSERT_TRUE(r.value()->render(gpu, *scene.value().camera, frames[k]));
+    const FrameStats st = r.value()->sslr().waitForStats();  // the frame is done: its counts are back
+    EXPECT_EQ(st.level1Pass, level1Pass[k]) << "frame " << k;
+    EXPECT_EQ(st.tiles == 0, frames[k] == &empty) << "frame " << k;
+    if (frames[k] != &s) continue;
+    const Image hit = r.value()->readHit();
+    size_t differing = 0, hits = 0;
+    for (size_t i = 0; i < hit.pixels.size(); ++i) differing += hit.pixels[i] != reference.pixels[i];
+    for (size_t i = 2; i < hit.pixels.size(); i += 4) hits += hit.pixels[i] > 0.5f;
+    EXPECT_EQ(differing, 0u) << "frame " << k;
+    EXPECT_GT(hits, 300u) << "frame " << k;  // 416 at this size
+  }
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
 // McGuire & Mara's DDA reports the pixel of the step that overlapped the depth slab. Marching
 // every pixel (stride 1) it misses nothing on the analytic mirrors (nothing in front, nothing
 // behind) and its hit lies within a pixel step of the true one. A stride of 4 skips pixels: a
@@ -665,7 +711,10 @@ TEST_P(DepthPyramid, EveryLevelIsTheMinMaxOfItsChildren) {
     for (int x = 0; x < width; ++x)
       below[static_cast<size_t>(y) * width + x] = shared::sslrHiZTexel(frame.value().surface, depth.at(x, y, 0));
   size_t cells = 0, solidCells = 0, extraPixels = 0;
-  std::vector<glm::vec4> gpuExtra;
+  // The extra depths as stored (sslrPackCurvedExtra): the curved pass stamps the quads it wrote with
+  // the frame's index; the others read as no extra.
+  std::vector<glm::uvec4> gpuExtra;
+  int stamp = 0;
   if (curved) {
     const GLuint extraTexture = textureLabelled("sslr.curvedExtra");
     ASSERT_NE(extraTexture, 0u);
@@ -673,8 +722,10 @@ TEST_P(DepthPyramid, EveryLevelIsTheMinMaxOfItsChildren) {
     glGetTextureLevelParameteriv(extraTexture, 0, GL_TEXTURE_WIDTH, &w);
     glGetTextureLevelParameteriv(extraTexture, 0, GL_TEXTURE_HEIGHT, &h);
     gpuExtra.resize(static_cast<size_t>(w) * h);
-    glGetTextureImage(extraTexture, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(gpuExtra.size() * sizeof(glm::vec4)),
-                      gpuExtra.data());
+    glGetTextureImage(extraTexture, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                      static_cast<GLsizei>(gpuExtra.size() * sizeof(glm::uvec4)), gpuExtra.data());
+    for (const glm::uvec4& t : gpuExtra) stamp = std::max(stamp, static_cast<int>(t.z));
+    ASSERT_GT(stamp, 0) << "the curved pass wrote no quad";
   }
   const auto normalAt = [&](glm::ivec2 q) {
     return glm::vec4(normals.at(q.x, q.y, 0), normals.at(q.x, q.y, 1), normals.at(q.x, q.y, 2), normals.at(q.x, q.y, 3));
@@ -706,9 +757,12 @@ TEST_P(DepthPyramid, EveryLevelIsTheMinMaxOfItsChildren) {
               frame.value().proj, frame.value().surface, frame.value().trace, q0, q1, q2, q3,
               glm::vec4(depth.at(q0.x, q0.y, 0), depth.at(q1.x, q1.y, 0), depth.at(q2.x, q2.y, 0), depth.at(q3.x, q3.y, 0)),
               normalAt(q0), normalAt(q1), normalAt(q2), normalAt(q3), extra);
-          if (curved) {  // the extra depths the traversal reads per pixel, stored by classification
-            const glm::vec4 e = gpuExtra[static_cast<size_t>(y) * w + x];
-            for (int k = 0; k < 4; ++k) ASSERT_NEAR(e[k], extra[k], 1e-5f * (1.0f + extra[k])) << "cell " << x << "," << y;
+          if (curved) {  // the extra depths the traversal reads per pixel (half floats: both sides round)
+            const glm::uvec4 e = gpuExtra[static_cast<size_t>(y) * w + x];
+            for (int k = 0; k < 4; ++k) {
+              const float stored = shared::sslrUnpackCurvedExtra(e, stamp, glm::ivec2(k & 1, k >> 1));
+              ASSERT_NEAR(stored, extra[k], 1e-3f * (1.0f + extra[k])) << "cell " << x << "," << y << " pixel " << k;
+            }
             extraPixels += (extra.x > 0.0f) + (extra.y > 0.0f) + (extra.z > 0.0f) + (extra.w > 0.0f);
           }
           solidCells += solid != m;

@@ -52,10 +52,11 @@ void Context::Impl::destroyTargets() {
   gl.DeleteTextures(11, textures);
   gl.DeleteBuffers(1, &retraceBuffer);
   gl.DeleteBuffers(1, &feedbackBuffer);
+  gl.DeleteBuffers(1, &curvedQuads);
   if (feedbackFence != nullptr) gl.DeleteSync(feedbackFence);
   feedbackFence = nullptr;
-  traversalInline = false;
-  quadHit = quadSurface = retraceBuffer = feedbackBuffer = history = historyKey = curvedExtra = 0;
+  traversalInline = feedbackHasTraversal = lastFrameListedNoTile = false;
+  quadHit = quadSurface = retraceBuffer = feedbackBuffer = history = historyKey = curvedExtra = curvedQuads = 0;
   historyValid = false;
   GLuint buffers[] = {tileBuffer};
   gl.DeleteBuffers(1, buffers);

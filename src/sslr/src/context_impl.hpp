@@ -50,14 +50,19 @@ struct Context::Impl {
   GLuint hiz = 0;
   // Settings::curvedSolids: per level-1 cell (2x2 quad), its pixels' extra depth behind curved
   // surfaces (classify.comp writes it with level 1; created on first use).
-  GLuint curvedExtra = 0;
+  GLuint curvedExtra = 0, curvedQuads = 0;
   // Half resolution: per 2x2 quad, its ray's hit and surfaces (created on first use).
   GLuint quadHit = 0, quadSurface = 0, retraceBuffer = 0;
-  // TraversalPass::Auto on a software renderer chooses per frame from the last frame's share of
-  // pixels that needed the traversal: feedback holds (listed tiles, 0, 0, such pixels), fenced,
-  // read without waiting at the next dispatch; traversalInline is the current choice.
+  // The last frame's counts, fed back without a stall: feedback holds (listed tiles, 0, 0, pixels
+  // that needed the traversal), fenced, read without waiting at the next dispatch (readFeedback).
+  // lastFrameListedNoTile: classification leaves the pyramid's level 1 to a pass of its own (an
+  // empty frame after an empty one only reads the G-buffer). TraversalPass::Auto on a software
+  // renderer chooses per frame from the share of such pixels (feedbackHasTraversal: the pending
+  // copy has it); traversalInline is the current choice.
   GLuint feedbackBuffer = 0;
   GLsync feedbackFence = nullptr;
+  bool feedbackHasTraversal = false;
+  bool lastFrameListedNoTile = false;
   bool traversalInline = false;
   // Temporal reuse: the previous frame's output and its history keys (sslrHistoryKey; 0 = none),
   // created on first use. historyValid: the last dispatch stored them.
@@ -75,6 +80,7 @@ struct Context::Impl {
     GLsync fence = nullptr;
     std::uint64_t frame = 0;
     bool traversalDeferred = false;
+    bool level1Pass = false;
   };
   static constexpr int kStatsRing = 4;
   mutable StatsSlot statsRing[kStatsRing];
@@ -115,7 +121,7 @@ struct Context::Impl {
   // passes.cpp
   void bindInputs(const FrameInputs& in) const;
   void buildPyramid(GLuint prog) const;
-  void readTraversalFeedback();
+  void readFeedback();
   Status dispatch(const FrameInputs& in, const Settings& settings);
   // composite.cpp
   Status composite(GLName framebuffer, const CompositeOptions& options);

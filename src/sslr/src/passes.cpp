@@ -50,7 +50,7 @@ void Context::Impl::buildPyramid(GLuint prog) const {
 // Auto's choice on a software renderer, from the last fed-back frame (without waiting: a frame
 // still in flight leaves the choice as it is). Hysteresis keeps a scene near the threshold from
 // switching every frame; the answers are the same either way.
-void Context::Impl::readTraversalFeedback() {
+void Context::Impl::readFeedback() {
   if (feedbackFence == nullptr) return;
   const GLenum r = gl.ClientWaitSync(feedbackFence, 0, 0);
   if (r != GL_ALREADY_SIGNALED && r != GL_CONDITION_SATISFIED) return;
@@ -58,6 +58,8 @@ void Context::Impl::readTraversalFeedback() {
   feedbackFence = nullptr;
   GLuint counts[4] = {};
   gl.GetNamedBufferSubData(feedbackBuffer, 0, sizeof(counts), counts);
+  lastFrameListedNoTile = counts[0] == 0;
+  if (!feedbackHasTraversal) return;
   const double tilePixels = double(counts[0]) * SSLR_TILE_SIZE * SSLR_TILE_SIZE;
   const double share = tilePixels > 0.0 ? double(counts[3]) / tilePixels : 0.0;
   traversalInline = share > (traversalInline ? kInlineTraversalShare - 0.05 : kInlineTraversalShare + 0.05);
@@ -110,7 +112,11 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   const bool autoSoftware =
       adaptiveWithTraversal && settings.traversalPass == TraversalPass::Auto && softwareRenderer;
   const bool feedback = autoSoftware && !settings.halfResolution;
-  if (feedback) readTraversalFeedback();
+  if (pyramid) readFeedback();
+  // After a frame that listed no tile, classification does not write level 1: a pass of its own
+  // does, dispatched only if this frame lists one (an empty frame's classification then reads the
+  // G-buffer and nothing more; measured in docs/algorithm.md).
+  const bool level1Pass = pyramid && lastFrameListedNoTile;
   const bool deferTraversal =
       adaptiveWithTraversal && (settings.traversalPass == TraversalPass::Deferred ||
                                 (autoSoftware && (settings.halfResolution || !traversalInline)));
@@ -127,11 +133,18 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   const bool retracePass = settings.halfResolution || deferTraversal;
   const bool quadRetracePass = settings.halfResolution && deferTraversal;
   // With the pyramid, classification (which reads every depth anyway) writes its level 1.
-  auto classify = computeProgram("classify.comp", pyramid ? "#define SSLR_CLASSIFY_LEVEL1 1\n" + curvedDefine : "");
+  auto classify =
+      computeProgram("classify.comp", pyramid && !level1Pass ? "#define SSLR_CLASSIFY_LEVEL1 1\n" + curvedDefine : "");
+  Expected<GLuint> level1Program = level1Pass
+                                       ? computeProgram("classify.comp", "#define SSLR_LEVEL1_PASS 1\n" + curvedDefine)
+                                       : Expected<GLuint>(GLuint(0));
   auto cleanup = computeProgram("classify.comp", "#define SSLR_CLEANUP 1\n");
   Expected<GLuint> hizBuild = pyramid ? computeProgram("hiz.comp") : Expected<GLuint>(GLuint(0));
-  Expected<GLuint> hizArgs =
-      pyramid ? computeProgram("classify.comp", "#define SSLR_PYRAMID_ARGS 1\n") : Expected<GLuint>(GLuint(0));
+  Expected<GLuint> hizArgs = pyramid ? computeProgram("classify.comp", "#define SSLR_PYRAMID_ARGS 1\n" + curvedDefine)
+                                     : Expected<GLuint>(GLuint(0));
+  Expected<GLuint> curvedPass =
+      curvedSolids ? computeProgram("classify.comp", "#define SSLR_CURVED_PASS 1\n" + curvedDefine)
+                   : Expected<GLuint>(GLuint(0));
   auto trace = computeProgram("trace.comp", traceDefines);
   const Expected<GLuint> none = GLuint(0);
   Expected<GLuint> quads = settings.halfResolution ? computeProgram("trace.comp", quadDefines + deferDefine) : none;
@@ -150,7 +163,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     temporalStore = computeProgram("temporal.comp", "#define SSLR_TEMPORAL_STORE 1\n");
     historyCleanup = computeProgram("classify.comp", "#define SSLR_CLEANUP 1\n#define SSLR_CLEANUP_HISTORY 1\n");
   }
-  for (const auto* p : {&classify, &cleanup, &hizBuild, &hizArgs, &trace, &quads, &quadRetrace, &retrace, &blurH, &blurV,
+  for (const auto* p : {&classify, &cleanup, &hizBuild, &hizArgs, &level1Program, &curvedPass, &trace, &quads, &quadRetrace, &retrace, &blurH, &blurV,
                         &temporalBlend, &temporalStore, &historyCleanup})
     if (!*p) return Status::error(p->error());
 
@@ -165,10 +178,16 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   }
   if (curvedSolids && curvedExtra == 0) {  // level 1's size: every quad of the screen has a cell
     gl.CreateTextures(GL_TEXTURE_2D, 1, &curvedExtra);
-    gl.TextureStorage2D(curvedExtra, 1, GL_RGBA32F, hizWidth, hizHeight);
+    gl.TextureStorage2D(curvedExtra, 1, GL_RGBA32UI, hizWidth, hizHeight);
     label(GL_TEXTURE, curvedExtra, "sslr.curvedExtra");
+    const GLuint noStamp[4] = {0, 0, 0, 0};  // frame indices start at 1: no texel is this frame's
+    gl.ClearTexImage(curvedExtra, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, noStamp);
+    gl.CreateBuffers(1, &curvedQuads);  // header (classify.comp) + one entry per quad
+    gl.NamedBufferStorage(curvedQuads, static_cast<GLsizeiptr>((8 + static_cast<size_t>(hizWidth) * hizHeight) * sizeof(GLuint)),
+                          nullptr, GL_DYNAMIC_STORAGE_BIT);
+    label(GL_BUFFER, curvedQuads, "sslr.curvedQuads");
   }
-  if (feedback && feedbackBuffer == 0) {
+  if (pyramid && feedbackBuffer == 0) {
     gl.CreateBuffers(1, &feedbackBuffer);
     gl.NamedBufferStorage(feedbackBuffer, 4 * sizeof(GLuint), nullptr, 0);
     label(GL_BUFFER, feedbackBuffer, "sslr.traversalFeedback");
@@ -249,9 +268,12 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   gl.UseProgram(classify.value());
   if (pyramid) gl.BindImageTexture(0, hiz, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
   if (curvedSolids) {
-    gl.BindImageTexture(1, curvedExtra, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     gl.BindTextureUnit(9, curvedExtra);  // read by the traversal (unit 9 is temporal reuse's after the trace)
     gl.BindSampler(9, nearestSampler);
+    // The curved pass's dispatch (0, 1, 1) until the pyramid-args pass sets it; no quad listed.
+    const GLuint curvedHeader[8] = {0, 1, 1, 0, 0, 0, 0, 0};
+    gl.NamedBufferSubData(curvedQuads, 0, sizeof(curvedHeader), curvedHeader);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_CURVED_SSBO, curvedQuads);
   }
   gl.DispatchCompute(static_cast<GLuint>(tilesX()), static_cast<GLuint>(tilesY()), 1);
   gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
@@ -268,6 +290,22 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.UseProgram(hizArgs.value());
     gl.DispatchCompute(1, 1, 1);
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    if (level1Pass) {  // level 1 (classify.comp, SSLR_LEVEL1_PASS) through level 1's pyramid arguments
+      gl.UseProgram(level1Program.value());
+      gl.BindImageTexture(0, hiz, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+      gl.DispatchComputeIndirect(kHizDispatchOffset);
+      gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+                       GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    }
+    if (curvedSolids) {  // the listed quads' cells with their solids (classify.comp, SSLR_CURVED_PASS)
+      gl.UseProgram(curvedPass.value());
+      gl.BindImageTexture(0, hiz, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+      gl.BindImageTexture(1, curvedExtra, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32UI);
+      gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, curvedQuads);
+      gl.DispatchComputeIndirect(0);
+      gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
+      gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    }
     buildPyramid(hizBuild.value());
   }
 
@@ -363,13 +401,16 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   timestamp(5);
   // The host (and composite) may read the outputs in any way next: make all writes visible.
   gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
-  if (feedback && feedbackFence == nullptr) {  // (listed tiles, -, -, pixels that needed the traversal)
+  if (pyramid && feedbackFence == nullptr) {  // (listed tiles, -, -, pixels that needed the traversal)
     gl.CopyNamedBufferSubData(tileBuffer, feedbackBuffer, 0, 0, sizeof(GLuint));
-    gl.CopyNamedBufferSubData(retraceBuffer, feedbackBuffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
+    if (feedback)
+      gl.CopyNamedBufferSubData(retraceBuffer, feedbackBuffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
+    feedbackHasTraversal = feedback;
     feedbackFence = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
   }
   if (slot != nullptr) {
     slot->traversalDeferred = deferTraversal;
+    slot->level1Pass = level1Pass;
     // The tile counts join the counters on the GPU (no read-back), then a fence marks the slot.
     gl.CopyNamedBufferSubData(tileBuffer, slot->buffer, 0, 4 * sizeof(GLuint), sizeof(GLuint));
     gl.CopyNamedBufferSubData(tileBuffer, slot->buffer, kBlurDispatchOffset, 5 * sizeof(GLuint), sizeof(GLuint));

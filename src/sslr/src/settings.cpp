@@ -31,7 +31,6 @@ Settings Settings::preset(Preset preset) {
       s.maxIterations = 32;
       s.convergenceEps = 0.0005f;
       s.hierarchicalVerify = true;  // thin-objects recall 0.963 -> 0.984 at 960x540 (docs/algorithm.md)
-      s.curvedSolids = true;        // curved-mirror false hits 1.2% -> 0.4% at 960x540 (docs/algorithm.md)
       s.hierarchicalMaxSteps = 256;
       s.blurMaxRadiusPx = 12.0f;
       s.roughnessCutoff = 0.6f;

@@ -33,6 +33,7 @@ void Context::Impl::harvestStats(bool waitNewest) const {
     f.tiles = counters[4];
     f.blurTiles = counters[5];
     f.traversalDeferred = oldest->traversalDeferred;
+    f.level1Pass = oldest->level1Pass;
     if (timestamps) {
       // With a buffer bound to GL_QUERY_BUFFER the result would go into it: unbind it meanwhile.
       GLint queryBuffer = 0;

@@ -187,9 +187,9 @@ struct Settings {
   bool outlineThinning = true;       // ... and less deep near the outline of what a pixel shows
                                      // (a box is no deeper at its edge than its faces' corner
                                      // allows: rays pass behind edges; docs/algorithm.md)
-  bool curvedSolids = false;         // ... and deeper behind convex curved surfaces: a sphere of
+  bool curvedSolids = true;          // ... and deeper behind convex curved surfaces: a sphere of
                                      // the surface's own curvature (curved-mirror false hits 2.2% ->
-                                     // 0.85% at 320x180; costs every traversal step; on in Ultra)
+                                     // 0.85% at 320x180; docs/algorithm.md)
   float convergenceEps = 0.002f;     // stop when |L_new - L| <= eps * L
   float initialLengthScreen = 0.03f; // first L moves the probe this fraction of the height (>= 4 px)
   float errorK = 0.15f;              // the article's LDelmiter (Classic only): fade ~ L / distance * k
@@ -242,6 +242,8 @@ struct FrameStats {  // filled when Settings::collectStats is set
   std::uint32_t fetches = 0;        // depth (or position) texels read by the trace pass
   std::uint32_t hierarchicalPixels = 0;  // traced pixels that ran the hierarchical traversal
   bool traversalDeferred = false;   // the traversal ran in a pass of its own (Settings::traversalPass)
+  bool level1Pass = false;          // the pyramid's level 1 came from a pass of its own, not from
+                                    // classification (the frame before listed no tile)
   // GPU time between the passes from GL_TIMESTAMP queries (-1 where the GL has no timestamps).
   // On software renderers (llvmpipe) these measure the CPU doing the work, not a GPU.
   double classifyMs = -1.0;         // classification and clean-up
