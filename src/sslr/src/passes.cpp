@@ -47,9 +47,10 @@ void Context::Impl::buildPyramid(GLuint prog) const {
   }
 }
 
-// Auto's choice on a software renderer, from the last fed-back frame (without waiting: a frame
-// still in flight leaves the choice as it is). Hysteresis keeps a scene near the threshold from
-// switching every frame; the answers are the same either way.
+// The last fed-back frame's counts (without waiting: a frame still in flight leaves everything as
+// it is): whether it listed a tile (where level 1 is written), and Auto's choice on a software
+// renderer. Hysteresis keeps a scene near the threshold from switching every frame; the answers
+// are the same either way.
 void Context::Impl::readFeedback() {
   if (feedbackFence == nullptr) return;
   const GLenum r = gl.ClientWaitSync(feedbackFence, 0, 0);
@@ -190,7 +191,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   if (pyramid && feedbackBuffer == 0) {
     gl.CreateBuffers(1, &feedbackBuffer);
     gl.NamedBufferStorage(feedbackBuffer, 4 * sizeof(GLuint), nullptr, 0);
-    label(GL_BUFFER, feedbackBuffer, "sslr.traversalFeedback");
+    label(GL_BUFFER, feedbackBuffer, "sslr.feedback");
   }
   if ((retracePass || countTraversal) && retraceBuffer == 0) {
     gl.CreateBuffers(1, &retraceBuffer);
