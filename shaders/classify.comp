@@ -17,6 +17,10 @@
 // tile was listed. That copy is not in the classification itself: llvmpipe runs every
 // instruction of a shader under lane masks, taken branch or not, and the 24-word copy there made
 // classification 2.5x slower (measured).
+//
+// With SSLR_LEVEL1_PASS it writes level 1 alone, in a frame after one that listed no tile (whose
+// classification then skips it); with SSLR_CURVED_PASS it computes the level-1 cells of the quads
+// classification listed for their turning normals (curved solids, sslr_shared.h).
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
 
@@ -81,8 +85,8 @@ layout(binding = 0, rg32f) uniform writeonly image2D uLevel1;
 layout(binding = 1, rgba32ui) uniform writeonly uimage2D uCurvedExtra;  // sslrPackCurvedExtra
 
 void main() {
-  // The listed quads' level-1 cells with their solids, and their pixels' extra depths (over the
-  // plain cells and zeros classification wrote).
+  // The listed quads' level-1 cells with their solids (over the plain cells classification wrote),
+  // and their pixels' extra depths, stamped with the frame.
   if (gl_GlobalInvocationID.x >= curved.count) return;
   uint entry = curved.quads[gl_GlobalInvocationID.x];
   ivec2 cell = ivec2(int(entry & 0xffffu), int(entry >> 16));

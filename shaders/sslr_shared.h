@@ -86,7 +86,7 @@ using glm::sqrt;
 #define SSLR_BINDING_TILE_SSBO 0
 #define SSLR_BINDING_STATS_SSBO 1
 #define SSLR_BINDING_RETRACE_SSBO 2  // half resolution: pixels that trace their own ray
-#define SSLR_BINDING_CURVED_SSBO 2   // curved solids: the quads whose normals turn (classification only)
+#define SSLR_BINDING_CURVED_SSBO 2   // curved solids: the quads whose normals turn (classify.comp's passes)
 #define SSLR_RETRACE_GROUP 64        // invocations per group of the retrace pass
 
 // ---- Uniform block structs (std140: every member 4 bytes, every struct a multiple of 16) ----
@@ -430,7 +430,8 @@ SSLR_FN bool sslrShouldTrace(SslrSurface s, SslrTraceParams t, float depth, vec4
 }
 
 // ---- Min-max depth pyramid (hierarchical traversal) -----------------------------------------
-// Level l >= 1 holds, per 2^l x 2^l cell, the (min, max) of the raw window depth of its pixels;
+// Level l >= 1 holds, per 2^l x 2^l cell, the (min, max) of the raw window depth of its pixels
+// (with curved solids, the far end reaches the backs of their solids: "Curved solids" below);
 // level 0 is the depth buffer itself. Level l has ceil(size / 2^l) cells per axis, so cell c of
 // level l covers exactly pixels [c 2^l, (c + 1) 2^l) of the screen.
 
@@ -475,9 +476,11 @@ SSLR_FN float sslrDepthFromViewDepth(SslrProjection p, float dist) {
 // behind the pixel along the view ray (a: the view ray's angle to the normal). A mirror sphere of
 // radius 1 seen from 8 units is 2 deep at its centre, the default slab 0.6: rays that run into its
 // hidden side were let through to the wall behind (curved-mirror's false hits, docs/algorithm.md).
-// Flat faces (a box) keep the slab. Settings::curvedSolids (ultra); the GPU passes get it compiled
-// in (SSLR_CURVED_SOLIDS): on llvmpipe the extra work cost every traversal step (facing-mirror's
-// trace 1.6x) and classification 1.35x, whether a frame holds a curved surface or not.
+// Flat faces (a box) keep the slab. Settings::curvedSolids (default on); the GPU passes get it
+// compiled in (SSLR_CURVED_SOLIDS). Classification only lists the quads whose normals turn and a
+// pass of its own computes their cells: the math for every quad in classification cost it 4.0 ->
+// 5.9 ms on llvmpipe (960x540), and inside the traversal's loop 1.6x facing-mirror's trace
+// (llvmpipe runs a loop's code under lane masks, taken or not).
 SSLR_FN bool sslrCurvedSolids(SslrTraceParams t) {
 #ifdef SSLR_CURVED_SOLIDS
   return SSLR_CURVED_SOLIDS != 0;
@@ -491,8 +494,8 @@ SSLR_FN bool sslrCurvedSolids(SslrTraceParams t) {
 // point the same way (convex, within ~18 deg) and the normals turn by more than their encoding's
 // noise (8-bit xyz: ~0.5 deg per component) and less than an edge's ~20 deg; a step of more than
 // 8 footprints (footprintA: pixel A's) is a depth jump (a silhouette), not a surface. Squared
-// forms: classification runs this for every quad of the screen, and on a CPU rasterizer each
-// square root and division shows in its time.
+// forms: every listed quad runs this four times, and on a CPU rasterizer each square root and
+// division shows.
 SSLR_FN float sslrConvexRadius(SslrSurface s, vec3 vsA, vec3 vsNa, vec3 vsB, vec3 vsNb, float footprintA) {
 #ifdef SSLR_NORMAL_ENCODING
   const bool octahedral = SSLR_NORMAL_ENCODING == SSLR_NORMALS_OCTAHEDRAL;
@@ -564,11 +567,7 @@ SSLR_FN vec2 sslrHiZSolidTexel(SslrProjection p, SslrSurface s, float depth, vec
   return vec2(min(texel.x, back), max(texel.y, back));
 }
 
-// Level 1 of the pyramid, one cell from its 2x2 quad (pixel coordinates clamped to the screen,
-// their depth and packed normal texels): classify.comp on the GPU, the CPU tracer's pyramid and the
-// tests all build it here. With curved solids, `extra` receives the quad's pixels' extra depths
-// (sslrQuadCurvedExtraDepth), which classification stores for the traversal's pixels (one fetch
-// there: the quad's math inside the traversal's loop cost every step on llvmpipe, taken or not).
+// Level 1 of the pyramid without solids: the (min, max) of a quad's four depths.
 SSLR_FN vec2 sslrHiZLevel1Plain(SslrSurface s, vec4 depths) {
   return sslrHiZReduce(sslrHiZReduce(sslrHiZTexel(s, depths.x), sslrHiZTexel(s, depths.y)),
                        sslrHiZReduce(sslrHiZTexel(s, depths.z), sslrHiZTexel(s, depths.w)));
@@ -581,6 +580,11 @@ SSLR_FN bool sslrQuadNormalsTurn(vec4 n0, vec4 n1, vec4 n2, vec4 n3) {
   return n0 != n1 || n0 != n2 || n0 != n3;
 }
 
+// Level 1 of the pyramid, one cell from its 2x2 quad (pixel coordinates clamped to the screen,
+// their depth and packed normal texels): the curved pass on the GPU, the CPU tracer's pyramid and
+// the tests all build it here. With curved solids, `extra` receives the quad's pixels' extra
+// depths (sslrQuadCurvedExtraDepth), which the curved pass stores for the traversal's pixels (one
+// fetch there: the quad's math inside the traversal's loop cost every step on llvmpipe).
 SSLR_FN vec2 sslrHiZLevel1Cell(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 p0, ivec2 p1, ivec2 p2,
                                ivec2 p3, vec4 depths, vec4 n0, vec4 n1, vec4 n2, vec4 n3, SSLR_OUT(vec4) extra) {
   extra = vec4(0.0f);

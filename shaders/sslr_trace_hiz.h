@@ -130,11 +130,11 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
       level = sslrHiZNextLevel(o, d, tRay, cell, level, topLevel);
       continue;
     }
+    // A pixel on a curved surface reaches deeper than the slab (coarse cells' far keys hold it).
+    float extra = level == 0 && sslrCurvedSolids(t) ? sslrLoadCurvedExtra(ivec2(cell)) : 0.0f;
     // Behind everything the cell shows, deeper than any tolerance and than the objects' assumed
     // thickness: the ray passes behind what the cell shows. (The slope term of the tolerance is
     // unknown before a pixel is looked at: the largest one, tan = 16, is assumed.)
-    // A pixel on a curved surface reaches deeper than the slab (coarse cells' far keys hold it).
-    float extra = level == 0 && sslrCurvedSolids(t) ? sslrLoadCurvedExtra(ivec2(cell)) : 0.0f;
     float farDepth = keySign * keyFar;
     if (segNear > keyFar && sslrIsGeometryDepth(s, farDepth)) {
       float distFar = sslrViewDepthFromDepth(p, farDepth);

@@ -16,7 +16,8 @@ thread_local bool tStored = false;
 // tPyramid[l - 1] is level l, tPyramidWidth[l - 1] its cells per row.
 thread_local std::vector<std::vector<vec2>> tPyramid;
 thread_local std::vector<int> tPyramidWidth, tPyramidHeight;
-// Curved solids: per quad (level 1's cells), its pixels' extra depth, as classify.comp stores it.
+// Curved solids: per quad (level 1's cells), its pixels' extra depth, as classify.comp's curved
+// pass stores it (the same shared function; no frame stamp needed here).
 thread_local std::vector<vec4> tCurvedExtra;
 }  // namespace
 float sslrLoadDepth(ivec2 px) { return tG->depth->at(px.x, px.y, 0); }

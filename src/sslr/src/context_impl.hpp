@@ -49,7 +49,8 @@ struct Context::Impl {
   // every mip halves exactly: mip m has at least ceil(size / 2^(m+1)) cells per axis.
   GLuint hiz = 0;
   // Settings::curvedSolids: per level-1 cell (2x2 quad), its pixels' extra depth behind curved
-  // surfaces (classify.comp writes it with level 1; created on first use).
+  // surfaces, and the list of quads whose normals turn (classify.comp's curved pass writes the
+  // first from the second; both created on first use).
   GLuint curvedExtra = 0, curvedQuads = 0;
   // Half resolution: per 2x2 quad, its ray's hit and surfaces (created on first use).
   GLuint quadHit = 0, quadSurface = 0, retraceBuffer = 0;

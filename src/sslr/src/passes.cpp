@@ -133,7 +133,8 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   else traceDefines += deferDefine + (countTraversal ? "#define SSLR_COUNT_TRAVERSAL 1\n" : "");
   const bool retracePass = settings.halfResolution || deferTraversal;
   const bool quadRetracePass = settings.halfResolution && deferTraversal;
-  // With the pyramid, classification (which reads every depth anyway) writes its level 1.
+  // With the pyramid, classification (which reads every depth anyway) writes its level 1, unless
+  // the last frame listed no tile (then the level-1 pass does, if this frame lists one).
   auto classify =
       computeProgram("classify.comp", pyramid && !level1Pass ? "#define SSLR_CLASSIFY_LEVEL1 1\n" + curvedDefine : "");
   Expected<GLuint> level1Program = level1Pass
