@@ -282,6 +282,7 @@ struct App {
       ImGui::SliderInt("hierarchicalMaxSteps", &t.hierarchicalMaxSteps, 1, 256);
       ImGui::SliderFloat("objectThickness", &t.objectThickness, 0.0f, 0.5f);
       ImGui::Checkbox("outline thinning", &t.outlineThinning);
+      ImGui::Checkbox("curved solids", &t.curvedSolids);
       int pass = static_cast<int>(t.traversalPass);
       const char* passes[] = {"auto", "inline", "deferred"};
       if (ImGui::Combo("traversal pass", &pass, passes, 3)) t.traversalPass = static_cast<TraversalPass>(pass);
