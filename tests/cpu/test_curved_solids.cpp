@@ -112,6 +112,27 @@ TEST(CurvedSolids, NothingFromFlatConcaveNoisyOrSeparatedPixels) {
   EXPECT_EQ(sslrConvexRadius(s.surf, a, n, far, nFar, fp), 0.0f) << "depth jump";
 }
 
+// A quad is curved when both its rows (or both its columns) see the same radius: a single pair that
+// happens to look like a sphere (a normal map's turn) makes no solid.
+TEST(CurvedSolids, OnePairThatLooksCurvedMakesNoSolid) {
+  EXPECT_EQ(sslrAgreedRadius(1.0f, 1.5f), 1.0f);
+  EXPECT_EQ(sslrAgreedRadius(1.0f, 2.5f), 0.0f) << "disagree by more than 2x";
+  EXPECT_EQ(sslrAgreedRadius(1.0f, 0.0f), 0.0f) << "one row flat";
+  const Frame s = frameFor(DepthMode::Reversed, false);
+  // A flat quad facing the camera 5 units away, one footprint per pixel; its top row's normals
+  // turn as on a sphere of radius 0.5, its bottom row's do not.
+  const float fp = footprint(s, vec3(0.0f, 0.0f, -5.0f));
+  const vec3 p0(0.0f, 0.0f, -5.0f), p1(fp, 0.0f, -5.0f), p2(0.0f, -fp, -5.0f), p3(fp, -fp, -5.0f);
+  const vec3 n(0.0f, 0.0f, 1.0f), turned = normalize(n + vec3(fp / 0.5f, 0.0f, 0.0f));
+  const bvec4 ok(true);
+  const vec4 lonely = sslrQuadCurvedExtraDepth(s.proj, s.surf, s.trace, p0, p1, p2, p3, n, turned, n, n, ok);
+  EXPECT_EQ(lonely, vec4(0.0f));
+  // Both rows turning alike: a cylinder across the rows, solid behind every pixel of the quad.
+  const vec4 both = sslrQuadCurvedExtraDepth(s.proj, s.surf, s.trace, p0, p1, p2, p3, n, turned, n, turned, ok);
+  EXPECT_GT(both.x, 0.0f);
+  EXPECT_GT(both.w, 0.0f);
+}
+
 TEST(CurvedSolids, ExtraDepthIsTheChordBeyondTheSlab) {
   for (bool ortho : {false, true}) {
     const Frame s = frameFor(DepthMode::Reversed, ortho);
