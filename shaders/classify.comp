@@ -91,8 +91,8 @@ void main() {
   uint entry = curved.quads[gl_GlobalInvocationID.x];
   ivec2 cell = ivec2(int(entry & 0xffffu), int(entry >> 16));
   ivec2 last = ivec2(frame.surface.width, frame.surface.height) - 1;
-  ivec2 p0 = min(cell * 2, last), p1 = min(cell * 2 + ivec2(1, 0), last);
-  ivec2 p2 = min(cell * 2 + ivec2(0, 1), last), p3 = min(cell * 2 + ivec2(1, 1), last);
+  ivec2 p0 = sslrQuadPixel(cell, 0, last), p1 = sslrQuadPixel(cell, 1, last);
+  ivec2 p2 = sslrQuadPixel(cell, 2, last), p3 = sslrQuadPixel(cell, 3, last);
   vec4 depths = vec4(texelFetch(uDepth, p0, 0).r, texelFetch(uDepth, p1, 0).r, texelFetch(uDepth, p2, 0).r,
                      texelFetch(uDepth, p3, 0).r);
   vec4 extra;
@@ -115,7 +115,7 @@ void writeLevel1(ivec2 cell, ivec2 last, float d0, float d1, float d2, float d3,
   if (outside) level1 = sslrHiZEmpty();
   if (all(lessThan(cell, imageSize(uLevel1)))) {
     imageStore(uLevel1, cell, vec4(level1, 0.0f, 0.0f));
-#if SSLR_CURVED_SOLIDS
+#if defined(SSLR_CURVED_SOLIDS) && SSLR_CURVED_SOLIDS
     // Curved surfaces reach deeper than the slab (sslr_shared.h, "Curved solids"): a quad whose
     // normals turn is listed for the curved pass, which overwrites its cell with the solids' backs
     // and stores its pixels' extra depths (stamped with the frame: the others need no clearing).
@@ -139,8 +139,8 @@ void writeLevel1(ivec2 cell, ivec2 last, float d0, float d1, float d2, float d3,
 void main() {
   ivec2 cell = ivec2(gl_GlobalInvocationID.xy);
   ivec2 last = ivec2(frame.surface.width, frame.surface.height) - 1;
-  ivec2 p0 = min(cell * 2, last), p1 = min(cell * 2 + ivec2(1, 0), last);
-  ivec2 p2 = min(cell * 2 + ivec2(0, 1), last), p3 = min(cell * 2 + ivec2(1, 1), last);
+  ivec2 p0 = sslrQuadPixel(cell, 0, last), p1 = sslrQuadPixel(cell, 1, last);
+  ivec2 p2 = sslrQuadPixel(cell, 2, last), p3 = sslrQuadPixel(cell, 3, last);
   float d0 = texelFetch(uDepth, p0, 0).r, d1 = texelFetch(uDepth, p1, 0).r;
   float d2 = texelFetch(uDepth, p2, 0).r, d3 = texelFetch(uDepth, p3, 0).r;
   vec4 n0 = texelFetch(uNormal, p0, 0), n1 = texelFetch(uNormal, p1, 0);

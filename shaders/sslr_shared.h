@@ -541,10 +541,9 @@ SSLR_FN float sslrAgreedRadius(float a, float b) {
 // (sslrLoadCurvedExtra), so a cell's farthest key bounds what its pixels' solids reach.
 SSLR_FN vec4 sslrQuadCurvedExtraDepth(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vs0, vec3 vs1,
                                       vec3 vs2, vec3 vs3, vec3 n0, vec3 n1, vec3 n2, vec3 n3, bvec4 ok) {
-  // One footprint per quad, its farthest pixel's (sslrPixelFootprint with one division per quad;
-  // a pixel without geometry has vs = 0).
+  // One footprint per quad, its farthest pixel's (a pixel without geometry has vs = 0).
   float farthest = max(max(-vs0.z, -vs1.z), max(-vs2.z, -vs3.z));
-  float footprint = 2.0f * (p.orthographic != 0 ? 1.0f : max(farthest, 0.0f)) / (abs(p.yScale) * s.height);
+  float footprint = sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : max(farthest, 0.0f));
   float r01 = ok.x && ok.y ? sslrConvexRadius(s, vs0, n0, vs1, n1, footprint) : 0.0f;
   float r23 = ok.z && ok.w ? sslrConvexRadius(s, vs2, n2, vs3, n3, footprint) : 0.0f;
   float r02 = ok.x && ok.z ? sslrConvexRadius(s, vs0, n0, vs2, n2, footprint) : 0.0f;
@@ -575,6 +574,13 @@ SSLR_FN vec2 sslrHiZSolidTexel(SslrProjection p, SslrSurface s, float depth, vec
   if (!(extra > 0.0f) || !sslrIsGeometryDepth(s, depth)) return texel;
   float back = clamp(sslrDepthFromViewDepth(p, -vsPos.z + extra), 0.0f, 1.0f);
   return vec2(min(texel.x, back), max(texel.y, back));
+}
+
+// Pixel k (0: (0,0), 1: (1,0), 2: (0,1), 3: (1,1)) of level-1 cell `cell`'s 2x2 quad, clamped to
+// the screen (`last`: the last pixel): a quad straddling the edge repeats one of its own pixels,
+// neutral for the min-max and flat for the curvature.
+SSLR_FN ivec2 sslrQuadPixel(ivec2 cell, int k, ivec2 last) {
+  return min(cell * 2 + ivec2(k & 1, k >> 1), last);
 }
 
 // Level 1 of the pyramid without solids: the (min, max) of a quad's four depths.

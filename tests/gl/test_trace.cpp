@@ -750,8 +750,9 @@ TEST_P(DepthPyramid, EveryLevelIsTheMinMaxOfItsChildren) {
         const glm::vec2 g = gpuLevel[static_cast<size_t>(y) * w + x];
         if (level == 1 && x < (width + 1) / 2 && y < (height + 1) / 2) {
           const glm::ivec2 last(width - 1, height - 1);
-          const glm::ivec2 q0 = glm::min(glm::ivec2(2 * x, 2 * y), last), q1 = glm::min(q0 + glm::ivec2(1, 0), last);
-          const glm::ivec2 q2 = glm::min(q0 + glm::ivec2(0, 1), last), q3 = glm::min(q0 + glm::ivec2(1, 1), last);
+          const glm::ivec2 cell(x, y);
+          const glm::ivec2 q0 = shared::sslrQuadPixel(cell, 0, last), q1 = shared::sslrQuadPixel(cell, 1, last);
+          const glm::ivec2 q2 = shared::sslrQuadPixel(cell, 2, last), q3 = shared::sslrQuadPixel(cell, 3, last);
           glm::vec4 extra;
           const glm::vec2 solid = shared::sslrHiZLevel1Cell(
               frame.value().proj, frame.value().surface, frame.value().trace, q0, q1, q2, q3,

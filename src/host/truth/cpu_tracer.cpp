@@ -90,9 +90,9 @@ Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& set
       for (int cx = 0; cx < pw; ++cx) {
         vec2 m = sslrHiZEmpty();
         if (level == 1) {  // classification's level 1 (with the curved solids' backs)
-          const ivec2 last(w - 1, h - 1);
-          const ivec2 q0 = glm::min(ivec2(2 * cx, 2 * cy), last), q1 = glm::min(ivec2(2 * cx + 1, 2 * cy), last);
-          const ivec2 q2 = glm::min(ivec2(2 * cx, 2 * cy + 1), last), q3 = glm::min(ivec2(2 * cx + 1, 2 * cy + 1), last);
+          const ivec2 cell(cx, cy), last(w - 1, h - 1);
+          const ivec2 q0 = sslrQuadPixel(cell, 0, last), q1 = sslrQuadPixel(cell, 1, last);
+          const ivec2 q2 = sslrQuadPixel(cell, 2, last), q3 = sslrQuadPixel(cell, 3, last);
           m = sslrHiZLevel1Cell(proj, surf, t, q0, q1, q2, q3,
                                 vec4(sslrLoadDepth(q0), sslrLoadDepth(q1), sslrLoadDepth(q2), sslrLoadDepth(q3)),
                                 sslrLoadNormal(q0), sslrLoadNormal(q1), sslrLoadNormal(q2), sslrLoadNormal(q3),

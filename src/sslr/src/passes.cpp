@@ -91,9 +91,10 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   // run under lane masks (the verification's second inlined traversal made every trace ~12%
   // slower on llvmpipe while switched off).
   std::string methodDefines = "#define SSLR_HIZ_MODE " + std::to_string(constants.value().trace.hizMode) + "\n";
+  // frameConstants decided whether the trace uses the traversal; the pyramid follows it.
+  const bool pyramid = constants.value().trace.hizMode != SSLR_HIZ_OFF;
   // The curved solids (sslr_shared.h) likewise: their work is in every traversal step.
-  const bool curvedSolids =
-      constants.value().trace.hizMode != SSLR_HIZ_OFF && constants.value().trace.curvedSolids != 0;
+  const bool curvedSolids = pyramid && constants.value().trace.curvedSolids != 0;
   const std::string curvedDefine = std::string("#define SSLR_CURVED_SOLIDS ") + (curvedSolids ? "1\n" : "0\n");
   methodDefines += curvedDefine;
   if (settings.method == Method::PositionBuffer) methodDefines += "#define SSLR_METHOD_POSITION_BUFFER 1\n";
@@ -102,13 +103,11 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   std::string traceDefines = methodDefines + statsDefine;
   if (settings.debugOutputs) traceDefines += "#define SSLR_DEBUG_OUTPUTS 1\n";
   if (settings.temporal) traceDefines += "#define SSLR_TEMPORAL_HITS 1\n";
-  // frameConstants decided whether the trace uses the traversal; the pyramid follows it.
-  const bool pyramid = constants.value().trace.hizMode != SSLR_HIZ_OFF;
   // The traversal in a pass of its own (trace.comp, SSLR_DEFER_TRAVERSAL): the pixels (or, at half
   // resolution, the quads) that need it are listed for a retrace pass.
   // Auto defers it on software renderers, unless most pixels needed it last frame (then it runs
   // inline: the pass of its own costs more than it saves, measured); at half resolution it stays
-  // deferred. The share is fed back from each such frame (readTraversalFeedback).
+  // deferred. The share is fed back from each such frame (readFeedback).
   const bool adaptiveWithTraversal = settings.method == Method::AdaptiveL && pyramid;
   const bool autoSoftware =
       adaptiveWithTraversal && settings.traversalPass == TraversalPass::Auto && softwareRenderer;
