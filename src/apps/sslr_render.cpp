@@ -189,7 +189,7 @@ int run(int argc, char** argv) {
       ("frames", "render the same view N times; with --stats the pass times are the median of frames 2..N "
                  "(the first compiles shaders)", cxxopts::value<int>()->default_value("1"))
       ("temporal", "temporal reuse (Settings::temporal) from the second frame on")
-      ("score", "score the traced hits against Embree ground truth (recall, error, false hits), print them and write DIR/error.png")
+      ("score", "score the traced hits against Embree ground truth (recall, error, false hits), print them and write DIR/error.png (and DIR/truth.exr with --dump)")
       ("h,help", "show this help");
   cxxopts::ParseResult args;
   try {
@@ -355,6 +355,7 @@ int run(int argc, char** argv) {
     const Image hit = r.readHit();
     score = compareHits(truth.value(), hit, kReportedConfidence, &color);
     files.push_back({"error.png", {hitErrorImage(truth.value(), hit), {}}});
+    if (dump) files.push_back({"truth.exr", {truthImage(truth.value()), {"R", "G", "B", "A"}}});
   }
   if (gl.value()->glErrorCount() > 0) {
     std::cerr << "sslr-render: " << gl.value()->glErrorCount() << " GL error(s) were reported; no output written\n";

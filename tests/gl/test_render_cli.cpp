@@ -7,6 +7,7 @@
 #include "common/gltf_writer.hpp"
 #include "common/shell.hpp"
 #include "gl/gl_fixture.hpp"
+#include "sslr_host/ground_truth.hpp"
 #include "sslr_host/image_io.hpp"
 
 namespace fs = std::filesystem;
@@ -155,6 +156,43 @@ TEST_F(RenderCli, ScoreAndHierarchicalMethod) {
   EXPECT_NE(r.output.find("recall@1px"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("hierarchical traversal on"), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(out / "error.png"));
+}
+
+// --score --dump writes the truth beside hit.exr; recomputing the recall from the two files must
+// give the printed one (the files are what a user inspects a score with).
+TEST_F(RenderCli, ScoreWithDumpWritesTheTruthTheRecallComesFrom) {
+  const fs::path out = freshDir("score-dump");
+  const Result r = run("--size 96x54 --scene mirror-walls --score --dump --out " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  auto truth = sslr::host::readImage((out / "truth.exr").string());
+  auto hit = sslr::host::readImage((out / "hit.exr").string());
+  ASSERT_TRUE(truth) << truth.error();
+  ASSERT_TRUE(hit) << hit.error();
+  ASSERT_EQ(truth.value().channels, 4);
+  ASSERT_EQ(truth.value().width, 96);
+  ASSERT_EQ(truth.value().height, 54);
+  size_t visible = 0, found = 0;
+  for (int y = 0; y < 54; ++y)
+    for (int x = 0; x < 96; ++x) {
+      const float cls = truth.value().at(x, y, 2);
+      ASSERT_TRUE(cls == 0.0f || cls == 1.0f || cls == 2.0f || cls == 3.0f || cls == 4.0f) << cls;
+      ASSERT_TRUE(truth.value().at(x, y, 3) == 0.0f || truth.value().at(x, y, 3) == 1.0f);
+      if (cls != 1.0f) continue;
+      ++visible;
+      const glm::vec2 errPx = (glm::vec2(hit.value().at(x, y, 0), hit.value().at(x, y, 1)) -
+                               glm::vec2(truth.value().at(x, y, 0), truth.value().at(x, y, 1))) *
+                              glm::vec2(96.0f, 54.0f);
+      if (hit.value().at(x, y, 2) > sslr::host::kReportedConfidence && glm::length(errPx) <= 1.0f) ++found;
+    }
+  ASSERT_GT(visible, 100u);
+  const size_t at = r.output.find("recall@1px ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const double printed = std::stod(r.output.substr(at + 11));
+  EXPECT_NEAR(double(found) / double(visible), printed, 1e-4) << r.output;
+  // Without --dump, no truth file.
+  const fs::path plain = freshDir("score-only");
+  ASSERT_EQ(run("--size 48x32 --scene mirror-walls --score --out " + plain.string()).exitCode, 0);
+  EXPECT_FALSE(fs::exists(plain / "truth.exr"));
 }
 
 TEST_F(RenderCli, EveryBuiltinSceneAndDepthConventionRenders) {

@@ -318,4 +318,17 @@ Image hitErrorImage(const GroundTruth& gt, const Image& hit) {
   return img;
 }
 
+Image truthImage(const GroundTruth& gt) {
+  Image img{gt.width, gt.height, 4, std::vector<float>(static_cast<size_t>(gt.width) * gt.height * 4, 0.0f)};
+  for (int y = 0; y < gt.height; ++y)
+    for (int x = 0; x < gt.width; ++x) {
+      const TruthPixel& t = gt.pixels[static_cast<size_t>(y) * gt.width + x];
+      img.at(x, y, 0) = t.uvHit.x;
+      img.at(x, y, 1) = t.uvHit.y;
+      img.at(x, y, 2) = static_cast<float>(t.cls);
+      img.at(x, y, 3) = t.shown ? 1.0f : 0.0f;
+    }
+  return img;
+}
+
 }  // namespace sslr::host

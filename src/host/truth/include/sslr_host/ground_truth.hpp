@@ -99,6 +99,11 @@ struct HitMetrics {
 // magenta = visible (A) but missed; white = a false hit (B, C or D reported).
 Image hitErrorImage(const GroundTruth& truth, const Image& hit);
 
+// The truth per pixel, to inspect beside hit.exr: R, G = the true hit's uv (classes A and B),
+// B = the class (TruthClass: 0 not reflective, 1 A, 2 B, 3 C, 4 D), A = 1 where the hit is shown
+// (TruthPixel::shown).
+Image truthImage(const GroundTruth& truth);
+
 // `color` (optional) enables the reflection RMSE / PSNR.
 HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float confidenceThreshold = kReportedConfidence,
                        const Image* color = nullptr);

@@ -1,0 +1,200 @@
+// The traversal's corner hit (sslr_trace_hiz.h, sslrCornerHit) on a synthetic depth buffer: a box
+// whose front face ends at a pixel boundary, seen against a far wall. A ray from the right that
+// crosses the outline a little behind the front face meets the box's side there, exactly where a
+// right-angled corner puts it. Every condition of the rule has a case that must refuse the hit:
+// a hidden side, a hit the outer pixel would have shown, a hit deeper than the slab, no outline,
+// and a ray leaving the side. Its own executable: it defines the loaders the tracer headers call,
+// which sslr_host also defines for its CPU run.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "projection.hpp"
+#include "sslr_host/camera.hpp"
+#include "sslr_shared.h"
+
+namespace sslr::shared {
+namespace {
+constexpr int kWidth = 320, kHeight = 180;
+constexpr float kFrontZ = -10.0f, kWallZ = -50.0f;
+
+SslrProjection gProj{};
+SslrSurface gSurf{};
+// The box's front face covers window x < gEdgePx (boxOnLeft) or x >= gEdgePx (the box to the right
+// of its edge), at view depth 10; the far wall covers the rest.
+float gEdgePx = 130.0f;
+bool gBoxOnLeft = true;
+
+bool showsBox(ivec2 px) {
+  const float xc = float(px.x) + 0.5f;
+  return gBoxOnLeft ? xc < gEdgePx : xc >= gEdgePx;
+}
+float viewZAt(ivec2 px) { return showsBox(px) ? kFrontZ : kWallZ; }
+}  // namespace
+
+// The window depth a pixel's surface writes (the inverse of the reconstruction).
+float sslrLoadDepth(ivec2 px) { return sslrDepthFromViewDepth(gProj, -viewZAt(px)); }
+vec4 sslrLoadNormal(ivec2 px) {
+  (void)px;
+  const vec2 e = sslrOctEncode(vec3(0.0f, 0.0f, 1.0f));  // both surfaces face the camera
+  return vec4(e.x, e.y, 0.0f, 0.0f);
+}
+bool sslrLoadSurface(ivec2 px, vec3& vsPos) { return sslrSurfaceFromDepth(gProj, gSurf, px, sslrLoadDepth(px), vsPos); }
+vec2 sslrLoadDepthMinMax(int level, ivec2 cell) {
+  (void)level;
+  return sslrHiZTexel(gSurf, sslrLoadDepth(cell));
+}
+float sslrLoadCurvedExtra(ivec2 px) {
+  (void)px;
+  return 0.0f;
+}
+}  // namespace sslr::shared
+
+#include "sslr_trace_hiz.h"
+
+using namespace sslr;
+using namespace sslr::shared;
+
+namespace {
+
+class CornerHit : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    host::Camera cam;
+    cam.nearPlane = 0.1;
+    cam.farPlane = 1000.0;
+    auto reduced = sslr::detail::reduceProjection(cam.clipFromView(host::DepthMode::Reversed, double(kWidth) / kHeight),
+                                                  depthConvention(host::DepthMode::Reversed));
+    ASSERT_TRUE(reduced) << reduced.error();
+    gProj = reduced.value();
+    gSurf = SslrSurface{};
+    gSurf.normalEncoding = SSLR_NORMALS_OCTAHEDRAL;
+    gSurf.width = kWidth;
+    gSurf.height = kHeight;
+    gSurf.reversedZ = 1;
+    gEdgePx = 130.0f;
+    gBoxOnLeft = true;
+  }
+
+  // The view point at window (x, y) on the plane z = viewZ.
+  static vec3 viewAt(float x, float y, float viewZ) {
+    const vec3 onRay = sslrViewFromUvDepth(gProj, vec2(x / kWidth, y / kHeight), 0.5f);
+    return onRay * (viewZ / onRay.z);
+  }
+
+  // Where a ray from vsP along vsR crosses window x = xPx (bisection on the ray's length).
+  static vec3 windowCrossing(vec3 vsP, vec3 vsR, float xPx) {
+    float lo = 0.0f, hi = 100.0f;
+    const float sideP = sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP).x - xPx;
+    for (int i = 0; i < 80; ++i) {
+      const float mid = 0.5f * (lo + hi);
+      const float side = sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP + vsR * mid).x - xPx;
+      ((side > 0.0f) == (sideP > 0.0f) ? lo : hi) = mid;
+    }
+    return sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP + vsR * hi);
+  }
+
+  // The corner rule for a ray aimed at `vsTarget` from `vsP`, entering the box's outline pixel
+  // (the box's last pixel column before the edge) through the edge.
+  // `slab`: the assumed depth of what the screen shows, in view units at the box's distance 10.
+  static bool corner(vec3 vsP, vec3 vsTarget, float slab, float& L) {
+    const vec3 vsR = normalize(vsTarget - vsP);
+    vec3 wEntry = windowCrossing(vsP, vsR, gEdgePx);
+    const vec3 wP = sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP);
+    vec3 d = wEntry - wP;
+    d /= std::max(std::abs(d.x), std::abs(d.y));
+    // Just inside the pixel, as the traversal's nudge leaves it.
+    wEntry += d * (1.0f / 256.0f);
+    EXPECT_EQ(int(std::floor(wEntry.x)), gBoxOnLeft ? int(gEdgePx) - 1 : int(gEdgePx)) << "the box's outline pixel";
+    return sslrCornerHit(gProj, gSurf, params(slab), wEntry, d, vsP, vsR, L);
+  }
+
+  static SslrTraceParams params(float slab) {
+    SslrTraceParams t{};
+    t.objectThickness = slab / -kFrontZ;
+    return t;
+  }
+};
+
+TEST_F(CornerHit, MeetsTheSideOfABoxWhereARightAngledCornerPutsIt) {
+  // The side x = edge, 0.1 behind the front face: 30 px left of the centre it projects 0.29 px
+  // outside the outline, before the outer pixel's centre. The ray comes from the right, towards
+  // the side, going away from the camera.
+  const vec3 vsEdge = viewAt(gEdgePx, 90.5f, kFrontZ);
+  const vec3 vsQ = vec3(vsEdge.x, vsEdge.y, kFrontZ - 0.1f);
+  const vec3 vsP = vsQ + vec3(4.0f, 0.3f, 1.5f);
+  float L = 0.0f;
+  ASSERT_TRUE(corner(vsP, vsQ, 0.75f, L));
+  // The rule's edge is the pixel boundary on the front plane: here the true edge (float rounding
+  // of the unprojection: 1e-4 relative).
+  EXPECT_NEAR(L, length(vsQ - vsP), 1e-4f * length(vsQ - vsP));
+}
+
+TEST_F(CornerHit, RefusesAHiddenSide) {
+  // The box lies to the right of its edge, left of the screen centre: its left side faces away.
+  gBoxOnLeft = false;
+  const vec3 vsEdge = viewAt(gEdgePx, 90.5f, kFrontZ);
+  const vec3 vsQ = vec3(vsEdge.x, vsEdge.y, kFrontZ - 0.1f);
+  float L = 0.0f;
+  EXPECT_FALSE(corner(vsQ + vec3(-4.0f, 0.3f, 1.5f), vsQ, 0.75f, L));
+}
+
+TEST_F(CornerHit, RefusesAHitTheOuterPixelWouldShow) {
+  // 0.5 behind the front face the side projects ~1.5 px outside the outline: past the outer
+  // pixel's centre, which shows the wall, so the side cannot reach that deep there.
+  const vec3 vsEdge = viewAt(gEdgePx, 90.5f, kFrontZ);
+  const vec3 vsQ = vec3(vsEdge.x, vsEdge.y, kFrontZ - 0.5f);
+  float L = 0.0f;
+  EXPECT_FALSE(corner(vsQ + vec3(4.0f, 0.3f, 1.5f), vsQ, 0.75f, L));
+}
+
+TEST_F(CornerHit, RefusesAHitDeeperThanTheSlab) {
+  const vec3 vsEdge = viewAt(gEdgePx, 90.5f, kFrontZ);
+  const vec3 vsQ = vec3(vsEdge.x, vsEdge.y, kFrontZ - 0.1f);
+  float L = 0.0f;
+  EXPECT_FALSE(corner(vsQ + vec3(4.0f, 0.3f, 1.5f), vsQ, 0.05f, L));
+  EXPECT_TRUE(corner(vsQ + vec3(4.0f, 0.3f, 1.5f), vsQ, 0.15f, L));
+}
+
+TEST_F(CornerHit, RefusesWithoutAnOutline) {
+  // The outer pixel shows the box too (its edge moved two pixels right): no outline to cross.
+  const vec3 vsEdge = viewAt(gEdgePx, 90.5f, kFrontZ);
+  const vec3 vsQ = vec3(vsEdge.x, vsEdge.y, kFrontZ - 0.1f);
+  const vec3 vsP = vsQ + vec3(4.0f, 0.3f, 1.5f);
+  gEdgePx = 132.0f;
+  const vec3 vsR = normalize(vsQ - vsP);
+  vec3 wEntry = windowCrossing(vsP, vsR, 130.0f);
+  const vec3 wP = sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP);
+  vec3 d = wEntry - wP;
+  d /= std::max(std::abs(d.x), std::abs(d.y));
+  wEntry += d * (1.0f / 256.0f);
+  ASSERT_EQ(int(std::floor(wEntry.x)), 129);
+  float L = 0.0f;
+  EXPECT_FALSE(sslrCornerHit(gProj, gSurf, params(0.75f), wEntry, d, vsP, vsR, L));
+}
+
+TEST_F(CornerHit, RefusesARayThatDidNotEnterThroughTheOutline) {
+  // Moved on inside the pixel (as after descending to where the ray reaches the cell's depth).
+  const vec3 vsEdge = viewAt(gEdgePx, 90.5f, kFrontZ);
+  const vec3 vsQ = vec3(vsEdge.x, vsEdge.y, kFrontZ - 0.1f);
+  const vec3 vsP = vsQ + vec3(4.0f, 0.3f, 1.5f);
+  const vec3 vsR = normalize(vsQ - vsP);
+  vec3 wEntry = windowCrossing(vsP, vsR, gEdgePx - 0.5f);
+  const vec3 wP = sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP);
+  vec3 d = wEntry - wP;
+  d /= std::max(std::abs(d.x), std::abs(d.y));
+  ASSERT_EQ(int(std::floor(wEntry.x)), int(gEdgePx) - 1);
+  float L = 0.0f;
+  EXPECT_FALSE(sslrCornerHit(gProj, gSurf, params(0.75f), wEntry, d, vsP, vsR, L));
+}
+
+TEST_F(CornerHit, RefusesASideSeenNearlyEdgeOn) {
+  // 2 px left of the centre the side is within ~1 degree of the view ray.
+  gEdgePx = 158.0f;
+  const vec3 vsEdge = viewAt(gEdgePx, 90.5f, kFrontZ);
+  const vec3 vsQ = vec3(vsEdge.x, vsEdge.y, kFrontZ - 0.1f);
+  float L = 0.0f;
+  EXPECT_FALSE(corner(vsQ + vec3(4.0f, 0.3f, 1.5f), vsQ, 0.75f, L));
+}
+
+}  // namespace
