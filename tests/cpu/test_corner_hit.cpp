@@ -2,11 +2,12 @@
 // whose front face ends at a pixel boundary, seen against a far wall. A ray from the right that
 // crosses the outline a little behind the front face meets the box's side there, exactly where a
 // right-angled corner puts it. Every condition of the rule has a case that must refuse the hit:
-// a hidden side, a hit the outer pixel would have shown, a hit deeper than the slab, no outline,
-// and a ray leaving the side. Its own executable: it defines the loaders the tracer headers call,
-// which sslr_host also defines for its CPU run.
+// a hidden side, a side seen nearly edge-on, a hit the outer pixel would have shown, a hit deeper
+// than the slab, no outline, and a ray that did not cross the outline there. Its own executable:
+// it defines the loaders the tracer headers call, which sslr_host also defines for its CPU run.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "projection.hpp"
@@ -94,19 +95,26 @@ class CornerHit : public ::testing::Test {
     return sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP + vsR * hi);
   }
 
+  // Where the ray crosses window x = xPx, moved on by `nudge` pixels as the traversal's nudge
+  // leaves it, and its window-space direction (major axis 1), as the traversal's loop holds them.
+  struct Entry {
+    vec3 wEntry, d;
+  };
+  static Entry entryAt(vec3 vsP, vec3 vsR, float xPx, float nudge) {
+    const vec3 wCross = windowCrossing(vsP, vsR, xPx);
+    vec3 d = wCross - sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP);
+    d /= std::max(std::abs(d.x), std::abs(d.y));
+    return {wCross + d * nudge, d};
+  }
+
   // The corner rule for a ray aimed at `vsTarget` from `vsP`, entering the box's outline pixel
   // (the box's last pixel column before the edge) through the edge.
   // `slab`: the assumed depth of what the screen shows, in view units at the box's distance 10.
   static bool corner(vec3 vsP, vec3 vsTarget, float slab, float& L) {
     const vec3 vsR = normalize(vsTarget - vsP);
-    vec3 wEntry = windowCrossing(vsP, vsR, gEdgePx);
-    const vec3 wP = sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP);
-    vec3 d = wEntry - wP;
-    d /= std::max(std::abs(d.x), std::abs(d.y));
-    // Just inside the pixel, as the traversal's nudge leaves it.
-    wEntry += d * (1.0f / 256.0f);
-    EXPECT_EQ(int(std::floor(wEntry.x)), gBoxOnLeft ? int(gEdgePx) - 1 : int(gEdgePx)) << "the box's outline pixel";
-    return sslrCornerHit(gProj, gSurf, params(slab), wEntry, d, vsP, vsR, L);
+    const Entry e = entryAt(vsP, vsR, gEdgePx, 1.0f / 256.0f);
+    EXPECT_EQ(int(std::floor(e.wEntry.x)), gBoxOnLeft ? int(gEdgePx) - 1 : int(gEdgePx)) << "the box's outline pixel";
+    return sslrCornerHit(gProj, gSurf, params(slab), e.wEntry, e.d, vsP, vsR, L);
   }
 
   static SslrTraceParams params(float slab) {
@@ -163,14 +171,10 @@ TEST_F(CornerHit, RefusesWithoutAnOutline) {
   const vec3 vsP = vsQ + vec3(4.0f, 0.3f, 1.5f);
   gEdgePx = 132.0f;
   const vec3 vsR = normalize(vsQ - vsP);
-  vec3 wEntry = windowCrossing(vsP, vsR, 130.0f);
-  const vec3 wP = sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP);
-  vec3 d = wEntry - wP;
-  d /= std::max(std::abs(d.x), std::abs(d.y));
-  wEntry += d * (1.0f / 256.0f);
-  ASSERT_EQ(int(std::floor(wEntry.x)), 129);
+  const Entry e = entryAt(vsP, vsR, 130.0f, 1.0f / 256.0f);
+  ASSERT_EQ(int(std::floor(e.wEntry.x)), 129);
   float L = 0.0f;
-  EXPECT_FALSE(sslrCornerHit(gProj, gSurf, params(0.75f), wEntry, d, vsP, vsR, L));
+  EXPECT_FALSE(sslrCornerHit(gProj, gSurf, params(0.75f), e.wEntry, e.d, vsP, vsR, L));
 }
 
 TEST_F(CornerHit, RefusesARayThatDidNotEnterThroughTheOutline) {
@@ -179,13 +183,10 @@ TEST_F(CornerHit, RefusesARayThatDidNotEnterThroughTheOutline) {
   const vec3 vsQ = vec3(vsEdge.x, vsEdge.y, kFrontZ - 0.1f);
   const vec3 vsP = vsQ + vec3(4.0f, 0.3f, 1.5f);
   const vec3 vsR = normalize(vsQ - vsP);
-  vec3 wEntry = windowCrossing(vsP, vsR, gEdgePx - 0.5f);
-  const vec3 wP = sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP);
-  vec3 d = wEntry - wP;
-  d /= std::max(std::abs(d.x), std::abs(d.y));
-  ASSERT_EQ(int(std::floor(wEntry.x)), int(gEdgePx) - 1);
+  const Entry e = entryAt(vsP, vsR, gEdgePx - 0.5f, 0.0f);
+  ASSERT_EQ(int(std::floor(e.wEntry.x)), int(gEdgePx) - 1);
   float L = 0.0f;
-  EXPECT_FALSE(sslrCornerHit(gProj, gSurf, params(0.75f), wEntry, d, vsP, vsR, L));
+  EXPECT_FALSE(sslrCornerHit(gProj, gSurf, params(0.75f), e.wEntry, e.d, vsP, vsR, L));
 }
 
 TEST_F(CornerHit, RefusesASideSeenNearlyEdgeOn) {

@@ -608,8 +608,10 @@ INSTANTIATE_TEST_SUITE_P(
     // the boxes' hidden backs (docs/algorithm.md, "What the traversal cannot know").
     ::testing::Values(RobustCase{"facing-mirror", Method::AdaptiveL, 0.87, 0.13},
                       RobustCase{"facing-mirror", Method::HierarchicalDepth, 0.87, 0.13},
-                      RobustCase{"mirror-walls", Method::AdaptiveL, 0.92, 0.06},
-                      RobustCase{"mirror-walls", Method::HierarchicalDepth, 0.90, 0.06},
+                      // 0.965 and 0.954 measured; 0.950 and 0.935 without the traversal's hit on
+                      // sides narrower than a pixel (sslrCornerHit), which these floors hold.
+                      RobustCase{"mirror-walls", Method::AdaptiveL, 0.955, 0.06},
+                      RobustCase{"mirror-walls", Method::HierarchicalDepth, 0.945, 0.06},
                       RobustCase{"curved-mirror", Method::AdaptiveL, 0.96, 0.012},
                       RobustCase{"curved-mirror", Method::HierarchicalDepth, 0.96, 0.012},
                       RobustCase{"glossy", Method::AdaptiveL, 0.94, 0.01},
