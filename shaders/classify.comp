@@ -39,6 +39,30 @@ layout(std430, binding = SSLR_BINDING_CURVED_SSBO) buffer SslrCurvedQuads {
 } curved;
 #endif
 
+// A 2x2 quad of the G-buffer (level 1's cell `cell`): its pixels clamped to the screen
+// (sslrQuadPixel), their depths and packed normal texels. Straight-line code (a loop with
+// per-pixel branches ran 2x slower on llvmpipe).
+struct SslrQuad {
+  ivec2 p0, p1, p2, p3;
+  vec4 depths;
+  vec4 n0, n1, n2, n3;
+};
+SslrQuad sslrLoadQuad(ivec2 cell) {
+  ivec2 last = ivec2(frame.surface.width, frame.surface.height) - 1;
+  SslrQuad q;
+  q.p0 = sslrQuadPixel(cell, 0, last);
+  q.p1 = sslrQuadPixel(cell, 1, last);
+  q.p2 = sslrQuadPixel(cell, 2, last);
+  q.p3 = sslrQuadPixel(cell, 3, last);
+  q.depths = vec4(texelFetch(uDepth, q.p0, 0).r, texelFetch(uDepth, q.p1, 0).r, texelFetch(uDepth, q.p2, 0).r,
+                  texelFetch(uDepth, q.p3, 0).r);
+  q.n0 = texelFetch(uNormal, q.p0, 0);
+  q.n1 = texelFetch(uNormal, q.p1, 0);
+  q.n2 = texelFetch(uNormal, q.p2, 0);
+  q.n3 = texelFetch(uNormal, q.p3, 0);
+  return q;
+}
+
 #if defined(SSLR_CURVED_PASS)
 layout(local_size_x = 64) in;
 #elif defined(SSLR_CLEANUP) || defined(SSLR_PYRAMID_ARGS) || defined(SSLR_LEVEL1_PASS)
@@ -90,15 +114,10 @@ void main() {
   if (gl_GlobalInvocationID.x >= curved.count) return;
   uint entry = curved.quads[gl_GlobalInvocationID.x];
   ivec2 cell = ivec2(int(entry & 0xffffu), int(entry >> 16));
-  ivec2 last = ivec2(frame.surface.width, frame.surface.height) - 1;
-  ivec2 p0 = sslrQuadPixel(cell, 0, last), p1 = sslrQuadPixel(cell, 1, last);
-  ivec2 p2 = sslrQuadPixel(cell, 2, last), p3 = sslrQuadPixel(cell, 3, last);
-  vec4 depths = vec4(texelFetch(uDepth, p0, 0).r, texelFetch(uDepth, p1, 0).r, texelFetch(uDepth, p2, 0).r,
-                     texelFetch(uDepth, p3, 0).r);
+  SslrQuad q = sslrLoadQuad(cell);
   vec4 extra;
-  vec2 level1 = sslrHiZLevel1Cell(frame.proj, frame.surface, frame.trace, p0, p1, p2, p3, depths,
-                                  texelFetch(uNormal, p0, 0), texelFetch(uNormal, p1, 0), texelFetch(uNormal, p2, 0),
-                                  texelFetch(uNormal, p3, 0), extra);
+  vec2 level1 = sslrHiZLevel1Cell(frame.proj, frame.surface, frame.trace, q.p0, q.p1, q.p2, q.p3, q.depths, q.n0, q.n1,
+                                  q.n2, q.n3, extra);
   imageStore(uLevel1, cell, vec4(level1, 0.0f, 0.0f));
   imageStore(uCurvedExtra, cell, sslrPackCurvedExtra(extra, frame.trace.frameIndex));
 }
@@ -106,12 +125,12 @@ void main() {
 #if defined(SSLR_CLASSIFY_LEVEL1) || defined(SSLR_LEVEL1_PASS)
 layout(binding = 0, rg32f) uniform writeonly image2D uLevel1;  // the pyramid's level 1 (mip 0)
 
-// Level 1's cell of a quad (clamped pixel coordinates p0..p3, their depths and normal texels).
-void writeLevel1(ivec2 cell, ivec2 last, float d0, float d1, float d2, float d3, vec4 n0, vec4 n1, vec4 n2, vec4 n3) {
+// Level 1's cell of quad q (cell `cell`).
+void writeLevel1(ivec2 cell, SslrQuad q) {
   // A clamped coordinate repeats a pixel of the same quad when the quad straddles the screen's
   // edge (neutral for the min-max, harmless for the flag); a quad wholly outside is empty.
-  vec2 level1 = sslrHiZLevel1Plain(frame.surface, vec4(d0, d1, d2, d3));
-  bool outside = any(greaterThan(cell * 2, last));
+  vec2 level1 = sslrHiZLevel1Plain(frame.surface, q.depths);
+  bool outside = any(greaterThan(cell * 2, ivec2(frame.surface.width, frame.surface.height) - 1));
   if (outside) level1 = sslrHiZEmpty();
   if (all(lessThan(cell, imageSize(uLevel1)))) {
     imageStore(uLevel1, cell, vec4(level1, 0.0f, 0.0f));
@@ -119,7 +138,7 @@ void writeLevel1(ivec2 cell, ivec2 last, float d0, float d1, float d2, float d3,
     // Curved surfaces reach deeper than the slab (sslr_shared.h, "Curved solids"): a quad whose
     // normals turn is listed for the curved pass, which overwrites its cell with the solids' backs
     // and stores its pixels' extra depths (stamped with the frame: the others need no clearing).
-    if (!outside && sslrQuadNormalsTurn(n0, n1, n2, n3)) {
+    if (!outside && sslrQuadNormalsTurn(q.n0, q.n1, q.n2, q.n3)) {
       uint slot = atomicAdd(curved.count, 1u);
 #ifdef SSLR_LEVEL1_PASS
       if ((slot & 63u) == 0u) atomicAdd(curved.dispatchX, 1u);  // this pass runs only when a tile is listed
@@ -134,28 +153,21 @@ void writeLevel1(ivec2 cell, ivec2 last, float d0, float d1, float d2, float d3,
 #endif
 
 // One invocation per 2x2 quad (one 4x4 group per 8x8 tile; SSLR_LEVEL1_PASS: per 8x8 cells of
-// level 1). Straight-line code over the quad (a loop with per-pixel branches ran 2x slower on
-// llvmpipe).
+// level 1).
 void main() {
   ivec2 cell = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 last = ivec2(frame.surface.width, frame.surface.height) - 1;
-  ivec2 p0 = sslrQuadPixel(cell, 0, last), p1 = sslrQuadPixel(cell, 1, last);
-  ivec2 p2 = sslrQuadPixel(cell, 2, last), p3 = sslrQuadPixel(cell, 3, last);
-  float d0 = texelFetch(uDepth, p0, 0).r, d1 = texelFetch(uDepth, p1, 0).r;
-  float d2 = texelFetch(uDepth, p2, 0).r, d3 = texelFetch(uDepth, p3, 0).r;
-  vec4 n0 = texelFetch(uNormal, p0, 0), n1 = texelFetch(uNormal, p1, 0);
-  vec4 n2 = texelFetch(uNormal, p2, 0), n3 = texelFetch(uNormal, p3, 0);
+  SslrQuad q = sslrLoadQuad(cell);
 #ifdef SSLR_LEVEL1_PASS
   // Level 1 alone, in a frame whose classification skipped it (the frame before listed no tile):
   // dispatched through the pyramid's arguments, so only when this frame lists a tile.
-  writeLevel1(cell, last, d0, d1, d2, d3, n0, n1, n2, n3);
+  writeLevel1(cell, q);
 #else
-  bool trace = sslrShouldTracePixel(p0, d0, n0, sslrMaterialAt(p0, n0)) ||
-               sslrShouldTracePixel(p1, d1, n1, sslrMaterialAt(p1, n1)) ||
-               sslrShouldTracePixel(p2, d2, n2, sslrMaterialAt(p2, n2)) ||
-               sslrShouldTracePixel(p3, d3, n3, sslrMaterialAt(p3, n3));
+  bool trace = sslrShouldTracePixel(q.p0, q.depths.x, q.n0, sslrMaterialAt(q.p0, q.n0)) ||
+               sslrShouldTracePixel(q.p1, q.depths.y, q.n1, sslrMaterialAt(q.p1, q.n1)) ||
+               sslrShouldTracePixel(q.p2, q.depths.z, q.n2, sslrMaterialAt(q.p2, q.n2)) ||
+               sslrShouldTracePixel(q.p3, q.depths.w, q.n3, sslrMaterialAt(q.p3, q.n3));
 #ifdef SSLR_CLASSIFY_LEVEL1
-  writeLevel1(cell, last, d0, d1, d2, d3, n0, n1, n2, n3);
+  writeLevel1(cell, q);
 #endif
   if (!trace) return;
   uint stamp = sslrTileListedStamp(gl_WorkGroupID.xy);

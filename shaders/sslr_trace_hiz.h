@@ -68,9 +68,10 @@ SSLR_FN float sslrSlabNearOutline(SslrProjection p, SslrSurface s, SslrTracePara
   return slab;
 }
 
-// Where the view ray through window point w (pixels) meets the plane (vsOnPlane, vsN).
-SSLR_FN vec3 sslrPlaneAtWindow(SslrProjection p, SslrSurface s, vec2 w, float depth, vec3 vsOnPlane, vec3 vsN) {
-  vec3 a = sslrViewFromUvDepth(p, w / vec2(s.width, s.height), depth);
+// Where the view ray through window point w (pixels) meets the plane (vsOnPlane, vsN). Any depth
+// gives a point of that ray (the camera's, orthographic or not); the plane fixes the rest.
+SSLR_FN vec3 sslrPlaneAtWindow(SslrProjection p, SslrSurface s, vec2 w, vec3 vsOnPlane, vec3 vsN) {
+  vec3 a = sslrViewFromUvDepth(p, w / vec2(s.width, s.height), 0.5f);
   vec3 dir = sslrViewDirection(p, a);
   float dn = dot(dir, vsN);
   return a + dir * (abs(dn) > 1e-6f ? dot(vsOnPlane - a, vsN) / dn : 0.0f);
@@ -103,11 +104,9 @@ SSLR_FN bool sslrCornerHit(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   float depthOut = sslrLoadDepth(npx);
   // An outline: the outer pixel shows something beyond the ray, or nothing.
   if (sslrIsGeometryDepth(s, depthOut) && !(keySign * depthOut > wEntry.z)) return false;
-  float depth = sslrLoadDepth(px);
   vec3 vsSurface;
   vec3 vsN;
-  if (!sslrSurfaceFromDepth(p, s, px, depth, vsSurface) || !sslrDecodeNormal(s, sslrLoadNormal(px), vsN))
-    return false;
+  if (!sslrLoadSurface(px, vsSurface) || !sslrDecodeNormal(s, sslrLoadNormal(px), vsN)) return false;
   // A curved surface is no corner (its solid is the sphere of its curvature).
   if (sslrCurvedSolids(t) && sslrLoadCurvedExtra(px) > 0.0f) return false;
   float slab = t.objectThickness * -vsSurface.z;
@@ -115,9 +114,9 @@ SSLR_FN bool sslrCornerHit(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   vec2 wEdge = acrossX ? vec2(float(px.x) + (outward.x > 0 ? 1.0f : 0.0f), wEntry.y)
                        : vec2(wEntry.x, float(px.y) + (outward.y > 0 ? 1.0f : 0.0f));
   vec2 along = acrossX ? vec2(0.0f, 1.0f) : vec2(1.0f, 0.0f);
-  vec3 vsEdge = sslrPlaneAtWindow(p, s, wEdge, depth, vsSurface, vsN);
-  vec3 vsEdge1 = sslrPlaneAtWindow(p, s, wEdge + along, depth, vsSurface, vsN);
-  vec3 vsOut = sslrPlaneAtWindow(p, s, wEdge + 0.5f * vec2(outward), depth, vsSurface, vsN);
+  vec3 vsEdge = sslrPlaneAtWindow(p, s, wEdge, vsSurface, vsN);
+  vec3 vsEdge1 = sslrPlaneAtWindow(p, s, wEdge + along, vsSurface, vsN);
+  vec3 vsOut = sslrPlaneAtWindow(p, s, wEdge + 0.5f * vec2(outward), vsSurface, vsN);
   vec3 side = cross(vsEdge1 - vsEdge, vsN);
   if (!(dot(side, side) > 0.0f)) return false;
   side = normalize(side);
@@ -287,7 +286,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   }
   // Ended inside an object's slab: its side, if the ray crossed an outline onto it.
   float Lc = 0.0f;
-  if (inSlab && tRun >= 0.0f && sslrCornerHit(p, s, t, o + d * tRun, d, vsP, vsR, Lc) && Lc <= t.maxDistance)
+  if (inSlab && sslrCornerHit(p, s, t, o + d * tRun, d, vsP, vsR, Lc) && Lc <= t.maxDistance)
     return sslrFinishHit(p, hit, vsP, vsR, Lc, 1.0f);
   return hit;
 }

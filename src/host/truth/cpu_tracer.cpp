@@ -100,11 +100,10 @@ Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& set
           cells[static_cast<size_t>(cy) * pw + cx] = m;
           continue;
         }
-        for (int k = 0; k < 4; ++k) {
+        for (int k = 0; k < 4; ++k) {  // levels 2...: the min-max of the level below
           const ivec2 child(2 * cx + (k & 1), 2 * cy + (k >> 1));
-          const int srcW = level == 1 ? w : tPyramidWidth[level - 2];
-          const int srcH = level == 1 ? h : tPyramidHeight[level - 2];
-          if (child.x < srcW && child.y < srcH) m = sslrHiZReduce(m, sslrLoadDepthMinMax(level - 1, child));
+          if (child.x < tPyramidWidth[level - 2] && child.y < tPyramidHeight[level - 2])
+            m = sslrHiZReduce(m, sslrLoadDepthMinMax(level - 1, child));
         }
         cells[static_cast<size_t>(cy) * pw + cx] = m;
       }
