@@ -16,9 +16,9 @@ thread_local bool tStored = false;
 // tPyramid[l - 1] is level l, tPyramidWidth[l - 1] its cells per row.
 thread_local std::vector<std::vector<vec2>> tPyramid;
 thread_local std::vector<int> tPyramidWidth, tPyramidHeight;
-// Curved solids: per quad (level 1's cells), its pixels' extra depth, as classify.comp's curved
-// pass stores it (the same shared function; no frame stamp needed here).
-thread_local std::vector<vec4> tCurvedExtra;
+// Curved solids: per quad (level 1's cells), its pixels' extra depths packed as classify.comp's
+// curved pass stores them (the same shared functions; every texel is this run's, frame 1).
+thread_local std::vector<uvec4> tCurvedExtra;
 }  // namespace
 float sslrLoadDepth(ivec2 px) { return tG->depth->at(px.x, px.y, 0); }
 vec4 sslrLoadNormal(ivec2 px) {
@@ -37,8 +37,7 @@ vec2 sslrLoadDepthMinMax(int level, ivec2 cell) {
   return tPyramid[level - 1][static_cast<size_t>(cell.y) * w + cell.x];
 }
 float sslrLoadCurvedExtra(ivec2 px) {
-  const vec4 e = tCurvedExtra[static_cast<size_t>(px.y >> 1) * tPyramidWidth[0] + (px.x >> 1)];
-  return (px.y & 1) == 0 ? ((px.x & 1) == 0 ? e.x : e.y) : ((px.x & 1) == 0 ? e.z : e.w);
+  return sslrUnpackCurvedExtra(tCurvedExtra[static_cast<size_t>(px.y >> 1) * tPyramidWidth[0] + (px.x >> 1)], 1, px);
 }
 bool sslrLoadSurface(ivec2 px, vec3& vsPos) {
   if (tStored) {
@@ -85,7 +84,7 @@ Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& set
   for (int level = 1; level <= levels; ++level) {
     const int pw = (w + (1 << level) - 1) >> level, ph = (h + (1 << level) - 1) >> level;
     std::vector<vec2> cells(static_cast<size_t>(pw) * ph);
-    if (level == 1) tCurvedExtra.assign(cells.size(), vec4(0.0f));
+    if (level == 1) tCurvedExtra.assign(cells.size(), sslrPackCurvedExtra(vec4(0.0f), 1));
     for (int cy = 0; cy < ph; ++cy)
       for (int cx = 0; cx < pw; ++cx) {
         vec2 m = sslrHiZEmpty();
@@ -93,10 +92,11 @@ Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& set
           const ivec2 cell(cx, cy), last(w - 1, h - 1);
           const ivec2 q0 = sslrQuadPixel(cell, 0, last), q1 = sslrQuadPixel(cell, 1, last);
           const ivec2 q2 = sslrQuadPixel(cell, 2, last), q3 = sslrQuadPixel(cell, 3, last);
+          vec4 extra;
           m = sslrHiZLevel1Cell(proj, surf, t, q0, q1, q2, q3,
                                 vec4(sslrLoadDepth(q0), sslrLoadDepth(q1), sslrLoadDepth(q2), sslrLoadDepth(q3)),
-                                sslrLoadNormal(q0), sslrLoadNormal(q1), sslrLoadNormal(q2), sslrLoadNormal(q3),
-                                tCurvedExtra[static_cast<size_t>(cy) * pw + cx]);
+                                sslrLoadNormal(q0), sslrLoadNormal(q1), sslrLoadNormal(q2), sslrLoadNormal(q3), extra);
+          tCurvedExtra[static_cast<size_t>(cy) * pw + cx] = sslrPackCurvedExtra(extra, 1);
           cells[static_cast<size_t>(cy) * pw + cx] = m;
           continue;
         }
