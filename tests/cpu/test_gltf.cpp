@@ -102,6 +102,40 @@ TEST_F(Gltf, NotJson) { expectError(write("garbage.gltf", "this is { not json"),
 
 TEST_F(Gltf, TruncatedGlb) { expectError(write("short.glb", std::string("glTF\x02\0\0\0", 8)), "cannot load"); }
 
+// A .glb holding gltfText's quad with its buffer in the BIN chunk. `binLengthExtra` is added to
+// the BIN chunk's stated length (the file itself is unchanged).
+std::string glbOf(std::uint32_t binLengthExtra = 0) {
+  Tri t;
+  const std::string bin = bytesOf(t.positions) + bytesOf(t.indices);  // 60 bytes: 4-aligned
+  std::string json = gltfText(t);
+  const size_t a = json.find(",\"uri\":\"data:");
+  json.erase(a, json.find('"', a + 8) - a + 1);  // the buffer is the BIN chunk: no uri
+  while (json.size() % 4 != 0) json += ' ';
+  auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  const auto total = static_cast<std::uint32_t>(12 + 8 + json.size() + 8 + bin.size());
+  return "glTF" + u32(2) + u32(total) + u32(static_cast<std::uint32_t>(json.size())) + "JSON" + json +
+         u32(static_cast<std::uint32_t>(bin.size()) + binLengthExtra) + "BIN" + std::string(1, '\0') + bin;
+}
+
+TEST_F(Gltf, GlbWithItsBufferInTheBinChunkLoads) {
+  auto s = loadGltf(write("quad.glb", glbOf()));
+  ASSERT_TRUE(s) << s.error();
+  ASSERT_EQ(s.value().meshes.size(), 1u);
+  EXPECT_EQ(s.value().meshes[0].indices.size(), 6u);
+  EXPECT_FLOAT_EQ(s.value().meshes[0].positions[3].y, 1.0f);
+}
+
+TEST_F(Gltf, GlbBinChunkPastTheStatedLengthIsRefused) {
+  // A BIN chunk 8 bytes too long (its stated length counts its own header) passes tinygltf 2.7's
+  // check, which then copies the buffer from past the end of the file: under ASan a
+  // heap-buffer-overflow (found by tests/fuzz). Also when the buffer claims the extra bytes.
+  expectError(write("longbin.glb", glbOf(8)), "BIN chunk (68 bytes after its header at byte");
+  std::string claims = glbOf(8);
+  const size_t at = claims.find("\"byteLength\":60");
+  claims.replace(at, 15, "\"byteLength\":68");
+  expectError(write("longbuffer.glb", claims), "past the");
+}
+
 TEST_F(Gltf, IndexOutOfRange) {
   Tri t;
   t.indices[4] = 77;

@@ -25,14 +25,18 @@ for dir in /usr/share/assimp/models/glTF2 assets/scenes tests/fuzz/regressions; 
 done
 echo "fuzz: $n seed files, ${seconds}s, $jobs job(s)"
 status=0
-"$fuzzer" -max_total_time="$seconds" -max_len=262144 -timeout=20 -rss_limit_mb=4096 -jobs="$jobs" -workers="$jobs" \
-  -dict=tests/fuzz/gltf.dict -artifact_prefix="$work/artifacts/" -print_final_stats=1 \
+# From inside the scratch folder: in jobs mode libFuzzer writes its fuzz-N.log files to the
+# current directory.
+root=$PWD
+cd "$work"
+"$root/$fuzzer" -max_total_time="$seconds" -max_len=262144 -timeout=20 -rss_limit_mb=4096 -jobs="$jobs" -workers="$jobs" \
+  -dict="$root/tests/fuzz/gltf.dict" -artifact_prefix="$work/artifacts/" -print_final_stats=1 \
   "$work/corpus" "$work/seeds" 2>&1 | tee "$work/log" | grep -E "^#[0-9]+[[:space:]]+(INITED|DONE)|stat::|ERROR|SUMMARY|loader promise" || true
 if grep -qE "ERROR: (libFuzzer|AddressSanitizer|UndefinedBehaviorSanitizer)|loader promise broken|SUMMARY: " "$work/log"; then status=1; fi
 for a in "$work"/artifacts/*; do
   [ -e "$a" ] || continue
   name="$(basename "$a")"
-  cp "$a" "tests/fuzz/regressions/$name"
+  cp "$a" "$root/tests/fuzz/regressions/$name"
   echo "fuzz: crashing input kept as tests/fuzz/regressions/$name"
   status=1
 done

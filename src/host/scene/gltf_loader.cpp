@@ -415,21 +415,44 @@ void loadPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim
   scene.meshes.push_back(std::move(mesh));
 }
 
+std::uint32_t le32(const unsigned char* p) { return p[0] | p[1] << 8 | p[2] << 16 | std::uint32_t(p[3]) << 24; }
+
+// A GLB's second chunk (BIN) must lie inside the length its header states, its own 8-byte chunk
+// header included. tinygltf 2.7 (Debian 12) forgets those 8 bytes when it checks, and then copies a
+// buffer from up to 8 bytes past the end of the file it read (found by the fuzzer). `in` is the
+// file, read past its 20-byte header; "" when the layout is sound or is left to tinygltf's checks.
+std::string checkBinChunk(std::ifstream& in, std::uint32_t glbLength, std::uint32_t jsonLength) {
+  const std::uint64_t binStart = 20ull + jsonLength;  // where the BIN chunk's header starts
+  if (binStart + 8 > glbLength) return {};           // no BIN chunk, or tinygltf refuses the stub
+  unsigned char chunk[8] = {};
+  in.seekg(static_cast<std::streamoff>(binStart));
+  if (!in.read(reinterpret_cast<char*>(chunk), sizeof chunk)) return {};
+  const std::uint64_t binEnd = binStart + 8 + le32(chunk);
+  if (binEnd <= glbLength) return {};
+  return "the GLB's BIN chunk (" + std::to_string(le32(chunk)) + " bytes after its header at byte " +
+         std::to_string(binStart) + ") ends at byte " + std::to_string(binEnd) + ", past the " +
+         std::to_string(glbLength) + " bytes the GLB header states";
+}
+
 // What must be known before tinygltf parses the file: its glTF version and the extensions it
 // requires (tinygltf rejects a Draco-compressed file with "accessor[0] invalid bufferView", and
-// parses glTF 1.0 into an empty scene). Reads the JSON (of a .glb: its first chunk) once more;
-// "" when the file may be parsed, else why not. Malformed input is left to tinygltf's messages.
+// parses glTF 1.0 into an empty scene), and of a .glb that its BIN chunk fits. Reads the JSON (of
+// a .glb: its first chunk) once more; "" when the file may be parsed, else why not. Other malformed
+// input is left to tinygltf's messages.
 std::string precheck(const std::string& path, bool binary) {
   std::ifstream in(path, std::ios::binary);
   std::string json;
   if (binary) {
     unsigned char header[20] = {};
     if (!in.read(reinterpret_cast<char*>(header), sizeof header)) return {};
-    const std::uint32_t length = header[12] | header[13] << 8 | header[14] << 16 | std::uint32_t(header[15]) << 24;
+    const std::uint32_t jsonLength = le32(header + 12);
     const bool jsonChunk = header[16] == 'J' && header[17] == 'S' && header[18] == 'O' && header[19] == 'N';
-    if (!jsonChunk || length > (64u << 20)) return {};
-    json.resize(length);
-    if (!in.read(json.data(), length)) return {};
+    if (!jsonChunk || jsonLength > (64u << 20)) return {};
+    if (std::string why = checkBinChunk(in, le32(header + 8), jsonLength); !why.empty()) return why;
+    in.clear();
+    in.seekg(20);
+    json.resize(jsonLength);
+    if (!in.read(json.data(), jsonLength)) return {};
   } else {
     std::error_code ec;
     if (std::filesystem::file_size(path, ec) > (std::uintmax_t(256) << 20)) return {};
