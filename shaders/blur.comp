@@ -3,13 +3,21 @@
 // reflection stays premultiplied by its coverage) over the tiles the trace listed for blurring
 // (tiles with a pixel whose radius is at least half a pixel). The radius comes from the reflection's
 // alpha (the cone footprint written by the trace); neighbours count only if they are traced pixels
-// on a similar surface (depth and normal weights), so reflections do not bleed across edges.
+// on a similar surface (sslrBlurWeight: depth and normal terms), so reflections do not bleed
+// across edges.
 //
 // H pass: unblurred resolved -> blurTemp. V pass: blurTemp -> resolved. The V pass reads a
 // neighbour's unblurred value from resolved itself where the neighbour's radius is below half a
 // pixel: such a texel, if it lies in a blur tile, is rewritten by this pass with the very value it
 // holds (both passes pass a sub-half-pixel radius through unchanged), so read-before-write and
 // read-after-write agree bit for bit.
+//
+// Each work group blurs one tile. It first stages the tile's rows (H) or columns (V), widened by
+// the largest radius in the tile on both sides, in shared memory: value, view distance, normal and
+// whether the pixel was traced, read and decoded once per pixel. Every tap then reads shared
+// memory. Reading the G-buffer per tap instead (four fetches, a depth reconstruction and a normal
+// decode for each of up to 2 x 33 taps) made this pass most of a frame with rough surfaces on
+// llvmpipe (docs/algorithm.md, "The blur").
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
 
@@ -22,44 +30,80 @@ layout(binding = 5) uniform sampler2D uUnblurred;     // V pass: resolved before
 #endif
 layout(binding = 0, rgba16f) uniform writeonly image2D uBlurOutput;
 
+// Settings cap blurMaxRadiusPx at 32 (sslr::validate): taps reach ceil(radius) <= 32 pixels out.
+#define SSLR_BLUR_MAX_TAPS 32
+#define SSLR_BLUR_SPAN (SSLR_TILE_SIZE + 2 * SSLR_BLUR_MAX_TAPS)
+// Staged pixels: [line across the axis][position along it, offset by the apron].
+shared vec4 sValue[SSLR_TILE_SIZE][SSLR_BLUR_SPAN];
+shared vec4 sGuide[SSLR_TILE_SIZE][SSLR_BLUR_SPAN];  // xyz = view-space normal, w = view distance (< 0: not a neighbour)
+shared uint sTaps;
+
+float sslrBlurRadiusAt(ivec2 px) { return texelFetch(uReflectionIn, px, 0).a * frame.trace.blurMaxRadiusPx; }
+
 void main() {
-  ivec2 px = sslrBlurTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
-  if (!sslrInside(px)) return;
+  ivec2 local = ivec2(gl_LocalInvocationID.xy);
+  ivec2 origin = sslrBlurTileOrigin(gl_WorkGroupID.x);
+  ivec2 px = origin + local;
+  bool inside = sslrInside(px);
+  float radius = inside ? sslrBlurRadiusAt(px) : 0.0f;
+  bool blurred = radius >= 0.5f;  // false for NaN too
+
+  // The apron: the largest tap count any pixel of the tile needs.
+  if (local == ivec2(0)) sTaps = 0u;
+  barrier();
+  if (blurred) atomicMax(sTaps, uint(min(int(ceil(radius)), SSLR_BLUR_MAX_TAPS)));
+  barrier();
+  int taps = int(sTaps);
+
+  // Stage line `line` (the row or column across the axis at offset `line` in the tile) from
+  // -taps to SSLR_TILE_SIZE + taps along the axis: every invocation loads every 64th entry.
+  ivec2 across = ivec2(1) - SSLR_BLUR_AXIS;
+  int span = SSLR_TILE_SIZE + 2 * taps;
+  for (int entry = local.y * SSLR_TILE_SIZE + local.x; entry < span * SSLR_TILE_SIZE;
+       entry += SSLR_TILE_SIZE * SSLR_TILE_SIZE) {
+    int line = entry / span, along = entry - line * span;
+    ivec2 q = origin + across * line + SSLR_BLUR_AXIS * (along - taps);
+    vec4 guide = vec4(0.0f, 0.0f, 0.0f, -1.0f);
+    vec4 value = vec4(0.0f);
+    if (sslrInside(q)) {
+      float depth = texelFetch(uDepth, q, 0).r;
+      vec4 normalTexel = texelFetch(uNormal, q, 0);
+      if (sslrShouldTracePixel(q, depth, normalTexel, sslrMaterialAt(q, normalTexel))) {
+        sslrDecodeNormal(frame.surface, normalTexel, guide.xyz);
+        guide.w = abs(sslrViewAtPixel(q, depth).z);
+#ifdef SSLR_BLUR_VERTICAL
+        // blurTemp exists only in blur tiles; a pixel with a sub-half-pixel radius is its own value.
+        value = sslrBlurRadiusAt(q) >= 0.5f ? texelFetch(uBlurInput, q, 0) : texelFetch(uUnblurred, q, 0);
+#else
+        value = texelFetch(uBlurInput, q, 0);
+#endif
+      }
+    }
+    sValue[line][SSLR_BLUR_MAX_TAPS - taps + along] = value;
+    sGuide[line][SSLR_BLUR_MAX_TAPS - taps + along] = guide;
+  }
+  barrier();
+  if (!inside) return;
+
   vec4 center = texelFetch(uBlurInput, px, 0);
-  float radius = texelFetch(uReflectionIn, px, 0).a * frame.trace.blurMaxRadiusPx;
-  if (!(radius >= 0.5f)) {
+  if (!blurred) {
     imageStore(uBlurOutput, px, center);
     return;
   }
-  float depth0 = texelFetch(uDepth, px, 0).r;
-  vec3 n0;
-  sslrDecodeNormal(frame.surface, texelFetch(uNormal, px, 0), n0);
-  float z0 = abs(sslrViewAtPixel(px, depth0).z);
-  float sigma = max(radius * 0.5f, 0.5f);
-  float depthScale = 1.0f / max(frame.trace.blurDepthSigma * z0, 1e-6f);
-  int taps = int(ceil(radius));
+  // This pixel in the staged lines: line = its offset across the axis, at = along it.
+  int line = local.x * across.x + local.y * across.y;
+  int at = SSLR_BLUR_MAX_TAPS + local.x * SSLR_BLUR_AXIS.x + local.y * SSLR_BLUR_AXIS.y;
+  // A blurred pixel was traced, so its own guide is valid (its depth is geometry, its normal read).
+  vec4 guide0 = sGuide[line][at];
+  SslrBlurCentre centre = sslrBlurCentre(frame.trace, radius, guide0.w, guide0.xyz);
+  int ownTaps = min(int(ceil(radius)), SSLR_BLUR_MAX_TAPS);
   vec4 sum = center;
   float weightSum = 1.0f;
-  for (int i = -taps; i <= taps; ++i) {
-    ivec2 q = px + SSLR_BLUR_AXIS * i;
-    if (i == 0 || !sslrInside(q)) continue;
-    float depth1 = texelFetch(uDepth, q, 0).r;
-    vec4 packed1 = texelFetch(uNormal, q, 0);
-    if (!sslrShouldTracePixel(q, depth1, packed1, sslrMaterialAt(q, packed1))) continue;
-    vec3 n1;
-    sslrDecodeNormal(frame.surface, packed1, n1);
-    float z1 = abs(sslrViewAtPixel(q, depth1).z);
-    float w = exp(-0.5f * float(i * i) / (sigma * sigma)) * exp(-abs(z1 - z0) * depthScale) *
-              pow(max(dot(n0, n1), 0.0f), frame.trace.blurNormalPower);
-#ifdef SSLR_BLUR_VERTICAL
-    // blurTemp exists only in blur tiles; a pixel with a sub-half-pixel radius is its own value.
-    vec4 value = texelFetch(uReflectionIn, q, 0).a * frame.trace.blurMaxRadiusPx >= 0.5f
-                     ? texelFetch(uBlurInput, q, 0)
-                     : texelFetch(uUnblurred, q, 0);
-#else
-    vec4 value = texelFetch(uBlurInput, q, 0);
-#endif
-    sum += value * w;
+  for (int i = -ownTaps; i <= ownTaps; ++i) {
+    vec4 guide1 = sGuide[line][at + i];
+    if (i == 0 || guide1.w < 0.0f) continue;
+    float w = sslrBlurWeight(centre, i, guide1.w, guide1.xyz);
+    sum += sValue[line][at + i] * w;
     weightSum += w;
   }
   imageStore(uBlurOutput, px, sum / weightSum);

@@ -33,6 +33,8 @@ using uint = std::uint32_t;
 using glm::abs;
 using glm::clamp;
 using glm::dot;
+using glm::exp2;
+using glm::log2;
 using glm::floor;
 using glm::isinf;
 using glm::isnan;
@@ -664,6 +666,44 @@ SSLR_FN float sslrBlurRadiusPx(SslrProjection p, float heightPx, float dist, flo
   float spread = L * roughness * roughness * coneScale;
   float imageDist = p.orthographic != 0 ? 1.0f : dist + L;
   return spread / sslrPixelFootprint(p, heightPx, imageDist);
+}
+
+// The blur pass's bilateral weight of a neighbour `offsetPx` pixels away along the blur's axis,
+// for a centre pixel of blur radius `radiusPx` (>= 0.5) at view distance z0 with normal n0 and a
+// neighbour at z1 with n1:
+//   exp(-offset^2 / (2 sigma^2)) * exp(-|z1 - z0| / (blurDepthSigma z0)) * max(0, n0.n1)^blurNormalPower
+// with sigma = max(radius / 2, 0.5): a Gaussian, a depth term relative to the centre's distance (so
+// the same surface step counts the same near and far) and a normal term, so a reflection does not
+// bleed across an edge or a crease. Evaluated as one exp2 of a sum of logarithms (one exp2 and one
+// log2 per tap, not two exps and a pow); the per-centre factors are computed once per pixel.
+struct SslrBlurCentre {
+  float gaussianLog2;  // log2(e) * -1 / (2 sigma^2): times offset^2
+  float depthLog2;     // log2(e) * -1 / (blurDepthSigma z0): times |z1 - z0|
+  float z;             // view distance z0
+  float normalPower;   // blurNormalPower
+  vec3 normal;         // n0
+};
+
+SSLR_FN SslrBlurCentre sslrBlurCentre(SslrTraceParams t, float radiusPx, float z0, vec3 n0) {
+  const float log2e = 1.44269504f;
+  float sigma = max(radiusPx * 0.5f, 0.5f);
+  SslrBlurCentre c;
+  c.gaussianLog2 = -0.5f * log2e / (sigma * sigma);
+  c.depthLog2 = -log2e / max(t.blurDepthSigma * z0, 1e-6f);
+  c.z = z0;
+  c.normalPower = t.blurNormalPower;
+  c.normal = n0;
+  return c;
+}
+
+SSLR_FN float sslrBlurWeight(SslrBlurCentre c, int offsetPx, float z1, vec3 n1) {
+  float normalLog2 = 0.0f;  // blurNormalPower 0: no normal term
+  if (c.normalPower > 0.0f) {
+    float cosine = dot(c.normal, n1);
+    if (!(cosine > 0.0f)) return 0.0f;  // max(0, n0.n1)^power = 0 (log2 would be undefined)
+    normalLog2 = c.normalPower * log2(cosine);
+  }
+  return exp2(c.gaussianLog2 * float(offsetPx * offsetPx) + c.depthLog2 * abs(z1 - c.z) + normalLog2);
 }
 
 // ---- Temporal reuse ----------------------------------------------------------------------------

@@ -1,10 +1,13 @@
-// The production output (resolved rgb = reflection, a = coverage) and both composite modes, checked
-// pixel by pixel against the formulas in sslr.hpp on float and fixed-point targets.
+// The production output (resolved rgb = reflection, a = coverage), the blur that produces it and
+// both composite modes, checked pixel by pixel against the formulas in sslr.hpp and sslr_shared.h
+// on float and fixed-point targets.
 #include <algorithm>
 #include <cmath>
 
 #include "gl/gl_fixture.hpp"
+#include "sslr/reference.hpp"
 #include "sslr/sslr.hpp"
+#include "sslr_shared.h"
 #include "sslr_host/gbuffer.hpp"
 
 using namespace sslr;
@@ -78,6 +81,106 @@ INSTANTIATE_TEST_SUITE_P(Scenes, CompositeCoverage, ::testing::Values("mirror-ro
                            std::replace(n.begin(), n.end(), '-', '_');
                            return n;
                          });
+
+// The blur as sslr_shared.h defines it (sslrBlurWeight over the pixels sslrShouldTrace accepts,
+// each pixel's radius from the trace's blur weight), run on the CPU: one axis of the separable
+// filter over `in`, rounded to RGBA16F as the GPU's intermediate and output textures store it.
+Image cpuBlurAxis(const Image& in, glm::ivec2 axis, const Image& reflection, const Image& depth, const Image& normals,
+                  const shared::SslrFrame& f) {
+  auto neighbour = [&](glm::ivec2 q, float& z, glm::vec3& n) {
+    if (q.x < 0 || q.y < 0 || q.x >= W || q.y >= H) return false;
+    const float d = depth.at(q.x, q.y, 0);
+    const glm::vec4 texel(normals.at(q.x, q.y, 0), normals.at(q.x, q.y, 1), normals.at(q.x, q.y, 2), normals.at(q.x, q.y, 3));
+    if (!shared::sslrShouldTrace(f.surface, f.trace, d, texel, texel)) return false;
+    shared::sslrDecodeNormal(f.surface, texel, n);
+    z = std::abs(shared::sslrViewFromUvDepth(f.proj, shared::sslrUvFromPixel(q, glm::vec2(W, H)), d).z);
+    return true;
+  };
+  Image out = in;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const float radius = reflection.at(x, y, 3) * f.trace.blurMaxRadiusPx;
+      if (!(radius >= 0.5f)) continue;
+      float z0 = 0.0f;
+      glm::vec3 n0(0.0f);
+      neighbour({x, y}, z0, n0);
+      glm::vec4 sum(in.at(x, y, 0), in.at(x, y, 1), in.at(x, y, 2), in.at(x, y, 3));
+      float weightSum = 1.0f;
+      const shared::SslrBlurCentre centre = shared::sslrBlurCentre(f.trace, radius, z0, n0);
+      const int taps = static_cast<int>(std::ceil(radius));
+      for (int i = -taps; i <= taps; ++i) {
+        const glm::ivec2 q = glm::ivec2(x, y) + axis * i;
+        float z1 = 0.0f;
+        glm::vec3 n1(0.0f);
+        if (i == 0 || !neighbour(q, z1, n1)) continue;
+        const float w = shared::sslrBlurWeight(centre, i, z1, n1);
+        sum += w * glm::vec4(in.at(q.x, q.y, 0), in.at(q.x, q.y, 1), in.at(q.x, q.y, 2), in.at(q.x, q.y, 3));
+        weightSum += w;
+      }
+      for (int c = 0; c < 4; ++c) out.at(x, y, c) = sum[c] / weightSum;
+    }
+  for (float& v : out.pixels) v = glm::unpackHalf2x16(glm::packHalf2x16(glm::vec2(v, 0.0f))).x;
+  return out;
+}
+
+struct BlurCase {
+  float maxRadiusPx, coneScale;
+  int widestPx;  // the test requires a pixel with at least this radius
+};
+void PrintTo(const BlurCase& c, std::ostream* os) {
+  *os << "blurMaxRadiusPx " << c.maxRadiusPx << ", blurConeScale " << c.coneScale;
+}
+class CompositeBlur : public sslr::test::GlTest, public ::testing::WithParamInterface<BlurCase> {};
+
+// The GPU's blur (work groups staging their tile and its apron in shared memory) against the CPU
+// filter above: the same pixels, weights and taps, from the trace's unblurred output (the same
+// frame dispatched with the blur off). The default settings (radii up to 5.6 px here), and a cone 16
+// times as wide with the largest radius setting, 32 px (radii up to 32: aprons of 32 px on both
+// sides of an 8 px tile, reaching past the screen's borders). glossy's panels have radii from 0 up,
+// edges in depth and normal, and a bottom row of partial tiles (54 = 6 x 8 + 6).
+TEST_P(CompositeBlur, MatchesTheSharedHeadersFilterOnTheCpu) {
+  Fixture f("glossy");
+  Settings s;
+  s.blurMaxRadiusPx = GetParam().maxRadiusPx;
+  s.blurConeScale = GetParam().coneScale;
+  s.blur = false;
+  ASSERT_TRUE(f.ctx->dispatch(f.gbuffer->frameInputs(), s));
+  const Image unblurred = readTexture(f.ctx->resolvedTexture(), W, H, 4);
+  s.blur = true;
+  ASSERT_TRUE(f.ctx->dispatch(f.gbuffer->frameInputs(), s));
+  const Image gpu = readTexture(f.ctx->resolvedTexture(), W, H, 4);
+  const Image reflection = readTexture(f.ctx->reflectionTexture(), W, H, 4);
+  auto frame = frameConstants(f.gbuffer->frameInputs(), s, W, H);
+  ASSERT_TRUE(frame) << frame.error();
+  const Image depth = f.gbuffer->readDepth(), normals = f.gbuffer->readNormalPacked();
+  const Image horizontal = cpuBlurAxis(unblurred, {1, 0}, reflection, depth, normals, frame.value());
+  const Image cpu = cpuBlurAxis(horizontal, {0, 1}, reflection, depth, normals, frame.value());
+  int blurred = 0, changed = 0;
+  float widest = 0.0f;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      blurred += reflection.at(x, y, 3) * s.blurMaxRadiusPx >= 0.5f;
+      widest = std::max(widest, reflection.at(x, y, 3) * s.blurMaxRadiusPx);
+      float moved = 0.0f;
+      for (int c = 0; c < 4; ++c) {
+        const float want = cpu.at(x, y, c);
+        // Two RGBA16F roundings (the intermediate, the output) may each land one step (2^-10
+        // relative) apart where the GPU's exp and pow differ from the CPU's in the last bits.
+        ASSERT_NEAR(gpu.at(x, y, c), want, 2.5e-3f * std::max(std::abs(want), 0.05f))
+            << "pixel (" << x << ", " << y << ") channel " << c << ", radius "
+            << reflection.at(x, y, 3) * s.blurMaxRadiusPx << " px";
+        moved = std::max(moved, std::abs(want - unblurred.at(x, y, c)));
+      }
+      changed += moved > 0.02f;
+    }
+  // Not a vacuous match: the blur covers the rough panels and changes what it covers.
+  EXPECT_GT(blurred, W * H / 10) << "blurred";
+  EXPECT_GE(widest, static_cast<float>(GetParam().widestPx));
+  EXPECT_GT(changed, W * H / 40) << "changed by more than 0.02";  // 246 measured
+}
+
+INSTANTIATE_TEST_SUITE_P(Radii, CompositeBlur, ::testing::Values(BlurCase{8.0f, 1.0f, 5}, BlurCase{32.0f, 16.0f, 30}),
+                         [](const auto& info) { return "upTo" + std::to_string(static_cast<int>(info.param.maxRadiusPx)) + "px"; });
 
 // final = existing - coverage x fallback + reflection (BlendOverFallback), existing + reflection
 // (Add), alpha kept, on RGBA16F and RGBA8 targets; a NaN fallback texel counts as 0.
