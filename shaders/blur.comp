@@ -33,7 +33,8 @@ layout(binding = 0, rgba16f) uniform writeonly image2D uBlurOutput;
 // Settings cap blurMaxRadiusPx at 32 (sslr::validate): taps reach ceil(radius) <= 32 pixels out.
 #define SSLR_BLUR_MAX_TAPS 32
 #define SSLR_BLUR_SPAN (SSLR_TILE_SIZE + 2 * SSLR_BLUR_MAX_TAPS)
-// Staged pixels: [line across the axis][position along it, offset by the apron].
+// Staged pixels: [line across the axis][position along it, offset by the apron]. 2 x 8 x 72 x 16
+// bytes = 18 KiB, within the 32 KiB of shared memory GL 4.5 guarantees a work group.
 shared vec4 sValue[SSLR_TILE_SIZE][SSLR_BLUR_SPAN];
 shared vec4 sGuide[SSLR_TILE_SIZE][SSLR_BLUR_SPAN];  // xyz = view-space normal, w = view distance (< 0: not a neighbour)
 shared uint sTaps;
