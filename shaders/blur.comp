@@ -15,9 +15,9 @@
 // Each work group blurs one tile. It first stages the tile's rows (H) or columns (V), widened by
 // the largest radius in the tile on both sides, in shared memory: value, view distance, normal and
 // whether the pixel was traced, read and decoded once per pixel. Every tap then reads shared
-// memory. Reading the G-buffer per tap instead (four fetches, a depth reconstruction and a normal
-// decode for each of up to 2 x 33 taps) made this pass most of a frame with rough surfaces on
-// llvmpipe (docs/algorithm.md, "The blur").
+// memory. Reading the G-buffer per tap instead (up to five fetches, a depth reconstruction and a
+// normal decode for each of up to 65 taps) made this pass most of a frame with rough surfaces on
+// llvmpipe (docs/algorithm.md, "Blur (roughness) and composite").
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
 
