@@ -388,6 +388,45 @@ TEST_F(Gltf, BufferUriNamingAFolderIsRefused) {
   expectError(write("dot.gltf", text), "not a regular file");
 }
 
+TEST_F(Gltf, TexturesDecodeThroughLibpngAndUndecodableOnesFallBackToTheFactor) {
+  // A real textured model: its 211x211 palette PNG becomes an RGBA8 texture of that size.
+  const fs::path boxTextured = "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf";
+  if (fs::exists(boxTextured)) {
+    auto s = loadGltf(boxTextured.string());
+    ASSERT_TRUE(s) << s.error();
+    ASSERT_EQ(s.value().textures.size(), 1u);
+    EXPECT_EQ(s.value().textures[0].width, 211);
+    EXPECT_EQ(s.value().textures[0].height, 211);
+    EXPECT_EQ(s.value().textures[0].rgba8.size(), 211u * 211 * 4);
+  }
+  // A GIF is no glTF image: the scene loads, the material keeps its factor, and both the image and
+  // the material say so.
+  const std::string gif = "GIF89a\x01\0\x01\0\0\0\0;";
+  std::string text = patched("\"roughnessFactor\":0.2}", "\"roughnessFactor\":0.2,\"baseColorTexture\":{\"index\":0}}");
+  text.replace(text.find("\"buffers\""), 9,
+               "\"textures\":[{\"source\":0}],\"images\":[{\"uri\":\"data:image/png;base64," + base64(gif) + "\"}],\"buffers\"");
+  auto s = loadGltf(write("gifimage.gltf", text));
+  ASSERT_TRUE(s) << s.error();
+  EXPECT_TRUE(s.value().textures.empty());
+  EXPECT_EQ(s.value().materials[0].baseColorTexture, -1);
+  std::string warnings;
+  for (const auto& w : s.value().warnings) warnings += w + "\n";
+  EXPECT_NE(warnings.find("not a PNG or JPEG"), std::string::npos) << warnings;
+  EXPECT_NE(warnings.find("using the factor only"), std::string::npos) << warnings;
+}
+
+TEST_F(Gltf, ImageBufferViewPastItsBufferIsRefused) {
+  // tinygltf 2.7 hands the image callback a pointer into the buffer and the view's length without
+  // checking that the view fits: decoding read past the heap block (the fuzzer's GLB in
+  // tests/fuzz/regressions/crash-image-buffer-view-past-its-buffer). The 60-byte buffer here holds a view of 1000 bytes from byte 48.
+  std::string text = patched("\"roughnessFactor\":0.2}", "\"roughnessFactor\":0.2,\"baseColorTexture\":{\"index\":0}}");
+  text.replace(text.find("\"buffers\""), 9,
+               "\"textures\":[{\"source\":0}],\"images\":[{\"bufferView\":2,\"mimeType\":\"image/png\"}],\"buffers\"");
+  text.replace(text.find("{\"buffer\":0,\"byteOffset\":48,\"byteLength\":12}"), 44,
+               "{\"buffer\":0,\"byteOffset\":48,\"byteLength\":12},{\"buffer\":0,\"byteOffset\":48,\"byteLength\":1000}");
+  expectError(write("imageview.gltf", text), "bufferView 2 runs past the end of its buffer");
+}
+
 TEST_F(Gltf, HugeImageIsRefusedWithItsSize) {
   // A PNG header announcing 20000x20000 (the rest need not exist: the size is checked first).
   std::string png("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR", 16);

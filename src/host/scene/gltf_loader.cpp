@@ -1,5 +1,7 @@
 #include "sslr_host/gltf_loader.hpp"
 
+#include "sslr_host/image_decode.hpp"
+
 #include <tiny_gltf.h>
 
 #include <nlohmann/json.hpp>
@@ -8,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -139,8 +142,30 @@ bool imageSize(const unsigned char* bytes, int size, int& w, int& h) {
   return false;
 }
 
-bool limitedImageLoader(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int reqW,
-                        int reqH, const unsigned char* bytes, int size, void* user) {
+// tinygltf's image callback: an image larger than the tools load refuses the file (by its header,
+// before decoding); then libpng or libjpeg (image_decode.hpp), never stb_image.
+bool limitedImageLoader(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int, int,
+                        const unsigned char* bytes, int size, void* user) {
+  // An image stored in a bufferView arrives as a pointer into the buffer and the view's byteLength:
+  // tinygltf 2.7 (Debian 12) does not check that the view lies inside the buffer, so a view past its
+  // end had the decoder read past the heap block (found by tests/fuzz). The model's buffers are
+  // parsed by now: the view is checked against the bytes the buffer really holds.
+  if (image->bufferView >= 0) {
+    const auto& model = *static_cast<const tinygltf::Model*>(user);
+    const size_t view = static_cast<size_t>(image->bufferView);
+    size_t end = 0;
+    const bool inside = view < model.bufferViews.size() && model.bufferViews[view].buffer >= 0 &&
+                        static_cast<size_t>(model.bufferViews[view].buffer) < model.buffers.size() &&
+                        !addOverflows(model.bufferViews[view].byteOffset, model.bufferViews[view].byteLength, end) &&
+                        end <= model.buffers[static_cast<size_t>(model.bufferViews[view].buffer)].data.size() &&
+                        model.bufferViews[view].byteLength <= static_cast<size_t>(std::numeric_limits<int>::max());
+    if (!inside) {
+      if (err)
+        *err += "image " + std::to_string(index) + ": bufferView " + std::to_string(image->bufferView) +
+                " runs past the end of its buffer\n";
+      return false;
+    }
+  }
   int w = 0, h = 0;
   if (imageSize(bytes, size, w, h) && (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide)) {
     if (err)
@@ -149,7 +174,23 @@ bool limitedImageLoader(tinygltf::Image* image, const int index, std::string* er
               std::to_string(kMaxImageSide) + "\n";
     return false;
   }
-  return tinygltf::LoadImageData(image, index, err, warn, reqW, reqH, bytes, size, user);
+  DecodedImage decoded;
+  if (std::string why = decodePngOrJpeg(bytes, size > 0 ? static_cast<size_t>(size) : 0, kMaxImageSide, decoded);
+      !why.empty()) {
+    // The geometry is still good: the image is left empty and its materials keep their factors
+    // (loadMaterials warns per material).
+    if (warn) *warn += "image " + std::to_string(index) + " ('" + printable(image->uri) + "') not decoded: " + printable(why) + "\n";
+    image->width = image->height = 0;
+    image->image.clear();
+    return true;
+  }
+  image->width = decoded.width;
+  image->height = decoded.height;
+  image->component = 4;
+  image->bits = 8;
+  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+  image->image = std::move(decoded.rgba8);
+  return true;
 }
 
 // Bounds-checked view of one accessor's elements.
@@ -289,7 +330,7 @@ void loadMaterials(const tinygltf::Model& model, Scene& scene, Ignored& ignored)
         if (img.width <= 0 || img.height <= 0 || img.bits != 8 || img.component < 1 ||
             img.image.size() < static_cast<size_t>(img.width) * img.height * img.component) {
           scene.warnings.push_back("material " + std::to_string(i) + ": base colour image '" + img.uri +
-                                   "' could not be decoded (8-bit images only); using the factor only");
+                                   "' was not decoded; using the factor only");
         } else {
           Texture t;
           t.width = img.width;
@@ -514,8 +555,8 @@ Expected<Scene> loadGltf(const std::string& path) {
   jail.root = fs::path(jail.modelFile).parent_path();
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({&jailFileExists, &jailExpandFilePath, &jailReadWholeFile, &jailWriteWholeFile, &jail});
-  loader.SetImageLoader(&limitedImageLoader, nullptr);
   tinygltf::Model model;
+  loader.SetImageLoader(&limitedImageLoader, &model);  // it checks views against model.buffers
   std::string err, warn;
   const bool binary = path.size() >= 4 && (path.substr(path.size() - 4) == ".glb" || path.substr(path.size() - 4) == ".GLB");
   if (std::string why = precheck(path, binary); !why.empty()) return Status::error(path + ": " + why);
