@@ -130,7 +130,7 @@ TEST(ImageDecode, MalformedAndOtherFormatsAreRefusedWithAMessage) {
   flipped[20] ^= 0x40;
   EXPECT_NE(decode(flipped, out).find("PNG"), std::string::npos);
   // Formats glTF does not allow (stb_image would have tried its GIF, BMP, PSD... decoders).
-  for (const char* other : {"GIF89a\x01\0\x01\0", "BM\x3a\0\0\0\0\0\0\0", "8BPS\0\x01\0\0"}) {
+  for (const char* other : {"GIF89a\x01\0\x01\0", "BM\x3a\0\0\0\0\0\0\0", "8BPS\0\x01\0\0\0\0"}) {  // 10 bytes each
     const std::vector<unsigned char> bytes(other, other + 10);
     EXPECT_NE(decode(bytes, out).find("not a PNG or JPEG"), std::string::npos) << other;
   }
