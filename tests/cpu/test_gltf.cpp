@@ -401,7 +401,7 @@ TEST_F(Gltf, TexturesDecodeThroughLibpngAndUndecodableOnesFallBackToTheFactor) {
   }
   // A GIF is no glTF image: the scene loads, the material keeps its factor, and both the image and
   // the material say so.
-  const std::string gif = "GIF89a\x01\0\x01\0\0\0\0;";
+  const std::string gif("GIF89a\x01\0\x01\0\0\0\0;", 14);  // a 1x1 GIF's header and trailer
   std::string text = patched("\"roughnessFactor\":0.2}", "\"roughnessFactor\":0.2,\"baseColorTexture\":{\"index\":0}}");
   text.replace(text.find("\"buffers\""), 9,
                "\"textures\":[{\"source\":0}],\"images\":[{\"uri\":\"data:image/png;base64," + base64(gif) + "\"}],\"buffers\"");
@@ -417,8 +417,9 @@ TEST_F(Gltf, TexturesDecodeThroughLibpngAndUndecodableOnesFallBackToTheFactor) {
 
 TEST_F(Gltf, ImageBufferViewPastItsBufferIsRefused) {
   // tinygltf 2.7 hands the image callback a pointer into the buffer and the view's length without
-  // checking that the view fits: decoding read past the heap block (the fuzzer's GLB in
-  // tests/fuzz/regressions/crash-image-buffer-view-past-its-buffer). The 60-byte buffer here holds a view of 1000 bytes from byte 48.
+  // checking that the view fits: decoding read past the heap block (the fuzzer's GLB is
+  // tests/fuzz/regressions/crash-image-buffer-view-past-its-buffer). The 60-byte buffer here
+  // holds a view of 1000 bytes from byte 48.
   std::string text = patched("\"roughnessFactor\":0.2}", "\"roughnessFactor\":0.2,\"baseColorTexture\":{\"index\":0}}");
   text.replace(text.find("\"buffers\""), 9,
                "\"textures\":[{\"source\":0}],\"images\":[{\"bufferView\":2,\"mimeType\":\"image/png\"}],\"buffers\"");
