@@ -103,13 +103,14 @@ TEST_F(Gltf, NotJson) { expectError(write("garbage.gltf", "this is { not json"),
 TEST_F(Gltf, TruncatedGlb) { expectError(write("short.glb", std::string("glTF\x02\0\0\0", 8)), "cannot load"); }
 
 // A .glb holding gltfText's quad with its buffer in the BIN chunk. `binLengthExtra` is added to
-// the BIN chunk's stated length (the file itself is unchanged).
-std::string glbOf(std::uint32_t binLengthExtra = 0) {
+// the BIN chunk's stated length (the file itself is unchanged); `jsonPadding` spaces end the JSON.
+std::string glbOf(std::uint32_t binLengthExtra = 0, size_t jsonPadding = 0) {
   Tri t;
   const std::string bin = bytesOf(t.positions) + bytesOf(t.indices);  // 60 bytes: 4-aligned
   std::string json = gltfText(t);
   const size_t a = json.find(",\"uri\":\"data:");
   json.erase(a, json.find('"', a + 8) - a + 1);  // the buffer is the BIN chunk: no uri
+  json.append(jsonPadding, ' ');
   while (json.size() % 4 != 0) json += ' ';
   auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
   const auto total = static_cast<std::uint32_t>(12 + 8 + json.size() + 8 + bin.size());
@@ -134,6 +135,8 @@ TEST_F(Gltf, GlbBinChunkPastTheStatedLengthIsRefused) {
   const size_t at = claims.find("\"byteLength\":60");
   claims.replace(at, 15, "\"byteLength\":68");
   expectError(write("longbuffer.glb", claims), "past the");
+  // Also behind a JSON chunk above the 64 MiB the version check reads.
+  expectError(write("longbin-bigjson.glb", glbOf(8, size_t(65) << 20)), "BIN chunk (68 bytes after its header at byte");
 }
 
 TEST_F(Gltf, IndexOutOfRange) {

@@ -152,13 +152,16 @@ bool limitedImageLoader(tinygltf::Image* image, const int index, std::string* er
   // parsed by now: the view is checked against the bytes the buffer really holds.
   if (image->bufferView >= 0) {
     const auto& model = *static_cast<const tinygltf::Model*>(user);
-    const size_t view = static_cast<size_t>(image->bufferView);
-    size_t end = 0;
-    const bool inside = view < model.bufferViews.size() && model.bufferViews[view].buffer >= 0 &&
-                        static_cast<size_t>(model.bufferViews[view].buffer) < model.buffers.size() &&
-                        !addOverflows(model.bufferViews[view].byteOffset, model.bufferViews[view].byteLength, end) &&
-                        end <= model.buffers[static_cast<size_t>(model.bufferViews[view].buffer)].data.size() &&
-                        model.bufferViews[view].byteLength <= static_cast<size_t>(std::numeric_limits<int>::max());
+    const size_t viewIndex = static_cast<size_t>(image->bufferView);
+    bool inside = viewIndex < model.bufferViews.size();
+    if (inside) {
+      const tinygltf::BufferView& view = model.bufferViews[viewIndex];
+      size_t end = 0;
+      inside = view.buffer >= 0 && static_cast<size_t>(view.buffer) < model.buffers.size() &&
+               !addOverflows(view.byteOffset, view.byteLength, end) &&
+               end <= model.buffers[static_cast<size_t>(view.buffer)].data.size() &&
+               view.byteLength <= static_cast<size_t>(std::numeric_limits<int>::max());
+    }
     if (!inside) {
       if (err)
         *err += "image " + std::to_string(index) + ": bufferView " + std::to_string(image->bufferView) +
@@ -174,6 +177,8 @@ bool limitedImageLoader(tinygltf::Image* image, const int index, std::string* er
               std::to_string(kMaxImageSide) + "\n";
     return false;
   }
+  // The decoder's own limit stays as the guard on what it allocates: the header sniff above may
+  // miss a JPEG's frame marker.
   DecodedImage decoded;
   if (std::string why = decodePngOrJpeg(bytes, size > 0 ? static_cast<size_t>(size) : 0, kMaxImageSide, decoded);
       !why.empty()) {
@@ -488,8 +493,10 @@ std::string precheck(const std::string& path, bool binary) {
     if (!in.read(reinterpret_cast<char*>(header), sizeof header)) return {};
     const std::uint32_t jsonLength = le32(header + 12);
     const bool jsonChunk = header[16] == 'J' && header[17] == 'S' && header[18] == 'O' && header[19] == 'N';
-    if (!jsonChunk || jsonLength > (64u << 20)) return {};
+    if (!jsonChunk) return {};  // tinygltf refuses it
+    // Whatever the JSON's size: tinygltf copies the BIN chunk either way.
     if (std::string why = checkBinChunk(in, le32(header + 8), jsonLength); !why.empty()) return why;
+    if (jsonLength > (64u << 20)) return {};
     in.clear();
     in.seekg(20);
     json.resize(jsonLength);

@@ -57,7 +57,6 @@ std::string decodePng(const unsigned char* bytes, std::size_t size, int maxSide,
   volatile bool large = false;
   if (setjmp(png_jmpbuf(png)) != 0) {
     png_destroy_read_struct(&png, &info, nullptr);
-    out.rgba8.clear();
     return large ? "PNG of " + tooLarge(width, height, maxSide) : std::string("PNG: ") + source.message;
   }
   png_set_read_fn(png, &source, pngRead);
@@ -113,8 +112,6 @@ std::string decodeJpeg(const unsigned char* bytes, std::size_t size, int maxSide
   errors.message[0] = '\0';
   if (setjmp(errors.jump) != 0) {
     jpeg_destroy_decompress(&info);
-    out.rgba8.clear();
-    out.width = out.height = 0;
     return std::string("JPEG: ") + errors.message;
   }
   jpeg_create_decompress(&info);
@@ -145,9 +142,11 @@ std::string decodeJpeg(const unsigned char* bytes, std::size_t size, int maxSide
 std::string decodePngOrJpeg(const unsigned char* bytes, std::size_t size, int maxSide, DecodedImage& out) {
   out = DecodedImage{};
   static const unsigned char pngMagic[8] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
-  if (size >= 8 && std::memcmp(bytes, pngMagic, 8) == 0) return decodePng(bytes, size, maxSide, out);
-  if (size >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff) return decodeJpeg(bytes, size, maxSide, out);
-  return "not a PNG or JPEG (the only image formats of glTF 2.0)";
+  std::string why = "not a PNG or JPEG (the only image formats of glTF 2.0)";
+  if (size >= 8 && std::memcmp(bytes, pngMagic, 8) == 0) why = decodePng(bytes, size, maxSide, out);
+  else if (size >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff) why = decodeJpeg(bytes, size, maxSide, out);
+  if (!why.empty()) out = DecodedImage{};  // nothing half-decoded is handed on
+  return why;
 }
 
 }  // namespace sslr::host
