@@ -48,11 +48,12 @@ void main() {
   bool inside = sslrInside(px);
   float radius = inside ? sslrBlurRadiusAt(px) : 0.0f;
   bool blurred = radius >= 0.5f;  // false for NaN too
+  int ownTaps = blurred ? min(int(ceil(radius)), SSLR_BLUR_MAX_TAPS) : 0;
 
   // The apron: the largest tap count any pixel of the tile needs.
   if (local == ivec2(0)) sTaps = 0u;
   barrier();
-  if (blurred) atomicMax(sTaps, uint(min(int(ceil(radius)), SSLR_BLUR_MAX_TAPS)));
+  if (blurred) atomicMax(sTaps, uint(ownTaps));
   barrier();
   int taps = int(sTaps);
 
@@ -97,7 +98,6 @@ void main() {
   // A blurred pixel was traced, so its own guide is valid (its depth is geometry, its normal read).
   vec4 guide0 = sGuide[line][at];
   SslrBlurCentre centre = sslrBlurCentre(frame.trace, radius, guide0.w, guide0.xyz);
-  int ownTaps = min(int(ceil(radius)), SSLR_BLUR_MAX_TAPS);
   vec4 sum = center;
   float weightSum = 1.0f;
   for (int i = -ownTaps; i <= ownTaps; ++i) {
