@@ -178,6 +178,7 @@ void main() {
   uint slot = atomicAdd(tiles.dispatchX, 1u);
   atomicAdd(tiles.drawInstances, 1u);
   tiles.tileCoords[slot] = gl_WorkGroupID.x | (gl_WorkGroupID.y << 16);
+  tiles.tileCoords[sslrQuadRetraceCountIndex(slot)] = 0u;
 #endif
 }
 #endif

@@ -22,7 +22,7 @@
 // the full-resolution pass reads the quads.
 #ifdef SSLR_HALF_QUADS
 #ifdef SSLR_HALF_QUAD_RETRACE
-layout(local_size_x = SSLR_RETRACE_GROUP) in;
+layout(local_size_x = (SSLR_TILE_SIZE / 2) * (SSLR_TILE_SIZE / 2)) in;  // one listed tile's quads
 #else
 layout(local_size_x = SSLR_TILE_SIZE / 2, local_size_y = SSLR_TILE_SIZE / 2) in;
 #endif
@@ -40,19 +40,42 @@ layout(binding = 4) uniform sampler2D uQuadSurface;  // xy: traced pixel's octah
 #if defined(SSLR_HALF_RES) || defined(SSLR_HALF_RETRACE) || defined(SSLR_DEFER_TRAVERSAL) || \
     defined(SSLR_HALF_QUAD_RETRACE) || defined(SSLR_COUNT_TRAVERSAL)
 layout(std430, binding = SSLR_BINDING_RETRACE_SSBO) buffer SslrRetrace {
-  uint dispatchX;  // DispatchIndirectCommand of the retrace pass: ceil(count / SSLR_RETRACE_GROUP)
-  uint dispatchY;
+  uint dispatchX;  // DispatchIndirectCommand of the retrace pass: ceil(count / SSLR_RETRACE_GROUP);
+  uint dispatchY;  // of the quad retrace pass: the tiles with a quad listed
   uint dispatchZ;
   uint count;      // pixels (or quads) listed; inline under Auto: pixels the traversal ran for
-  uint pixels[];   // x | y << 16
+  // Pixels: x | y << 16 in the order listed. Quads: [0, cap) the slots of the tiles with a quad
+  // listed, then per slot a region of its listed quads, x | y << 16, as many as
+  // sslrQuadRetraceCountIndex says.
+  uint pixels[];
 } retrace;
 
-// Lists a pixel (or a quad) for the retrace pass.
+#ifdef SSLR_HALF_QUADS
+// Lists a quad of this group's tile (the quad pass runs one group per traced tile, in list slot
+// gl_WorkGroupID.x) for the quad retrace pass, which runs one group per tile with a quad listed:
+// the rays of a group start side by side, as they would inline. In the one list the pixels use,
+// the quads of the tiles that ran at the same time (llvmpipe's threads) interleaved, and SIMD
+// batches of rays from far apart diverged: half resolution's quad rays cost 1.5x full
+// resolution's per ray on mirror-walls (docs/algorithm.md). The pixels keep the one list: they are
+// few and scattered (edges, rays the quad's did not answer), and tile-sized groups of them left
+// most invocations idle (+15% on thin-objects' half resolution).
+const uint kTileQuads = uint((SSLR_TILE_SIZE / 2) * (SSLR_TILE_SIZE / 2));
+uint sslrQuadRetraceRegion(uint slot) { return sslrTileCapacity() + slot * kTileQuads; }
+void sslrListForRetrace(ivec2 quad) {
+  uint slot = gl_WorkGroupID.x;
+  uint k = atomicAdd(tiles.tileCoords[sslrQuadRetraceCountIndex(slot)], 1u);
+  retrace.pixels[sslrQuadRetraceRegion(slot) + k] = uint(quad.x) | (uint(quad.y) << 16);
+  atomicAdd(retrace.count, 1u);
+  if (k == 0u) retrace.pixels[atomicAdd(retrace.dispatchX, 1u)] = slot;
+}
+#else
+// Lists a pixel for the retrace pass.
 void sslrListForRetrace(ivec2 px) {
   uint slot = atomicAdd(retrace.count, 1u);
   retrace.pixels[slot] = uint(px.x) | (uint(px.y) << 16);
   if (slot % uint(SSLR_RETRACE_GROUP) == 0u) atomicAdd(retrace.dispatchX, 1u);
 }
+#endif
 #endif
 
 layout(binding = 0, rgba16f) uniform writeonly image2D uReflection;
@@ -154,15 +177,21 @@ bool sslrPixelToTrace(ivec2 px, out SslrPixel q) {
 #ifdef SSLR_HALF_QUADS
 void sslrTraceQuad(ivec2 quad) {
   // The traced pixel rotates through the quad frame by frame (the first of the four, in that
-  // order, that needs tracing), so that a temporal filter would see every pixel's own ray.
+  // order, that needs tracing), so that a temporal filter would see every pixel's own ray. The
+  // pixel is chosen first and traced once after the loop: with the tracer inside the loop, a SIMD
+  // batch whose lanes chose different candidates ran the whole tracer once per candidate.
   int start = frame.trace.frameIndex & 3;
+  int index = -1;
+  SslrPixel q;
+  for (int k = 0; k < 4 && index < 0; ++k) {
+    int candidate = (start + k) & 3;
+    ivec2 px = quad * 2 + sslrQuadOffset(candidate);
+    if (sslrInside(px) && sslrPixelToTrace(px, q)) index = candidate;
+  }
   vec4 quadHit = vec4(0.0f);
   vec4 quadSurface = vec4(0.5f);
-  for (int k = 0; k < 4; ++k) {
-    int index = (start + k) & 3;
+  if (index >= 0) {
     ivec2 px = quad * 2 + sslrQuadOffset(index);
-    SslrPixel q;
-    if (!sslrInside(px) || !sslrPixelToTrace(px, q)) continue;
 #if defined(SSLR_DEFER_TRAVERSAL) && !defined(SSLR_HALF_QUAD_RETRACE)
     bool needsTraversal;
     SslrHit hit = sslrTraceFirstStage(frame.proj, frame.surface, frame.trace, px, q.vsP, q.vsR, needsTraversal);
@@ -191,7 +220,6 @@ void sslrTraceQuad(ivec2 quad) {
     atomicAdd(stats.tracedPixels, 1u);
     if (hit.hierarchical != 0) atomicAdd(stats.hierarchicalPixels, 1u);
 #endif
-    break;
   }
   imageStore(uQuadHitOut, quad, quadHit);
   imageStore(uQuadSurfaceOut, quad, quadSurface);
@@ -202,9 +230,10 @@ void sslrTraceQuad(ivec2 quad) {
 
 void main() {
 #ifdef SSLR_HALF_QUAD_RETRACE
-  uint i = gl_GlobalInvocationID.x;
-  if (i >= retrace.count) return;
-  sslrTraceQuad(ivec2(int(retrace.pixels[i] & 0xffffu), int(retrace.pixels[i] >> 16)));
+  uint slot = retrace.pixels[gl_WorkGroupID.x];
+  if (gl_LocalInvocationIndex >= tiles.tileCoords[sslrQuadRetraceCountIndex(slot)]) return;
+  uint entry = retrace.pixels[sslrQuadRetraceRegion(slot) + gl_LocalInvocationIndex];
+  sslrTraceQuad(ivec2(int(entry & 0xffffu), int(entry >> 16)));
 #else
   sslrTraceQuad(sslrTileOrigin(gl_WorkGroupID.x) / 2 + ivec2(gl_LocalInvocationID.xy));
 #endif

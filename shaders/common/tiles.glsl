@@ -33,7 +33,9 @@ layout(std430, binding = SSLR_BINDING_TILE_SSBO) buffer SslrTiles {
   // [0, cap): traced tiles; [cap, 2 cap): tiles to blur (each entry tile x | tile y << 16);
   // [2 cap, 3 cap): per tile, the frame index in which it was last listed for blurring; [3 cap,
   // 4 cap): per tile, the frame index in which classification last listed it for tracing (stamps:
-  // no per-frame clear needed); [4 cap, 5 cap): the previous frame's traced tiles (copied).
+  // no per-frame clear needed); [4 cap, 5 cap): the previous frame's traced tiles (copied);
+  // [5 cap, 6 cap): per traced tile's slot, how many of its quads (half resolution) the quad pass
+  // listed for the quad retrace pass (zeroed by classification as it lists the tile).
   uint tileCoords[];
 } tiles;
 
@@ -50,6 +52,8 @@ ivec2 sslrTileOrigin(uint index) { return sslrTileOriginFromEntry(tiles.tileCoor
 ivec2 sslrBlurTileOrigin(uint index) {
   return sslrTileOriginFromEntry(tiles.tileCoords[sslrTileCapacity() + index]);
 }
+
+uint sslrQuadRetraceCountIndex(uint slot) { return 5u * sslrTileCapacity() + slot; }
 
 uint sslrTileListedStamp(uvec2 tile) { return 3u * sslrTileCapacity() + tile.y * sslrTilesX() + tile.x; }
 

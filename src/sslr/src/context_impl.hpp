@@ -22,7 +22,7 @@ constexpr GLsizeiptr kHizGroupsIndex = 12 + 3 * SSLR_HIZ_MAX_LEVELS;  // their r
 constexpr GLsizeiptr kHeaderUpload = 12 + 6 * SSLR_HIZ_MAX_LEVELS;    // uints the CPU writes per frame
 constexpr GLintptr kCleanupDispatchOffset = kHeaderUpload * 4;       // the previous trace dispatch
 constexpr GLsizeiptr kTileHeader = kHeaderUpload + 4;                // uints before the tile lists
-constexpr GLsizeiptr kTileArrays = 5;                                // per-tile arrays after it
+constexpr GLsizeiptr kTileArrays = 6;                                // per-tile arrays after it
 constexpr GLintptr kDrawArgsOffset = 3 * 4;           // DrawArraysIndirectCommand (composite)
 constexpr GLintptr kBlurDispatchOffset = 8 * 4;       // DispatchIndirectCommand (blur)
 // TraversalPass::Auto on a software renderer runs the traversal inline above this share of the

@@ -195,7 +195,11 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   }
   if ((retracePass || countTraversal) && retraceBuffer == 0) {
     gl.CreateBuffers(1, &retraceBuffer);
-    gl.NamedBufferStorage(retraceBuffer, static_cast<GLsizeiptr>((4 + static_cast<size_t>(width) * height) * sizeof(GLuint)),
+    // Header, then a pixel list (at most every pixel of the traced tiles) or the quad list (a slot
+    // and a tile's quads per tile; trace.comp).
+    const size_t tileCount = static_cast<size_t>(tilesX()) * tilesY();
+    gl.NamedBufferStorage(retraceBuffer,
+                          static_cast<GLsizeiptr>((4 + tileCount * SSLR_TILE_SIZE * SSLR_TILE_SIZE) * sizeof(GLuint)),
                           nullptr, GL_DYNAMIC_STORAGE_BIT);
     label(GL_BUFFER, retraceBuffer, "sslr.retrace");
   }
