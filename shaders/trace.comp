@@ -57,8 +57,8 @@ layout(std430, binding = SSLR_BINDING_RETRACE_SSBO) buffer SslrRetrace {
 // the quads of the tiles that ran at the same time (llvmpipe's threads) interleaved, and SIMD
 // batches of rays from far apart diverged: half resolution's quad rays cost 1.5x full
 // resolution's per ray on mirror-walls (docs/algorithm.md). The pixels keep the one list: they are
-// few and scattered (edges, rays the quad's did not answer), and tile-sized groups of them left
-// most invocations idle (+15% on thin-objects' half resolution).
+// few and scattered (edges, rays the quad's did not answer), and grouping them by tile left most
+// invocations idle (thin-objects 13-20% slower).
 const uint kTileQuads = uint((SSLR_TILE_SIZE / 2) * (SSLR_TILE_SIZE / 2));
 uint sslrQuadRetraceRegion(uint slot) { return sslrTileCapacity() + slot * kTileQuads; }
 void sslrListForRetrace(ivec2 quad) {
