@@ -40,14 +40,16 @@ layout(binding = 4) uniform sampler2D uQuadSurface;  // xy: traced pixel's octah
 #if defined(SSLR_HALF_RES) || defined(SSLR_HALF_RETRACE) || defined(SSLR_DEFER_TRAVERSAL) || \
     defined(SSLR_HALF_QUAD_RETRACE) || defined(SSLR_COUNT_TRAVERSAL)
 layout(std430, binding = SSLR_BINDING_RETRACE_SSBO) buffer SslrRetrace {
-  uint dispatchX;  // DispatchIndirectCommand of the retrace pass: ceil(count / SSLR_RETRACE_GROUP);
-  uint dispatchY;  // of the quad retrace pass: the tiles with a quad listed
+  // DispatchIndirectCommand: the retrace pass's ceil(count / SSLR_RETRACE_GROUP) groups, or the
+  // quad retrace pass's one group per tile with a quad listed.
+  uint dispatchX;
+  uint dispatchY;
   uint dispatchZ;
-  uint count;      // pixels (or quads) listed; inline under Auto: pixels the traversal ran for
+  uint count;  // pixels listed; inline under Auto: pixels the traversal ran for
   // Pixels: x | y << 16 in the order listed. Quads: [0, cap) the slots of the tiles with a quad
   // listed, then per slot a region of its listed quads, x | y << 16, as many as
   // sslrQuadRetraceCountIndex says.
-  uint pixels[];
+  uint entries[];
 } retrace;
 
 #ifdef SSLR_HALF_QUADS
@@ -64,15 +66,14 @@ uint sslrQuadRetraceRegion(uint slot) { return sslrTileCapacity() + slot * kTile
 void sslrListForRetrace(ivec2 quad) {
   uint slot = gl_WorkGroupID.x;
   uint k = atomicAdd(tiles.tileCoords[sslrQuadRetraceCountIndex(slot)], 1u);
-  retrace.pixels[sslrQuadRetraceRegion(slot) + k] = uint(quad.x) | (uint(quad.y) << 16);
-  atomicAdd(retrace.count, 1u);
-  if (k == 0u) retrace.pixels[atomicAdd(retrace.dispatchX, 1u)] = slot;
+  retrace.entries[sslrQuadRetraceRegion(slot) + k] = uint(quad.x) | (uint(quad.y) << 16);
+  if (k == 0u) retrace.entries[atomicAdd(retrace.dispatchX, 1u)] = slot;
 }
 #else
 // Lists a pixel for the retrace pass.
 void sslrListForRetrace(ivec2 px) {
   uint slot = atomicAdd(retrace.count, 1u);
-  retrace.pixels[slot] = uint(px.x) | (uint(px.y) << 16);
+  retrace.entries[slot] = uint(px.x) | (uint(px.y) << 16);
   if (slot % uint(SSLR_RETRACE_GROUP) == 0u) atomicAdd(retrace.dispatchX, 1u);
 }
 #endif
@@ -182,16 +183,16 @@ void sslrTraceQuad(ivec2 quad) {
   // batch whose lanes chose different candidates ran the whole tracer once per candidate.
   int start = frame.trace.frameIndex & 3;
   int index = -1;
+  ivec2 px;  // the chosen pixel once index >= 0
   SslrPixel q;
   for (int k = 0; k < 4 && index < 0; ++k) {
     int candidate = (start + k) & 3;
-    ivec2 px = quad * 2 + sslrQuadOffset(candidate);
+    px = quad * 2 + sslrQuadOffset(candidate);
     if (sslrInside(px) && sslrPixelToTrace(px, q)) index = candidate;
   }
   vec4 quadHit = vec4(0.0f);
   vec4 quadSurface = vec4(0.5f);
   if (index >= 0) {
-    ivec2 px = quad * 2 + sslrQuadOffset(index);
 #if defined(SSLR_DEFER_TRAVERSAL) && !defined(SSLR_HALF_QUAD_RETRACE)
     bool needsTraversal;
     SslrHit hit = sslrTraceFirstStage(frame.proj, frame.surface, frame.trace, px, q.vsP, q.vsR, needsTraversal);
@@ -230,9 +231,9 @@ void sslrTraceQuad(ivec2 quad) {
 
 void main() {
 #ifdef SSLR_HALF_QUAD_RETRACE
-  uint slot = retrace.pixels[gl_WorkGroupID.x];
+  uint slot = retrace.entries[gl_WorkGroupID.x];
   if (gl_LocalInvocationIndex >= tiles.tileCoords[sslrQuadRetraceCountIndex(slot)]) return;
-  uint entry = retrace.pixels[sslrQuadRetraceRegion(slot) + gl_LocalInvocationIndex];
+  uint entry = retrace.entries[sslrQuadRetraceRegion(slot) + gl_LocalInvocationIndex];
   sslrTraceQuad(ivec2(int(entry & 0xffffu), int(entry >> 16)));
 #else
   sslrTraceQuad(sslrTileOrigin(gl_WorkGroupID.x) / 2 + ivec2(gl_LocalInvocationID.xy));
@@ -355,7 +356,7 @@ void main() {
 #ifdef SSLR_HALF_RETRACE
   uint i = gl_GlobalInvocationID.x;
   if (i >= retrace.count) return;
-  ivec2 px = ivec2(int(retrace.pixels[i] & 0xffffu), int(retrace.pixels[i] >> 16));
+  ivec2 px = ivec2(int(retrace.entries[i] & 0xffffu), int(retrace.entries[i] >> 16));
 #else
   ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
   if (!sslrInside(px)) return;
