@@ -348,7 +348,10 @@ INSTANTIATE_TEST_SUITE_P(
 // the same pixels: the hit images must agree, and so must the reflections and the stats' count
 // of traversed pixels. Scenes: every ray to the traversal first (facing-mirror), most pixels
 // answered by adaptive L (mirror-room), hit verification on every hit (thin-objects, ultra);
-// half resolution (its quad pass defers too) on mirror-room and facing-mirror.
+// half resolution (its quad pass defers too) on mirror-room and facing-mirror. Each context renders
+// three frames while the camera moves: the deferred passes' lists are rebuilt every frame (the quad
+// retrace's per-tile counters are zeroed by classification), and a list carried over from the
+// frame before would leave quads untraced with that frame's hits, which a moved camera makes wrong.
 struct PassCase {
   const char* scene;
   bool half;
@@ -356,31 +359,8 @@ struct PassCase {
 void PrintTo(const PassCase& c, std::ostream* os) { *os << c.scene << (c.half ? " half resolution" : ""); }
 class TraversalPasses : public sslr::test::GlTest, public ::testing::WithParamInterface<PassCase> {};
 
-TEST_P(TraversalPasses, DeferredAndInlineGiveTheSameHits) {
-  const PassCase c = GetParam();
-  auto scene = makeBuiltinScene(c.scene);
-  ASSERT_TRUE(scene);
-  GBufferOptions o;
-  o.width = 192;
-  o.height = 108;
-  Settings inlined = std::string(c.scene) == "thin-objects" ? Settings::preset(Preset::Ultra) : Settings{};
-  inlined.halfResolution = c.half;
-  inlined.debugOutputs = true;
-  inlined.collectStats = true;
-  inlined.traversalPass = TraversalPass::Inline;
-  Settings deferred = inlined;
-  deferred.traversalPass = TraversalPass::Deferred;
-  Image hits[2], reflections[2];
-  FrameStats stats[2];
-  for (int k = 0; k < 2; ++k) {
-    auto r = FrameRenderer::create(o);
-    ASSERT_TRUE(r) << r.error();
-    GpuScene gpu(scene.value());
-    ASSERT_TRUE(r.value()->render(gpu, *scene.value().camera, k == 0 ? &inlined : &deferred));
-    hits[k] = r.value()->readHit();
-    reflections[k] = r.value()->readReflection();
-    stats[k] = r.value()->sslr().waitForStats();
-  }
+// One frame of the two contexts (inline, deferred): the same hits, reflections and counts.
+void expectSameHits(const PassCase& c, const Image (&hits)[2], const Image (&reflections)[2], const FrameStats (&stats)[2]) {
   size_t reported = 0, differing = 0;
   for (size_t i = 0; i < hits[0].pixels.size(); i += 4) {
     reported += hits[0].pixels[i + 2] > 0.5f;
@@ -400,6 +380,43 @@ TEST_P(TraversalPasses, DeferredAndInlineGiveTheSameHits) {
   EXPECT_EQ(stats[0].hierarchicalPixels, stats[1].hierarchicalPixels);
   EXPECT_GT(stats[1].hierarchicalPixels, 0u);
   EXPECT_EQ(stats[0].tracedPixels, stats[1].tracedPixels);
+}
+
+TEST_P(TraversalPasses, DeferredAndInlineGiveTheSameHits) {
+  const PassCase c = GetParam();
+  auto scene = makeBuiltinScene(c.scene);
+  ASSERT_TRUE(scene);
+  GBufferOptions o;
+  o.width = 192;
+  o.height = 108;
+  Settings inlined = std::string(c.scene) == "thin-objects" ? Settings::preset(Preset::Ultra) : Settings{};
+  inlined.halfResolution = c.half;
+  inlined.debugOutputs = true;
+  inlined.collectStats = true;
+  inlined.traversalPass = TraversalPass::Inline;
+  Settings deferred = inlined;
+  deferred.traversalPass = TraversalPass::Deferred;
+  constexpr int kFrames = 3;
+  Image hits[kFrames][2], reflections[kFrames][2];
+  FrameStats stats[kFrames][2];
+  for (int k = 0; k < 2; ++k) {
+    auto r = FrameRenderer::create(o);
+    ASSERT_TRUE(r) << r.error();
+    GpuScene gpu(scene.value());
+    Camera camera = *scene.value().camera;
+    for (int frame = 0; frame < kFrames; ++frame) {
+      // A step sideways and down after the first frame: a few pixels of screen motion at 192x108.
+      if (frame > 0) camera.eye += glm::dvec3(0.15, -0.05, 0.0);
+      ASSERT_TRUE(r.value()->render(gpu, camera, k == 0 ? &inlined : &deferred));
+      hits[frame][k] = r.value()->readHit();
+      reflections[frame][k] = r.value()->readReflection();
+      stats[frame][k] = r.value()->sslr().waitForStats();
+    }
+  }
+  for (int frame = 0; frame < kFrames; ++frame) {
+    SCOPED_TRACE("frame " + std::to_string(frame));
+    expectSameHits(c, hits[frame], reflections[frame], stats[frame]);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, TraversalPasses,
