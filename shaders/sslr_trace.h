@@ -334,35 +334,6 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
   return sslrFinishHit(p, hit, vsP, vsR, L, valid);
 }
 
-// ---- Half resolution (Settings::halfResolution) ---------------------------------------------
-// One ray per 2x2 quad; the quad's other pixels reuse its hit when they lie on the traced pixel's
-// surface, and trace their own ray otherwise.
-
-// Pixel offsets within a quad, in the order the traced pixel rotates through (one per frame).
-SSLR_FN ivec2 sslrQuadOffset(int index) {
-  return index == 0 ? ivec2(0, 0) : (index == 1 ? ivec2(1, 1) : (index == 2 ? ivec2(1, 0) : ivec2(0, 1)));
-}
-
-// Whether P (normal N) lies on the surface of the quad's traced pixel (Pc, Nc): on its tangent
-// plane within depth precision and a quarter pixel, with normals within about 8 degrees. Exact for
-// planes whatever their slope (a depth comparison is not: a floor seen at a grazing angle changes
-// depth by many percent from one pixel to the next).
-SSLR_FN bool sslrSameSurface(SslrProjection p, SslrSurface s, vec3 vsP, vec3 vsN, vec3 vsPc, vec3 vsNc) {
-  float dist = p.orthographic != 0 ? abs(vsP.z) : sslrViewDistance(p, vsP);
-  float tolerance = 0.002f * dist + 0.25f * sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : dist);
-  return dot(vsN, vsNc) > 0.9995f && abs(dot(vsP - vsPc, vsNc)) <= tolerance;
-}
-
-// The length along P's ray R to the plane of the quad's hit (point H, normal Nh): a neighbouring
-// pixel of a plane sees the same reflected surface, shifted. A plane seen edge-on by the ray
-// keeps the quad's point; a plane behind the ray gives -1 (no reuse).
-SSLR_FN float sslrReusedLength(vec3 vsP, vec3 vsR, vec3 vsH, vec3 vsNh) {
-  float dn = dot(vsR, vsNh);
-  if (!(dn < -0.05f)) return length(vsH - vsP);
-  float L = dot(vsH - vsP, vsNh) / dn;
-  return L > 0.0f ? L : -1.0f;
-}
-
 // What a hit contributes to its pixel (everything the pass does per pixel besides fetching).
 //   coverage   how much of the pixel's specular the trace answers, 0..1: confidence x the tracer's
 //              own fade x screen-edge fade x camera-facing fade (x the article's error term in

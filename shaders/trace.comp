@@ -210,12 +210,11 @@ void sslrTraceQuad(ivec2 quad) {
     vec3 vsHitNormal = vec3(0.0f, 0.0f, 1.0f);
     if (confidence > 0.0f)
       sslrDecodeNormal(frame.surface, sslrLoadNormal(sslrPixelFromUv(hit.uvHit, sslrSizePx())), vsHitNormal);
-    // w packs the confidence (< 1), 2 x the traced pixel's index and 8 for a ray that neither hit
-    // nor left the screen or met the sky before any hierarchical traversal (its neighbours trace
-    // their own: adaptive L may converge for them). A ray the traversal gave up on stays a miss
-    // for its neighbours: retracing those doubled the cost of half resolution on mirror-walls.
-    float hardMiss = (confidence == 0.0f && hit.status == SSLR_STATUS_MISS && hit.hierarchical == 0) ? 8.0f : 0.0f;
-    quadHit = vec4(q.vsP + q.vsR * hit.L, min(confidence, 0.999f) + 2.0f * float(index) + hardMiss);
+    // What the ray says to the quad's other pixels (sslr_shared.h, "Half resolution").
+    int kind = SSLR_QUAD_ANSWERED;
+    if (confidence == 0.0f && hit.status == SSLR_STATUS_MISS)
+      kind = hit.hierarchical == 0 ? SSLR_QUAD_OWN_RAYS : SSLR_QUAD_TRAVERSAL_MISS;
+    quadHit = vec4(q.vsP + q.vsR * hit.L, sslrPackQuadCode(confidence, index, kind));
     quadSurface = vec4(sslrOctEncode(q.vsN), sslrOctEncode(vsHitNormal));
 #ifdef SSLR_COLLECT_STATS
     atomicAdd(stats.tracedPixels, 1u);
@@ -242,28 +241,42 @@ void main() {
 #else
 
 #ifdef SSLR_HALF_RES
+// Whether the ray of a quad (of a tile traced this frame: the others hold older frames' records) hit.
+bool sslrQuadRayHit(ivec2 quad) {
+  ivec2 px = quad * 2;
+  if (!sslrInside(px)) return false;
+  if (tiles.tileCoords[sslrTileListedStamp(uvec2(px) / uint(SSLR_TILE_SIZE))] != uint(frame.trace.frameIndex))
+    return false;
+  gFetches += 1u;
+  return sslrUnpackQuadCode(texelFetch(uQuadHit, quad, 0).w).confidence > 0.0f;
+}
+
 // The quad's ray answers for this pixel when the pixel lies on the traced pixel's surface: its hit
 // is re-planed for this pixel's ray (sslrReusedLength) and checked against the depth where it
-// lands; a quad's ray that left the screen or met the sky is a miss here too. False: trace this
-// pixel's own ray.
+// lands; a quad's ray that left the screen or met the sky is a miss here too, and so is one the
+// traversal gave up on unless a neighbouring quad's ray hit. False: trace this pixel's own ray.
 bool sslrReuseQuadHit(ivec2 px, vec3 vsP, vec3 vsN, vec3 vsR, out SslrHit hit) {
   hit = sslrNoHit(SSLR_STATUS_MISS);
   ivec2 quad = px / 2;
   vec4 a = texelFetch(uQuadHit, quad, 0);
   vec4 b = texelFetch(uQuadSurface, quad, 0);
   gFetches += 2u;
-  bool hardMiss = a.w >= 8.0f;
-  float code = hardMiss ? a.w - 8.0f : a.w;
-  int index = clamp(int(floor(code * 0.5f)), 0, 3);
-  float confidence = code - 2.0f * float(index);
-  ivec2 traced = quad * 2 + sslrQuadOffset(index);
+  SslrQuadCode code = sslrUnpackQuadCode(a.w);
+  float confidence = code.confidence;
+  ivec2 traced = quad * 2 + sslrQuadOffset(code.index);
   if (traced != px) {
     vec3 vsTraced;
     if (!sslrLoadSurface(traced, vsTraced)) return false;
     if (!sslrSameSurface(frame.proj, frame.surface, vsP, vsN, vsTraced, sslrOctDecode(b.xy))) return false;
   }
-  if (hardMiss) return false;
-  if (!(confidence > 0.0f)) return true;  // the surface's ray left the screen or met the sky
+  if (code.kind == SSLR_QUAD_OWN_RAYS && traced != px) return false;
+  if (code.kind == SSLR_QUAD_TRAVERSAL_MISS && traced != px) {
+    // Beside a quad whose ray hit, the miss may be a band along an edge (rays passing behind a
+    // box): the quads across this pixel's two edges of its quad.
+    ivec2 side = ivec2((px.x & 1) != 0 ? 1 : -1, (px.y & 1) != 0 ? 1 : -1);
+    if (sslrQuadRayHit(quad + ivec2(side.x, 0)) || sslrQuadRayHit(quad + ivec2(0, side.y))) return false;
+  }
+  if (!(confidence > 0.0f)) return true;  // a miss for this pixel too
   vec3 vsHitNormal = sslrOctDecode(b.zw);
   float L = traced == px ? length(a.xyz - vsP) : sslrReusedLength(vsP, vsR, a.xyz, vsHitNormal);
   if (!(L > 0.0f)) return false;

@@ -415,39 +415,48 @@ TEST_F(Api, OutputsDoNotDependOnEarlierFrames) {
   FrameInputs none = full;  // reflectance 0 everywhere: nothing is traced
   none.surface.reflectanceChannel = -1;
   none.surface.constantReflectance = 0.0f;
-  Settings s;
-  // Fewer tiles: the same frame whose left half is rough (roughness channel 1: not traced).
-  Frame half;
-  const FrameInputs partial = half.gbuffer->frameInputs();
-  const std::vector<float> rough(static_cast<size_t>(W / 2) * H * 4, 1.0f);
-  glTextureSubImage2D(partial.normalTexture, 0, 0, 0, W / 2, H, GL_RGBA, GL_FLOAT, rough.data());
-  auto expected = [&](const FrameInputs& in, const Settings& st) {
-    auto fresh = makeContext();
-    EXPECT_TRUE(fresh->dispatch(in, st));
-    return std::pair{readAll(fresh->reflectionTexture(), 4).pixels, readAll(fresh->resolvedTexture(), 4).pixels};
-  };
-  const auto wantFull = expected(full, s), wantNone = expected(none, s), wantPartial = expected(partial, s);
-  for (float v : wantNone.second) ASSERT_EQ(v, 0.0f);
-  ASSERT_NE(wantFull.second, wantPartial.second) << "the two frames must trace different tiles";
-  auto ctx = makeContext();
-  struct Step {
-    const FrameInputs* in;
-    const Settings* settings;
-    const std::pair<std::vector<float>, std::vector<float>>* want;
-    const char* name;
-  } steps[] = {{&full, &s, &wantFull, "full"},       {&none, &s, &wantNone, "none after full"},
-               {&none, &s, &wantNone, "none again"}, {&full, &s, &wantFull, "full after none"},
-               {&partial, &s, &wantPartial, "fewer tiles after full"}, {&full, &s, &wantFull, "full again"}};
-  for (const Step& st : steps) {
-    ASSERT_TRUE(ctx->dispatch(*st.in, *st.settings));
-    EXPECT_EQ(readAll(ctx->reflectionTexture(), 4).pixels, st.want->first) << st.name;
-    EXPECT_EQ(readAll(ctx->resolvedTexture(), 4).pixels, st.want->second) << st.name;
+  // Half resolution keeps more per frame (the quads' records, their per-tile counters) and reads
+  // its neighbour quads' records, which only this frame's listed tiles hold.
+  for (bool halfResolution : {false, true}) {
+    SCOPED_TRACE(halfResolution ? "half resolution" : "full resolution");
+    Settings s;
+    s.halfResolution = halfResolution;
+    // Fewer tiles: the same frame whose left half is rough (roughness channel 1: not traced).
+    Frame roughLeft;
+    const FrameInputs partial = roughLeft.gbuffer->frameInputs();
+    const std::vector<float> rough(static_cast<size_t>(W / 2) * H * 4, 1.0f);
+    glTextureSubImage2D(partial.normalTexture, 0, 0, 0, W / 2, H, GL_RGBA, GL_FLOAT, rough.data());
+    // What a fresh context gives for `in` as its frame `frame`, after empty frames: half
+    // resolution's traced pixel of a quad rotates with the frame index.
+    auto expected = [&](const FrameInputs& in, int frame) {
+      auto fresh = makeContext();
+      for (int i = 1; i < frame; ++i) EXPECT_TRUE(fresh->dispatch(none, s));
+      EXPECT_TRUE(fresh->dispatch(in, s));
+      return std::pair{readAll(fresh->reflectionTexture(), 4).pixels, readAll(fresh->resolvedTexture(), 4).pixels};
+    };
+    const auto wantNone = expected(none, 1);
+    for (float v : wantNone.second) ASSERT_EQ(v, 0.0f);
+    ASSERT_NE(expected(full, 1).second, expected(partial, 1).second) << "the two frames must trace different tiles";
+    auto ctx = makeContext();
+    struct Step {
+      const FrameInputs* in;
+      const char* name;
+    } steps[] = {{&full, "full"},       {&none, "none after full"},
+                 {&none, "none again"}, {&full, "full after none"},
+                 {&partial, "fewer tiles after full"}, {&full, "full again"}};
+    int frame = 0;
+    for (const Step& st : steps) {
+      ASSERT_TRUE(ctx->dispatch(*st.in, s));
+      const auto want = expected(*st.in, ++frame);
+      EXPECT_EQ(readAll(ctx->reflectionTexture(), 4).pixels, want.first) << st.name;
+      EXPECT_EQ(readAll(ctx->resolvedTexture(), 4).pixels, want.second) << st.name;
+    }
+    // A resize starts from zero outputs too.
+    ASSERT_TRUE(ctx->resize(W / 2, H / 2));
+    ASSERT_TRUE(ctx->resize(W, H));
+    ASSERT_TRUE(ctx->dispatch(none, s));
+    EXPECT_EQ(readAll(ctx->resolvedTexture(), 4).pixels, wantNone.second) << "after resize";
   }
-  // A resize starts from zero outputs too.
-  ASSERT_TRUE(ctx->resize(W / 2, H / 2));
-  ASSERT_TRUE(ctx->resize(W, H));
-  ASSERT_TRUE(ctx->dispatch(none, s));
-  EXPECT_EQ(readAll(ctx->resolvedTexture(), 4).pixels, wantNone.second) << "after resize";
 }
 
 // World-space normals with the view matrix give the hits of view-space normals; declared as
