@@ -745,9 +745,9 @@ SSLR_FN SslrQuadCode sslrUnpackQuadCode(float w) {
 }
 
 // Whether P (normal N) lies on the surface of the quad's traced pixel (Pc, Nc): on its tangent
-// plane within depth precision and a quarter pixel, with normals within about 8 degrees. Exact for
-// planes whatever their slope (a depth comparison is not: a floor seen at a grazing angle changes
-// depth by many percent from one pixel to the next).
+// plane within depth precision and a quarter pixel, with normals within about 1.8 degrees. Exact
+// for planes whatever their slope (a depth comparison is not: a floor seen at a grazing angle
+// changes depth by many percent from one pixel to the next).
 SSLR_FN bool sslrSameSurface(SslrProjection p, SslrSurface s, vec3 vsP, vec3 vsN, vec3 vsPc, vec3 vsNc) {
   float dist = p.orthographic != 0 ? abs(vsP.z) : sslrViewDistance(p, vsP);
   float tolerance = 0.002f * dist + 0.25f * sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : dist);
