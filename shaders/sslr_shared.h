@@ -716,15 +716,16 @@ SSLR_FN ivec2 sslrQuadOffset(int index) {
 }
 
 // What a quad's ray says to the quad's other pixels (the quad record's w, one float):
-// SSLR_QUAD_ANSWERED  its hit, or a miss that is theirs too (the ray left the screen or met the sky);
+// SSLR_QUAD_HIT       its hit, re-planed for each of them (a record no ray wrote is this, with no hit);
 // SSLR_QUAD_OWN_RAYS  adaptive L did not converge and no traversal ran: each traces its own ray
 //                     (adaptive L may converge for it);
-// SSLR_QUAD_TRAVERSAL_MISS  the traversal found nothing: a miss for them too, unless a neighbouring
-//                     quad's ray hit (then the miss is a band along an edge, e.g. rays passing behind
-//                     a box, and a pixel's own ray may find what its quad's did not).
-#define SSLR_QUAD_ANSWERED 0
+// SSLR_QUAD_MISS      no hit (the ray left the screen, met the sky, or the traversal found nothing):
+//                     a miss for them too, unless a neighbouring quad's ray hit. There the miss may
+//                     be a band along an edge (rays passing behind a box, beyond a mirror's end,
+//                     leaving the screen just past its border) that a pixel's own ray escapes.
+#define SSLR_QUAD_HIT 0
 #define SSLR_QUAD_OWN_RAYS 1
-#define SSLR_QUAD_TRAVERSAL_MISS 2
+#define SSLR_QUAD_MISS 2
 struct SslrQuadCode {
   float confidence;  // the quad ray's, in [0, 0.999]
   int index;         // the traced pixel (sslrQuadOffset)

@@ -211,9 +211,9 @@ void sslrTraceQuad(ivec2 quad) {
     if (confidence > 0.0f)
       sslrDecodeNormal(frame.surface, sslrLoadNormal(sslrPixelFromUv(hit.uvHit, sslrSizePx())), vsHitNormal);
     // What the ray says to the quad's other pixels (sslr_shared.h, "Half resolution").
-    int kind = SSLR_QUAD_ANSWERED;
-    if (confidence == 0.0f && hit.status == SSLR_STATUS_MISS)
-      kind = hit.hierarchical == 0 ? SSLR_QUAD_OWN_RAYS : SSLR_QUAD_TRAVERSAL_MISS;
+    int kind = SSLR_QUAD_HIT;
+    if (confidence == 0.0f)
+      kind = hit.status == SSLR_STATUS_MISS && hit.hierarchical == 0 ? SSLR_QUAD_OWN_RAYS : SSLR_QUAD_MISS;
     quadHit = vec4(q.vsP + q.vsR * hit.L, sslrPackQuadCode(confidence, index, kind));
     quadSurface = vec4(sslrOctEncode(q.vsN), sslrOctEncode(vsHitNormal));
 #ifdef SSLR_COLLECT_STATS
@@ -253,8 +253,8 @@ bool sslrQuadRayHit(ivec2 quad) {
 
 // The quad's ray answers for this pixel when the pixel lies on the traced pixel's surface: its hit
 // is re-planed for this pixel's ray (sslrReusedLength) and checked against the depth where it
-// lands; a quad's ray that left the screen or met the sky is a miss here too, and so is one the
-// traversal gave up on unless a neighbouring quad's ray hit. False: trace this pixel's own ray.
+// lands. A quad's ray that found nothing (left the screen, met the sky, or the traversal gave up)
+// is a miss here too unless a neighbouring quad's ray hit. False: trace this pixel's own ray.
 bool sslrReuseQuadHit(ivec2 px, vec3 vsP, vec3 vsN, vec3 vsR, out SslrHit hit) {
   hit = sslrNoHit(SSLR_STATUS_MISS);
   ivec2 quad = px / 2;
@@ -270,9 +270,10 @@ bool sslrReuseQuadHit(ivec2 px, vec3 vsP, vec3 vsN, vec3 vsR, out SslrHit hit) {
     if (!sslrSameSurface(frame.proj, frame.surface, vsP, vsN, vsTraced, sslrOctDecode(b.xy))) return false;
   }
   if (code.kind == SSLR_QUAD_OWN_RAYS && traced != px) return false;
-  if (code.kind == SSLR_QUAD_TRAVERSAL_MISS && traced != px) {
+  if (code.kind == SSLR_QUAD_MISS && traced != px) {
     // Beside a quad whose ray hit, the miss may be a band along an edge (rays passing behind a
-    // box): the quads across this pixel's two edges of its quad.
+    // box, leaving the screen just past its border): the quads across this pixel's two edges of
+    // its quad.
     ivec2 side = ivec2((px.x & 1) != 0 ? 1 : -1, (px.y & 1) != 0 ? 1 : -1);
     if (sslrQuadRayHit(quad + ivec2(side.x, 0)) || sslrQuadRayHit(quad + ivec2(0, side.y))) return false;
   }

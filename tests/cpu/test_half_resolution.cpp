@@ -44,7 +44,7 @@ Frame frameFor(bool ortho) {
 // (w < 24: 2^-19 ~ 1.9e-6), clamped into [0, 0.999] so it cannot carry into the index.
 TEST(HalfResolution, QuadCodeRoundTrips) {
   const float confidences[] = {0.0f, 1e-5f, 0.25f, 0.5f, 0.7f, 0.998f, 0.999f};
-  for (int kind : {SSLR_QUAD_ANSWERED, SSLR_QUAD_OWN_RAYS, SSLR_QUAD_TRAVERSAL_MISS})
+  for (int kind : {SSLR_QUAD_HIT, SSLR_QUAD_OWN_RAYS, SSLR_QUAD_MISS})
     for (int index = 0; index < 4; ++index)
       for (float c : confidences) {
         const SslrQuadCode code = sslrUnpackQuadCode(sslrPackQuadCode(c, index, kind));
@@ -54,17 +54,17 @@ TEST(HalfResolution, QuadCodeRoundTrips) {
         EXPECT_EQ(code.confidence > 0.0f, c > 0.0f) << "a hit must stay a hit, a miss a miss";
       }
   // Out-of-range confidences are clamped, never spill into the index or kind.
-  const SslrQuadCode high = sslrUnpackQuadCode(sslrPackQuadCode(1.0f, 3, SSLR_QUAD_ANSWERED));
+  const SslrQuadCode high = sslrUnpackQuadCode(sslrPackQuadCode(1.0f, 3, SSLR_QUAD_HIT));
   EXPECT_EQ(high.index, 3);
-  EXPECT_EQ(high.kind, SSLR_QUAD_ANSWERED);
+  EXPECT_EQ(high.kind, SSLR_QUAD_HIT);
   EXPECT_NEAR(high.confidence, 0.999f, 2e-6f);
-  const SslrQuadCode low = sslrUnpackQuadCode(sslrPackQuadCode(-0.5f, 1, SSLR_QUAD_TRAVERSAL_MISS));
+  const SslrQuadCode low = sslrUnpackQuadCode(sslrPackQuadCode(-0.5f, 1, SSLR_QUAD_MISS));
   EXPECT_EQ(low.index, 1);
-  EXPECT_EQ(low.kind, SSLR_QUAD_TRAVERSAL_MISS);
+  EXPECT_EQ(low.kind, SSLR_QUAD_MISS);
   EXPECT_EQ(low.confidence, 0.0f);
-  // A record the quad pass never wrote this frame is all zeros: pixel 0, answered, no hit.
+  // A record no ray wrote (a quad with nothing to trace) is all zeros: pixel 0, no hit.
   const SslrQuadCode empty = sslrUnpackQuadCode(0.0f);
-  EXPECT_EQ(empty.kind, SSLR_QUAD_ANSWERED);
+  EXPECT_EQ(empty.kind, SSLR_QUAD_HIT);
   EXPECT_EQ(empty.index, 0);
   EXPECT_EQ(empty.confidence, 0.0f);
 }

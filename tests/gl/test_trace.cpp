@@ -617,26 +617,23 @@ TEST_P(HalfResolution, QuarterOfTheRaysSameHits) {
 INSTANTIATE_TEST_SUITE_P(Scenes, HalfResolution, ::testing::Values("mirror-box", "tilted-mirror", "mirror-room"),
                          sceneParamName);
 
-// Where the traversal gives up on a quad's ray (it passes behind a box, or beyond a mirror wall's
-// edge), the quad's other pixels take the miss only if no quad beside them hit: along the edges of
-// a band of misses each traces its own ray, which may find what the quad's did not. The floors
-// sit between the recall measured with that rule and without it (every such miss shared), at
-// 320x180, recall@2px full -> half:
-//   facing-mirror  0.929 -> 0.894 (without: 0.885), false hits 0.042 -> 0.044 (0.038)
-//   mirror-walls   0.966 -> 0.951 (0.934),           0.017 -> 0.019 (0.015)
-//   thin-objects   0.923 -> 0.918 (0.910),           0.019 -> 0.018 (0.004)
-// False hits may rise towards full resolution's (the pixels' own rays), not beyond it by more
-// than 0.5%.
-struct HalfBandCase {
-  const char* scene;
-  double maxRecallLoss;
-};
-class HalfResolutionBands : public sslr::test::GlTest, public ::testing::WithParamInterface<HalfBandCase> {};
+// Where a quad's ray finds nothing (it passes behind a box, beyond a mirror wall's end, leaves the
+// screen), the quad's other pixels take the miss only if no quad beside them hit: along the edges
+// of a band of misses each traces its own ray, which may find what the quad's did not. Measured at
+// 320x180, recall@2px full -> half (without the rule, every such miss shared):
+//   facing-mirror  0.929 -> 0.929 (0.885), false hits 0.042 -> 0.047 (0.038)
+//   mirror-walls   0.966 -> 0.964 (0.934),            0.017 -> 0.022 (0.015)
+//   thin-objects   0.923 -> 0.920 (0.910),            0.019 -> 0.018 (0.004)
+// Recall must stay within 0.01 of full resolution's (without the rule it falls 0.013-0.044 short).
+// False hits rise to full resolution's where pixels trace their own rays, and a little beyond it
+// from the reused hits that were there before (hidden until then among the shared misses): at most
+// 0.75% above full resolution's.
+class HalfResolutionBands : public sslr::test::GlTest, public ::testing::WithParamInterface<const char*> {};
 class HalfResolutionBandsHistory : public sslr::test::GlTest {};
 
 TEST_P(HalfResolutionBands, PixelsBesideAQuadThatHitTraceTheirOwnRay) {
-  const HalfBandCase c = GetParam();
-  auto scene = makeBuiltinScene(c.scene);
+  const char* name = GetParam();
+  auto scene = makeBuiltinScene(name);
   ASSERT_TRUE(scene);
   GBufferOptions o;
   o.width = 320;
@@ -648,11 +645,11 @@ TEST_P(HalfResolutionBands, PixelsBesideAQuadThatHitTraceTheirOwnRay) {
   const ScoredFrame b = renderScored(scene.value(), *scene.value().camera, o, half);
   ASSERT_TRUE(a.renderer && b.renderer);
   const HitMetrics ma = compareHits(a.truth, a.hit), mb = compareHits(b.truth, b.hit);
-  std::printf("%s: recall@2px %.4f -> %.4f; false hits %.4f -> %.4f\n", c.scene, ma.recall2px, mb.recall2px,
+  std::printf("%s: recall@2px %.4f -> %.4f; false hits %.4f -> %.4f\n", name, ma.recall2px, mb.recall2px,
               ma.falseHitRate, mb.falseHitRate);
   ASSERT_GT(ma.visible, 1000u);
-  EXPECT_GE(mb.recall2px, ma.recall2px - c.maxRecallLoss) << c.scene;
-  EXPECT_LE(mb.falseHitRate, ma.falseHitRate + 0.005) << c.scene;
+  EXPECT_GE(mb.recall2px, ma.recall2px - 0.01);
+  EXPECT_LE(mb.falseHitRate, ma.falseHitRate + 0.0075);
 }
 
 // The rule reads the records of neighbouring quads, which only the tiles listed this frame hold
@@ -714,10 +711,8 @@ TEST_F(HalfResolutionBandsHistory, HitsDoNotDependOnTheFrameBefore) {
   glDeleteTextures(1, &emptyMask);
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, HalfResolutionBands,
-                         ::testing::Values(HalfBandCase{"facing-mirror", 0.04}, HalfBandCase{"mirror-walls", 0.025},
-                                           HalfBandCase{"thin-objects", 0.01}),
-                         [](const ::testing::TestParamInfo<HalfBandCase>& info) { return gtestName(info.param.scene); });
+INSTANTIATE_TEST_SUITE_P(Scenes, HalfResolutionBands, ::testing::Values("facing-mirror", "mirror-walls", "thin-objects"),
+                         sceneParamName);
 
 INSTANTIATE_TEST_SUITE_P(
     Scenes, RobustScenes,
