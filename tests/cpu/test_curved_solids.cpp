@@ -6,9 +6,7 @@
 
 #include <cmath>
 
-#include "projection.hpp"
-#include "sslr_host/camera.hpp"
-#include "sslr_shared.h"
+#include "shared_frame.hpp"
 
 using namespace sslr;
 using namespace sslr::host;
@@ -16,29 +14,11 @@ using namespace sslr::shared;
 
 namespace {
 
-constexpr float kWidth = 320.0f, kHeight = 180.0f;
+constexpr float kWidth = test::kFrameWidth, kHeight = test::kFrameHeight;
 
-struct Frame {
-  SslrProjection proj{};
-  SslrSurface surf{};
-  SslrTraceParams trace{};
-};
-
+using Frame = test::SharedFrame;
 Frame frameFor(DepthMode mode, bool ortho) {
-  Camera cam;
-  cam.nearPlane = 0.1;
-  cam.farPlane = 1000.0;
-  cam.orthographic = ortho;
-  cam.orthoHeight = 20.0;
-  const glm::dmat4 P = cam.clipFromView(mode, double(kWidth) / kHeight);
-  auto reduced = sslr::detail::reduceProjection(P, depthConvention(mode));
-  EXPECT_TRUE(reduced) << reduced.error();
-  Frame s;
-  s.proj = reduced.value();
-  s.surf.normalEncoding = SSLR_NORMALS_OCTAHEDRAL;
-  s.surf.width = kWidth;
-  s.surf.height = kHeight;
-  s.surf.reversedZ = mode == DepthMode::Reversed || mode == DepthMode::ReversedInfinite ? 1 : 0;
+  Frame s = test::sharedFrameFor(mode, ortho);
   s.trace.objectThickness = 0.075f;
   s.trace.curvedSolids = 1;
   return s;

@@ -4,41 +4,11 @@
 
 #include <cmath>
 
-#include "projection.hpp"
-#include "sslr_host/camera.hpp"
-#include "sslr_shared.h"
+#include "shared_frame.hpp"
 
 using namespace sslr;
 using namespace sslr::host;
 using namespace sslr::shared;
-
-namespace {
-
-constexpr float kWidth = 320.0f, kHeight = 180.0f;
-
-struct Frame {
-  SslrProjection proj{};
-  SslrSurface surf{};
-};
-
-Frame frameFor(bool ortho) {
-  Camera cam;
-  cam.nearPlane = 0.1;
-  cam.farPlane = 1000.0;
-  cam.orthographic = ortho;
-  cam.orthoHeight = 20.0;
-  auto reduced = sslr::detail::reduceProjection(cam.clipFromView(DepthMode::Reversed, double(kWidth) / kHeight),
-                                                depthConvention(DepthMode::Reversed));
-  EXPECT_TRUE(reduced) << reduced.error();
-  Frame f;
-  f.proj = reduced.value();
-  f.surf.width = kWidth;
-  f.surf.height = kHeight;
-  f.surf.reversedZ = 1;
-  return f;
-}
-
-}  // namespace
 
 // Every traced pixel and kind comes back exactly; the confidence to within one float step of w
 // (w < 24: 2^-19 ~ 1.9e-6), clamped into [0, 0.999] so it cannot carry into the index.
@@ -100,7 +70,7 @@ TEST(HalfResolution, ReusedLengthMeetsTheHitPlane) {
 // a step off the plane, or a turned normal, is not.
 TEST(HalfResolution, SameSurfaceIsAPlaneTestNotADepthTest) {
   for (bool ortho : {false, true}) {
-    const Frame f = frameFor(ortho);
+    const test::SharedFrame f = test::sharedFrameFor(DepthMode::Reversed, ortho);
     // A floor at y = -1 seen nearly edge-on: 30 units away, one pixel up changes depth by percents.
     const vec3 n(0.0f, 1.0f, 0.0f);
     const vec3 a(0.0f, -1.0f, -30.0f), b(0.05f, -1.0f, -33.0f);

@@ -561,6 +561,20 @@ INSTANTIATE_TEST_SUITE_P(AnalyticMirrors, DdaTrace,
 // 0.5%. Measured at 192x108: rays 0.256-0.265x of full resolution's, recall@2px mirror-box
 // 0.987 -> 0.983, tilted-mirror 1.000 -> 1.000, mirror-room 0.993 -> 0.983 (at 960x540:
 // 0.997 -> 0.996).
+// A built-in scene's frame scored with `settings` at full resolution and with half resolution on.
+std::pair<ScoredFrame, ScoredFrame> renderFullAndHalf(const char* name, int width, int height, Settings settings) {
+  auto scene = makeBuiltinScene(name);
+  EXPECT_TRUE(scene) << name;
+  if (!scene) return {};
+  GBufferOptions o;
+  o.width = width;
+  o.height = height;
+  settings.halfResolution = false;
+  ScoredFrame full = renderScored(scene.value(), *scene.value().camera, o, settings);
+  settings.halfResolution = true;
+  return {std::move(full), renderScored(scene.value(), *scene.value().camera, o, settings)};
+}
+
 class HalfResolution : public sslr::test::GlTest, public ::testing::WithParamInterface<const char*> {};
 
 // RMSE of the resolved reflection against the ideal one (every visible reflection found exactly),
@@ -582,17 +596,11 @@ double reflectionRmse(const ScoredFrame& f, const Settings& settings) {
 }
 
 TEST_P(HalfResolution, QuarterOfTheRaysSameHits) {
-  auto scene = makeBuiltinScene(GetParam());
-  ASSERT_TRUE(scene);
-  GBufferOptions o;
-  o.width = 192;
-  o.height = 108;
   Settings full;
   full.collectStats = true;
   Settings half = full;
   half.halfResolution = true;
-  const ScoredFrame a = renderScored(scene.value(), *scene.value().camera, o, full);
-  const ScoredFrame b = renderScored(scene.value(), *scene.value().camera, o, half);
+  const auto [a, b] = renderFullAndHalf(GetParam(), 192, 108, full);
   ASSERT_TRUE(a.renderer && b.renderer);
   const HitMetrics ma = compareHits(a.truth, a.hit), mb = compareHits(b.truth, b.hit);
   const FrameStats sa = a.renderer->sslr().waitForStats(), sb = b.renderer->sslr().waitForStats();
@@ -633,16 +641,7 @@ class HalfResolutionBandsHistory : public sslr::test::GlTest {};
 
 TEST_P(HalfResolutionBands, PixelsBesideAQuadThatHitTraceTheirOwnRay) {
   const char* name = GetParam();
-  auto scene = makeBuiltinScene(name);
-  ASSERT_TRUE(scene);
-  GBufferOptions o;
-  o.width = 320;
-  o.height = 180;
-  Settings full;
-  Settings half = full;
-  half.halfResolution = true;
-  const ScoredFrame a = renderScored(scene.value(), *scene.value().camera, o, full);
-  const ScoredFrame b = renderScored(scene.value(), *scene.value().camera, o, half);
+  const auto [a, b] = renderFullAndHalf(name, 320, 180, Settings{});
   ASSERT_TRUE(a.renderer && b.renderer);
   const HitMetrics ma = compareHits(a.truth, a.hit), mb = compareHits(b.truth, b.hit);
   std::printf("%s: recall@2px %.4f -> %.4f; false hits %.4f -> %.4f\n", name, ma.recall2px, mb.recall2px,
