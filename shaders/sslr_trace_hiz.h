@@ -168,64 +168,78 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   // crossed onto an object's side (sslrCornerHit, tried once, if the ray ends in the slab).
   float tRun = -1.0f;
   bool inSlab = false;
-  for (int i = 0; i < t.hizMaxSteps; ++i) {
-    vec3 pos = o + d * tRay;
-    if (!(pos.x >= 0.0f && pos.y >= 0.0f && pos.x < sizePx.x && pos.y < sizePx.y)) {
-      hit.status = SSLR_STATUS_OFF_SCREEN;
-      return hit;
-    }
-    float depthPos = keySign * pos.z;
-    if (!(depthPos >= 0.0f && depthPos <= 1.0f)) {  // behind the near plane or beyond the far one
-      hit.status = SSLR_STATUS_OFF_SCREEN;
-      return hit;
-    }
-    float cellSize = float(1 << level);
-    vec2 cell = floor(vec2(pos.x, pos.y) / cellSize);
-    vec2 minMax = sslrLoadDepthMinMax(level, ivec2(cell));
-    hit.iterations = i + 1;
-    float keyNear = min(keySign * minMax.x, keySign * minMax.y);
-    float keyFar = max(keySign * minMax.x, keySign * minMax.y);
-    vec2 tBound = ((cell + boundaryStep) * cellSize - vec2(o.x, o.y)) * invD;
-    float tExit = min(tBound.x, tBound.y);
-    float keyExit = o.z + d.z * tExit;
-    float segNear = min(pos.z, keyExit);
-    float segFar = max(pos.z, keyExit);
+  // Two phases per pixel the ray reaches: the walk (skip, descend) over cells until the ray
+  // reaches a pixel it does not pass in front of or far behind, then that pixel's test. In SIMD
+  // lanes that run in step (CPU rasterizers run every instruction of a loop body under lane
+  // masks) the test then runs once for the lanes' pixels together instead of in every step.
+  int i = 0;
+  while (i < t.hizMaxSteps) {
+    bool reached = false;  // a pixel to test: cell, tExit, segFar, keyNear, extra are its
+    vec2 cell = vec2(0.0f);
+    float tExit = 0.0f, segFar = 0.0f, keyNear = 0.0f, extra = 0.0f;
+    for (; i < t.hizMaxSteps; ++i) {
+      vec3 pos = o + d * tRay;
+      if (!(pos.x >= 0.0f && pos.y >= 0.0f && pos.x < sizePx.x && pos.y < sizePx.y)) {
+        hit.status = SSLR_STATUS_OFF_SCREEN;
+        return hit;
+      }
+      float depthPos = keySign * pos.z;
+      if (!(depthPos >= 0.0f && depthPos <= 1.0f)) {  // behind the near plane or beyond the far one
+        hit.status = SSLR_STATUS_OFF_SCREEN;
+        return hit;
+      }
+      float cellSize = float(1 << level);
+      cell = floor(vec2(pos.x, pos.y) / cellSize);
+      vec2 minMax = sslrLoadDepthMinMax(level, ivec2(cell));
+      hit.iterations = i + 1;
+      keyNear = min(keySign * minMax.x, keySign * minMax.y);
+      float keyFar = max(keySign * minMax.x, keySign * minMax.y);
+      vec2 tBound = ((cell + boundaryStep) * cellSize - vec2(o.x, o.y)) * invD;
+      tExit = min(tBound.x, tBound.y);
+      float keyExit = o.z + d.z * tExit;
+      float segNear = min(pos.z, keyExit);
+      segFar = max(pos.z, keyExit);
 #ifdef SSLR_HIZ_DEBUG_HOOK
-    SSLR_HIZ_DEBUG_HOOK(i, level, cell, tRay, tExit, pos, keyExit, keyNear, keyFar);
+      SSLR_HIZ_DEBUG_HOOK(i, level, cell, tRay, tExit, pos, keyExit, keyNear, keyFar);
 #endif
-    if (segFar < keyNear) {
-      // In front of everything the cell shows: skip it. Look coarser only on entering a new
-      // parent cell: the parent of this one was (or will be) looked at already, and going up
-      // into it again costs a step just to come back down.
-      tRun = -1.0f;
-      tRay = tExit + nudge;
-      level = sslrHiZNextLevel(o, d, tRay, cell, level, topLevel);
-      continue;
-    }
-    // A pixel on a curved surface reaches deeper than the slab (coarse cells' far keys hold it).
-    float extra = level == 0 && sslrCurvedSolids(t) ? sslrLoadCurvedExtra(ivec2(cell)) : 0.0f;
-    // Behind everything the cell shows, deeper than any tolerance and than the objects' assumed
-    // thickness: the ray passes behind what the cell shows. (The slope term of the tolerance is
-    // unknown before a pixel is looked at: the largest one, tan = 16, is assumed.)
-    float farDepth = keySign * keyFar;
-    if (segNear > keyFar && sslrIsGeometryDepth(s, farDepth)) {
-      float distFar = sslrViewDepthFromDepth(p, farDepth);
-      float distRay = sslrViewDepthFromDepth(p, keySign * segNear);
-      float passBehind = max(sslrHitTolerance(p, s, t, distFar, 16.0f), t.objectThickness * distFar) + extra;
-      if (distRay - distFar > passBehind) {
+      if (segFar < keyNear) {
+        // In front of everything the cell shows: skip it. Look coarser only on entering a new
+        // parent cell: the parent of this one was (or will be) looked at already, and going up
+        // into it again costs a step just to come back down.
         tRun = -1.0f;
         tRay = tExit + nudge;
         level = sslrHiZNextLevel(o, d, tRay, cell, level, topLevel);
         continue;
       }
+      // A pixel on a curved surface reaches deeper than the slab (coarse cells' far keys hold it).
+      extra = level == 0 && sslrCurvedSolids(t) ? sslrLoadCurvedExtra(ivec2(cell)) : 0.0f;
+      // Behind everything the cell shows, deeper than any tolerance and than the objects' assumed
+      // thickness: the ray passes behind what the cell shows. (The slope term of the tolerance is
+      // unknown before a pixel is looked at: the largest one, tan = 16, is assumed.)
+      float farDepth = keySign * keyFar;
+      if (segNear > keyFar && sslrIsGeometryDepth(s, farDepth)) {
+        float distFar = sslrViewDepthFromDepth(p, farDepth);
+        float distRay = sslrViewDepthFromDepth(p, keySign * segNear);
+        float passBehind = max(sslrHitTolerance(p, s, t, distFar, 16.0f), t.objectThickness * distFar) + extra;
+        if (distRay - distFar > passBehind) {
+          tRun = -1.0f;
+          tRay = tExit + nudge;
+          level = sslrHiZNextLevel(o, d, tRay, cell, level, topLevel);
+          continue;
+        }
+      }
+      if (level > 0) {
+        // Move to where the ray reaches the cell's nearest depth (nothing in the cell is nearer),
+        // then look finer.
+        if (d.z > 0.0f && pos.z < keyNear) tRay = max(tRay, (keyNear - o.z) / d.z);
+        --level;
+        continue;
+      }
+      reached = true;
+      break;
     }
-    if (level > 0) {
-      // Move to where the ray reaches the cell's nearest depth (nothing in the cell is nearer),
-      // then look finer.
-      if (d.z > 0.0f && pos.z < keyNear) tRay = max(tRay, (keyNear - o.z) / d.z);
-      --level;
-      continue;
-    }
+    if (!reached) break;
+    ++i;  // the test is the step that reached the pixel
     // Level 0: one pixel, whose surface the ray reaches or is behind inside the pixel.
     ivec2 px = ivec2(cell);
     vec3 vsSurface;
