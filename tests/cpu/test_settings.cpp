@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "sslr/sslr.hpp"
 
@@ -12,14 +13,28 @@ TEST(Settings, DefaultsAndPresetsAreValid) {
   for (Preset p : {Preset::Low, Preset::Medium, Preset::High, Preset::Ultra}) EXPECT_EQ(validate(Settings::preset(p)), "");
 }
 
+// Each preset spends at least what the one below spends on every knob, and more on some: low is
+// adaptive L alone; medium adds the traversal (capped at 96 steps) with high's adaptive L, since
+// fewer iterations only send more pixels to the traversal (docs/algorithm.md, "Presets").
 TEST(Settings, PresetsGrowInEffort) {
   const Settings low = Settings::preset(Preset::Low), med = Settings::preset(Preset::Medium),
                  high = Settings::preset(Preset::High), ultra = Settings::preset(Preset::Ultra);
+  EXPECT_FALSE(low.hierarchicalFallback);
+  EXPECT_TRUE(med.hierarchicalFallback && high.hierarchicalFallback && ultra.hierarchicalFallback);
+  EXPECT_FALSE(high.hierarchicalVerify);
+  EXPECT_TRUE(ultra.hierarchicalVerify);
   EXPECT_LT(low.maxIterations, med.maxIterations);
-  EXPECT_LT(med.maxIterations, high.maxIterations);
+  EXPECT_LE(med.maxIterations, high.maxIterations);
   EXPECT_LT(high.maxIterations, ultra.maxIterations);
-  EXPECT_EQ(med.maxIterations, 10) << "medium is the article's fixed iteration count";
-  EXPECT_GT(low.convergenceEps, ultra.convergenceEps);
+  EXPECT_GE(low.convergenceEps, med.convergenceEps);
+  EXPECT_GE(med.convergenceEps, high.convergenceEps);
+  EXPECT_GT(high.convergenceEps, ultra.convergenceEps);
+  EXPECT_LT(med.hierarchicalMaxSteps, high.hierarchicalMaxSteps);
+  EXPECT_LT(high.hierarchicalMaxSteps, ultra.hierarchicalMaxSteps);
+  for (auto [lower, upper] : {std::pair{low, med}, std::pair{med, high}, std::pair{high, ultra}}) {
+    EXPECT_LT(lower.blurMaxRadiusPx, upper.blurMaxRadiusPx);
+    EXPECT_LT(lower.roughnessCutoff, upper.roughnessCutoff);
+  }
 }
 
 TEST(Settings, EveryInvalidFieldIsNamed) {
