@@ -202,31 +202,27 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
 #ifdef SSLR_HIZ_DEBUG_HOOK
       SSLR_HIZ_DEBUG_HOOK(i, level, cell, tRay, tExit, pos, keyExit, keyNear, keyFar);
 #endif
-      if (segFar < keyNear) {
-        // In front of everything the cell shows: skip it. Look coarser only on entering a new
-        // parent cell: the parent of this one was (or will be) looked at already, and going up
-        // into it again costs a step just to come back down.
-        tRun = -1.0f;
-        tRay = tExit + nudge;
-        level = sslrHiZNextLevel(o, d, tRay, cell, level, topLevel);
-        continue;
-      }
+      // In front of everything the cell shows: skip it.
+      bool skip = segFar < keyNear;
       // A pixel on a curved surface reaches deeper than the slab (coarse cells' far keys hold it).
       extra = level == 0 && sslrCurvedSolids(t) ? sslrLoadCurvedExtra(ivec2(cell)) : 0.0f;
       // Behind everything the cell shows, deeper than any tolerance and than the objects' assumed
       // thickness: the ray passes behind what the cell shows. (The slope term of the tolerance is
       // unknown before a pixel is looked at: the largest one, tan = 16, is assumed.)
       float farDepth = keySign * keyFar;
-      if (segNear > keyFar && sslrIsGeometryDepth(s, farDepth)) {
+      if (!skip && segNear > keyFar && sslrIsGeometryDepth(s, farDepth)) {
         float distFar = sslrViewDepthFromDepth(p, farDepth);
         float distRay = sslrViewDepthFromDepth(p, keySign * segNear);
         float passBehind = max(sslrHitTolerance(p, s, t, distFar, 16.0f), t.objectThickness * distFar) + extra;
-        if (distRay - distFar > passBehind) {
-          tRun = -1.0f;
-          tRay = tExit + nudge;
-          level = sslrHiZNextLevel(o, d, tRay, cell, level, topLevel);
-          continue;
-        }
+        skip = distRay - distFar > passBehind;
+      }
+      if (skip) {
+        // Look coarser only on entering a new parent cell: the parent of this one was (or will
+        // be) looked at already, and going up into it again costs a step just to come back down.
+        tRun = -1.0f;
+        tRay = tExit + nudge;
+        level = sslrHiZNextLevel(o, d, tRay, cell, level, topLevel);
+        continue;
       }
       if (level > 0) {
         // Move to where the ray reaches the cell's nearest depth (nothing in the cell is nearer),
