@@ -554,13 +554,6 @@ INSTANTIATE_TEST_SUITE_P(AnalyticMirrors, DdaTrace,
                                             std::to_string(static_cast<int>(info.param.stride)));
                          });
 
-// Half resolution: one ray per 2x2 quad, reused by the quad's pixels on the traced pixel's
-// surface. It must trace about a quarter of the rays (plus the pixels at surface edges) and keep
-// the hits: recall@2px within 0.015 of full resolution (the pixels lost are along reflected
-// silhouettes, a larger share of a 192x108 frame than of a 960x540 one) and false hits within
-// 0.5%. Measured at 192x108: rays 0.256-0.265x of full resolution's, recall@2px mirror-box
-// 0.987 -> 0.983, tilted-mirror 1.000 -> 1.000, mirror-room 0.993 -> 0.983 (at 960x540:
-// 0.997 -> 0.996).
 // A built-in scene's frame scored with `settings` at full resolution and with half resolution on.
 std::pair<ScoredFrame, ScoredFrame> renderFullAndHalf(const char* name, int width, int height, Settings settings) {
   auto scene = makeBuiltinScene(name);
@@ -575,6 +568,13 @@ std::pair<ScoredFrame, ScoredFrame> renderFullAndHalf(const char* name, int widt
   return {std::move(full), renderScored(scene.value(), *scene.value().camera, o, settings)};
 }
 
+// Half resolution: one ray per 2x2 quad, reused by the quad's pixels on the traced pixel's
+// surface. It must trace about a quarter of the rays (plus the pixels at surface edges) and keep
+// the hits: recall@2px within 0.015 of full resolution (the pixels lost are along reflected
+// silhouettes, a larger share of a 192x108 frame than of a 960x540 one) and false hits within
+// 0.5%. Measured at 192x108: rays 0.256-0.265x of full resolution's, recall@2px mirror-box
+// 0.987 -> 0.983, tilted-mirror 1.000 -> 1.000, mirror-room 0.993 -> 0.983 (at 960x540:
+// 0.997 -> 0.996).
 class HalfResolution : public sslr::test::GlTest, public ::testing::WithParamInterface<const char*> {};
 
 // RMSE of the resolved reflection against the ideal one (every visible reflection found exactly),
@@ -669,7 +669,13 @@ TEST_F(HalfResolutionBandsHistory, HitsDoNotDependOnTheFrameBefore) {
     glTextureSubImage2D(t, 0, 0, 0, kW, kH, GL_RED, GL_UNSIGNED_BYTE, texels.data());
     return t;
   };
-  const GLuint checkerMask = maskTexture(checker), emptyMask = maskTexture(zeros);
+  struct Masks {
+    GLuint checker, empty;
+    ~Masks() {
+      glDeleteTextures(1, &checker);
+      glDeleteTextures(1, &empty);
+    }
+  } masks{maskTexture(checker), maskTexture(zeros)};
   for (const char* name : {"facing-mirror", "mirror-walls", "thin-objects"}) {
     SCOPED_TRACE(name);
     auto scene = makeBuiltinScene(name);
@@ -687,8 +693,8 @@ TEST_F(HalfResolutionBandsHistory, HitsDoNotDependOnTheFrameBefore) {
       GpuScene gpu(scene.value());
       ASSERT_TRUE(r.value()->render(gpu, *scene.value().camera, nullptr));  // the G-buffer alone
       FrameInputs before = r.value()->inputs(), now = before;
-      if (k == 1) before.maskTexture = emptyMask;
-      now.maskTexture = checkerMask;
+      if (k == 1) before.maskTexture = masks.empty;
+      now.maskTexture = masks.checker;
       ASSERT_TRUE(r.value()->sslr().dispatch(before, half));
       ASSERT_TRUE(r.value()->sslr().dispatch(now, half));
       hits[k] = r.value()->readHit();
@@ -706,8 +712,6 @@ TEST_F(HalfResolutionBandsHistory, HitsDoNotDependOnTheFrameBefore) {
     EXPECT_GT(reported, 200u);
     EXPECT_EQ(differing, 0u);
   }
-  glDeleteTextures(1, &checkerMask);
-  glDeleteTextures(1, &emptyMask);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, HalfResolutionBands, ::testing::Values("facing-mirror", "mirror-walls", "thin-objects"),
