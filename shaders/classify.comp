@@ -83,7 +83,7 @@ layout(binding = 3, rgba16f) uniform writeonly image2D uResolved;
 
 void main() {
   uint entry = tiles.tileCoords[4u * sslrTileCapacity() + gl_WorkGroupID.x];
-  uvec2 tile = uvec2(entry & 0xffffu, entry >> 16);
+  uvec2 tile = uvec2(sslrUnpackCoord(entry));
   if (tiles.tileCoords[sslrTileListedStamp(tile)] == uint(frame.trace.frameIndex)) return;  // traced again
   ivec2 px = ivec2(tile) * SSLR_TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
   if (!sslrInside(px)) return;
@@ -113,7 +113,7 @@ void main() {
   // and their pixels' extra depths, stamped with the frame.
   if (gl_GlobalInvocationID.x >= curved.count) return;
   uint entry = curved.quads[gl_GlobalInvocationID.x];
-  ivec2 cell = ivec2(int(entry & 0xffffu), int(entry >> 16));
+  ivec2 cell = sslrUnpackCoord(entry);
   SslrQuad q = sslrLoadQuad(cell);
   vec4 extra;
   vec2 level1 = sslrHiZLevel1Cell(frame.proj, frame.surface, frame.trace, q.p0, q.p1, q.p2, q.p3, q.depths, q.n0, q.n1,
@@ -145,7 +145,7 @@ void writeLevel1(ivec2 cell, SslrQuad q) {
 #else
       if ((slot & 63u) == 0u) atomicAdd(curved.groups, 1u);  // the pyramid-args pass turns them on
 #endif
-      curved.quads[slot] = uint(cell.x) | (uint(cell.y) << 16);
+      curved.quads[slot] = sslrPackCoord(cell);
     }
 #endif
   }
@@ -177,7 +177,7 @@ void main() {
     return;
   uint slot = atomicAdd(tiles.dispatchX, 1u);
   atomicAdd(tiles.drawInstances, 1u);
-  tiles.tileCoords[slot] = gl_WorkGroupID.x | (gl_WorkGroupID.y << 16);
+  tiles.tileCoords[slot] = sslrPackCoord(ivec2(gl_WorkGroupID.xy));
   tiles.tileCoords[sslrQuadRetraceCountIndex(slot)] = 0u;
 #endif
 }

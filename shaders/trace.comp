@@ -66,14 +66,14 @@ uint sslrQuadRetraceRegion(uint slot) { return sslrTileCapacity() + slot * kTile
 void sslrListForRetrace(ivec2 quad) {
   uint slot = gl_WorkGroupID.x;
   uint k = atomicAdd(tiles.tileCoords[sslrQuadRetraceCountIndex(slot)], 1u);
-  retrace.entries[sslrQuadRetraceRegion(slot) + k] = uint(quad.x) | (uint(quad.y) << 16);
+  retrace.entries[sslrQuadRetraceRegion(slot) + k] = sslrPackCoord(quad);
   if (k == 0u) retrace.entries[atomicAdd(retrace.dispatchX, 1u)] = slot;
 }
 #else
 // Lists a pixel for the retrace pass.
 void sslrListForRetrace(ivec2 px) {
   uint slot = atomicAdd(retrace.count, 1u);
-  retrace.entries[slot] = uint(px.x) | (uint(px.y) << 16);
+  retrace.entries[slot] = sslrPackCoord(px);
   if (slot % uint(SSLR_RETRACE_GROUP) == 0u) atomicAdd(retrace.dispatchX, 1u);
 }
 #endif
@@ -232,8 +232,7 @@ void main() {
 #ifdef SSLR_HALF_QUAD_RETRACE
   uint slot = retrace.entries[gl_WorkGroupID.x];
   if (gl_LocalInvocationIndex >= tiles.tileCoords[sslrQuadRetraceCountIndex(slot)]) return;
-  uint entry = retrace.entries[sslrQuadRetraceRegion(slot) + gl_LocalInvocationIndex];
-  sslrTraceQuad(ivec2(int(entry & 0xffffu), int(entry >> 16)));
+  sslrTraceQuad(sslrUnpackCoord(retrace.entries[sslrQuadRetraceRegion(slot) + gl_LocalInvocationIndex]));
 #else
   sslrTraceQuad(sslrTileOrigin(gl_WorkGroupID.x) / 2 + ivec2(gl_LocalInvocationID.xy));
 #endif
@@ -264,18 +263,18 @@ bool sslrReuseQuadHit(ivec2 px, vec3 vsP, vec3 vsN, vec3 vsR, out SslrHit hit) {
   SslrQuadCode code = sslrUnpackQuadCode(a.w);
   float confidence = code.confidence;
   ivec2 traced = quad * 2 + sslrQuadOffset(code.index);
-  if (traced != px) {
+  if (traced != px) {  // (the traced pixel's answer is its own ray's)
     vec3 vsTraced;
     if (!sslrLoadSurface(traced, vsTraced)) return false;
     if (!sslrSameSurface(frame.proj, frame.surface, vsP, vsN, vsTraced, sslrOctDecode(b.xy))) return false;
-  }
-  if (code.kind == SSLR_QUAD_OWN_RAYS && traced != px) return false;
-  if (code.kind == SSLR_QUAD_MISS && traced != px) {
-    // Beside a quad whose ray hit, the miss may be a band along an edge (rays passing behind a
-    // box, leaving the screen just past its border): the quads across this pixel's two edges of
-    // its quad.
-    ivec2 side = ivec2((px.x & 1) != 0 ? 1 : -1, (px.y & 1) != 0 ? 1 : -1);
-    if (sslrQuadRayHit(quad + ivec2(side.x, 0)) || sslrQuadRayHit(quad + ivec2(0, side.y))) return false;
+    if (code.kind == SSLR_QUAD_OWN_RAYS) return false;
+    if (code.kind == SSLR_QUAD_MISS) {
+      // Beside a quad whose ray hit, the miss may be a band along an edge (rays passing behind a
+      // box, leaving the screen just past its border): the quads across this pixel's two edges
+      // of its quad.
+      ivec2 side = ivec2((px.x & 1) != 0 ? 1 : -1, (px.y & 1) != 0 ? 1 : -1);
+      if (sslrQuadRayHit(quad + ivec2(side.x, 0)) || sslrQuadRayHit(quad + ivec2(0, side.y))) return false;
+    }
   }
   if (!(confidence > 0.0f)) return true;  // a miss for this pixel too
   vec3 vsHitNormal = sslrOctDecode(b.zw);
@@ -370,7 +369,7 @@ void main() {
 #ifdef SSLR_HALF_RETRACE
   uint i = gl_GlobalInvocationID.x;
   if (i >= retrace.count) return;
-  ivec2 px = ivec2(int(retrace.entries[i] & 0xffffu), int(retrace.entries[i] >> 16));
+  ivec2 px = sslrUnpackCoord(retrace.entries[i]);
 #else
   ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
   if (!sslrInside(px)) return;

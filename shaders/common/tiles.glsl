@@ -45,9 +45,11 @@ uint sslrTileCapacity() {
   return sslrTilesX() * tilesY;
 }
 
-ivec2 sslrTileOriginFromEntry(uint entry) {
-  return ivec2(int(entry & 0xffffu), int(entry >> 16)) * SSLR_TILE_SIZE;
-}
+// The lists' entries: a tile's, quad's or pixel's coordinates as x | y << 16.
+uint sslrPackCoord(ivec2 c) { return uint(c.x) | (uint(c.y) << 16); }
+ivec2 sslrUnpackCoord(uint entry) { return ivec2(int(entry & 0xffffu), int(entry >> 16)); }
+
+ivec2 sslrTileOriginFromEntry(uint entry) { return sslrUnpackCoord(entry) * SSLR_TILE_SIZE; }
 ivec2 sslrTileOrigin(uint index) { return sslrTileOriginFromEntry(tiles.tileCoords[index]); }
 ivec2 sslrBlurTileOrigin(uint index) {
   return sslrTileOriginFromEntry(tiles.tileCoords[sslrTileCapacity() + index]);
@@ -63,6 +65,6 @@ void sslrListTileForBlur(ivec2 px) {
   uint flag = 2u * sslrTileCapacity() + tile.y * sslrTilesX() + tile.x;
   if (atomicExchange(tiles.tileCoords[flag], uint(frame.trace.frameIndex)) != uint(frame.trace.frameIndex)) {
     uint slot = atomicAdd(tiles.blurDispatchX, 1u);
-    tiles.tileCoords[sslrTileCapacity() + slot] = tile.x | (tile.y << 16);
+    tiles.tileCoords[sslrTileCapacity() + slot] = sslrPackCoord(ivec2(tile));
   }
 }
