@@ -39,9 +39,10 @@ layout(std430, binding = SSLR_BINDING_CURVED_SSBO) buffer SslrCurvedQuads {
 } curved;
 #endif
 
+#if defined(SSLR_CURVED_PASS)
 // A 2x2 quad of the G-buffer (level 1's cell `cell`): its pixels clamped to the screen
-// (sslrQuadPixel), their depths and packed normal texels. Straight-line code (a loop with
-// per-pixel branches ran 2x slower on llvmpipe).
+// (sslrQuadPixel), their depths and packed normal texels, for the curved pass's math.
+// Straight-line code (a loop with per-pixel branches ran 2x slower on llvmpipe).
 struct SslrQuad {
   ivec2 p0, p1, p2, p3;
   vec4 depths;
@@ -62,6 +63,7 @@ SslrQuad sslrLoadQuad(ivec2 cell) {
   q.n3 = texelFetch(uNormal, q.p3, 0);
   return q;
 }
+#endif
 
 #if defined(SSLR_CURVED_PASS)
 layout(local_size_x = 64) in;
@@ -125,11 +127,25 @@ void main() {
 #if defined(SSLR_CLASSIFY_LEVEL1) || defined(SSLR_LEVEL1_PASS)
 layout(binding = 0, rg32f) uniform writeonly image2D uLevel1;  // the pyramid's level 1 (mip 0)
 
-// Level 1's cell of quad q (cell `cell`).
-void writeLevel1(ivec2 cell, SslrQuad q) {
-  // A clamped coordinate repeats a pixel of the same quad when the quad straddles the screen's
-  // edge (neutral for the min-max, harmless for the flag); a quad wholly outside is empty.
-  vec2 level1 = sslrHiZLevel1Plain(frame.surface, q.depths);
+// Whether the quad's normals turn (sslrQuadNormalsTurn), from its normal channels gathered: two
+// (octahedral) or three (xyz); the material channels do not take part.
+bool quadNormalsTurn(ivec2 cell) {
+  vec4 x = SSLR_GATHER_QUAD(uNormal, cell, 0);
+  vec4 y = SSLR_GATHER_QUAD(uNormal, cell, 1);
+#if SSLR_NORMAL_ENCODING == SSLR_NORMALS_OCTAHEDRAL
+  vec4 z = vec4(0.0f);
+#else
+  vec4 z = SSLR_GATHER_QUAD(uNormal, cell, 2);
+#endif
+  return sslrQuadNormalsTurn(vec4(x.x, y.x, z.x, 0.0f), vec4(x.y, y.y, z.y, 0.0f), vec4(x.z, y.z, z.z, 0.0f),
+                             vec4(x.w, y.w, z.w, 0.0f));
+}
+
+// Level 1's cell `cell` from its quad's depths (SSLR_GATHER_QUAD).
+void writeLevel1(ivec2 cell, vec4 depths) {
+  // The gather's clamp repeats a pixel of the same quad when the quad straddles the screen's edge
+  // (neutral for the min-max, harmless for the flag); a quad wholly outside is empty.
+  vec2 level1 = sslrHiZLevel1Plain(frame.surface, depths);
   bool outside = any(greaterThan(cell * 2, ivec2(frame.surface.width, frame.surface.height) - 1));
   if (outside) level1 = sslrHiZEmpty();
   if (all(lessThan(cell, imageSize(uLevel1)))) {
@@ -138,7 +154,7 @@ void writeLevel1(ivec2 cell, SslrQuad q) {
     // Curved surfaces reach deeper than the slab (sslr_shared.h, "Curved solids"): a quad whose
     // normals turn is listed for the curved pass, which overwrites its cell with the solids' backs
     // and stores its pixels' extra depths (stamped with the frame: the others need no clearing).
-    if (!outside && sslrQuadNormalsTurn(q.n0, q.n1, q.n2, q.n3)) {
+    if (!outside && quadNormalsTurn(cell)) {
       uint slot = atomicAdd(curved.count, 1u);
 #ifdef SSLR_LEVEL1_PASS
       if ((slot & 63u) == 0u) atomicAdd(curved.dispatchX, 1u);  // this pass runs only when a tile is listed
@@ -152,22 +168,41 @@ void writeLevel1(ivec2 cell, SslrQuad q) {
 }
 #endif
 
+#ifndef SSLR_LEVEL1_PASS
+// Whether a pixel of the quad may need a ray (sslrTraceCandidate, inside the host's mask): the
+// channels it needs, gathered. The normal's decode is left to the trace (sslrShouldTrace), which
+// writes every pixel of a listed tile: a tile listed for a pixel whose normal does not decode
+// traces nothing and outputs zeros, as unlisted.
+bool quadHasCandidate(ivec2 cell, vec4 depths) {
+  vec4 reflectance = sslrQuadReflectance(cell);
+  vec4 roughness = sslrQuadRoughness(cell);
+#ifdef SSLR_HAS_MASK
+  bvec4 inMask = greaterThan(SSLR_GATHER_QUAD(uMask, cell, 0), vec4(0.5f));
+#else
+  bvec4 inMask = bvec4(true);
+#endif
+  SslrSurface s = frame.surface;
+  SslrTraceParams t = frame.trace;
+  return (inMask.x && sslrTraceCandidate(s, t, depths.x, reflectance.x, roughness.x)) ||
+         (inMask.y && sslrTraceCandidate(s, t, depths.y, reflectance.y, roughness.y)) ||
+         (inMask.z && sslrTraceCandidate(s, t, depths.z, reflectance.z, roughness.z)) ||
+         (inMask.w && sslrTraceCandidate(s, t, depths.w, reflectance.w, roughness.w));
+}
+#endif
+
 // One invocation per 2x2 quad (one 4x4 group per 8x8 tile; SSLR_LEVEL1_PASS: per 8x8 cells of
 // level 1).
 void main() {
   ivec2 cell = ivec2(gl_GlobalInvocationID.xy);
-  SslrQuad q = sslrLoadQuad(cell);
+  vec4 depths = SSLR_GATHER_QUAD(uDepth, cell, 0);
 #ifdef SSLR_LEVEL1_PASS
   // Level 1 alone, in a frame whose classification skipped it (the frame before listed no tile):
   // dispatched through the pyramid's arguments, so only when this frame lists a tile.
-  writeLevel1(cell, q);
+  writeLevel1(cell, depths);
 #else
-  bool trace = sslrShouldTracePixel(q.p0, q.depths.x, q.n0, sslrMaterialAt(q.p0, q.n0)) ||
-               sslrShouldTracePixel(q.p1, q.depths.y, q.n1, sslrMaterialAt(q.p1, q.n1)) ||
-               sslrShouldTracePixel(q.p2, q.depths.z, q.n2, sslrMaterialAt(q.p2, q.n2)) ||
-               sslrShouldTracePixel(q.p3, q.depths.w, q.n3, sslrMaterialAt(q.p3, q.n3));
+  bool trace = quadHasCandidate(cell, depths);
 #ifdef SSLR_CLASSIFY_LEVEL1
-  writeLevel1(cell, q);
+  writeLevel1(cell, depths);
 #endif
   if (!trace) return;
   uint stamp = sslrTileListedStamp(gl_WorkGroupID.xy);

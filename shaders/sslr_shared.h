@@ -414,19 +414,28 @@ SSLR_FN float sslrReflectance(SslrSurface s, vec4 texel) {
   return s.reflectanceChannel < 0 ? s.constantReflectance : sslrChannel(texel, s.reflectanceChannel);
 }
 
-// The per-pixel test shared by classification, tracing and the blur's neighbour test: geometry
-// (not background), reflective enough, smooth enough, and a normal that decodes.
-// `material` is the texel holding the material channels: the normal texel itself unless the host
-// gave a separate material texture (SslrSurface::separateMaterial).
+// Whether a pixel's material is worth a ray: reflective enough and smooth enough. Written so that
+// NaN material values fail.
+SSLR_FN bool sslrMaterialTraced(SslrTraceParams t, float reflectance, float roughness) {
+  return reflectance > t.minReflectance && roughness <= t.roughnessCutoff;
+}
+
+// A pixel that may need a ray: geometry (not background) of a traced material. Classification
+// lists tiles by this test (classify.comp), which needs no normal; the passes after it ask
+// sslrShouldTrace of each pixel.
+SSLR_FN bool sslrTraceCandidate(SslrSurface s, SslrTraceParams t, float depth, float reflectance,
+                                float roughness) {
+  return sslrIsGeometryDepth(s, depth) && sslrMaterialTraced(t, reflectance, roughness);
+}
+
+// The per-pixel test shared by tracing, the blur's neighbour test and temporal reuse: a candidate
+// (above) whose normal decodes. `material` is the texel holding the material channels: the normal
+// texel itself unless the host gave a separate material texture (SslrSurface::separateMaterial).
 SSLR_FN bool sslrShouldTrace(SslrSurface s, SslrTraceParams t, float depth, vec4 packedNormal, vec4 material) {
-  if (!sslrIsGeometryDepth(s, depth)) return false;
-  float reflectance = sslrReflectance(s, material);
-  float roughness = sslrRoughness(s, material);
-  // Written so that NaN material values fail. A branch of its own, not one && chain: shader
-  // compilers evaluate such a chain whole, and the normal decode is most of the test's cost
-  // (measured on llvmpipe: classification of a frame with nothing reflective took 3.7x the
-  // baseline pass with the chain).
-  if (!(reflectance > t.minReflectance && roughness <= t.roughnessCutoff)) return false;
+  // A branch of its own, not one && chain: shader compilers evaluate such a chain whole, and the
+  // normal decode is most of the test's cost (measured on llvmpipe: classification of a frame
+  // with nothing reflective took 3.7x the baseline pass with the chain).
+  if (!sslrTraceCandidate(s, t, depth, sslrReflectance(s, material), sslrRoughness(s, material))) return false;
   vec3 n;
   return sslrDecodeNormal(s, packedNormal, n);
 }

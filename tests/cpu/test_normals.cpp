@@ -93,4 +93,44 @@ TEST(Normals, PoisonedNormalsAreRejected) {
   EXPECT_FALSE(sslrDecodeNormal(oct, vec4(NAN, 0.5f, 0, 0), n));
 }
 
+// Classification lists tiles by sslrTraceCandidate (no normal decode); the trace asks
+// sslrShouldTrace of each pixel. No pixel the trace would trace may be missed by classification,
+// and the two agree wherever the normal decodes: over every depth, material and normal class,
+// both depth directions and both encodings.
+TEST(TraceTest, ClassificationListsEveryPixelTheTraceTraces) {
+  SslrTraceParams t{};
+  t.minReflectance = 0.02f;
+  t.roughnessCutoff = 0.6f;
+  const float depths[] = {0.0f, 1e-7f, 0.3f, 1.0f - 1e-7f, 1.0f, -0.1f, 1.5f, NAN, INFINITY};
+  const float materials[] = {0.0f, 0.02f, 0.021f, 0.5f, 0.6f, 0.61f, 1.0f, NAN, -INFINITY};
+  const vec4 normals[] = {vec4(0.5f, 0.5f, 1.0f, 0.0f), vec4(0.2f, 0.9f, 0.7f, 0.0f), vec4(NAN, 0.5f, 0.5f, 0.0f),
+                          vec4(0.5f, 0.5f, 0.5f, 0.0f), vec4(INFINITY, 0.0f, 0.0f, 0.0f)};
+  int traced = 0, candidates = 0;
+  for (int encoding : {SSLR_NORMALS_OCTAHEDRAL, SSLR_NORMALS_XYZ_UNORM})
+    for (int reversed : {0, 1}) {
+      SslrSurface s{};
+      s.normalEncoding = encoding;
+      s.reversedZ = reversed;
+      s.roughnessChannel = 2;
+      s.reflectanceChannel = 3;
+      for (float depth : depths)
+        for (float reflectance : materials)
+          for (float roughness : materials)
+            for (vec4 n : normals) {
+              const vec4 texel(n.x, n.y, roughness, reflectance);
+              const bool candidate = sslrTraceCandidate(s, t, depth, reflectance, roughness);
+              const bool trace = sslrShouldTrace(s, t, depth, texel, texel);
+              vec3 decoded;
+              const bool decodes = sslrDecodeNormal(s, texel, decoded);
+              ASSERT_EQ(trace, candidate && decodes)
+                  << "depth " << depth << " reflectance " << reflectance << " roughness " << roughness;
+              traced += trace;
+              candidates += candidate;
+            }
+    }
+  // Both outcomes occur (the loops are not vacuous) and poisoned normals make them differ.
+  EXPECT_GT(traced, 0);
+  EXPECT_GT(candidates, traced);
+}
+
 }  // namespace

@@ -354,10 +354,16 @@ TEST_F(Api, EmptyFrameTracesNothing) {
   EXPECT_EQ(empty.fetches, 0u);
   const Image resolved = readAll(ctx->resolvedTexture(), 4);
   for (float v : resolved.pixels) ASSERT_EQ(v, 0.0f);
+  // Reflective, but a constant roughness above the cutoff: nothing either.
+  in = f.gbuffer->frameInputs();
+  in.surface.roughnessChannel = -1;
+  in.surface.constantRoughness = std::nextafter(s.roughnessCutoff, 2.0f);
+  ASSERT_TRUE(ctx->dispatch(in, s));
+  EXPECT_EQ(ctx->waitForStats().tiles, 0u);
   // The same frame with reflectance traces and reports its work.
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), s));
   const FrameStats full = ctx->waitForStats();
-  EXPECT_EQ(full.frame, 2u);
+  EXPECT_EQ(full.frame, 3u);
   EXPECT_GT(full.tiles, 0u);
   EXPECT_GT(full.tracedPixels, 0u);
   EXPECT_GE(full.fetches, full.tracedPixels);
@@ -556,8 +562,8 @@ TEST_F(Api, SeparateMaterialTextureGivesThePackedResult) {
 }
 
 // A mask limits where rays start: masked-out pixels get nothing (and no tile is listed for them),
-// the others get exactly what they get without a mask (the blur ignores masked-out neighbours,
-// so the pixels compared here are the mirror's, which the blur leaves alone).
+// the others get exactly what they get without a mask (hits: the blur is not compared). Its edge
+// runs through 2x2 quads and an 8x8 tile, which classification reads a quad at a time.
 TEST_F(Api, MaskTextureLimitsWhereRaysStart) {
   auto ctx = makeContext();
   Frame f;
@@ -568,9 +574,10 @@ TEST_F(Api, MaskTextureLimitsWhereRaysStart) {
   ASSERT_TRUE(ctx->dispatch(in, s));
   const Image hitAll = readAll(ctx->hitTexture(), 4);
   const FrameStats statsAll = ctx->waitForStats();
+  const int kMaskEdge = W / 2 + 3;  // odd: inside a quad and a tile
   std::vector<std::uint8_t> mask(static_cast<size_t>(W) * H, 0);
   for (int y = 0; y < H; ++y)
-    for (int x = 0; x < W / 2; ++x) mask[static_cast<size_t>(y) * W + x] = 255;  // left half
+    for (int x = 0; x < kMaskEdge; ++x) mask[static_cast<size_t>(y) * W + x] = 255;  // left of x = 35
   const GLuint maskTex = makeTexture(GL_R8);
   glTextureSubImage2D(maskTex, 0, 0, 0, W, H, GL_RED, GL_UNSIGNED_BYTE, mask.data());
   in.maskTexture = maskTex;
@@ -581,7 +588,7 @@ TEST_F(Api, MaskTextureLimitsWhereRaysStart) {
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {
       const size_t p = static_cast<size_t>(y) * W + x;
-      if (x < W / 2) {
+      if (x < kMaskEdge) {
         if (hitAll.pixels[p * 4 + 2] > 0.5f) {
           ++leftTraced;
           leftSame += std::equal(&hitAll.pixels[p * 4], &hitAll.pixels[p * 4] + 4, &hitMasked.pixels[p * 4]);
@@ -601,6 +608,35 @@ TEST_F(Api, MaskTextureLimitsWhereRaysStart) {
   ASSERT_FALSE(st);
   EXPECT_NE(st.message().find("maskTexture"), std::string::npos) << st.message();
   glDeleteTextures(1, &maskTex);
+}
+
+// Every optional input and pass at once compiles the programs with the most #defines; their
+// debug labels (the defines) once ran past GL_MAX_LABEL_LENGTH, a GL error on every first use.
+TEST_F(Api, EveryOptionAtOnceLeavesNoGlError) {
+  auto ctx = makeContext();
+  Frame f;
+  FrameInputs in = f.gbuffer->frameInputs();
+  const GLuint maskTex = makeTexture(GL_R8), materialTex = makeTexture(GL_RGBA8);
+  const std::vector<std::uint8_t> ones(static_cast<size_t>(W) * H, 255);
+  glTextureSubImage2D(maskTex, 0, 0, 0, W, H, GL_RED, GL_UNSIGNED_BYTE, ones.data());
+  std::vector<std::uint8_t> mirror(static_cast<size_t>(W) * H * 4, 0);  // roughness (B) 0, reflectance (A) 1
+  for (size_t p = 3; p < mirror.size(); p += 4) mirror[p] = 255;
+  glTextureSubImage2D(materialTex, 0, 0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, mirror.data());
+  in.maskTexture = maskTex;
+  in.materialTexture = materialTex;
+  in.surface.space = NormalSpace::World;
+  in.viewFromWorld = f.gbuffer->viewFromWorld();
+  Settings s = Settings::preset(Preset::Ultra);
+  s.halfResolution = true;
+  s.traversalPass = TraversalPass::Deferred;
+  s.debugOutputs = true;
+  s.collectStats = true;
+  ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  ASSERT_TRUE(ctx->dispatch(in, s));
+  EXPECT_GT(ctx->waitForStats().tracedPixels, 0u);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  glDeleteTextures(1, &maskTex);
+  glDeleteTextures(1, &materialTex);
 }
 
 TEST_F(Api, ArticleXyzNormalsGiveTheSameHitsAsOctahedral) {

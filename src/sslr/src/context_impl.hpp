@@ -4,6 +4,7 @@
 // and composite.cpp.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -101,7 +102,11 @@ struct Context::Impl {
   void message(LogLevel level, const std::string& text) const {
     if (log) log(level, text);
   }
-  void label(GLenum type, GLuint name, const char* text) const { gl.ObjectLabel(type, name, -1, text); }
+  // GL_MAX_LABEL_LENGTH is at least 256 (KHR_debug): a longer label (a program's defines) is cut
+  // there, which would otherwise be a GL error.
+  void label(GLenum type, GLuint name, const std::string& text) const {
+    gl.ObjectLabel(type, name, static_cast<GLsizei>(std::min<size_t>(text.size(), 255)), text.c_str());
+  }
   int tilesX() const { return (width + SSLR_TILE_SIZE - 1) / SSLR_TILE_SIZE; }
   int tilesY() const { return (height + SSLR_TILE_SIZE - 1) / SSLR_TILE_SIZE; }
 

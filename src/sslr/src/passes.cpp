@@ -79,12 +79,15 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   // The optional inputs are compiled in or out (common/gbuffer.glsl) rather than branched on: a
   // CPU rasterizer runs an untaken branch's texture fetch under a lane mask (llvmpipe 960x540:
   // classification 9.1 -> 7.0 ms, glossy's blur 58.6 -> 52.2 ms without them).
-  // So are the normal encoding and the world-to-view normal transform (sslrDecodeNormal).
+  // So are the normal encoding and the world-to-view normal transform (sslrDecodeNormal), and the
+  // material channels (classification gathers them: a gather's channel is a constant).
   const shared::SslrSurface& surface = constants.value().surface;
   inputDefines = std::string(in.maskTexture != 0 ? "#define SSLR_HAS_MASK 1\n" : "") +
                  (in.materialTexture != 0 ? "#define SSLR_SEPARATE_MATERIAL 1\n" : "") +
                  "#define SSLR_NORMAL_ENCODING " + std::to_string(surface.normalEncoding) + "\n" +
-                 "#define SSLR_WORLD_NORMALS " + (surface.normalFromStored0.w != 0.0f ? "1" : "0") + "\n";
+                 "#define SSLR_WORLD_NORMALS " + (surface.normalFromStored0.w != 0.0f ? "1" : "0") + "\n" +
+                 "#define SSLR_ROUGHNESS_CHANNEL " + std::to_string(surface.roughnessChannel) + "\n" +
+                 "#define SSLR_REFLECTANCE_CHANNEL " + std::to_string(surface.reflectanceChannel) + "\n";
 
   // Build every program this frame needs before touching any state.
   // The traversal's role too (sslrHiZMode): the paths a mode never takes are compiled out, not

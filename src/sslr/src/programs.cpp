@@ -68,8 +68,14 @@ Expected<GLuint> Context::Impl::program(const std::vector<std::pair<GLenum, cons
     gl.DeleteProgram(prog);
     return Status::error("sslr: linking " + key + " failed:\n" + errors);
   }
-  std::string labelText = "sslr.program" + key;
-  label(GL_PROGRAM, prog, labelText.c_str());
+  // "sslr.program ENTRY... NAME VALUE,...": the entries first and the defines without "#define",
+  // since a label is cut at 255 characters.
+  std::string labelText = "sslr.program";
+  for (const auto& [stage, entry] : stages) labelText += std::string(" ") + entry;
+  std::string compact = defines;
+  for (size_t at; (at = compact.find("#define ")) != std::string::npos;) compact.erase(at, 8);
+  std::replace(compact.begin(), compact.end(), '\n', ',');
+  label(GL_PROGRAM, prog, labelText + " " + compact);
   programs.emplace(key, prog);
   return prog;
 }
