@@ -44,25 +44,20 @@ vec2 sslrQuadCornerUv(ivec2 cell) { return (vec2(cell * 2) + 1.0f) / sslrSizePx(
 #define SSLR_GATHER_QUAD(tex, cell, channel) (textureGather(tex, sslrQuadCornerUv(cell), channel).wzxy)
 
 // The material channels of a quad (sslrRoughness, sslrReflectance): the channel is compiled in
-// (SSLR_ROUGHNESS_CHANNEL, SSLR_REFLECTANCE_CHANNEL; -1: the layout's constant), as a gather needs.
+// (SSLR_ROUGHNESS_CHANNEL, SSLR_REFLECTANCE_CHANNEL), as a gather needs; -1 is the layout's
+// constant (the compiler drops the gather: the condition is constant).
 #ifdef SSLR_SEPARATE_MATERIAL
 #define SSLR_MATERIAL_SOURCE uMaterial
 #else
 #define SSLR_MATERIAL_SOURCE uNormal
 #endif
+#define SSLR_QUAD_MATERIAL(cell, channel, constant) \
+  ((channel) < 0 ? vec4(constant) : SSLR_GATHER_QUAD(SSLR_MATERIAL_SOURCE, cell, max(channel, 0)))
 vec4 sslrQuadRoughness(ivec2 cell) {
-#if SSLR_ROUGHNESS_CHANNEL < 0
-  return vec4(frame.surface.constantRoughness);
-#else
-  return SSLR_GATHER_QUAD(SSLR_MATERIAL_SOURCE, cell, SSLR_ROUGHNESS_CHANNEL);
-#endif
+  return SSLR_QUAD_MATERIAL(cell, SSLR_ROUGHNESS_CHANNEL, frame.surface.constantRoughness);
 }
 vec4 sslrQuadReflectance(ivec2 cell) {
-#if SSLR_REFLECTANCE_CHANNEL < 0
-  return vec4(frame.surface.constantReflectance);
-#else
-  return SSLR_GATHER_QUAD(SSLR_MATERIAL_SOURCE, cell, SSLR_REFLECTANCE_CHANNEL);
-#endif
+  return SSLR_QUAD_MATERIAL(cell, SSLR_REFLECTANCE_CHANNEL, frame.surface.constantReflectance);
 }
 
 bool sslrInside(ivec2 px) {
