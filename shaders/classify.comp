@@ -70,7 +70,7 @@ layout(local_size_x = 64) in;
 #elif defined(SSLR_CLEANUP) || defined(SSLR_PYRAMID_ARGS) || defined(SSLR_LEVEL1_PASS)
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 #else
-layout(local_size_x = SSLR_TILE_SIZE / 2, local_size_y = SSLR_TILE_SIZE / 2) in;
+layout(local_size_x = SSLR_TILE_QUADS) in;  // a tile's quads (sslrTileQuad)
 #endif
 
 #ifdef SSLR_CLEANUP
@@ -190,10 +190,14 @@ bool quadHasCandidate(ivec2 cell, vec4 depths) {
 }
 #endif
 
-// One invocation per 2x2 quad (one 4x4 group per 8x8 tile; SSLR_LEVEL1_PASS: per 8x8 cells of
+// One invocation per 2x2 quad (one group per 8x8 tile; SSLR_LEVEL1_PASS: per 8x8 cells of
 // level 1).
 void main() {
+#ifdef SSLR_LEVEL1_PASS
   ivec2 cell = ivec2(gl_GlobalInvocationID.xy);
+#else
+  ivec2 cell = ivec2(gl_WorkGroupID.xy) * (SSLR_TILE_SIZE / 2) + sslrTileQuad(gl_LocalInvocationIndex);
+#endif
   vec4 depths = SSLR_GATHER_QUAD(uDepth, cell, 0);
 #ifdef SSLR_LEVEL1_PASS
   // Level 1 alone, in a frame whose classification skipped it (the frame before listed no tile):

@@ -82,6 +82,7 @@ using glm::sqrt;
 #define SSLR_HIZ_MAX_LEVELS 8
 
 #define SSLR_TILE_SIZE 8  // compute work-group edge and classification tile edge, in pixels
+#define SSLR_TILE_QUADS ((SSLR_TILE_SIZE / 2) * (SSLR_TILE_SIZE / 2))  // 2x2 quads per tile
 
 // Texture / image / buffer binding points used by the passes (they are restored afterwards).
 #define SSLR_BINDING_FRAME_UBO 0

@@ -21,11 +21,7 @@
 // lists the quads whose ray needs the traversal, and SSLR_HALF_QUAD_RETRACE traces those before
 // the full-resolution pass reads the quads.
 #ifdef SSLR_HALF_QUADS
-#ifdef SSLR_HALF_QUAD_RETRACE
-layout(local_size_x = (SSLR_TILE_SIZE / 2) * (SSLR_TILE_SIZE / 2)) in;  // one listed tile's quads
-#else
-layout(local_size_x = SSLR_TILE_SIZE / 2, local_size_y = SSLR_TILE_SIZE / 2) in;
-#endif
+layout(local_size_x = SSLR_TILE_QUADS) in;  // one listed tile's quads (sslrTileQuad)
 layout(binding = 1, rgba32f) uniform writeonly image2D uQuadHitOut;      // see uQuadHit
 layout(binding = 2, rgba16f) uniform writeonly image2D uQuadSurfaceOut;  // see uQuadSurface
 #elif defined(SSLR_HALF_RETRACE)
@@ -61,8 +57,7 @@ layout(std430, binding = SSLR_BINDING_RETRACE_SSBO) buffer SslrRetrace {
 // resolution's per ray on mirror-walls (docs/algorithm.md). The pixels keep the one list: they are
 // few and scattered (edges, rays the quad's did not answer), and grouping them by tile left most
 // invocations idle (thin-objects 13-20% slower).
-const uint kTileQuads = uint((SSLR_TILE_SIZE / 2) * (SSLR_TILE_SIZE / 2));
-uint sslrQuadRetraceRegion(uint slot) { return sslrTileCapacity() + slot * kTileQuads; }
+uint sslrQuadRetraceRegion(uint slot) { return sslrTileCapacity() + slot * uint(SSLR_TILE_QUADS); }
 void sslrListForRetrace(ivec2 quad) {
   uint slot = gl_WorkGroupID.x;
   uint k = atomicAdd(tiles.tileCoords[sslrQuadRetraceCountIndex(slot)], 1u);
@@ -234,7 +229,7 @@ void main() {
   if (gl_LocalInvocationIndex >= tiles.tileCoords[sslrQuadRetraceCountIndex(slot)]) return;
   sslrTraceQuad(sslrUnpackCoord(retrace.entries[sslrQuadRetraceRegion(slot) + gl_LocalInvocationIndex]));
 #else
-  sslrTraceQuad(sslrTileOrigin(gl_WorkGroupID.x) / 2 + ivec2(gl_LocalInvocationID.xy));
+  sslrTraceQuad(sslrTileOrigin(gl_WorkGroupID.x) / 2 + sslrTileQuad(gl_LocalInvocationIndex));
 #endif
 }
 #else

@@ -55,6 +55,14 @@ ivec2 sslrBlurTileOrigin(uint index) {
   return sslrTileOriginFromEntry(tiles.tileCoords[sslrTileCapacity() + index]);
 }
 
+// Quad `index` of a tile (row by row), for the passes that run one invocation per quad in groups
+// of SSLR_TILE_QUADS along x alone: llvmpipe fills its SIMD lanes along x only, so 4x4 groups ran
+// every batch of eight lanes half empty (960x540: classification of an empty frame 1.9 -> 1.2 ms;
+// docs/algorithm.md).
+ivec2 sslrTileQuad(uint index) {
+  return ivec2(int(index) % (SSLR_TILE_SIZE / 2), int(index) / (SSLR_TILE_SIZE / 2));
+}
+
 uint sslrQuadRetraceCountIndex(uint slot) { return 5u * sslrTileCapacity() + slot; }
 
 uint sslrTileListedStamp(uvec2 tile) { return 3u * sslrTileCapacity() + tile.y * sslrTilesX() + tile.x; }
