@@ -3,10 +3,12 @@
 // all later passes run over listed tiles only. No shared memory and no barrier: on CPU
 // rasterizers a barrier splits the shader (an empty frame took 1.12x as long with the group flag
 // and barriers, in an interleaved A/B). With SSLR_CLASSIFY_LEVEL1 (the traversal is on) each quad
-// also writes its (min, max) depth: level 1 of the depth pyramid, from the reads classification
-// makes anyway (a separate pass read every depth a second time; sky-heavy 960x540 on llvmpipe:
-// the default 1.67-1.91x -> 1.28-1.49x the tutorial's time, an empty frame 0.73 -> 0.85x the
-// baseline pass in one A/B).
+// also writes its pixels' texels of level 0 and its (min, max) depth, level 1 of the depth
+// pyramid, from the reads classification makes anyway (for level 1, a separate pass read every
+// depth a second time; sky-heavy 960x540 on llvmpipe: the default 1.67-1.91x -> 1.28-1.49x the
+// tutorial's time, an empty frame 0.73 -> 0.85x the baseline pass in one A/B; level 0's four
+// stores per quad cost 0.6-0.9 ms there and save the traversal up to two fetches per step,
+// docs/algorithm.md "Level 0 in the pyramid").
 //
 // With SSLR_CLEANUP the same file is the clean-up pass, run after classification over the
 // previous frame's traced tiles: those not listed again are zeroed. The outputs are never cleared
@@ -18,9 +20,10 @@
 // instruction of a shader under lane masks, taken branch or not, and the 24-word copy there made
 // classification 2.5x slower (measured).
 //
-// With SSLR_LEVEL1_PASS it writes level 1 alone, in a frame after one that listed no tile (whose
-// classification then skips it); with SSLR_CURVED_PASS it computes the level-1 cells of the quads
-// classification listed for their turning normals (curved solids, sslr_shared.h).
+// With SSLR_LEVEL1_PASS it writes levels 0 and 1 alone, in a frame after one that listed no tile
+// (whose classification then skips them); with SSLR_CURVED_PASS it computes the level-1 cells of
+// the quads classification listed for their turning normals and their pixels' extra depths in
+// level 0 (curved solids, sslr_shared.h).
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
 
@@ -106,13 +109,27 @@ void main() {
 #endif
   }
 }
-#elif defined(SSLR_CURVED_PASS)
-layout(binding = 0, rg32f) uniform writeonly image2D uLevel1;
-layout(binding = 1, rgba32ui) uniform writeonly uimage2D uCurvedExtra;  // sslrPackCurvedExtra
+#else
+#if defined(SSLR_CLASSIFY_LEVEL1) || defined(SSLR_LEVEL1_PASS) || defined(SSLR_CURVED_PASS)
+layout(binding = 0, rg32f) uniform writeonly image2D uLevel1;  // the pyramid's level 1 (mip 1)
+layout(binding = 1, rg32f) uniform writeonly image2D uLevel0;  // its level 0 (mip 0)
 
+// The level-0 texels of level-1 cell `cell`'s pixels. Where the quad straddles the screen's edge,
+// `depths` and `extra` repeat a pixel of the quad for the one past the edge, which lands in the
+// level's padding (never read: the traversal stays on the screen); stores without a condition.
+void writeLevel0(ivec2 cell, vec4 depths, vec4 extra) {
+  ivec2 px = cell * 2;
+  imageStore(uLevel0, px, vec4(sslrHiZLevel0Texel(frame.surface, depths.x, extra.x), 0.0f, 0.0f));
+  imageStore(uLevel0, px + ivec2(1, 0), vec4(sslrHiZLevel0Texel(frame.surface, depths.y, extra.y), 0.0f, 0.0f));
+  imageStore(uLevel0, px + ivec2(0, 1), vec4(sslrHiZLevel0Texel(frame.surface, depths.z, extra.z), 0.0f, 0.0f));
+  imageStore(uLevel0, px + 1, vec4(sslrHiZLevel0Texel(frame.surface, depths.w, extra.w), 0.0f, 0.0f));
+}
+#endif
+
+#if defined(SSLR_CURVED_PASS)
 void main() {
   // The listed quads' level-1 cells with their solids (over the plain cells classification wrote),
-  // and their pixels' extra depths, stamped with the frame.
+  // and their pixels' extra depths in level 0 (classification wrote none).
   if (gl_GlobalInvocationID.x >= curved.count) return;
   uint entry = curved.quads[gl_GlobalInvocationID.x];
   ivec2 cell = sslrUnpackCoord(entry);
@@ -121,11 +138,10 @@ void main() {
   vec2 level1 = sslrHiZLevel1Cell(frame.proj, frame.surface, frame.trace, q.p0, q.p1, q.p2, q.p3, q.depths, q.n0, q.n1,
                                   q.n2, q.n3, extra);
   imageStore(uLevel1, cell, vec4(level1, 0.0f, 0.0f));
-  imageStore(uCurvedExtra, cell, sslrPackCurvedExtra(extra, frame.trace.frameIndex));
+  writeLevel0(cell, q.depths, extra);
 }
 #else
 #if defined(SSLR_CLASSIFY_LEVEL1) || defined(SSLR_LEVEL1_PASS)
-layout(binding = 0, rg32f) uniform writeonly image2D uLevel1;  // the pyramid's level 1 (mip 0)
 
 // Whether the quad's normals turn (sslrQuadNormalsTurn), from its normal channels gathered: two
 // (octahedral) or three (xyz); the material channels do not take part.
@@ -141,8 +157,8 @@ bool quadNormalsTurn(ivec2 cell) {
                              vec4(x.w, y.w, z.w, 0.0f));
 }
 
-// Level 1's cell `cell` from its quad's depths (SSLR_GATHER_QUAD).
-void writeLevel1(ivec2 cell, vec4 depths) {
+// Level 1's cell `cell` from its quad's depths (SSLR_GATHER_QUAD), and its pixels' level-0 texels.
+void writeLevels01(ivec2 cell, vec4 depths) {
   // The gather's clamp repeats a pixel of the same quad when the quad straddles the screen's edge
   // (neutral for the min-max, harmless for the flag); a quad wholly outside is empty.
   vec2 level1 = sslrHiZLevel1Plain(frame.surface, depths);
@@ -150,10 +166,11 @@ void writeLevel1(ivec2 cell, vec4 depths) {
   if (outside) level1 = sslrHiZEmpty();
   if (all(lessThan(cell, imageSize(uLevel1)))) {
     imageStore(uLevel1, cell, vec4(level1, 0.0f, 0.0f));
+    if (!outside) writeLevel0(cell, depths, vec4(0.0f));
 #if defined(SSLR_CURVED_SOLIDS) && SSLR_CURVED_SOLIDS
     // Curved surfaces reach deeper than the slab (sslr_shared.h, "Curved solids"): a quad whose
     // normals turn is listed for the curved pass, which overwrites its cell with the solids' backs
-    // and stores its pixels' extra depths (stamped with the frame: the others need no clearing).
+    // and its pixels' level-0 texels with their extra depths.
     if (!outside && quadNormalsTurn(cell)) {
       uint slot = atomicAdd(curved.count, 1u);
 #ifdef SSLR_LEVEL1_PASS
@@ -200,13 +217,13 @@ void main() {
 #endif
   vec4 depths = SSLR_GATHER_QUAD(uDepth, cell, 0);
 #ifdef SSLR_LEVEL1_PASS
-  // Level 1 alone, in a frame whose classification skipped it (the frame before listed no tile):
-  // dispatched through the pyramid's arguments, so only when this frame lists a tile.
-  writeLevel1(cell, depths);
+  // Levels 0 and 1 alone, in a frame whose classification skipped them (the frame before listed
+  // no tile): dispatched through the pyramid's arguments, so only when this frame lists a tile.
+  writeLevels01(cell, depths);
 #else
   bool trace = quadHasCandidate(cell, depths);
 #ifdef SSLR_CLASSIFY_LEVEL1
-  writeLevel1(cell, depths);
+  writeLevels01(cell, depths);
 #endif
   if (!trace) return;
   uint stamp = sslrTileListedStamp(gl_WorkGroupID.xy);
@@ -220,4 +237,5 @@ void main() {
   tiles.tileCoords[sslrQuadRetraceCountIndex(slot)] = 0u;
 #endif
 }
+#endif  // SSLR_CURVED_PASS
 #endif

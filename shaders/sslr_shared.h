@@ -16,7 +16,6 @@
 
 #ifdef __cplusplus
 #include <glm/glm.hpp>
-#include <glm/gtc/packing.hpp>
 #include <cstddef>
 #include <cstdint>
 namespace sslr::shared {
@@ -44,8 +43,6 @@ using glm::min;
 using glm::mix;
 using glm::normalize;
 using glm::inversesqrt;
-using glm::packHalf2x16;
-using glm::unpackHalf2x16;
 using glm::reflect;
 using glm::sign;
 using glm::smoothstep;
@@ -443,9 +440,14 @@ SSLR_FN bool sslrShouldTrace(SslrSurface s, SslrTraceParams t, float depth, vec4
 
 // ---- Min-max depth pyramid (hierarchical traversal) -----------------------------------------
 // Level l >= 1 holds, per 2^l x 2^l cell, the (min, max) of the raw window depth of its pixels
-// (with curved solids, the far end reaches the backs of their solids: "Curved solids" below);
-// level 0 is the depth buffer itself. Level l has ceil(size / 2^l) cells per axis, so cell c of
-// level l covers exactly pixels [c 2^l, (c + 1) 2^l) of the screen.
+// (with curved solids, the far end reaches the backs of their solids: "Curved solids" below).
+// Level l has ceil(size / 2^l) cells per axis, so cell c of level l covers exactly pixels
+// [c 2^l, (c + 1) 2^l) of the screen. Level 0 is the pyramid's too (mip 0 of the same texture):
+// per pixel, its depth as sslrHiZTexel reads it and its curved solid's extra depth
+// (sslrHiZLevel0Texel). The traversal's walk thus reads every level, and a pixel's extra depth, in
+// one fetch per step: with level 0 in the depth buffer and the extra depths in a texture of
+// their own, SIMD lanes at different levels fetched from all three (llvmpipe runs every branch's
+// fetch under lane masks; docs/algorithm.md).
 
 // Levels worth building: the top level's cells are about an eighth of the larger screen side
 // (coarser cells would cover most of the screen and skip nothing).
@@ -467,6 +469,14 @@ SSLR_FN vec2 sslrHiZTexel(SslrSurface s, float depth) {
 }
 
 SSLR_FN vec2 sslrHiZReduce(vec2 a, vec2 b) { return vec2(min(a.x, b.x), max(a.y, b.y)); }
+
+// Level 0's texel of a pixel: (its depth as sslrHiZTexel reads it, its curved extra depth, 0 on
+// flat surfaces and without curved solids).
+SSLR_FN vec2 sslrHiZLevel0Texel(SslrSurface s, float depth, float extra) {
+  return vec2(sslrHiZTexel(s, depth).x, extra);
+}
+// The (min, max) of a cell from its pyramid texel: a level-0 texel holds one depth.
+SSLR_FN vec2 sslrHiZMinMax(int level, vec2 texel) { return level == 0 ? vec2(texel.x, texel.x) : texel; }
 
 // View distance (or orthographic -z) of a window depth: the tolerance and "how far behind" tests
 // of the traversal work in view units, like the adaptive-L tracer's.
@@ -550,7 +560,7 @@ SSLR_FN float sslrAgreedRadius(float a, float b) {
 // from the quad's radius: its two rows' estimates where they agree, or its two columns'
 // (sslrAgreedRadius), the larger. ok: the pixel holds geometry with a trusted normal. The curved
 // pass computes it once for the pyramid's level 1 and for the traversal's pixels
-// (sslrLoadCurvedExtra), so a cell's farthest key bounds what its pixels' solids reach.
+// (level 0's texels), so a cell's farthest key bounds what its pixels' solids reach.
 SSLR_FN vec4 sslrQuadCurvedExtraDepth(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vs0, vec3 vs1,
                                       vec3 vs2, vec3 vs3, vec3 n0, vec3 n1, vec3 n2, vec3 n3, bvec4 ok) {
   // One footprint per quad, its farthest pixel's (a pixel without geometry has vs = 0).
@@ -561,22 +571,8 @@ SSLR_FN vec4 sslrQuadCurvedExtraDepth(SslrProjection p, SslrSurface s, SslrTrace
   float r02 = ok.x && ok.z ? sslrConvexRadius(s, vs0, n0, vs2, n2, footprint) : 0.0f;
   float r13 = ok.y && ok.w ? sslrConvexRadius(s, vs1, n1, vs3, n3, footprint) : 0.0f;
   float r = max(sslrAgreedRadius(r01, r23), sslrAgreedRadius(r02, r13));
-  vec4 extra = vec4(ok.x ? sslrCurvedExtraDepth(p, t, vs0, n0, r) : 0.0f, ok.y ? sslrCurvedExtraDepth(p, t, vs1, n1, r) : 0.0f,
-                    ok.z ? sslrCurvedExtraDepth(p, t, vs2, n2, r) : 0.0f, ok.w ? sslrCurvedExtraDepth(p, t, vs3, n3, r) : 0.0f);
-  // Stored as half floats (sslrPackCurvedExtra); the cell's backs come from the stored values.
-  return vec4(unpackHalf2x16(packHalf2x16(vec2(extra.x, extra.y))), unpackHalf2x16(packHalf2x16(vec2(extra.z, extra.w))));
-}
-
-// A quad's extra depths as the traversal reads them: four half floats and the frame index that
-// wrote them (an older texel reads as no extra, so classification need not clear the quads it
-// does not list).
-SSLR_FN uvec4 sslrPackCurvedExtra(vec4 extra, int frameIndex) {
-  return uvec4(packHalf2x16(vec2(extra.x, extra.y)), packHalf2x16(vec2(extra.z, extra.w)), uint(frameIndex), 0u);
-}
-SSLR_FN float sslrUnpackCurvedExtra(uvec4 texel, int frameIndex, ivec2 px) {
-  if (texel.z != uint(frameIndex)) return 0.0f;
-  vec2 pair = unpackHalf2x16((px.y & 1) == 0 ? texel.x : texel.y);
-  return (px.x & 1) == 0 ? pair.x : pair.y;
+  return vec4(ok.x ? sslrCurvedExtraDepth(p, t, vs0, n0, r) : 0.0f, ok.y ? sslrCurvedExtraDepth(p, t, vs1, n1, r) : 0.0f,
+              ok.z ? sslrCurvedExtraDepth(p, t, vs2, n2, r) : 0.0f, ok.w ? sslrCurvedExtraDepth(p, t, vs3, n3, r) : 0.0f);
 }
 
 // A pixel's texel of level 1 when its solid reaches extra deeper than the slab: (min, max) of its
@@ -611,8 +607,8 @@ SSLR_FN bool sslrQuadNormalsTurn(vec4 n0, vec4 n1, vec4 n2, vec4 n3) {
 // Level 1 of the pyramid, one cell from its 2x2 quad (pixel coordinates clamped to the screen,
 // their depth and packed normal texels): the curved pass on the GPU, the CPU tracer's pyramid and
 // the tests all build it here. With curved solids, `extra` receives the quad's pixels' extra
-// depths (sslrQuadCurvedExtraDepth), which the curved pass stores for the traversal's pixels (one
-// fetch there: the quad's math inside the traversal's loop cost every step on llvmpipe).
+// depths (sslrQuadCurvedExtraDepth), which the curved pass stores in level 0 for the traversal's
+// pixels (the quad's math inside the traversal's loop cost every step on llvmpipe).
 SSLR_FN vec2 sslrHiZLevel1Cell(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 p0, ivec2 p1, ivec2 p2,
                                ivec2 p3, vec4 depths, vec4 n0, vec4 n1, vec4 n2, vec4 n3, SSLR_OUT(vec4) extra) {
   extra = vec4(0.0f);

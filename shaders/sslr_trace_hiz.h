@@ -2,9 +2,8 @@
 // choice between it and the adaptive-L tracer. Shared by the GPU pass and the CPU tests.
 //
 // Besides the loaders of sslr_trace.h, the includer defines
-//   vec2 sslrLoadDepthMinMax(int level, ivec2 cell);  // level 0: sslrHiZTexel of the depth texel;
-//                                                     // level >= 1: the pyramid (sslr_shared.h)
-//   float sslrLoadCurvedExtra(ivec2 px);  // curved solids: the pixel's sslrQuadCurvedExtraDepth
+//   vec2 sslrLoadPyramidTexel(int level, ivec2 cell);  // the pyramid (sslr_shared.h): level 0
+//                                                      // sslrHiZLevel0Texel, level >= 1 (min, max)
 //
 // The traversal (in the spirit of Uludag's Hi-Z tracing, GPU Pro 5, and FidelityFX SSSR) runs in
 // window space: x, y in pixels and the raw window depth. Both kinds of projection map the view-
@@ -62,7 +61,7 @@ SSLR_FN float sslrSlabNearOutline(SslrProjection p, SslrSurface s, SslrTracePara
     // The outline lies within 1.5 cells of the pixel (the cell is aligned, the pixel anywhere in it).
     float bound = 1.5f * float(1 << level) * depthPerPx;
     if (bound >= slab) break;  // coarser cells bound it no tighter
-    vec2 minMax = sslrLoadDepthMinMax(level, ivec2(px.x >> level, px.y >> level));
+    vec2 minMax = sslrLoadPyramidTexel(level, ivec2(px.x >> level, px.y >> level));
     if (max(keySign * minMax.x, keySign * minMax.y) > keyRay) return bound;
   }
   return slab;
@@ -108,7 +107,7 @@ SSLR_FN bool sslrCornerHit(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   vec3 vsN;
   if (!sslrLoadSurface(px, vsSurface) || !sslrDecodeNormal(s, sslrLoadNormal(px), vsN)) return false;
   // A curved surface is no corner (its solid is the sphere of its curvature).
-  if (sslrCurvedSolids(t) && sslrLoadCurvedExtra(px) > 0.0f) return false;
+  if (sslrCurvedSolids(t) && sslrLoadPyramidTexel(0, px).y > 0.0f) return false;
   float slab = t.objectThickness * -vsSurface.z;
   // The outline on the shown face's plane, and the side's outward normal.
   vec2 wEdge = acrossX ? vec2(float(px.x) + (outward.x > 0 ? 1.0f : 0.0f), wEntry.y)
@@ -190,7 +189,8 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
       }
       float cellSize = float(1 << level);
       cell = floor(vec2(pos.x, pos.y) / cellSize);
-      vec2 minMax = sslrLoadDepthMinMax(level, ivec2(cell));
+      vec2 texel = sslrLoadPyramidTexel(level, ivec2(cell));
+      vec2 minMax = sslrHiZMinMax(level, texel);
       hit.iterations = i + 1;
       keyNear = min(keySign * minMax.x, keySign * minMax.y);
       float keyFar = max(keySign * minMax.x, keySign * minMax.y);
@@ -205,7 +205,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
       // In front of everything the cell shows: skip it.
       bool skip = segFar < keyNear;
       // A pixel on a curved surface reaches deeper than the slab (coarse cells' far keys hold it).
-      extra = level == 0 && sslrCurvedSolids(t) ? sslrLoadCurvedExtra(ivec2(cell)) : 0.0f;
+      extra = level == 0 && sslrCurvedSolids(t) ? texel.y : 0.0f;
       // Behind everything the cell shows, deeper than any tolerance and than the objects' assumed
       // thickness: the ray passes behind what the cell shows. (The slope term of the tolerance is
       // unknown before a pixel is looked at: the largest one, tan = 16, is assumed.)

@@ -114,18 +114,12 @@ bool sslrLoadPosition(ivec2 px, out vec4 vsPosition) {
 #elif defined(SSLR_METHOD_DDA)
 #include "sslr_trace_dda.h"
 #else
-// The min-max depth pyramid built by hiz.comp: mip m holds level m + 1.
+// The min-max depth pyramid (classify.comp writes levels 0 and 1, hiz.comp the rest): mip m holds
+// level m.
 layout(binding = 6) uniform sampler2D uHiZ;
-vec2 sslrLoadDepthMinMax(int level, ivec2 cell) {
+vec2 sslrLoadPyramidTexel(int level, ivec2 cell) {
   gFetches += 1u;
-  if (level == 0) return sslrHiZTexel(frame.surface, texelFetch(uDepth, cell, 0).r);
-  return texelFetch(uHiZ, cell, level - 1).rg;
-}
-// Per 2x2 quad, its pixels' extra depth behind curved surfaces (classify.comp, SSLR_CURVED_SOLIDS).
-layout(binding = 9) uniform usampler2D uCurvedExtra;
-float sslrLoadCurvedExtra(ivec2 px) {
-  gFetches += 1u;
-  return sslrUnpackCurvedExtra(texelFetch(uCurvedExtra, px >> 1, 0), frame.trace.frameIndex, px);
+  return texelFetch(uHiZ, cell, level).rg;
 }
 #include "sslr_trace_hiz.h"
 #endif

@@ -41,13 +41,10 @@ vec4 sslrLoadNormal(ivec2 px) {
   return vec4(e.x, e.y, 0.0f, 0.0f);
 }
 bool sslrLoadSurface(ivec2 px, vec3& vsPos) { return sslrSurfaceFromDepth(gProj, gSurf, px, sslrLoadDepth(px), vsPos); }
-vec2 sslrLoadDepthMinMax(int level, ivec2 cell) {
-  (void)level;
-  return sslrHiZTexel(gSurf, sslrLoadDepth(cell));
-}
-float sslrLoadCurvedExtra(ivec2 px) {
-  (void)px;
-  return 0.0f;
+// sslrCornerHit reads level 0 alone (flat surfaces: no extra depth).
+vec2 sslrLoadPyramidTexel(int level, ivec2 cell) {
+  EXPECT_EQ(level, 0);
+  return sslrHiZLevel0Texel(gSurf, sslrLoadDepth(cell), 0.0f);
 }
 }  // namespace sslr::shared
 

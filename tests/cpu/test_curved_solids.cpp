@@ -132,14 +132,14 @@ TEST(CurvedSolids, ExtraDepthIsTheChordBeyondTheSlab) {
   }
 }
 
-TEST(CurvedSolids, StoredExtraDepthsRoundTripAndExpire) {
-  const vec4 extra(0.0f, 1.5f, 0.25f, 3.0f);  // exact in half precision
-  const uvec4 texel = sslrPackCurvedExtra(extra, 7);
-  for (int k = 0; k < 4; ++k) {
-    const ivec2 px(10 + (k & 1), 20 + (k >> 1));
-    EXPECT_EQ(sslrUnpackCurvedExtra(texel, 7, px), extra[k]) << "pixel " << k;
-    EXPECT_EQ(sslrUnpackCurvedExtra(texel, 8, px), 0.0f) << "another frame's texel reads as no extra";
-  }
+TEST(CurvedSolids, Level0TexelHoldsDepthAndExtra) {
+  SslrSurface s{};
+  s.reversedZ = 1;
+  EXPECT_EQ(sslrHiZLevel0Texel(s, 0.25f, 1.5f), vec2(0.25f, 1.5f));
+  EXPECT_EQ(sslrHiZLevel0Texel(s, 0.0f, 0.0f), vec2(0.0f, 0.0f)) << "background: the farthest depth";
+  EXPECT_EQ(sslrHiZLevel0Texel(s, std::nanf(""), 0.0f), vec2(0.0f, 0.0f)) << "NaN: the farthest depth";
+  EXPECT_EQ(sslrHiZMinMax(0, vec2(0.25f, 1.5f)), vec2(0.25f, 0.25f)) << "level 0: one depth, not (min, max)";
+  EXPECT_EQ(sslrHiZMinMax(1, vec2(0.25f, 0.5f)), vec2(0.25f, 0.5f));
   EXPECT_TRUE(sslrQuadNormalsTurn(vec4(0.5f), vec4(0.5f), vec4(0.5f), vec4(0.5f, 0.5f, 0.5f, 0.6f)));
   EXPECT_FALSE(sslrQuadNormalsTurn(vec4(0.5f), vec4(0.5f), vec4(0.5f), vec4(0.5f)));
 }

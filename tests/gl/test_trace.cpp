@@ -783,10 +783,11 @@ namespace {
 
 // The depth pyramid hiz.comp builds (two levels per dispatch) against the same reduction on the
 // CPU from the depth buffer read back: every level, cell for cell, on sizes whose halvings leave
-// odd remainders (padded cells must be neutral) and with both float depth conventions. With
-// Settings::curvedSolids, level 1 holds the backs of curved surfaces' solids (sslrHiZLevel1Cell on
-// the CPU, from the depth and normals read back): the same function, within float rounding of its
-// math; the levels above are checked exactly against the GPU's level 1.
+// odd remainders (padded cells must be neutral) and with both float depth conventions. Level 0
+// holds each pixel's depth exactly. With Settings::curvedSolids, level 1 holds the backs of curved
+// surfaces' solids and level 0 the pixels' extra depths (sslrHiZLevel1Cell on the CPU, from the
+// depth and normals read back): the same function, within float rounding of its math; the levels
+// above are checked exactly against the GPU's level 1.
 class DepthPyramid : public sslr::test::GlTest,
                      public ::testing::WithParamInterface<std::tuple<int, int, DepthMode, bool>> {};
 
@@ -831,33 +832,30 @@ TEST_P(DepthPyramid, EveryLevelIsTheMinMaxOfItsChildren) {
     for (int x = 0; x < width; ++x)
       below[static_cast<size_t>(y) * width + x] = shared::sslrHiZTexel(frame.value().surface, depth.at(x, y, 0));
   size_t cells = 0, solidCells = 0, extraPixels = 0;
-  // The extra depths as stored (sslrPackCurvedExtra): the curved pass stamps the quads it wrote with
-  // the frame's index; the others read as no extra.
-  std::vector<glm::uvec4> gpuExtra;
-  int stamp = 0;
-  if (curved) {
-    const GLuint extraTexture = textureLabelled("sslr.curvedExtra");
-    ASSERT_NE(extraTexture, 0u);
-    GLint w = 0, h = 0;
-    glGetTextureLevelParameteriv(extraTexture, 0, GL_TEXTURE_WIDTH, &w);
-    glGetTextureLevelParameteriv(extraTexture, 0, GL_TEXTURE_HEIGHT, &h);
-    gpuExtra.resize(static_cast<size_t>(w) * h);
-    glGetTextureImage(extraTexture, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
-                      static_cast<GLsizei>(gpuExtra.size() * sizeof(glm::uvec4)), gpuExtra.data());
-    for (const glm::uvec4& t : gpuExtra) stamp = std::max(stamp, static_cast<int>(t.z));
-    ASSERT_GT(stamp, 0) << "the curved pass wrote no quad";
-  }
+  // Level 0 (mip 0): per pixel its depth as the pyramid reads it, and its curved extra depth.
+  GLint w0 = 0, h0 = 0;
+  glGetTextureLevelParameteriv(pyramid, 0, GL_TEXTURE_WIDTH, &w0);
+  glGetTextureLevelParameteriv(pyramid, 0, GL_TEXTURE_HEIGHT, &h0);
+  ASSERT_GE(w0, width);
+  ASSERT_GE(h0, height);
+  std::vector<glm::vec2> gpuLevel0(static_cast<size_t>(w0) * h0);
+  glGetTextureImage(pyramid, 0, GL_RG, GL_FLOAT, static_cast<GLsizei>(gpuLevel0.size() * sizeof(glm::vec2)),
+                    gpuLevel0.data());
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      ASSERT_EQ(gpuLevel0[static_cast<size_t>(y) * w0 + x].x, below[static_cast<size_t>(y) * width + x].x)
+          << "level 0 pixel " << x << "," << y;
   const auto normalAt = [&](glm::ivec2 q) {
     return glm::vec4(normals.at(q.x, q.y, 0), normals.at(q.x, q.y, 1), normals.at(q.x, q.y, 2), normals.at(q.x, q.y, 3));
   };
   for (int level = 1; level <= levels; ++level) {
     GLint w = 0, h = 0;
-    glGetTextureLevelParameteriv(pyramid, level - 1, GL_TEXTURE_WIDTH, &w);
-    glGetTextureLevelParameteriv(pyramid, level - 1, GL_TEXTURE_HEIGHT, &h);
+    glGetTextureLevelParameteriv(pyramid, level, GL_TEXTURE_WIDTH, &w);
+    glGetTextureLevelParameteriv(pyramid, level, GL_TEXTURE_HEIGHT, &h);
     ASSERT_GE(2 * w, belowW);
     ASSERT_GE(2 * h, belowH);
     std::vector<glm::vec2> gpuLevel(static_cast<size_t>(w) * h);
-    glGetTextureImage(pyramid, level - 1, GL_RG, GL_FLOAT, static_cast<GLsizei>(gpuLevel.size() * sizeof(glm::vec2)),
+    glGetTextureImage(pyramid, level, GL_RG, GL_FLOAT, static_cast<GLsizei>(gpuLevel.size() * sizeof(glm::vec2)),
                       gpuLevel.data());
     std::vector<glm::vec2> cpuLevel(gpuLevel.size());
     for (int y = 0; y < h; ++y)
@@ -878,13 +876,13 @@ TEST_P(DepthPyramid, EveryLevelIsTheMinMaxOfItsChildren) {
               frame.value().proj, frame.value().surface, frame.value().trace, q0, q1, q2, q3,
               glm::vec4(depth.at(q0.x, q0.y, 0), depth.at(q1.x, q1.y, 0), depth.at(q2.x, q2.y, 0), depth.at(q3.x, q3.y, 0)),
               normalAt(q0), normalAt(q1), normalAt(q2), normalAt(q3), extra);
-          if (curved) {  // the extra depths the traversal reads per pixel (half floats: both sides round)
-            const glm::uvec4 e = gpuExtra[static_cast<size_t>(y) * w + x];
-            for (int k = 0; k < 4; ++k) {
-              const float stored = shared::sslrUnpackCurvedExtra(e, stamp, glm::ivec2(k & 1, k >> 1));
-              ASSERT_NEAR(stored, extra[k], 1e-3f * (1.0f + extra[k])) << "cell " << x << "," << y << " pixel " << k;
-            }
-            extraPixels += (extra.x > 0.0f) + (extra.y > 0.0f) + (extra.z > 0.0f) + (extra.w > 0.0f);
+          // The extra depths the traversal reads per pixel, in level 0 (0 without curved solids).
+          for (int k = 0; k < 4; ++k) {
+            const glm::ivec2 q(2 * x + (k & 1), 2 * y + (k >> 1));
+            if (q.x >= width || q.y >= height) continue;  // a clamped repeat of the quad's own pixel
+            const float stored = gpuLevel0[static_cast<size_t>(q.y) * w0 + q.x].y;
+            ASSERT_NEAR(stored, extra[k], 1e-3f * (1.0f + extra[k])) << "cell " << x << "," << y << " pixel " << k;
+            extraPixels += extra[k] > 0.0f;
           }
           solidCells += solid != m;
           if (!curved) ASSERT_EQ(solid, m) << "without curved solids level 1 is the plain min-max";

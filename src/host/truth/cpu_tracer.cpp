@@ -12,13 +12,11 @@ thread_local const sslr::host::CpuGBuffer* tG = nullptr;
 thread_local SslrProjection tProj{};
 thread_local SslrSurface tSurf{};
 thread_local bool tStored = false;
-// The min-max depth pyramid, built on the CPU with the same shared functions as hiz.comp:
-// tPyramid[l - 1] is level l, tPyramidWidth[l - 1] its cells per row.
+// The min-max depth pyramid, built on the CPU with the same shared functions as classify.comp
+// and hiz.comp: tPyramid[l] is level l (level 0: sslrHiZLevel0Texel, with curved solids' extra
+// depths), tPyramidWidth[l] its cells per row.
 thread_local std::vector<std::vector<vec2>> tPyramid;
 thread_local std::vector<int> tPyramidWidth, tPyramidHeight;
-// Curved solids: per quad (level 1's cells), its pixels' extra depths packed as classify.comp's
-// curved pass stores them (the same shared functions; every texel is this run's, frame 1).
-thread_local std::vector<uvec4> tCurvedExtra;
 }  // namespace
 float sslrLoadDepth(ivec2 px) { return tG->depth->at(px.x, px.y, 0); }
 vec4 sslrLoadNormal(ivec2 px) {
@@ -30,14 +28,10 @@ bool sslrLoadPosition(ivec2 px, vec4& vsPosition) {
   vsPosition = vec4(p.at(px.x, px.y, 0), p.at(px.x, px.y, 1), p.at(px.x, px.y, 2), p.at(px.x, px.y, 3));
   return vsPosition.w > 0.0f;
 }
-vec2 sslrLoadDepthMinMax(int level, ivec2 cell) {
-  if (level == 0) return sslrHiZTexel(tSurf, sslrLoadDepth(cell));
-  const int w = tPyramidWidth[level - 1], h = tPyramidHeight[level - 1];
+vec2 sslrLoadPyramidTexel(int level, ivec2 cell) {
+  const int w = tPyramidWidth[level], h = tPyramidHeight[level];
   if (cell.x < 0 || cell.y < 0 || cell.x >= w || cell.y >= h) return sslrHiZEmpty();
-  return tPyramid[level - 1][static_cast<size_t>(cell.y) * w + cell.x];
-}
-float sslrLoadCurvedExtra(ivec2 px) {
-  return sslrUnpackCurvedExtra(tCurvedExtra[static_cast<size_t>(px.y >> 1) * tPyramidWidth[0] + (px.x >> 1)], 1, px);
+  return tPyramid[level][static_cast<size_t>(cell.y) * w + cell.x];
 }
 bool sslrLoadSurface(ivec2 px, vec3& vsPos) {
   if (tStored) {
@@ -79,12 +73,19 @@ Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& set
   tPyramid.clear();
   tPyramidWidth.clear();
   tPyramidHeight.clear();
-  tCurvedExtra.clear();
-  const int levels = t.hizMode != SSLR_HIZ_OFF ? t.hizLevels : 0;
+  const int levels = t.hizMode != SSLR_HIZ_OFF ? t.hizLevels : -1;
+  if (levels >= 0) {  // level 0; its extra depths come with level 1
+    std::vector<vec2> texels(static_cast<size_t>(w) * h);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        texels[static_cast<size_t>(y) * w + x] = sslrHiZLevel0Texel(surf, sslrLoadDepth(ivec2(x, y)), 0.0f);
+    tPyramid.push_back(std::move(texels));
+    tPyramidWidth.push_back(w);
+    tPyramidHeight.push_back(h);
+  }
   for (int level = 1; level <= levels; ++level) {
     const int pw = (w + (1 << level) - 1) >> level, ph = (h + (1 << level) - 1) >> level;
     std::vector<vec2> cells(static_cast<size_t>(pw) * ph);
-    if (level == 1) tCurvedExtra.assign(cells.size(), sslrPackCurvedExtra(vec4(0.0f), 1));
     for (int cy = 0; cy < ph; ++cy)
       for (int cx = 0; cx < pw; ++cx) {
         vec2 m = sslrHiZEmpty();
@@ -96,14 +97,17 @@ Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& set
           m = sslrHiZLevel1Cell(proj, surf, t, q0, q1, q2, q3,
                                 vec4(sslrLoadDepth(q0), sslrLoadDepth(q1), sslrLoadDepth(q2), sslrLoadDepth(q3)),
                                 sslrLoadNormal(q0), sslrLoadNormal(q1), sslrLoadNormal(q2), sslrLoadNormal(q3), extra);
-          tCurvedExtra[static_cast<size_t>(cy) * pw + cx] = sslrPackCurvedExtra(extra, 1);
+          for (int k = 0; k < 4; ++k) {  // the curved pass's level-0 texels: the quad's pixels on screen
+            const ivec2 q(2 * cx + (k & 1), 2 * cy + (k >> 1));
+            if (q.x < w && q.y < h) tPyramid[0][static_cast<size_t>(q.y) * w + q.x].y = extra[k];
+          }
           cells[static_cast<size_t>(cy) * pw + cx] = m;
           continue;
         }
         for (int k = 0; k < 4; ++k) {  // levels 2...: the min-max of the level below
           const ivec2 child(2 * cx + (k & 1), 2 * cy + (k >> 1));
-          if (child.x < tPyramidWidth[level - 2] && child.y < tPyramidHeight[level - 2])
-            m = sslrHiZReduce(m, sslrLoadDepthMinMax(level - 1, child));
+          if (child.x < tPyramidWidth[level - 1] && child.y < tPyramidHeight[level - 1])
+            m = sslrHiZReduce(m, sslrLoadPyramidTexel(level - 1, child));
         }
         cells[static_cast<size_t>(cy) * pw + cx] = m;
       }

@@ -28,11 +28,12 @@ void Context::Impl::createTargets() {
   hizWidth = (width + top - 1) / top * (top / 2);
   hizHeight = (height + top - 1) / top * (top / 2);
   gl.CreateTextures(GL_TEXTURE_2D, 1, &hiz);
-  gl.TextureStorage2D(hiz, hizLevels, GL_RG32F, hizWidth, hizHeight);
+  gl.TextureStorage2D(hiz, hizLevels + 1, GL_RG32F, 2 * hizWidth, 2 * hizHeight);
   label(GL_TEXTURE, hiz, "sslr.depthPyramid");
-  // Level 1's cells past the last tile (padding) are never written: neutral once and for all.
+  // Levels 0 and 1 past the screen (padding) are never written: neutral once and for all (level
+  // 0's are never read either: the traversal stays on the screen).
   const float hizEmpty[4] = {2.0f, -1.0f, 0.0f, 0.0f};  // sslrHiZEmpty
-  gl.ClearTexImage(hiz, 0, GL_RG, GL_FLOAT, hizEmpty);
+  for (int mip = 0; mip <= 1; ++mip) gl.ClearTexImage(hiz, mip, GL_RG, GL_FLOAT, hizEmpty);
   const GLsizeiptr tiles = static_cast<GLsizeiptr>(tilesX()) * tilesY();
   gl.CreateBuffers(1, &tileBuffer);
   // Header (see common/tiles.glsl), traced tiles, tiles to blur, per-tile stamps (zero: frame
@@ -48,15 +49,15 @@ void Context::Impl::createTargets() {
 
 void Context::Impl::destroyTargets() {
   GLuint textures[] = {reflection, blurTemp, resolved, hit,     iterations,
-                       hiz,        quadHit,  quadSurface, history, historyKey, curvedExtra};
-  gl.DeleteTextures(11, textures);
+                       hiz,        quadHit,  quadSurface, history, historyKey};
+  gl.DeleteTextures(10, textures);
   gl.DeleteBuffers(1, &retraceBuffer);
   gl.DeleteBuffers(1, &feedbackBuffer);
   gl.DeleteBuffers(1, &curvedQuads);
   if (feedbackFence != nullptr) gl.DeleteSync(feedbackFence);
   feedbackFence = nullptr;
   traversalInline = feedbackHasTraversal = lastFrameListedNoTile = false;
-  quadHit = quadSurface = retraceBuffer = feedbackBuffer = history = historyKey = curvedExtra = curvedQuads = 0;
+  quadHit = quadSurface = retraceBuffer = feedbackBuffer = history = historyKey = curvedQuads = 0;
   historyValid = false;
   GLuint buffers[] = {tileBuffer};
   gl.DeleteBuffers(1, buffers);

@@ -46,13 +46,13 @@ struct Context::Impl {
   int width = 0, height = 0;
 
   GLuint reflection = 0, blurTemp = 0, resolved = 0, hit = 0, iterations = 0;
-  // Min-max depth pyramid: mip m holds level m + 1 (sslr_shared.h). Its base is padded so that
-  // every mip halves exactly: mip m has at least ceil(size / 2^(m+1)) cells per axis.
+  // Min-max depth pyramid: mip m holds level m (sslr_shared.h; level 0 also holds the pixels'
+  // curved extra depths). Its base is padded so that every mip halves exactly: mip m has at least
+  // ceil(size / 2^m) cells per axis.
   GLuint hiz = 0;
-  // Settings::curvedSolids: per level-1 cell (2x2 quad), its pixels' extra depth behind curved
-  // surfaces, and the list of quads whose normals turn (classify.comp's curved pass writes the
-  // first from the second; both created on first use).
-  GLuint curvedExtra = 0, curvedQuads = 0;
+  // Settings::curvedSolids: the list of quads whose normals turn, whose level-1 cells and level-0
+  // texels classify.comp's curved pass writes (created on first use).
+  GLuint curvedQuads = 0;
   // Half resolution: per 2x2 quad, its ray's hit and surfaces (created on first use).
   GLuint quadHit = 0, quadSurface = 0, retraceBuffer = 0;
   // The last frame's counts, fed back without a stall: feedback holds (listed tiles, 0, 0, pixels
@@ -70,7 +70,7 @@ struct Context::Impl {
   // created on first use. historyValid: the last dispatch stored them.
   GLuint history = 0, historyKey = 0;
   bool historyValid = false;
-  int hizLevels = 0, hizWidth = 0, hizHeight = 0;
+  int hizLevels = 0, hizWidth = 0, hizHeight = 0;  // levels above level 0; level 1's size
   GLuint frameUbo = 0, tileBuffer = 0;
   // Stats without a stall: a ring of slots, each a counter buffer (traced pixels, fetches,
   // hierarchical pixels, pad, tiles, blur tiles), GL_TIMESTAMP queries (before classification,
@@ -126,6 +126,7 @@ struct Context::Impl {
   Status checkInputs(const FrameInputs& in, Method method) const;
   // passes.cpp
   void bindInputs(const FrameInputs& in) const;
+  void bindPyramidLevels01() const;
   void buildPyramid(GLuint prog) const;
   void readFeedback();
   Status dispatch(const FrameInputs& in, const Settings& settings);

@@ -26,6 +26,13 @@ void Context::Impl::bindInputs(const FrameInputs& in) const {
   gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
 }
 
+// Levels 0 and 1 of the pyramid, as classification, the level-1 pass and the curved pass write
+// them (classify.comp): image units 1 and 0.
+void Context::Impl::bindPyramidLevels01() const {
+  gl.BindImageTexture(0, hiz, 1, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+  gl.BindImageTexture(1, hiz, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+}
+
 // The min-max depth pyramid, two levels per dispatch (each dispatch reads the level below its
 // pair), indirect: the group counts are zero unless classification listed a tile
 // (common/tiles.glsl).
@@ -34,12 +41,12 @@ void Context::Impl::buildPyramid(GLuint prog) const {
   gl.BindTextureUnit(6, hiz);
   gl.BindSampler(6, nearestSampler);
   // Two levels per dispatch (hiz.comp), over the upper level's cells: its dispatch arguments.
-  for (int level = 2; level <= hizLevels;) {  // level 1: classification (classify.comp)
+  for (int level = 2; level <= hizLevels;) {  // levels 0 and 1: classification (classify.comp)
     const bool two = level + 1 <= hizLevels;
-    gl.ProgramUniform1i(prog, 0, level - 1);  // uSourceLevel
+    gl.ProgramUniform1i(prog, 0, level - 1);  // uSourceLevel (mip m holds level m)
     gl.ProgramUniform1i(prog, 1, two ? 1 : 0);  // uTwoLevels
-    gl.BindImageTexture(0, hiz, level - 1, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-    if (two) gl.BindImageTexture(1, hiz, level, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+    gl.BindImageTexture(0, hiz, level, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+    if (two) gl.BindImageTexture(1, hiz, level + 1, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
     const int top = two ? level + 1 : level;
     gl.DispatchComputeIndirect(kHizDispatchOffset + static_cast<GLintptr>(3 * 4 * (top - 1)));
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -180,12 +187,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.TextureStorage2D(quadSurface, 1, GL_RGBA16F, qw, qh);
     label(GL_TEXTURE, quadSurface, "sslr.quadSurface");
   }
-  if (curvedSolids && curvedExtra == 0) {  // level 1's size: every quad of the screen has a cell
-    gl.CreateTextures(GL_TEXTURE_2D, 1, &curvedExtra);
-    gl.TextureStorage2D(curvedExtra, 1, GL_RGBA32UI, hizWidth, hizHeight);
-    label(GL_TEXTURE, curvedExtra, "sslr.curvedExtra");
-    const GLuint noStamp[4] = {0, 0, 0, 0};  // frame indices start at 1: no texel is this frame's
-    gl.ClearTexImage(curvedExtra, 0, GL_RGBA_INTEGER, GL_UNSIGNED_INT, noStamp);
+  if (curvedSolids && curvedQuads == 0) {
     gl.CreateBuffers(1, &curvedQuads);  // header (classify.comp) + one entry per quad
     gl.NamedBufferStorage(curvedQuads, static_cast<GLsizeiptr>((8 + static_cast<size_t>(hizWidth) * hizHeight) * sizeof(GLuint)),
                           nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -274,10 +276,8 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
 
   // Classification covers the screen; everything after runs over the listed tiles only.
   gl.UseProgram(classify.value());
-  if (pyramid) gl.BindImageTexture(0, hiz, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+  if (pyramid) bindPyramidLevels01();
   if (curvedSolids) {
-    gl.BindTextureUnit(9, curvedExtra);  // read by the traversal (unit 9 is temporal reuse's after the trace)
-    gl.BindSampler(9, nearestSampler);
     // The curved pass's dispatch (0, 1, 1) until the pyramid-args pass sets it; no quad listed.
     const GLuint curvedHeader[8] = {0, 1, 1, 0, 0, 0, 0, 0};
     gl.NamedBufferSubData(curvedQuads, 0, sizeof(curvedHeader), curvedHeader);
@@ -300,15 +300,14 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     if (level1Pass) {  // level 1 (classify.comp, SSLR_LEVEL1_PASS) through level 1's pyramid arguments
       gl.UseProgram(level1Program.value());
-      gl.BindImageTexture(0, hiz, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+      bindPyramidLevels01();  // (the clean-up pass took image unit 0)
       gl.DispatchComputeIndirect(kHizDispatchOffset);
       gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
                        GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     }
     if (curvedSolids) {  // the listed quads' cells with their solids (classify.comp, SSLR_CURVED_PASS)
       gl.UseProgram(curvedPass.value());
-      gl.BindImageTexture(0, hiz, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-      gl.BindImageTexture(1, curvedExtra, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32UI);
+      bindPyramidLevels01();
       gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, curvedQuads);
       gl.DispatchComputeIndirect(0);
       gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
