@@ -663,6 +663,36 @@ TEST_F(Api, ArticleXyzNormalsGiveTheSameHitsAsOctahedral) {
   EXPECT_GE(double(close) / both, 0.95);
 }
 
+// Textures of the current GL context whose debug label is `wanted`.
+int texturesLabelled(const std::string& wanted) {
+  int n = 0;
+  for (GLuint name = 1; name < 4096; ++name) {
+    if (!glIsTexture(name)) continue;
+    char label[64] = {};
+    GLsizei length = 0;
+    glGetObjectLabel(GL_TEXTURE, name, sizeof label, &length, label);
+    n += wanted == std::string(label, static_cast<size_t>(length));
+  }
+  return n;
+}
+
+// The depth pyramid (~10.7 B per pixel) is allocated by the first dispatch that traces it: a host
+// on adaptive L alone or on the tutorial's method never pays for it. After a resize, again on use.
+TEST_F(Api, PyramidIsAllocatedOnlyWhenAModeTracesIt) {
+  const int before = texturesLabelled("sslr.depthPyramid");
+  auto ctx = makeContext();
+  Frame f;
+  Settings alone;
+  alone.hierarchicalFallback = false;
+  ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), alone));
+  EXPECT_EQ(texturesLabelled("sslr.depthPyramid"), before) << "adaptive L alone traces no pyramid";
+  ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), Settings{}));
+  EXPECT_EQ(texturesLabelled("sslr.depthPyramid"), before + 1);
+  ASSERT_TRUE(ctx->resize(W / 2, H / 2));
+  EXPECT_EQ(texturesLabelled("sslr.depthPyramid"), before) << "resize frees it";
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
 TEST_F(Api, ResizeFollowsTheHost) {
   auto ctx = makeContext();
   EXPECT_FALSE(ctx->resize(0, 5));

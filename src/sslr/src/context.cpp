@@ -27,13 +27,7 @@ void Context::Impl::createTargets() {
   const int top = 1 << hizLevels;
   hizWidth = (width + top - 1) / top * (top / 2);
   hizHeight = (height + top - 1) / top * (top / 2);
-  gl.CreateTextures(GL_TEXTURE_2D, 1, &hiz);
-  gl.TextureStorage2D(hiz, hizLevels + 1, GL_RG32F, 2 * hizWidth, 2 * hizHeight);
-  label(GL_TEXTURE, hiz, "sslr.depthPyramid");
-  // Levels 0 and 1 past the screen (padding) are never written: neutral once and for all (level
-  // 0's are never read either: the traversal stays on the screen).
-  const float hizEmpty[4] = {2.0f, -1.0f, 0.0f, 0.0f};  // sslrHiZEmpty
-  for (int mip = 0; mip <= 1; ++mip) gl.ClearTexImage(hiz, mip, GL_RG, GL_FLOAT, hizEmpty);
+  hiz = 0;  // created by the first dispatch that traces it (createPyramid)
   const GLsizeiptr tiles = static_cast<GLsizeiptr>(tilesX()) * tilesY();
   gl.CreateBuffers(1, &tileBuffer);
   // Header (see common/tiles.glsl), traced tiles, tiles to blur, per-tile stamps (zero: frame
@@ -45,6 +39,18 @@ void Context::Impl::createTargets() {
   label(GL_BUFFER, tileBuffer, "sslr.tiles");
   const float zero[4] = {0, 0, 0, 0};
   for (GLuint t : {reflection, resolved}) gl.ClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
+}
+
+// The depth pyramid (~10.7 B per pixel), on first use: a host that never traces it (the tutorial's
+// method, adaptive L alone) never pays for it.
+void Context::Impl::createPyramid() {
+  gl.CreateTextures(GL_TEXTURE_2D, 1, &hiz);
+  gl.TextureStorage2D(hiz, hizLevels + 1, GL_RG32F, 2 * hizWidth, 2 * hizHeight);
+  label(GL_TEXTURE, hiz, "sslr.depthPyramid");
+  // Levels 0 and 1 past the screen (padding) are never written: neutral once and for all (level
+  // 0's are never read either: the traversal stays on the screen).
+  const float hizEmpty[4] = {2.0f, -1.0f, 0.0f, 0.0f};  // sslrHiZEmpty
+  for (int mip = 0; mip <= 1; ++mip) gl.ClearTexImage(hiz, mip, GL_RG, GL_FLOAT, hizEmpty);
 }
 
 void Context::Impl::destroyTargets() {

@@ -48,7 +48,7 @@ struct Context::Impl {
   GLuint reflection = 0, blurTemp = 0, resolved = 0, hit = 0, iterations = 0;
   // Min-max depth pyramid: mip m holds level m (sslr_shared.h; level 0 also holds the pixels'
   // curved extra depths). Its base is padded so that every mip halves exactly: mip m has at least
-  // ceil(size / 2^m) cells per axis.
+  // ceil(size / 2^m) cells per axis. Created by the first dispatch that traces it.
   GLuint hiz = 0;
   // Settings::curvedSolids: the list of quads whose normals turn, whose level-1 cells and level-0
   // texels classify.comp's curved pass writes (created on first use).
@@ -126,6 +126,7 @@ struct Context::Impl {
   Status checkInputs(const FrameInputs& in, Method method) const;
   // passes.cpp
   void bindInputs(const FrameInputs& in) const;
+  void createPyramid();
   void bindPyramidLevels01() const;
   void buildPyramid(GLuint prog) const;
   void readFeedback();

@@ -193,6 +193,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
                           nullptr, GL_DYNAMIC_STORAGE_BIT);
     label(GL_BUFFER, curvedQuads, "sslr.curvedQuads");
   }
+  if (pyramid && hiz == 0) createPyramid();
   if (pyramid && feedbackBuffer == 0) {
     gl.CreateBuffers(1, &feedbackBuffer);
     gl.NamedBufferStorage(feedbackBuffer, 4 * sizeof(GLuint), nullptr, 0);
