@@ -41,7 +41,8 @@ layout(std430, binding = SSLR_BINDING_RETRACE_SSBO) buffer SslrRetrace {
   uint dispatchX;
   uint dispatchY;
   uint dispatchZ;
-  uint count;  // pixels listed; inline under Auto: pixels the traversal ran for
+  uint count;  // pixels listed; inline under Auto: pixels the traversal ran for; in the quad
+               // passes: quads listed, or that the traversal ran for (inline under Auto)
   // Pixels: x | y << 16 in the order listed. Quads: [0, cap) the slots of the tiles with a quad
   // listed, then per slot a region of its listed quads, x | y << 16, as many as
   // sslrQuadRetraceCountIndex says.
@@ -59,6 +60,7 @@ layout(std430, binding = SSLR_BINDING_RETRACE_SSBO) buffer SslrRetrace {
 // invocations idle (thin-objects 13-20% slower).
 uint sslrQuadRetraceRegion(uint slot) { return sslrTileCapacity() + slot * uint(SSLR_TILE_QUADS); }
 void sslrListForRetrace(ivec2 quad) {
+  atomicAdd(retrace.count, 1u);  // (TraversalPass::Auto's feedback: quads that needed the traversal)
   uint slot = gl_WorkGroupID.x;
   uint k = atomicAdd(tiles.tileCoords[sslrQuadRetraceCountIndex(slot)], 1u);
   retrace.entries[sslrQuadRetraceRegion(slot) + k] = sslrPackCoord(quad);
@@ -194,6 +196,10 @@ void sslrTraceQuad(ivec2 quad) {
     }
 #else
     SslrHit hit = sslrTraceRay(px, q.vsP, q.vsV, q.vsR);
+#ifdef SSLR_COUNT_TRAVERSAL
+    // Inline under TraversalPass::Auto: count the quads the traversal ran for (its feedback).
+    if (hit.hierarchical != 0) atomicAdd(retrace.count, 1u);
+#endif
 #endif
     float confidence = hit.status == SSLR_STATUS_HIT ? hit.confidence : 0.0f;
     vec3 vsHitNormal = vec3(0.0f, 0.0f, 1.0f);

@@ -59,11 +59,13 @@ struct Context::Impl {
   // that needed the traversal), fenced, read without waiting at the next dispatch (readFeedback).
   // lastFrameListedNoTile: classification leaves the pyramid's level 1 to a pass of its own (an
   // empty frame after an empty one only reads the G-buffer). TraversalPass::Auto on a software
-  // renderer chooses per frame from the share of such pixels (feedbackHasTraversal: the pending
-  // copy has it); traversalInline is the current choice.
+  // renderer chooses per frame from the share of such pixels (at half resolution: quads) in the
+  // listed tiles (feedbackHasTraversal: the pending copy has it); traversalInline is the current
+  // choice.
   GLuint feedbackBuffer = 0;
   GLsync feedbackFence = nullptr;
   bool feedbackHasTraversal = false;
+  int feedbackCellsPerTile = SSLR_TILE_SIZE * SSLR_TILE_SIZE;  // its count is of pixels, or quads
   bool lastFrameListedNoTile = false;
   bool traversalInline = false;
   // Temporal reuse: the previous frame's output and its history keys (sslrHistoryKey; 0 = none),

@@ -68,8 +68,8 @@ void Context::Impl::readFeedback() {
   gl.GetNamedBufferSubData(feedbackBuffer, 0, sizeof(counts), counts);
   lastFrameListedNoTile = counts[0] == 0;
   if (!feedbackHasTraversal) return;
-  const double tilePixels = double(counts[0]) * SSLR_TILE_SIZE * SSLR_TILE_SIZE;
-  const double share = tilePixels > 0.0 ? double(counts[3]) / tilePixels : 0.0;
+  const double tileCells = double(counts[0]) * feedbackCellsPerTile;  // pixels, or quads
+  const double share = tileCells > 0.0 ? double(counts[3]) / tileCells : 0.0;
   traversalInline = share > (traversalInline ? kInlineTraversalShare - 0.05 : kInlineTraversalShare + 0.05);
 }
 
@@ -115,31 +115,34 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   if (settings.temporal) traceDefines += "#define SSLR_TEMPORAL_HITS 1\n";
   // The traversal in a pass of its own (trace.comp, SSLR_DEFER_TRAVERSAL): the pixels (or, at half
   // resolution, the quads) that need it are listed for a retrace pass.
-  // Auto defers it on software renderers, unless most pixels needed it last frame (then it runs
-  // inline: the pass of its own costs more than it saves, measured); at half resolution it stays
-  // deferred. The share is fed back from each such frame (readFeedback).
+  // Auto defers it on software renderers, unless most pixels (at half resolution: quads) needed it
+  // last frame (then it runs inline: the pass of its own costs more than it saves, measured at both
+  // resolutions). The share is fed back from each such frame (readFeedback).
   const bool adaptiveWithTraversal = settings.method == Method::AdaptiveL && pyramid;
   const bool autoSoftware =
       adaptiveWithTraversal && settings.traversalPass == TraversalPass::Auto && softwareRenderer;
-  const bool feedback = autoSoftware && !settings.halfResolution;
+  const bool feedback = autoSoftware;
   if (pyramid) readFeedback();
+  // This frame's counts go to the feedback buffer unless an earlier frame's are still unread there.
+  const bool feedbackWritten = pyramid && feedbackFence == nullptr;
   // After a frame that listed no tile, classification does not write level 1: a pass of its own
   // does, dispatched only if this frame lists one (an empty frame's classification then reads the
   // G-buffer and nothing more; measured in docs/algorithm.md).
   const bool level1Pass = pyramid && lastFrameListedNoTile;
   const bool deferTraversal =
       adaptiveWithTraversal && (settings.traversalPass == TraversalPass::Deferred ||
-                                (autoSoftware && (settings.halfResolution || !traversalInline)));
+                                (autoSoftware && !traversalInline));
   const std::string deferDefine = deferTraversal ? "#define SSLR_DEFER_TRAVERSAL 1\n" : "";
-  // Inline under Auto: the trace counts the pixels that needed the traversal (the retrace buffer's
-  // count, as deferred would have listed them).
+  // Inline under Auto: the trace (at half resolution the quad pass) counts the pixels (quads) that
+  // needed the traversal in the retrace buffer's count, as deferred would have listed them.
   const bool countTraversal = feedback && !deferTraversal;
+  const std::string countDefine = countTraversal ? "#define SSLR_COUNT_TRAVERSAL 1\n" : "";
   // Half resolution: a quad pass (the tracer, one ray per 2x2 quad; deferred: its first stage, and
   // a quad retrace pass for the rest) before the full-resolution pass, which reuses those rays.
   const std::string quadDefines = "#define SSLR_HALF_QUADS 1\n" + methodDefines + statsDefine;
   const std::string retraceDefines = traceDefines + "#define SSLR_HALF_RETRACE 1\n";
   if (settings.halfResolution) traceDefines += "#define SSLR_HALF_RES 1\n";
-  else traceDefines += deferDefine + (countTraversal ? "#define SSLR_COUNT_TRAVERSAL 1\n" : "");
+  else traceDefines += deferDefine + countDefine;
   const bool retracePass = settings.halfResolution || deferTraversal;
   const bool quadRetracePass = settings.halfResolution && deferTraversal;
   // With the pyramid, classification (which reads every depth anyway) writes its level 1, unless
@@ -158,7 +161,8 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
                    : Expected<GLuint>(GLuint(0));
   auto trace = computeProgram("trace.comp", traceDefines);
   const Expected<GLuint> none = GLuint(0);
-  Expected<GLuint> quads = settings.halfResolution ? computeProgram("trace.comp", quadDefines + deferDefine) : none;
+  Expected<GLuint> quads =
+      settings.halfResolution ? computeProgram("trace.comp", quadDefines + deferDefine + countDefine) : none;
   Expected<GLuint> quadRetrace =
       quadRetracePass ? computeProgram("trace.comp", quadDefines + "#define SSLR_HALF_QUAD_RETRACE 1\n") : none;
   Expected<GLuint> retrace = retracePass ? computeProgram("trace.comp", retraceDefines) : none;
@@ -327,14 +331,19 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.UseProgram(quads.value());
     gl.BindImageTexture(1, quadHit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     gl.BindImageTexture(2, quadSurface, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    gl.DispatchComputeIndirect(0);  // one 4x4 group per listed tile
-    if (quadRetracePass) {  // the quads whose ray needs the traversal; then the list is the pixels'
+    gl.DispatchComputeIndirect(0);  // one group per listed tile
+    if (quadRetracePass) {  // the quads whose ray needs the traversal
       gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
       gl.UseProgram(quadRetrace.value());
       gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, retraceBuffer);
       gl.DispatchComputeIndirect(0);
       gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
+    }
+    if (quadRetracePass || countTraversal) {
+      // The quads that needed the traversal (Auto's feedback), then the list is the pixels'.
       gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+      if (feedbackWritten)
+        gl.CopyNamedBufferSubData(retraceBuffer, feedbackBuffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
       gl.NamedBufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
     }
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
@@ -409,11 +418,12 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   timestamp(5);
   // The host (and composite) may read the outputs in any way next: make all writes visible.
   gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
-  if (pyramid && feedbackFence == nullptr) {  // (listed tiles, -, -, pixels that needed the traversal)
+  if (feedbackWritten) {  // (listed tiles, -, -, pixels or quads that needed the traversal)
     gl.CopyNamedBufferSubData(tileBuffer, feedbackBuffer, 0, 0, sizeof(GLuint));
-    if (feedback)
+    if (feedback && !settings.halfResolution)  // (half resolution copied its quads' count above)
       gl.CopyNamedBufferSubData(retraceBuffer, feedbackBuffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
     feedbackHasTraversal = feedback;
+    feedbackCellsPerTile = settings.halfResolution ? SSLR_TILE_QUADS : SSLR_TILE_SIZE * SSLR_TILE_SIZE;
     feedbackFence = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
   }
   if (slot != nullptr) {

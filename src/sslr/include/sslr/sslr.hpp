@@ -143,9 +143,9 @@ enum class Method {
 // Where the hierarchical traversal of Method::AdaptiveL runs (the answers are the same).
 enum class TraversalPass {
   Auto,      // Inline on GPUs. On a software rasterizer (llvmpipe, softpipe, SwiftShader) Deferred,
-             // but Inline while more than about half the pixels of the traced tiles needed the
-             // traversal in the previous frame (deferring then costs more than it saves);
-             // half resolution always defers there
+             // but Inline while more than about half the pixels (half resolution: quads) of the
+             // traced tiles needed the traversal in the previous frame (deferring then costs more
+             // than it saves)
   Inline,    // in the pixel's own invocation, after adaptive L: GPUs (deferred was slower on an H100)
   Deferred,  // a pass of its own over the pixels that need it: CPU rasterizers run code a pixel
              // does not take under lane masks, so the traversal inline slows every pixel
