@@ -7,8 +7,8 @@
 // pyramid, from the reads classification makes anyway (for level 1, a separate pass read every
 // depth a second time; sky-heavy 960x540 on llvmpipe: the default 1.67-1.91x -> 1.28-1.49x the
 // tutorial's time, an empty frame 0.73 -> 0.85x the baseline pass in one A/B; level 0's four
-// stores per quad cost 0.6-0.9 ms there and save the traversal up to two fetches per step,
-// docs/algorithm.md "Level 0 in the pyramid").
+// stores per quad cost 0.6-0.9 ms and save the traversal up to two fetches per step; quads of
+// sky alone get none, docs/algorithm.md "Level 0 in the pyramid").
 //
 // With SSLR_CLEANUP the same file is the clean-up pass, run after classification over the
 // previous frame's traced tiles: those not listed again are zeroed. The outputs are never cleared
@@ -166,7 +166,10 @@ void writeLevels01(ivec2 cell, vec4 depths) {
   if (outside) level1 = sslrHiZEmpty();
   if (all(lessThan(cell, imageSize(uLevel1)))) {
     imageStore(uLevel1, cell, vec4(level1, 0.0f, 0.0f));
-    if (!outside) writeLevel0(cell, depths, vec4(0.0f));
+    // A quad of background alone gets no level-0 texels: the traversal skips its level-1 cell
+    // (nothing there can stop a ray) and never reads them. On sparse frames most quads are sky.
+    bool geometry = sslrIsGeometryDepth(frame.surface, frame.surface.reversedZ != 0 ? level1.y : level1.x);
+    if (!outside && geometry) writeLevel0(cell, depths, vec4(0.0f));
 #if defined(SSLR_CURVED_SOLIDS) && SSLR_CURVED_SOLIDS
     // Curved surfaces reach deeper than the slab (sslr_shared.h, "Curved solids"): a quad whose
     // normals turn is listed for the curved pass, which overwrites its cell with the solids' backs

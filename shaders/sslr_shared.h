@@ -444,7 +444,8 @@ SSLR_FN bool sslrShouldTrace(SslrSurface s, SslrTraceParams t, float depth, vec4
 // Level l has ceil(size / 2^l) cells per axis, so cell c of level l covers exactly pixels
 // [c 2^l, (c + 1) 2^l) of the screen. Level 0 is the pyramid's too (mip 0 of the same texture):
 // per pixel, its depth as sslrHiZTexel reads it and its curved solid's extra depth
-// (sslrHiZLevel0Texel). The traversal's walk thus reads every level, and a pixel's extra depth, in
+// (sslrHiZLevel0Texel; a quad of background alone gets none, and the walk never reads level 0
+// there). The traversal's walk thus reads every level, and a pixel's extra depth, in
 // one fetch per step: with level 0 in the depth buffer and the extra depths in a texture of
 // their own, SIMD lanes at different levels fetched from all three (llvmpipe runs every branch's
 // fetch under lane masks; docs/algorithm.md).

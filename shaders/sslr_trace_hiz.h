@@ -160,8 +160,11 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   vec2 cell0 = floor(vec2(o.x, o.y));
   vec2 tBound0 = ((cell0 + boundaryStep) - vec2(o.x, o.y)) * invD;
   float tRay = min(tBound0.x, tBound0.y) + nudge;
-  int level = 0;
   int topLevel = t.hizLevels;
+  // Level 0 is read only inside a 2x2 quad whose level-1 cell holds geometry (classification
+  // writes no level-0 texels under a cell of background alone): the walk enters a new quad at
+  // level 1, here and after each pixel it tested, as after a skip.
+  int level = sslrHiZNextLevel(o, d, tRay, cell0, 0, topLevel);
   // Where the ray entered the first pixel of the pixels it has been behind since it was last in
   // front of (or deeper than the slab behind) what the screen shows: the outline it may have
   // crossed onto an object's side (sslrCornerHit, tried once, if the ray ends in the slab).
@@ -202,8 +205,9 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
 #ifdef SSLR_HIZ_DEBUG_HOOK
       SSLR_HIZ_DEBUG_HOOK(i, level, cell, tRay, tExit, pos, keyExit, keyNear, keyFar);
 #endif
-      // In front of everything the cell shows: skip it.
-      bool skip = segFar < keyNear;
+      // In front of everything the cell shows, or a cell of background alone (nothing in it can
+      // stop a ray; classification writes no level-0 texels under such a level-1 cell): skip it.
+      bool skip = segFar < keyNear || (level > 0 && !sslrIsGeometryDepth(s, keySign * keyNear));
       // A pixel on a curved surface reaches deeper than the slab (coarse cells' far keys hold it).
       extra = level == 0 && sslrCurvedSolids(t) ? texel.y : 0.0f;
       // Behind everything the cell shows, deeper than any tolerance and than the objects' assumed
@@ -242,6 +246,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
     if (!sslrLoadSurface(px, vsSurface)) {  // background: only a ray beyond the far plane gets here
       tRun = -1.0f;
       tRay = tExit + nudge;
+      level = sslrHiZNextLevel(o, d, tRay, cell, 0, topLevel);
       continue;
     }
     vec3 vsSurfaceNormal;
@@ -293,6 +298,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
     }
     if (!(behind > 0.0f) || behind >= slab) tRun = -1.0f;
     tRay = tExit + nudge;
+    level = sslrHiZNextLevel(o, d, tRay, cell, 0, topLevel);
   }
   // Ended inside an object's slab: its side, if the ray crossed an outline onto it.
   float Lc = 0.0f;
