@@ -33,8 +33,9 @@
 namespace sslr::shared {
 #endif
 
-// The level after a skipped cell: one coarser when the ray enters a new parent cell, else the
-// same (the parent, containing the skipped cell, could not have been skipped whole).
+// The level after a skipped cell (or a tested pixel, level 0): one coarser when the ray enters a
+// new parent cell, else the same (the parent, containing the cell, could not have been skipped
+// whole).
 SSLR_FN int sslrHiZNextLevel(vec3 o, vec3 d, float tRay, vec2 cell, int level, int topLevel) {
   if (level >= topLevel) return topLevel;
   float parentSize = float(2 << level);
