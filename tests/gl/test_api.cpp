@@ -676,9 +676,11 @@ int texturesLabelled(const std::string& wanted) {
   return n;
 }
 
-// The depth pyramid (~10.7 B per pixel) is allocated by the first dispatch that traces it: a host
-// on adaptive L alone or on the tutorial's method never pays for it. After a resize, again on use.
-TEST_F(Api, PyramidIsAllocatedOnlyWhenAModeTracesIt) {
+// Memory only for what a frame uses: the depth pyramid (~10.7 B per pixel) is allocated by the
+// first dispatch that traces it (a host on adaptive L alone or on the tutorial's method never pays
+// for it), the hit record and iteration images (20 B per pixel) by the first with debugOutputs.
+// After a resize, again on use.
+TEST_F(Api, MemoryIsAllocatedOnlyForWhatAFrameUses) {
   const int before = texturesLabelled("sslr.depthPyramid");
   auto ctx = makeContext();
   Frame f;
@@ -686,10 +688,23 @@ TEST_F(Api, PyramidIsAllocatedOnlyWhenAModeTracesIt) {
   alone.hierarchicalFallback = false;
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), alone));
   EXPECT_EQ(texturesLabelled("sslr.depthPyramid"), before) << "adaptive L alone traces no pyramid";
+  EXPECT_EQ(ctx->hitTexture(), 0u);
+  EXPECT_EQ(ctx->iterationsTexture(), 0u);
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), Settings{}));
   EXPECT_EQ(texturesLabelled("sslr.depthPyramid"), before + 1);
+  EXPECT_EQ(ctx->hitTexture(), 0u) << "no debug outputs asked for";
+  Settings debug;
+  debug.debugOutputs = true;
+  ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), debug));
+  EXPECT_NE(ctx->hitTexture(), 0u);
+  EXPECT_NE(ctx->iterationsTexture(), 0u);
+  const Image hit = readAll(ctx->hitTexture(), 4);
+  size_t hits = 0;
+  for (size_t i = 2; i < hit.pixels.size(); i += 4) hits += hit.pixels[i] > 0.5f;
+  EXPECT_GT(hits, 0u) << "the debug frame wrote its hits";
   ASSERT_TRUE(ctx->resize(W / 2, H / 2));
   EXPECT_EQ(texturesLabelled("sslr.depthPyramid"), before) << "resize frees it";
+  EXPECT_EQ(ctx->hitTexture(), 0u);
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 

@@ -211,6 +211,7 @@ Image readTexture(GLuint texture, int width, int height, int channels, GLenum fo
   img.height = height;
   img.channels = channels;
   img.pixels.assign(static_cast<size_t>(width) * height * channels, 0.0f);
+  if (texture == 0) return img;  // not created yet (sslr's debug images before a debug frame): zeros
   if (format == 0) format = channels == 1 ? GL_RED : channels == 2 ? GL_RG : channels == 3 ? GL_RGB : GL_RGBA;
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glGetTextureImage(texture, 0, format, GL_FLOAT, static_cast<GLsizei>(img.pixels.size() * sizeof(float)),

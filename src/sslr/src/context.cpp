@@ -21,8 +21,7 @@ void Context::Impl::createTargets() {
   reflection = makeTexture(GL_RGBA16F, "sslr.reflection");
   blurTemp = makeTexture(GL_RGBA16F, "sslr.blurTemp");
   resolved = makeTexture(GL_RGBA16F, "sslr.resolved");
-  hit = makeTexture(GL_RGBA32F, "sslr.hit");
-  iterations = makeTexture(GL_R32F, "sslr.iterations");
+  hit = iterations = 0;  // created by the first dispatch that writes them (debugOutputs, temporal)
   hizLevels = shared::sslrHiZLevelCount(width, height);
   const int top = 1 << hizLevels;
   hizWidth = (width + top - 1) / top * (top / 2);

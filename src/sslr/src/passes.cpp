@@ -215,6 +215,9 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   }
   // History of the previous frame only if it stored one (else its keys may be older: cleared).
   const bool useHistory = settings.temporal && hadHistory;
+  // The hit record and iteration images only for the frames that write them (20 B per pixel).
+  if ((settings.debugOutputs || settings.temporal) && hit == 0) hit = makeTexture(GL_RGBA32F, "sslr.hit");
+  if (settings.debugOutputs && iterations == 0) iterations = makeTexture(GL_R32F, "sslr.iterations");
   if (settings.temporal && history == 0) {
     history = makeTexture(GL_RGBA16F, "sslr.history");
     historyKey = makeTexture(GL_R32F, "sslr.historyKey");

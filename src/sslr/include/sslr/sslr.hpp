@@ -296,8 +296,10 @@ class Context {
   GLName resolvedTexture() const;    // RGBA16F
   GLName reflectionTexture() const;  // RGBA16F, before the blur: rgb as above, a = blur weight
   GLName hitTexture() const;         // RGBA32F (debugOutputs): uvHit, confidence, L (temporal reuse
-                                     // also writes it on the traced tiles, for its own use)
-  GLName iterationsTexture() const;  // R32F (debugOutputs): adaptive-L iterations run
+                                     // also writes it on the traced tiles, for its own use); 0
+                                     // until a dispatch with debugOutputs or temporal created it
+  GLName iterationsTexture() const;  // R32F (debugOutputs): adaptive-L iterations run; 0 until a
+                                     // dispatch with debugOutputs created it
   // Stats never stall the pipeline: each dispatch with collectStats records into a ring of 4
   // slots, and lastStats() returns the newest whose GPU work has finished (FrameStats::frame says
   // which dispatch; typically 1-3 frames back on a GPU). waitForStats() waits for the newest
