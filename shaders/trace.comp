@@ -42,7 +42,7 @@ layout(std430, binding = SSLR_BINDING_RETRACE_SSBO) buffer SslrRetrace {
   uint dispatchY;
   uint dispatchZ;
   uint count;  // pixels listed; inline under Auto: pixels the traversal ran for; in the quad
-               // passes: quads listed, or that the traversal ran for (inline under Auto)
+               // passes under Auto: quads listed, or that the traversal ran for (inline)
   // Pixels: x | y << 16 in the order listed. Quads: [0, cap) the slots of the tiles with a quad
   // listed, then per slot a region of its listed quads, x | y << 16, as many as
   // sslrQuadRetraceCountIndex says.
@@ -60,7 +60,9 @@ layout(std430, binding = SSLR_BINDING_RETRACE_SSBO) buffer SslrRetrace {
 // invocations idle (thin-objects 13-20% slower).
 uint sslrQuadRetraceRegion(uint slot) { return sslrTileCapacity() + slot * uint(SSLR_TILE_QUADS); }
 void sslrListForRetrace(ivec2 quad) {
-  atomicAdd(retrace.count, 1u);  // (TraversalPass::Auto's feedback: quads that needed the traversal)
+#ifdef SSLR_COUNT_TRAVERSAL
+  atomicAdd(retrace.count, 1u);  // TraversalPass::Auto's feedback: quads that needed the traversal
+#endif
   uint slot = gl_WorkGroupID.x;
   uint k = atomicAdd(tiles.tileCoords[sslrQuadRetraceCountIndex(slot)], 1u);
   retrace.entries[sslrQuadRetraceRegion(slot) + k] = sslrPackCoord(quad);

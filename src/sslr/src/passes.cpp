@@ -135,14 +135,16 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   const std::string deferDefine = deferTraversal ? "#define SSLR_DEFER_TRAVERSAL 1\n" : "";
   // Inline under Auto: the trace (at half resolution the quad pass) counts the pixels (quads) that
   // needed the traversal in the retrace buffer's count, as deferred would have listed them.
+  // At half resolution the quad pass counts the quads for the feedback whichever way it runs.
   const bool countTraversal = feedback && !deferTraversal;
-  const std::string countDefine = countTraversal ? "#define SSLR_COUNT_TRAVERSAL 1\n" : "";
+  const bool countQuads = feedback && settings.halfResolution;
+  const std::string countDefine = "#define SSLR_COUNT_TRAVERSAL 1\n";
   // Half resolution: a quad pass (the tracer, one ray per 2x2 quad; deferred: its first stage, and
   // a quad retrace pass for the rest) before the full-resolution pass, which reuses those rays.
   const std::string quadDefines = "#define SSLR_HALF_QUADS 1\n" + methodDefines + statsDefine;
   const std::string retraceDefines = traceDefines + "#define SSLR_HALF_RETRACE 1\n";
   if (settings.halfResolution) traceDefines += "#define SSLR_HALF_RES 1\n";
-  else traceDefines += deferDefine + countDefine;
+  else traceDefines += deferDefine + (countTraversal ? countDefine : "");
   const bool retracePass = settings.halfResolution || deferTraversal;
   const bool quadRetracePass = settings.halfResolution && deferTraversal;
   // With the pyramid, classification (which reads every depth anyway) writes its level 1, unless
@@ -162,7 +164,8 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   auto trace = computeProgram("trace.comp", traceDefines);
   const Expected<GLuint> none = GLuint(0);
   Expected<GLuint> quads =
-      settings.halfResolution ? computeProgram("trace.comp", quadDefines + deferDefine + countDefine) : none;
+      settings.halfResolution ? computeProgram("trace.comp", quadDefines + deferDefine + (countQuads ? countDefine : ""))
+                              : none;
   Expected<GLuint> quadRetrace =
       quadRetracePass ? computeProgram("trace.comp", quadDefines + "#define SSLR_HALF_QUAD_RETRACE 1\n") : none;
   Expected<GLuint> retrace = retracePass ? computeProgram("trace.comp", retraceDefines) : none;
@@ -342,10 +345,10 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
       gl.DispatchComputeIndirect(0);
       gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
     }
-    if (quadRetracePass || countTraversal) {
+    if (quadRetracePass || countQuads) {
       // The quads that needed the traversal (Auto's feedback), then the list is the pixels'.
       gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-      if (feedbackWritten)
+      if (countQuads && feedbackWritten)
         gl.CopyNamedBufferSubData(retraceBuffer, feedbackBuffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
       gl.NamedBufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
     }
