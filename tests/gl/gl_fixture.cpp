@@ -13,6 +13,18 @@ std::string gError;
 sslr::host::HeadlessContext* glContext() { return gContext.get(); }
 const std::string& glContextError() { return gError; }
 
+std::vector<GLuint> texturesLabelled(const std::string& label) {
+  std::vector<GLuint> found;
+  for (GLuint name = 1; name < 4096; ++name) {
+    if (!glIsTexture(name)) continue;
+    char text[64] = {};
+    GLsizei length = 0;
+    glGetObjectLabel(GL_TEXTURE, name, sizeof text, &length, text);
+    if (label == std::string(text, static_cast<size_t>(length))) found.push_back(name);
+  }
+  return found;
+}
+
 void GlTest::SetUp() {
   if (gContext) {
     gContext->resetGlErrorCount();

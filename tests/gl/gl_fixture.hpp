@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
 #include "sslr_host/egl_context.hpp"
 #include "sslr_host/gl.hpp"
 
@@ -12,6 +15,8 @@ namespace sslr::test {
 
 sslr::host::HeadlessContext* glContext();     // nullptr if none could be created
 const std::string& glContextError();
+// The textures of the current GL context whose debug label is `label` (sslr labels its own).
+std::vector<GLuint> texturesLabelled(const std::string& label);
 
 class GlTest : public ::testing::Test {
  protected:

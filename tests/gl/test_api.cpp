@@ -663,35 +663,25 @@ TEST_F(Api, ArticleXyzNormalsGiveTheSameHitsAsOctahedral) {
   EXPECT_GE(double(close) / both, 0.95);
 }
 
-// Textures of the current GL context whose debug label is `wanted`.
-int texturesLabelled(const std::string& wanted) {
-  int n = 0;
-  for (GLuint name = 1; name < 4096; ++name) {
-    if (!glIsTexture(name)) continue;
-    char label[64] = {};
-    GLsizei length = 0;
-    glGetObjectLabel(GL_TEXTURE, name, sizeof label, &length, label);
-    n += wanted == std::string(label, static_cast<size_t>(length));
-  }
-  return n;
-}
+// Depth pyramids alive in the GL context.
+size_t pyramidCount() { return sslr::test::texturesLabelled("sslr.depthPyramid").size(); }
 
 // Memory only for what a frame uses: the depth pyramid (~10.7 B per pixel) is allocated by the
 // first dispatch that traces it (a host on adaptive L alone or on the tutorial's method never pays
 // for it), the hit record and iteration images (20 B per pixel) by the first with debugOutputs.
 // After a resize, again on use.
 TEST_F(Api, MemoryIsAllocatedOnlyForWhatAFrameUses) {
-  const int before = texturesLabelled("sslr.depthPyramid");
+  const size_t before = pyramidCount();
   auto ctx = makeContext();
   Frame f;
   Settings alone;
   alone.hierarchicalFallback = false;
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), alone));
-  EXPECT_EQ(texturesLabelled("sslr.depthPyramid"), before) << "adaptive L alone traces no pyramid";
+  EXPECT_EQ(pyramidCount(), before) << "adaptive L alone traces no pyramid";
   EXPECT_EQ(ctx->hitTexture(), 0u);
   EXPECT_EQ(ctx->iterationsTexture(), 0u);
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), Settings{}));
-  EXPECT_EQ(texturesLabelled("sslr.depthPyramid"), before + 1);
+  EXPECT_EQ(pyramidCount(), before + 1);
   EXPECT_EQ(ctx->hitTexture(), 0u) << "no debug outputs asked for";
   Settings debug;
   debug.debugOutputs = true;
@@ -703,7 +693,7 @@ TEST_F(Api, MemoryIsAllocatedOnlyForWhatAFrameUses) {
   for (size_t i = 2; i < hit.pixels.size(); i += 4) hits += hit.pixels[i] > 0.5f;
   EXPECT_GT(hits, 0u) << "the debug frame wrote its hits";
   ASSERT_TRUE(ctx->resize(W / 2, H / 2));
-  EXPECT_EQ(texturesLabelled("sslr.depthPyramid"), before) << "resize frees it";
+  EXPECT_EQ(pyramidCount(), before) << "resize frees it";
   EXPECT_EQ(ctx->hitTexture(), 0u);
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }

@@ -840,17 +840,6 @@ namespace {
 class DepthPyramid : public sslr::test::GlTest,
                      public ::testing::WithParamInterface<std::tuple<int, int, DepthMode, bool>> {};
 
-GLuint textureLabelled(const std::string& wanted) {
-  for (GLuint name = 1; name < 4096; ++name) {
-    if (!glIsTexture(name)) continue;
-    char label[64] = {};
-    GLsizei length = 0;
-    glGetObjectLabel(GL_TEXTURE, name, sizeof label, &length, label);
-    if (wanted == std::string(label, static_cast<size_t>(length))) return name;
-  }
-  return 0;
-}
-
 TEST_P(DepthPyramid, EveryLevelIsTheMinMaxOfItsChildren) {
   const auto [width, height, mode, curved] = GetParam();
   auto scene = makeBuiltinScene(curved ? "curved-mirror" : "mirror-room");
@@ -865,8 +854,9 @@ TEST_P(DepthPyramid, EveryLevelIsTheMinMaxOfItsChildren) {
   Settings s;  // adaptive L with the traversal behind it: the pyramid is built
   s.curvedSolids = curved;
   ASSERT_TRUE(r.value()->render(gpu, *scene.value().camera, &s));
-  const GLuint pyramid = textureLabelled("sslr.depthPyramid");
-  ASSERT_NE(pyramid, 0u);
+  const std::vector<GLuint> pyramids = sslr::test::texturesLabelled("sslr.depthPyramid");
+  ASSERT_FALSE(pyramids.empty());
+  const GLuint pyramid = pyramids[0];
   const Image depth = r.value()->gbuffer().readDepth();
   const Image normals = r.value()->gbuffer().readNormalPacked();
   auto frame = frameConstants(r.value()->gbuffer().frameInputs(), s, width, height);
