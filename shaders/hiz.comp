@@ -1,52 +1,95 @@
-// Builds one or two levels of the min-max depth pyramid (sslr_shared.h, "Min-max depth pyramid"):
+// Builds the min-max depth pyramid's levels 2 and up (sslr_shared.h, "Min-max depth pyramid"):
 // each cell is the (min, max) raw depth of its 2x2 children. Levels 0 and 1 are classification's
-// (classify.comp reads every depth anyway); level l > 1 reads level l - 1 (mip l - 1 of the same
-// texture, while mip l is written).
-// With uTwoLevels each invocation also writes the next level up: it reads the 4x4 source cells
-// under one cell of that level, writes its four children and the cell itself. Half the
-// dispatches and barriers, and the middle level is never read back (on an H100 a dispatch with
-// its barrier costs ~3.5 us whatever it does: the pyramid of an empty frame cost 0.025 ms).
+// (classify.comp reads every depth anyway).
+//
+// One dispatch builds levels 2 to 7 (SSLR_HIZ_BLOCK): each work group takes one level-7 cell, a
+// 64x64 block of level-1 cells (128x128 pixels). Each of its 8x8 invocations reduces an 8x8 block
+// of level 1 into its level-4 cell, writing the 16 level-2 and 4 level-3 cells on the way; the
+// level-4 cells then meet in shared memory for levels 5, 6 and 7. Only a screen over 2048 pixels
+// wide or high has a level 8: a second dispatch (SSLR_HIZ_SINGLE) reduces level 7 into it.
+// Before, one dispatch built two levels, each reading the one below from memory: three dispatches
+// at 960x540 or 1920x1080, each with its barrier (on an H100 a dispatch with its barrier costs
+// ~3.5 us whatever it does; on llvmpipe the three cost ~0.5 ms with a shader that returned at once).
 #include "common/gbuffer.glsl"
-#include "common/tiles.glsl"
 
-layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
+layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(binding = 0, rg32f) uniform writeonly image2D uLevel;       // the level being written
-layout(binding = 1, rg32f) uniform writeonly image2D uUpperLevel;  // the one above (uTwoLevels)
-layout(binding = 6) uniform sampler2D uHiZ;                        // the pyramid (previous level)
-layout(location = 0) uniform int uSourceLevel;  // l >= 1: pyramid level l (mip l)
-layout(location = 1) uniform int uTwoLevels;    // 1: also write the level above
+layout(binding = 6) uniform sampler2D uHiZ;  // the pyramid: the level(s) read
+layout(location = 0) uniform int uTopLevel;   // the pyramid's top level (sslrHiZLevelCount)
 
-vec2 sourceCell(ivec2 c, ivec2 sourceSize) {
-  if (c.x >= sourceSize.x || c.y >= sourceSize.y) return sslrHiZEmpty();
-  return texelFetch(uHiZ, c, uSourceLevel).rg;
-}
-
-// The (min, max) of level cell `cell` from its four source cells.
-vec2 levelCell(ivec2 cell, ivec2 sourceSize) {
-  ivec2 c = cell * 2;
-  return sslrHiZReduce(sslrHiZReduce(sourceCell(c, sourceSize), sourceCell(c + ivec2(1, 0), sourceSize)),
-                       sslrHiZReduce(sourceCell(c + ivec2(0, 1), sourceSize), sourceCell(c + ivec2(1, 1), sourceSize)));
-}
+#ifdef SSLR_HIZ_SINGLE
+layout(binding = 0, rg32f) uniform writeonly image2D uLevel;  // level uTopLevel, from the one below
 
 void main() {
-  // Dispatched indirectly: with no tile listed, no group runs (common/tiles.glsl).
-  ivec2 cell = ivec2(gl_GlobalInvocationID.xy);  // of the top level written
-  ivec2 n = textureSize(uHiZ, uSourceLevel);
-  if (uTwoLevels == 0) {
-    if (any(greaterThanEqual(cell, imageSize(uLevel)))) return;
-    imageStore(uLevel, cell, vec4(levelCell(cell, n), 0.0f, 0.0f));
-    return;
-  }
-  if (any(greaterThanEqual(cell, imageSize(uUpperLevel)))) return;
-  // Each mip is exactly half the one below (sslr.depthPyramid is padded), so the four children lie
-  // inside uLevel.
-  vec2 upper = sslrHiZEmpty();
+  ivec2 cell = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 below = textureSize(uHiZ, uTopLevel - 1);
+  vec2 m = sslrHiZEmpty();
   for (int k = 0; k < 4; ++k) {
-    ivec2 child = cell * 2 + ivec2(k & 1, k >> 1);
-    vec2 m = levelCell(child, n);
-    imageStore(uLevel, child, vec4(m, 0.0f, 0.0f));
-    upper = sslrHiZReduce(upper, m);
+    ivec2 c = cell * 2 + ivec2(k & 1, k >> 1);
+    if (all(lessThan(c, below))) m = sslrHiZReduce(m, texelFetch(uHiZ, c, uTopLevel - 1).rg);
   }
-  imageStore(uUpperLevel, cell, vec4(upper, 0.0f, 0.0f));
+  imageStore(uLevel, cell, vec4(m, 0.0f, 0.0f));  // (a store outside the level does nothing)
 }
+#else
+// Levels 2..7 (a level above the top is bound to the top's image and never stored to). Stores
+// outside a level's image do nothing: a group's block may reach past the (padded) screen.
+layout(binding = 0, rg32f) uniform writeonly image2D uLevel2;
+layout(binding = 1, rg32f) uniform writeonly image2D uLevel3;
+layout(binding = 2, rg32f) uniform writeonly image2D uLevel4;
+layout(binding = 3, rg32f) uniform writeonly image2D uLevel5;
+layout(binding = 4, rg32f) uniform writeonly image2D uLevel6;
+layout(binding = 5, rg32f) uniform writeonly image2D uLevel7;
+
+shared vec2 sLevel4[8][8];
+shared vec2 sLevel5[4][4];
+shared vec2 sLevel6[2][2];
+
+ivec2 gLevel1Size;
+// A level-1 cell; outside the level (past its padding) neutral.
+vec2 level1(ivec2 c) {
+  return all(lessThan(c, gLevel1Size)) ? texelFetch(uHiZ, c, 1).rg : sslrHiZEmpty();
+}
+vec2 reduce4(vec2 a, vec2 b, vec2 c, vec2 d) { return sslrHiZReduce(sslrHiZReduce(a, b), sslrHiZReduce(c, d)); }
+
+void main() {
+  gLevel1Size = textureSize(uHiZ, 1);
+  ivec2 local = ivec2(gl_LocalInvocationID.xy);
+  ivec2 cell4 = ivec2(gl_WorkGroupID.xy) * 8 + local;
+  vec2 m4 = sslrHiZEmpty();
+  for (int j = 0; j < 4; ++j) {  // the four level-3 cells of this level-4 cell
+    ivec2 cell3 = cell4 * 2 + ivec2(j & 1, j >> 1);
+    vec2 m3 = sslrHiZEmpty();
+    for (int k = 0; k < 4; ++k) {  // the four level-2 cells of that level-3 cell
+      ivec2 cell2 = cell3 * 2 + ivec2(k & 1, k >> 1);
+      ivec2 c = cell2 * 2;
+      vec2 m2 = reduce4(level1(c), level1(c + ivec2(1, 0)), level1(c + ivec2(0, 1)), level1(c + ivec2(1, 1)));
+      imageStore(uLevel2, cell2, vec4(m2, 0.0f, 0.0f));
+      m3 = sslrHiZReduce(m3, m2);
+    }
+    if (uTopLevel >= 3) imageStore(uLevel3, cell3, vec4(m3, 0.0f, 0.0f));
+    m4 = sslrHiZReduce(m4, m3);
+  }
+  if (uTopLevel >= 4) imageStore(uLevel4, cell4, vec4(m4, 0.0f, 0.0f));
+  // Levels 5..7 from shared memory (barriers outside any branch, as GLSL requires).
+  sLevel4[local.y][local.x] = m4;
+  barrier();
+  if (all(lessThan(local, ivec2(4)))) {
+    ivec2 c = local * 2;
+    vec2 m5 = reduce4(sLevel4[c.y][c.x], sLevel4[c.y][c.x + 1], sLevel4[c.y + 1][c.x], sLevel4[c.y + 1][c.x + 1]);
+    if (uTopLevel >= 5) imageStore(uLevel5, ivec2(gl_WorkGroupID.xy) * 4 + local, vec4(m5, 0.0f, 0.0f));
+    sLevel5[local.y][local.x] = m5;
+  }
+  barrier();
+  if (all(lessThan(local, ivec2(2)))) {
+    ivec2 c = local * 2;
+    vec2 m6 = reduce4(sLevel5[c.y][c.x], sLevel5[c.y][c.x + 1], sLevel5[c.y + 1][c.x], sLevel5[c.y + 1][c.x + 1]);
+    if (uTopLevel >= 6) imageStore(uLevel6, ivec2(gl_WorkGroupID.xy) * 2 + local, vec4(m6, 0.0f, 0.0f));
+    sLevel6[local.y][local.x] = m6;
+  }
+  barrier();
+  if (local == ivec2(0) && uTopLevel >= 7) {
+    vec2 m7 = reduce4(sLevel6[0][0], sLevel6[0][1], sLevel6[1][0], sLevel6[1][1]);
+    imageStore(uLevel7, ivec2(gl_WorkGroupID.xy), vec4(m7, 0.0f, 0.0f));
+  }
+}
+#endif

@@ -157,8 +157,11 @@ struct Snapshot {
       i(GL_SAMPLER_BINDING);
     }
     glActiveTexture(static_cast<GLenum>(active));
-    for (GLuint k = 0; k < 4; ++k) {
+    for (GLuint k = 0; k < 6; ++k) {  // 4 and 5: the pyramid's levels 6 and 7
       ii(GL_IMAGE_BINDING_NAME, k); ii(GL_IMAGE_BINDING_FORMAT, k); ii(GL_IMAGE_BINDING_ACCESS, k);
+      ii(GL_IMAGE_BINDING_LEVEL, k);
+    }
+    for (GLuint k = 0; k < 4; ++k) {
       ii(GL_SHADER_STORAGE_BUFFER_BINDING, k); ii(GL_SHADER_STORAGE_BUFFER_START, k); ii(GL_SHADER_STORAGE_BUFFER_SIZE, k);
       ii(GL_UNIFORM_BUFFER_BINDING, k); ii(GL_UNIFORM_BUFFER_START, k); ii(GL_UNIFORM_BUFFER_SIZE, k);
     }
@@ -209,6 +212,7 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   glActiveTexture(GL_TEXTURE3);
   glBindImageTexture(0, hostTex[1], 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA8);
   glBindImageTexture(2, hostTex[2], 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
+  glBindImageTexture(5, hostTex[0], 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
   glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 0, hostBuf[0], 256, 512);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, hostBuf[1]);
   glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 2, hostBuf[2], 0, 128);  // half resolution's list

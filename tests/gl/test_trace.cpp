@@ -968,6 +968,10 @@ INSTANTIATE_TEST_SUITE_P(Sizes, DepthPyramid,
                                            std::make_tuple(97, 53, DepthMode::Reversed, false),
                                            std::make_tuple(250, 131, DepthMode::ZeroToOne, false),
                                            std::make_tuple(161, 91, DepthMode::Reversed, true),
-                                           std::make_tuple(250, 131, DepthMode::ZeroToOne, true)));
+                                           std::make_tuple(250, 131, DepthMode::ZeroToOne, true),
+                                           // Levels 2..7 in one dispatch of blocks of 128x128 pixels,
+                                           // several blocks across; level 8 in a second one.
+                                           std::make_tuple(1030, 40, DepthMode::Reversed, false),
+                                           std::make_tuple(2061, 27, DepthMode::ZeroToOne, false)));
 
 }  // namespace

@@ -130,7 +130,7 @@ struct Context::Impl {
   void bindInputs(const FrameInputs& in) const;
   void createPyramid();
   void bindPyramidLevels01() const;
-  void buildPyramid(GLuint prog) const;
+  void buildPyramid(GLuint blockProgram, GLuint singleProgram) const;
   void readFeedback();
   Status dispatch(const FrameInputs& in, const Settings& settings);
   // composite.cpp

@@ -33,25 +33,25 @@ void Context::Impl::bindPyramidLevels01() const {
   gl.BindImageTexture(1, hiz, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
 }
 
-// The min-max depth pyramid, two levels per dispatch (each dispatch reads the level below its
-// pair), indirect: the group counts are zero unless classification listed a tile
-// (common/tiles.glsl).
-void Context::Impl::buildPyramid(GLuint prog) const {
-  gl.UseProgram(prog);
+// The min-max depth pyramid above level 1, indirect: the group counts are zero unless
+// classification listed a tile (common/tiles.glsl). One dispatch builds levels 2..7 (hiz.comp, a
+// work group per level-7 cell), a second level 8 where the screen has one.
+void Context::Impl::buildPyramid(GLuint blockProgram, GLuint singleProgram) const {
+  const int blockTop = std::min(hizLevels, 7);
+  gl.UseProgram(blockProgram);
   gl.BindTextureUnit(6, hiz);
   gl.BindSampler(6, nearestSampler);
-  // Two levels per dispatch (hiz.comp), over the upper level's cells: its dispatch arguments.
-  for (int level = 2; level <= hizLevels;) {  // levels 0 and 1: classification (classify.comp)
-    const bool two = level + 1 <= hizLevels;
-    gl.ProgramUniform1i(prog, 0, level - 1);  // uSourceLevel (mip m holds level m)
-    gl.ProgramUniform1i(prog, 1, two ? 1 : 0);  // uTwoLevels
-    gl.BindImageTexture(0, hiz, level, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-    if (two) gl.BindImageTexture(1, hiz, level + 1, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-    const int top = two ? level + 1 : level;
-    gl.DispatchComputeIndirect(kHizDispatchOffset + static_cast<GLintptr>(3 * 4 * (top - 1)));
-    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    level = top + 1;
-  }
+  gl.ProgramUniform1i(blockProgram, 0, hizLevels);  // uTopLevel
+  for (int level = 2; level <= 7; ++level)  // a level above the top: the top's image, never stored to
+    gl.BindImageTexture(static_cast<GLuint>(level - 2), hiz, std::min(level, blockTop), GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+  gl.DispatchComputeIndirect(kHizDispatchOffset + 3 * 4 * 1);  // level 2's arguments: the blocks
+  gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  if (hizLevels < 8) return;
+  gl.UseProgram(singleProgram);
+  gl.ProgramUniform1i(singleProgram, 0, 8);
+  gl.BindImageTexture(0, hiz, 8, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+  gl.DispatchComputeIndirect(kHizDispatchOffset + 3 * 4 * 7);  // level 8's
+  gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
 // The last fed-back frame's counts (without waiting: a frame still in flight leaves everything as
@@ -156,6 +156,8 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
                                        : Expected<GLuint>(GLuint(0));
   auto cleanup = computeProgram("classify.comp", "#define SSLR_CLEANUP 1\n");
   Expected<GLuint> hizBuild = pyramid ? computeProgram("hiz.comp") : Expected<GLuint>(GLuint(0));
+  Expected<GLuint> hizSingle = pyramid && hizLevels >= 8 ? computeProgram("hiz.comp", "#define SSLR_HIZ_SINGLE 1\n")
+                                                         : Expected<GLuint>(GLuint(0));
   Expected<GLuint> hizArgs = pyramid ? computeProgram("classify.comp", "#define SSLR_PYRAMID_ARGS 1\n" + curvedDefine)
                                      : Expected<GLuint>(GLuint(0));
   Expected<GLuint> curvedPass =
@@ -181,7 +183,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     temporalStore = computeProgram("temporal.comp", "#define SSLR_TEMPORAL_STORE 1\n");
     historyCleanup = computeProgram("classify.comp", "#define SSLR_CLEANUP 1\n#define SSLR_CLEANUP_HISTORY 1\n");
   }
-  for (const auto* p : {&classify, &cleanup, &hizBuild, &hizArgs, &level1Program, &curvedPass, &trace, &quads, &quadRetrace, &retrace, &blurH, &blurV,
+  for (const auto* p : {&classify, &cleanup, &hizBuild, &hizSingle, &hizArgs, &level1Program, &curvedPass, &trace, &quads, &quadRetrace, &retrace, &blurH, &blurV,
                         &temporalBlend, &temporalStore, &historyCleanup})
     if (!*p) return Status::error(p->error());
 
@@ -244,14 +246,17 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   gl.CopyNamedBufferSubData(tileBuffer, tileBuffer, kTileHeader * sizeof(GLuint),
                             (kTileHeader + 4 * capacity) * sizeof(GLuint), capacity * sizeof(GLuint));
   GLuint header[kHeaderUpload] = {0, 1, 1, 6, 0, 0, 0, 0, 0, 1, 1, 0};
+  // Used: level 1's (the level-1 pass, 8x8 cells a group), level 2's (hiz.comp's blocks of 64x64
+  // level-1 cells) and level 8's (8x8 cells a group).
   for (int level = 1; level <= SSLR_HIZ_MAX_LEVELS; ++level) {
     GLuint* live = &header[kHizDispatchOffset / 4 + 3 * (level - 1)];
     GLuint* real = &header[kHizGroupsIndex + 3 * (level - 1)];
     live[0] = 0, live[1] = 1, live[2] = 1;
-    const int w = hizWidth >> (level - 1), h = hizHeight >> (level - 1);
-    const bool used = level <= hizLevels;
-    real[0] = used ? static_cast<GLuint>((w + SSLR_TILE_SIZE - 1) / SSLR_TILE_SIZE) : 0u;
-    real[1] = used ? static_cast<GLuint>((h + SSLR_TILE_SIZE - 1) / SSLR_TILE_SIZE) : 1u;
+    const int cellsPerGroup = level == 2 ? 64 : 8;
+    const int w = level == 2 ? hizWidth : hizWidth >> (level - 1), h = level == 2 ? hizHeight : hizHeight >> (level - 1);
+    const bool used = level <= hizLevels && (level <= 2 || level == 8);
+    real[0] = used ? static_cast<GLuint>((w + cellsPerGroup - 1) / cellsPerGroup) : 0u;
+    real[1] = used ? static_cast<GLuint>((h + cellsPerGroup - 1) / cellsPerGroup) : 1u;
     real[2] = 1;
   }
   gl.NamedBufferSubData(tileBuffer, 0, sizeof(header), header);
@@ -324,7 +329,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
       gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
       gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
-    buildPyramid(hizBuild.value());
+    buildPyramid(hizBuild.value(), hizSingle.value());
   }
 
   timestamp(2);
