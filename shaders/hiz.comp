@@ -2,11 +2,11 @@
 // each cell is the (min, max) raw depth of its 2x2 children. Levels 0 and 1 are classification's
 // (classify.comp reads every depth anyway).
 //
-// One dispatch builds levels 2 to 7 (SSLR_HIZ_BLOCK): each work group takes one level-7 cell, a
-// 64x64 block of level-1 cells (128x128 pixels). Each of its 8x8 invocations reduces an 8x8 block
+// One dispatch builds levels 2 to 7: each work group takes one level-7 cell, a 64x64 block of
+// level-1 cells (128x128 pixels). Each of its 8x8 invocations reduces an 8x8 block
 // of level 1 into its level-4 cell, writing the 16 level-2 and 4 level-3 cells on the way; the
-// level-4 cells then meet in shared memory for levels 5, 6 and 7. Only a screen over 2048 pixels
-// wide or high has a level 8: a second dispatch (SSLR_HIZ_SINGLE) reduces level 7 into it.
+// level-4 cells then meet in shared memory for levels 5, 6 and 7. Only a screen 2048 pixels wide
+// or high or more has a level 8: a second dispatch (SSLR_HIZ_SINGLE) reduces level 7 into it.
 // Before, one dispatch built two levels, each reading the one below from memory: three dispatches
 // at 960x540 or 1920x1080, each with its barrier (on an H100 a dispatch with its barrier costs
 // ~3.5 us whatever it does; on llvmpipe the three cost ~0.5 ms with a shader that returned at once).

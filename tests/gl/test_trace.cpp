@@ -830,9 +830,10 @@ TEST_F(ContactLine, ReflectionsWithinTwoPixelsAreFound) {
 
 namespace {
 
-// The depth pyramid hiz.comp builds (two levels per dispatch) against the same reduction on the
-// CPU from the depth buffer read back: every level, cell for cell, on sizes whose halvings leave
-// odd remainders (padded cells must be neutral) and with both float depth conventions. Level 0
+// The depth pyramid classify.comp and hiz.comp build against the same reduction on the CPU from
+// the depth buffer read back: every level, cell for cell, on sizes whose halvings leave odd
+// remainders (padded cells must be neutral), with both float depth conventions, and with 7 and 8
+// levels (hiz.comp's blocks several across; level 8 a dispatch of its own). Level 0
 // holds each pixel's depth exactly. With Settings::curvedSolids, level 1 holds the backs of curved
 // surfaces' solids and level 0 the pixels' extra depths (sslrHiZLevel1Cell on the CPU, from the
 // depth and normals read back): the same function, within float rounding of its math; the levels
@@ -862,7 +863,7 @@ TEST_P(DepthPyramid, EveryLevelIsTheMinMaxOfItsChildren) {
   auto frame = frameConstants(r.value()->gbuffer().frameInputs(), s, width, height);
   ASSERT_TRUE(frame) << frame.error();
   const int levels = shared::sslrHiZLevelCount(width, height);
-  ASSERT_GE(levels, 2) << "two levels per dispatch need two levels";
+  ASSERT_GE(levels, 2) << "hiz.comp builds levels 2 and up";
   // Level 0 is the depth buffer as the pyramid sees it; each level reduces 2x2 of the one below,
   // cells outside it neutral.
   std::vector<glm::vec2> below(static_cast<size_t>(width) * height);
