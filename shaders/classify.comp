@@ -168,8 +168,7 @@ void writeLevels01(ivec2 cell, vec4 depths) {
     imageStore(uLevel1, cell, vec4(level1, 0.0f, 0.0f));
     // A quad of background alone gets no level-0 texels: the traversal skips its level-1 cell
     // (nothing there can stop a ray) and never reads them. On sparse frames most quads are sky.
-    bool geometry = sslrIsGeometryDepth(frame.surface, frame.surface.reversedZ != 0 ? level1.y : level1.x);
-    if (!outside && geometry) writeLevel0(cell, depths, vec4(0.0f));
+    if (!outside && sslrHiZCellHoldsGeometry(frame.surface, level1)) writeLevel0(cell, depths, vec4(0.0f));
 #if defined(SSLR_CURVED_SOLIDS) && SSLR_CURVED_SOLIDS
     // Curved surfaces reach deeper than the slab (sslr_shared.h, "Curved solids"): a quad whose
     // normals turn is listed for the curved pass, which overwrites its cell with the solids' backs

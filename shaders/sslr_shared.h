@@ -478,6 +478,11 @@ SSLR_FN vec2 sslrHiZLevel0Texel(SslrSurface s, float depth, float extra) {
 }
 // The (min, max) of a cell from its pyramid texel: a level-0 texel holds one depth.
 SSLR_FN vec2 sslrHiZMinMax(int level, vec2 texel) { return level == 0 ? vec2(texel.x, texel.x) : texel; }
+// Whether a cell of level >= 1 holds any geometry: its nearest depth is not background. Where it
+// does not, classification writes no level-0 texels under it and the traversal skips it whole.
+SSLR_FN bool sslrHiZCellHoldsGeometry(SslrSurface s, vec2 minMax) {
+  return sslrIsGeometryDepth(s, s.reversedZ != 0 ? max(minMax.x, minMax.y) : min(minMax.x, minMax.y));
+}
 
 // View distance (or orthographic -z) of a window depth: the tolerance and "how far behind" tests
 // of the traversal work in view units, like the adaptive-L tracer's.

@@ -208,7 +208,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
 #endif
       // In front of everything the cell shows, or a cell of background alone (nothing in it can
       // stop a ray; classification writes no level-0 texels under such a level-1 cell): skip it.
-      bool skip = segFar < keyNear || (level > 0 && !sslrIsGeometryDepth(s, keySign * keyNear));
+      bool skip = segFar < keyNear || (level > 0 && !sslrHiZCellHoldsGeometry(s, minMax));
       // A pixel on a curved surface reaches deeper than the slab (coarse cells' far keys hold it).
       extra = level == 0 && sslrCurvedSolids(t) ? texel.y : 0.0f;
       // Behind everything the cell shows, deeper than any tolerance and than the objects' assumed

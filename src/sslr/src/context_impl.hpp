@@ -19,6 +19,9 @@ namespace sslr {
 
 // The tile buffer (common/tiles.glsl): a header of indirect commands, then the per-tile arrays.
 constexpr GLintptr kHizDispatchOffset = 12 * 4;       // DispatchIndirectCommand per pyramid level
+// hiz.comp's work group builds levels 2..kHizBlockTop of one kHizBlockTop cell (its shared arrays
+// are sized for 7: 64x64 level-1 cells); a level above it has a single-level dispatch of its own.
+constexpr int kHizBlockTop = 7;
 constexpr GLsizeiptr kHizGroupsIndex = 12 + 3 * SSLR_HIZ_MAX_LEVELS;  // their real group counts
 constexpr GLsizeiptr kHeaderUpload = 12 + 6 * SSLR_HIZ_MAX_LEVELS;    // uints the CPU writes per frame
 constexpr GLintptr kCleanupDispatchOffset = kHeaderUpload * 4;       // the previous trace dispatch

@@ -37,20 +37,21 @@ void Context::Impl::bindPyramidLevels01() const {
 // classification listed a tile (common/tiles.glsl). One dispatch builds levels 2..7 (hiz.comp, a
 // work group per level-7 cell), a second level 8 where the screen has one.
 void Context::Impl::buildPyramid(GLuint blockProgram, GLuint singleProgram) const {
-  const int blockTop = std::min(hizLevels, 7);
+  const int blockTop = std::min(hizLevels, kHizBlockTop);
   gl.UseProgram(blockProgram);
   gl.BindTextureUnit(6, hiz);
   gl.BindSampler(6, nearestSampler);
   gl.ProgramUniform1i(blockProgram, 0, hizLevels);  // uTopLevel
-  for (int level = 2; level <= 7; ++level)  // a level above the top: the top's image, never stored to
+  for (int level = 2; level <= kHizBlockTop; ++level)  // above the top: the top's image, never stored to
     gl.BindImageTexture(static_cast<GLuint>(level - 2), hiz, std::min(level, blockTop), GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
   gl.DispatchComputeIndirect(kHizDispatchOffset + 3 * 4 * 1);  // level 2's arguments: the blocks
   gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  if (hizLevels < 8) return;
+  const int single = kHizBlockTop + 1;  // (SSLR_HIZ_MAX_LEVELS is 8: one level at most above the blocks)
+  if (hizLevels < single) return;
   gl.UseProgram(singleProgram);
-  gl.ProgramUniform1i(singleProgram, 0, 8);
-  gl.BindImageTexture(0, hiz, 8, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-  gl.DispatchComputeIndirect(kHizDispatchOffset + 3 * 4 * 7);  // level 8's
+  gl.ProgramUniform1i(singleProgram, 0, single);
+  gl.BindImageTexture(0, hiz, single, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+  gl.DispatchComputeIndirect(kHizDispatchOffset + 3 * 4 * (single - 1));  // its level's arguments
   gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
@@ -156,8 +157,9 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
                                        : Expected<GLuint>(GLuint(0));
   auto cleanup = computeProgram("classify.comp", "#define SSLR_CLEANUP 1\n");
   Expected<GLuint> hizBuild = pyramid ? computeProgram("hiz.comp") : Expected<GLuint>(GLuint(0));
-  Expected<GLuint> hizSingle = pyramid && hizLevels >= 8 ? computeProgram("hiz.comp", "#define SSLR_HIZ_SINGLE 1\n")
-                                                         : Expected<GLuint>(GLuint(0));
+  Expected<GLuint> hizSingle = pyramid && hizLevels > kHizBlockTop
+                                   ? computeProgram("hiz.comp", "#define SSLR_HIZ_SINGLE 1\n")
+                                   : Expected<GLuint>(GLuint(0));
   Expected<GLuint> hizArgs = pyramid ? computeProgram("classify.comp", "#define SSLR_PYRAMID_ARGS 1\n" + curvedDefine)
                                      : Expected<GLuint>(GLuint(0));
   Expected<GLuint> curvedPass =
@@ -246,17 +248,18 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   gl.CopyNamedBufferSubData(tileBuffer, tileBuffer, kTileHeader * sizeof(GLuint),
                             (kTileHeader + 4 * capacity) * sizeof(GLuint), capacity * sizeof(GLuint));
   GLuint header[kHeaderUpload] = {0, 1, 1, 6, 0, 0, 0, 0, 0, 1, 1, 0};
-  // Used: level 1's (the level-1 pass, 8x8 cells a group), level 2's (hiz.comp's blocks of 64x64
-  // level-1 cells) and level 8's (8x8 cells a group).
+  // Used: level 1's (the level-1 pass: 8x8 level-1 cells a group), level 2's (hiz.comp's blocks:
+  // one kHizBlockTop cell a group) and the level above the blocks' (8x8 of its cells a group).
   for (int level = 1; level <= SSLR_HIZ_MAX_LEVELS; ++level) {
     GLuint* live = &header[kHizDispatchOffset / 4 + 3 * (level - 1)];
     GLuint* real = &header[kHizGroupsIndex + 3 * (level - 1)];
     live[0] = 0, live[1] = 1, live[2] = 1;
-    const int cellsPerGroup = level == 2 ? 64 : 8;
-    const int w = level == 2 ? hizWidth : hizWidth >> (level - 1), h = level == 2 ? hizHeight : hizHeight >> (level - 1);
-    const bool used = level <= hizLevels && (level <= 2 || level == 8);
-    real[0] = used ? static_cast<GLuint>((w + cellsPerGroup - 1) / cellsPerGroup) : 0u;
-    real[1] = used ? static_cast<GLuint>((h + cellsPerGroup - 1) / cellsPerGroup) : 1u;
+    // Pixels a group spans: 8 cells of its level (the blocks: one kHizBlockTop cell); the padded
+    // screen is 2 hizWidth x 2 hizHeight pixels.
+    const int groupPx = level == 2 ? 1 << kHizBlockTop : 8 << level;
+    const bool used = level <= hizLevels && (level <= 2 || level == kHizBlockTop + 1);
+    real[0] = used ? static_cast<GLuint>((2 * hizWidth + groupPx - 1) / groupPx) : 0u;
+    real[1] = used ? static_cast<GLuint>((2 * hizHeight + groupPx - 1) / groupPx) : 1u;
     real[2] = 1;
   }
   gl.NamedBufferSubData(tileBuffer, 0, sizeof(header), header);
