@@ -27,5 +27,11 @@ done
 mkdir -p "$(dirname "$out")"
 # The tests' discovery files and CTest scripts come along so `ctest --test-dir build/portable` runs.
 find "$build" \( -name '*.cmake' -o -name 'CTestTestfile.cmake' \) -path '*tests*' -print > "$build/bundle-files"
-tar -cJf "$out" "${bins[@]}" "$build/lib" "$build/CTestTestfile.cmake" -T "$build/bundle-files"
+# What was built, and where: the GPU run names the commit it measured and links this checkout's
+# path to its own so the tests find their files.
+{
+  echo "commit=$(git rev-parse HEAD)$(git diff --quiet HEAD -- src shaders tests CMakeLists.txt || echo -dirty)"
+  echo "source-dir=$PWD"
+} > "$build/bundle-info"
+tar -cJf "$out" "${bins[@]}" "$build/lib" "$build/CTestTestfile.cmake" "$build/bundle-info" -T "$build/bundle-files"
 echo "bundle.sh: $out ($(du -h "$out" | cut -f1)); libraries: $(ls "$build/lib" | tr '\n' ' ')"
