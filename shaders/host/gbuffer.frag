@@ -26,8 +26,18 @@ layout(location = 3) out vec4 oFallbackSpecular;
 float unorm(float v, float steps) { return roundEven(clamp(v, 0.0f, 1.0f) * steps) / steps; }
 
 void main() {
-  vec3 n = normalize(vVsNormal);
-  if (!gl_FrontFacing) n = -n;  // two-sided: the visible side's normal
+  // Vertex normals that a singular node transform flattened to zero take the face's own normal,
+  // turned towards the eye (derivatives outside the branch: they need uniform control flow).
+  vec3 vsFaceNormal = cross(dFdx(vVsPosition), dFdy(vVsPosition));
+  float normalLength2 = dot(vVsNormal, vVsNormal);
+  vec3 n;
+  if (normalLength2 > 1e-30f) {
+    n = vVsNormal * inversesqrt(normalLength2);
+    if (!gl_FrontFacing) n = -n;  // two-sided: the visible side's normal
+  } else {
+    n = normalize(vsFaceNormal);
+    if (dot(n, uOrthographic != 0 ? vec3(0.0f, 0.0f, 1.0f) : -vVsPosition) < 0.0f) n = -n;
+  }
   vec3 base = uBaseColor;
   if (uHasTexture != 0) base *= texture(uBaseColorTexture, vUv).rgb;
   // Deterministic lighting: one directional light plus a sky/ground ambient. Metals get little

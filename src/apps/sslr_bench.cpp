@@ -6,12 +6,14 @@
 #include <cxxopts.hpp>
 
 #include <chrono>
+#include <filesystem>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
 
 #include "sslr_host/benchmark.hpp"
 #include "sslr_host/egl_context.hpp"
+#include "sslr_host/image_io.hpp"
 
 using namespace sslr;
 using namespace sslr::host;
@@ -46,6 +48,7 @@ class Progress {
 }  // namespace
 
 int main(int argc, char** argv) {
+  removeTemporariesOnSignal();
   cxxopts::Options options("sslr-bench", "Run time against error: depth-only SSLR vs position-buffer SSR.");
   options.add_options()
       ("grid", "parameter grid: quick (CI) or full (docs)", cxxopts::value<std::string>()->default_value("quick"))
@@ -170,6 +173,12 @@ int main(int argc, char** argv) {
     }
     outDir = args["out"].as<std::string>();
     device = args["device"].as<std::string>();
+    if (Status st = HeadlessContext::checkDevice(device); !st) throw std::runtime_error("--device: " + st.message());
+    // Checked before any GL work: a typo or a read-only place costs no run.
+    std::error_code ec;
+    std::filesystem::create_directories(std::filesystem::path(outDir) / "report", ec);
+    if (ec) throw std::runtime_error("--out " + outDir + ": cannot create the directory: " + ec.message());
+    if (Status s = probeWritableDirectory(outDir); !s) throw std::runtime_error("--out " + outDir + " is not writable: " + s.message());
   } catch (const std::exception& e) {
     std::cerr << "sslr-bench: " << e.what() << "\n";
     return 2;

@@ -69,11 +69,8 @@ void checkOutputDirectory(const fs::path& dir) {
     throw UsageError{"--out " + dir.string() + " exists and is not a directory"};
   fs::create_directories(dir, ec);
   if (ec) throw UsageError{"--out " + dir.string() + ": cannot create the directory: " + ec.message()};
-  const fs::path probe = dir / (".sslr-render-write-test-" + std::to_string(::getpid()));
-  std::FILE* f = std::fopen(probe.c_str(), "wb");
-  if (f == nullptr) throw UsageError{"--out " + dir.string() + " is not writable: " + std::strerror(errno)};
-  std::fclose(f);
-  fs::remove(probe, ec);
+  if (Status s = probeWritableDirectory(dir.string()); !s)
+    throw UsageError{"--out " + dir.string() + " is not writable: " + s.message()};
 }
 
 // What a size needs, estimated before anything is allocated: on llvmpipe every texture lives in
@@ -293,6 +290,7 @@ int run(int argc, char** argv) {
       std::cout << "wrote " << file << "\n";
       return 0;
     }
+    if (Status st = HeadlessContext::checkDevice(args["device"].as<std::string>()); !st) throw UsageError{"--device: " + st.message()};
     checkOutputDirectory(outDir);
   } catch (const UsageError& e) {
     std::cerr << "sslr-render: " << e.message << "\n";
@@ -423,6 +421,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  sslr::host::removeTemporariesOnSignal();
   try {
     return run(argc, argv);
   } catch (const std::exception& e) {

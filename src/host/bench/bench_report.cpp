@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "sslr_host/benchmark.hpp"
+#include "sslr_host/image_io.hpp"
 
 namespace sslr::host {
 
@@ -275,13 +276,9 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
                              {"rmseVisible", num(p.rmseVisible)},
                              {"rmseHidden", num(p.rmseHidden)},
                              {"dispatchMs", num(p.dispatchMs)}});
+  if (Status s = writeTextFile((fs::path(outDir) / "results.json").string(), j.dump(2) + "\n"); !s) return s;
   {
-    std::ofstream out(fs::path(outDir) / "results.json");
-    out << j.dump(2) << "\n";
-    if (!out) return Status::error(outDir + "/results.json: write failed");
-  }
-  {
-    std::ofstream out(fs::path(outDir) / "results.csv");
+    std::ostringstream out;
     out << "scene,method,label,default,width,height,renderer,timingMethod,timeMedianMs,timeMinMs,timeMaxMs,frames,"
            "visible,occluded,offScreen,escaped,recall1px,recall2px,recall4px,medianErrorPx,p95ErrorPx,falseHitRate,"
            "reflectionRmse,reflectionPsnr,nonFiniteHitPixels,nonFiniteOutputPixels,tracedPixels,fetches,"
@@ -302,7 +299,7 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
           << "," << r.nonFiniteOutputs << "," << r.tracedPixels << "," << r.fetches << "," << v("fetchesPerTracedPixel")
           << "," << r.gbufferBytesPerPixel << "," << r.extraBytesPerPixel << "," << quoted << "\n";
     }
-    if (!out) return Status::error(outDir + "/results.csv: write failed");
+    if (Status s = writeTextFile((fs::path(outDir) / "results.csv").string(), out.str()); !s) return s;
   }
 
   std::ostringstream h;
@@ -364,7 +361,8 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
     for (const CurvePoint& p : result.curves) any = any || p.curve == curve;
     if (!any) continue;
     const std::string svg = curveSvg(result.curves, curve);
-    std::ofstream(fs::path(outDir) / "report" / (std::string("curve-") + curve + ".svg")) << svg << "\n";
+    if (Status s = writeTextFile((fs::path(outDir) / "report" / (std::string("curve-") + curve + ".svg")).string(), svg + "\n"); !s)
+      return s;
     h << "<h2>Cost against " << (std::string(curve) == "resolution" ? "resolution" : "reflective fraction")
       << "</h2>" << svg << "<table><tr><th>point</th><th>traced share</th>";
     std::vector<std::string> methods;
@@ -416,7 +414,8 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
       }
     // Each plot also as a standalone SVG file (docs link to them).
     const std::string svg = plotSvg(runs, baselineMs);
-    std::ofstream(fs::path(outDir) / "report" / ("plot-" + sc.scene + ".svg")) << svg << "\n";
+    if (Status s = writeTextFile((fs::path(outDir) / "report" / ("plot-" + sc.scene + ".svg")).string(), svg + "\n"); !s)
+      return s;
     h << "<h2>" << esc(sc.scene) << "</h2><p>Reflective pixels " << sc.reflective << ": visible " << sc.visible
       << ", occluded " << sc.occluded << ", off screen " << sc.offScreen << ", escaped " << sc.escaped << ".</p>"
       << svg << "<div class='strip'>";
@@ -440,10 +439,7 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
       << "</td><td colspan='6'></td></tr></table>";
   }
   h << "</body></html>\n";
-  std::ofstream out(fs::path(outDir) / "report" / "index.html");
-  out << h.str();
-  if (!out) return Status::error(outDir + "/report/index.html: write failed");
-  return {};
+  return writeTextFile((fs::path(outDir) / "report" / "index.html").string(), h.str());
 }
 
 }  // namespace sslr::host

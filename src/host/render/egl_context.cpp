@@ -53,18 +53,34 @@ bool HeadlessContext::isSoftware() const {
          deviceDescription_.find("software") != std::string::npos;
 }
 
+namespace {
+std::string deviceChoice(const std::string& device) {
+  if (!device.empty()) return device;
+  const char* env = std::getenv("SSLR_EGL_DEVICE");
+  return env != nullptr && *env != '\0' ? env : "auto";
+}
+}  // namespace
+
+Status HeadlessContext::checkDevice(const std::string& device) {
+  const std::string choice = deviceChoice(device);
+  const std::string from = device.empty() ? " ($SSLR_EGL_DEVICE)" : "";
+  if (choice == "auto" || choice == "hardware" || choice == "software" || choice == "surfaceless") return {};
+  if (choice.empty() || choice.size() > 3 || choice.find_first_not_of("0123456789") != std::string::npos)
+    return Status::error("EGL device '" + choice + "'" + from +
+                         " is not one of auto, hardware, software, surfaceless or an index");
+  // An index: counted without creating a display or a context.
+  auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+  EGLint count = 0;
+  if (queryDevices == nullptr || !queryDevices(0, nullptr, &count))
+    return Status::error("EGL device index " + choice + from + ": this EGL cannot list devices (no EGL_EXT_device_enumeration)");
+  if (std::stoi(choice) >= count)
+    return Status::error("EGL device index " + choice + from + " is out of range (" + std::to_string(count) + " devices)");
+  return {};
+}
+
 Expected<std::unique_ptr<HeadlessContext>> HeadlessContext::create(const EglOptions& options) {
-  std::string choice = options.device;
-  if (choice.empty()) {
-    const char* env = std::getenv("SSLR_EGL_DEVICE");
-    choice = env != nullptr && *env != '\0' ? env : "auto";
-  }
-  const bool validChoice = choice == "auto" || choice == "hardware" || choice == "software" ||
-                           choice == "surfaceless" ||
-                           choice.find_first_not_of("0123456789") == std::string::npos;
-  if (!validChoice)
-    return Status::error("EGL device '" + choice +
-                         "' is not one of auto, hardware, software, surfaceless or an index");
+  const std::string choice = deviceChoice(options.device);
+  if (Status s = checkDevice(options.device); !s) return Status::error(s.message());
 
   const char* clientExts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   // The EXT entry point: EGL 1.5's eglGetPlatformDisplay trips libepoxy-style wrappers.

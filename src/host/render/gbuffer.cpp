@@ -162,7 +162,7 @@ Status GBuffer::render(const GpuScene& gpu, const Camera& camera, glm::dvec2 jit
     const glm::dmat4 viewFromModel = viewFromWorld_ * d.worldFromModel;
     const glm::mat4 clipFromModel = toFloat(clipFromView_ * viewFromModel);
     const glm::mat4 viewFromModelF = toFloat(viewFromModel);
-    const glm::mat3 normalMatrix = glm::mat3(glm::transpose(glm::inverse(glm::dmat3(viewFromModel))));
+    const glm::mat3 normalMatrix = glm::mat3(normalMatrixOf(viewFromModel));
     glProgramUniformMatrix4fv(program_, 0, 1, GL_FALSE, &clipFromModel[0][0]);
     glProgramUniformMatrix4fv(program_, 1, 1, GL_FALSE, &viewFromModelF[0][0]);
     glProgramUniformMatrix3fv(program_, 2, 1, GL_FALSE, &normalMatrix[0][0]);

@@ -3,11 +3,17 @@
 #include "image_codecs.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <random>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 namespace sslr::host {
 
@@ -54,42 +60,127 @@ Expected<std::vector<unsigned char>> encodeImage(const std::string& path, const 
   return detail::encodeTinyExrStb(path, image, srgb, channelNames);
 }
 
-Status writeFiles(const std::vector<std::pair<std::string, std::vector<unsigned char>>>& files) {
+namespace {
+// Temporaries being written, for the signal handler: fixed slots, no allocation in the handler.
+constexpr int kTempSlots = 64;
+char gTempPaths[kTempSlots][4096];
+std::atomic<bool> gTempUsed[kTempSlots];
+
+int registerTemp(const std::string& path) {
+  if (path.size() >= sizeof gTempPaths[0]) return -1;
+  for (int i = 0; i < kTempSlots; ++i) {
+    bool expected = false;
+    if (gTempUsed[i].compare_exchange_strong(expected, true)) {
+      std::memcpy(gTempPaths[i], path.c_str(), path.size() + 1);
+      return i;
+    }
+  }
+  return -1;  // more open temporaries than slots: that one is not removed on a signal
+}
+void unregisterTemp(int slot) {
+  if (slot >= 0) gTempUsed[slot].store(false);
+}
+extern "C" void removeTempsAndRaise(int sig) {
+  for (int i = 0; i < kTempSlots; ++i)
+    if (gTempUsed[i].load()) ::unlink(gTempPaths[i]);
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
+// A new file beside `path` under a name nobody else uses: O_CREAT | O_EXCL | O_NOFOLLOW, so a file
+// or link planted under a guessable name is never opened, and two writers never share one.
+struct TempFile {
+  int fd = -1;
+  std::string path;
+  int slot = -1;
+};
+Expected<TempFile> createTemp(const std::string& path) {
   namespace fs = std::filesystem;
-  std::vector<std::string> temps;
+  const fs::path target(path);
+  static std::atomic<unsigned> counter{0};
+  std::random_device random;
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    char suffix[64];
+    std::snprintf(suffix, sizeof suffix, ".%d-%u-%08x.partial", static_cast<int>(::getpid()), counter++, random());
+    TempFile t;
+    std::string name(1, '.');  // hidden: a listing of --out shows finished files only
+    name.append(target.filename().string()).append(suffix);
+    t.path = (target.parent_path() / name).string();
+    t.fd = ::open(t.path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (t.fd >= 0) {
+      t.slot = registerTemp(t.path);
+      return t;
+    }
+    if (errno != EEXIST) return Status::error(path + ": cannot create a temporary file beside it: " + std::strerror(errno));
+  }
+  return Status::error(path + ": cannot create a temporary file beside it: 100 unique names were taken");
+}
+
+bool writeAll(int fd, const unsigned char* data, size_t size, size_t& written) {
+  written = 0;
+  while (written < size) {
+    const ssize_t n = ::write(fd, data + written, size - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    written += static_cast<size_t>(n);
+  }
+  return true;
+}
+}  // namespace
+
+void removeTemporariesOnSignal() {
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, removeTempsAndRaise);
+}
+
+Status probeWritableDirectory(const std::string& dir) {
+  auto temp = createTemp((std::filesystem::path(dir) / "sslr-write-probe").string());
+  if (!temp) return Status::error(temp.error());
+  ::close(temp.value().fd);
+  ::unlink(temp.value().path.c_str());
+  unregisterTemp(temp.value().slot);
+  return {};
+}
+
+Status writeFiles(const std::vector<std::pair<std::string, std::vector<unsigned char>>>& files) {
+  std::vector<TempFile> temps;
   auto discard = [&] {
-    std::error_code ec;
-    for (const auto& t : temps) fs::remove(t, ec);
+    for (const auto& t : temps) {
+      ::unlink(t.path.c_str());
+      unregisterTemp(t.slot);
+    }
   };
   for (const auto& [path, bytes] : files) {
-    const std::string temp = path + ".partial";
-    temps.push_back(temp);
-    std::FILE* f = std::fopen(temp.c_str(), "wb");
-    if (f == nullptr) {
-      const std::string why = std::strerror(errno);
+    auto temp = createTemp(path);
+    if (!temp) {
       discard();
-      return Status::error(path + ": cannot create: " + why);
+      return Status::error(temp.error());
     }
-    const size_t written = bytes.empty() ? 0 : std::fwrite(bytes.data(), 1, bytes.size(), f);
-    const bool flushed = std::fflush(f) == 0;
+    temps.push_back(temp.value());
+    size_t written = 0;
+    const bool ok = writeAll(temps.back().fd, bytes.data(), bytes.size(), written);
     const int writeErrno = errno;
-    const bool closed = std::fclose(f) == 0;
-    if (written != bytes.size() || !flushed || !closed) {
-      const std::string why = std::strerror(written != bytes.size() || !flushed ? writeErrno : errno);
+    const bool closed = ::close(temps.back().fd) == 0;
+    if (!ok || !closed) {
+      const std::string why = std::strerror(!ok ? writeErrno : errno);
       discard();
       return Status::error(path + ": write failed after " + std::to_string(written) + " of " +
                            std::to_string(bytes.size()) + " bytes: " + why + " (nothing was written)");
     }
   }
+  // rename() replaces a link at the destination itself, never the file it points to.
   for (size_t i = 0; i < files.size(); ++i) {
-    std::error_code ec;
-    fs::rename(temps[i], files[i].first, ec);
-    if (ec) {
+    if (::rename(temps[i].path.c_str(), files[i].first.c_str()) != 0) {
+      const std::string why = std::strerror(errno);
       discard();
-      return Status::error(files[i].first + ": cannot move the finished file into place: " + ec.message());
+      return Status::error(files[i].first + ": cannot move the finished file into place: " + why);
     }
+    unregisterTemp(temps[i].slot);
   }
   return {};
+}
+
+Status writeTextFile(const std::string& path, const std::string& text) {
+  return writeFiles({{path, std::vector<unsigned char>(text.begin(), text.end())}});
 }
 
 Status writeImage(const std::string& path, const Image& image, const std::vector<std::string>& channelNames) {

@@ -99,6 +99,10 @@ glm::dmat4 Camera::clipFromView(DepthMode mode, double aspect, glm::dvec2 offset
   return p;
 }
 
+namespace {
+constexpr double kMinPlane = 1e-20, kMaxPlane = 1e20, kMaxFarOverNear = 1e9;
+}  // namespace
+
 std::string Camera::validate() const {
   auto finite3 = [](glm::dvec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
   if (!finite3(eye) || !finite3(target) || !finite3(up)) return "camera eye/target/up must be finite";
@@ -112,12 +116,18 @@ std::string Camera::validate() const {
   if (glm::length(target - eye) <= 1e-12 * std::max(far, 1.0)) return "camera eye and target coincide";
   if (glm::length(glm::cross(glm::normalize(target - eye), up)) < 1e-9)
     return "camera up is parallel to the view direction (or zero)";
-  if (!(nearPlane > 0.0)) return "near plane must be > 0";
-  if (!(farPlane > nearPlane) || !std::isfinite(farPlane)) return "far plane must be finite and > near";
+  // The projection is built in double and used in float: its planes must be normal floats, far
+  // enough apart to be told apart in float, and not so far apart that depth has no precision left.
+  if (!(nearPlane >= kMinPlane)) return "near plane must be >= 1e-20";
+  if (!(farPlane > nearPlane) || !(farPlane <= kMaxPlane)) return "far plane must be > near and <= 1e20";
+  if (!(farPlane >= nearPlane * (1.0 + 1e-5)))
+    return "near and far planes are too close (far must exceed near by 1e-5 of near, or depth has no range)";
+  if (!(farPlane <= nearPlane * kMaxFarOverNear))
+    return "far / near is above 1e9: depth keeps no precision (move the near plane out or the far plane in)";
   if (orthographic) {
-    if (!(orthoHeight > 0.0) || !std::isfinite(orthoHeight)) return "orthographic height must be > 0";
-  } else if (!(fovyDegrees > 0.0 && fovyDegrees < 180.0)) {
-    return "vertical field of view must be in (0, 180) degrees";
+    if (!(orthoHeight >= kMinPlane) || !(orthoHeight <= kMaxPlane)) return "orthographic height must be in [1e-20, 1e20]";
+  } else if (!(fovyDegrees >= 1e-3 && fovyDegrees < 180.0)) {
+    return "vertical field of view must be in [0.001, 180) degrees";
   }
   return "";
 }

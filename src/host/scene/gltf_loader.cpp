@@ -6,12 +6,18 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <set>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -61,22 +67,43 @@ std::string explainOutside(const std::string& path, const FolderJail& jail) {
          " (external buffers and images must lie in that folder or below it)";
 }
 
-// Empty string: readable; else why not.
-std::string checkReadable(const std::string& path, const FolderJail& jail, std::filesystem::path& resolved) {
+// Opens `path` and checks what was opened, not the name: a regular file (a FIFO or device is
+// never read: the open does not block), of at most `limit` bytes, and, with a jail, inside its
+// root (the descriptor's real path, read back from /proc/self/fd). Then reads it through the same
+// descriptor, so a file swapped for a link after the check is never what is read. "" on success.
+std::string readChecked(const std::string& path, const FolderJail* jail, std::uintmax_t limit,
+                        std::vector<unsigned char>& out) {
   namespace fs = std::filesystem;
-  std::error_code ec;
-  resolved = fs::weakly_canonical(fs::path(path), ec);
-  if (ec) return "'" + printable(path) + "': " + ec.message();
-  if (resolved.string() != jail.modelFile) {
-    const auto rel = resolved.lexically_relative(jail.root);
-    if (rel.empty() || *rel.begin() == "..") return explainOutside(path, jail);
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
+  if (fd < 0) return "'" + printable(path) + "': " + std::strerror(errno);
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) return "'" + printable(path) + "': " + std::strerror(errno);
+  if (!S_ISREG(st.st_mode)) return "'" + printable(path) + "' is not a regular file";
+  if (jail != nullptr) {
+    std::error_code ec;
+    const fs::path opened = fs::read_symlink("/proc/self/fd/" + std::to_string(fd), ec);
+    if (ec) return "'" + printable(path) + "': cannot tell where it lies (/proc/self/fd: " + ec.message() + ")";
+    if (opened.string() != jail->modelFile) {
+      const auto rel = opened.lexically_relative(jail->root);
+      if (rel.empty() || *rel.begin() == "..") return explainOutside(path, *jail);
+    }
   }
-  if (!fs::exists(resolved, ec)) return "'" + printable(path) + "' does not exist";
-  if (!fs::is_regular_file(resolved, ec)) return "'" + printable(path) + "' is not a regular file";
-  const auto size = fs::file_size(resolved, ec);
-  if (ec) return "'" + printable(path) + "': " + ec.message();
-  if (size > kMaxExternalFileBytes)
-    return "'" + printable(path) + "' is " + std::to_string(size >> 20) + " MiB (more than the 2048 MiB limit)";
+  const auto size = static_cast<std::uintmax_t>(st.st_size);
+  if (size > limit)
+    return "'" + printable(path) + "' is " + std::to_string(size >> 20) + " MiB (more than the " +
+           std::to_string(limit >> 20) + " MiB limit)";
+  out.resize(static_cast<size_t>(size));
+  size_t done = 0;
+  while (done < out.size()) {
+    const ssize_t n = ::read(fd, out.data() + done, out.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return "cannot read '" + printable(path) + "'" + (n < 0 ? std::string(": ") + std::strerror(errno) : "");
+    done += static_cast<size_t>(n);
+  }
   return {};
 }
 
@@ -89,19 +116,8 @@ bool jailFileExists(const std::string& path, void*) {
 std::string jailExpandFilePath(const std::string& path, void*) { return path; }  // no ~ or $VAR
 
 bool jailReadWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
-  std::filesystem::path resolved;
-  if (std::string why = checkReadable(path, *static_cast<FolderJail*>(user), resolved); !why.empty()) {
+  if (std::string why = readChecked(path, static_cast<FolderJail*>(user), kMaxExternalFileBytes, *out); !why.empty()) {
     if (err) *err += why + "\n";
-    return false;
-  }
-  std::ifstream in(resolved, std::ios::binary);
-  in.seekg(0, std::ios::end);
-  const auto size = static_cast<std::streamoff>(in.tellg());
-  in.seekg(0, std::ios::beg);
-  out->resize(static_cast<size_t>(std::max<std::streamoff>(size, 0)));
-  if (size > 0) in.read(reinterpret_cast<char*>(out->data()), size);
-  if (!in) {
-    if (err) *err += "cannot read '" + printable(path) + "'\n";
     return false;
   }
   return true;
@@ -112,8 +128,16 @@ bool jailWriteWholeFile(std::string* err, const std::string&, const std::vector<
   return false;
 }
 
-// ---- Images: size limit before decoding ---------------------------------------------------------
+// ---- Images: size limits before decoding ---------------------------------------------------------
 constexpr int kMaxImageSide = 16384;
+// All images of a file together, decoded to RGBA8: a small PNG can stand for a large image, and a
+// file can list one many times (each entry decodes on its own).
+constexpr std::uint64_t kMaxDecodedImageBytes = std::uint64_t(1) << 30;  // 1 GiB
+
+struct ImageBudget {
+  const tinygltf::Model* model = nullptr;  // its buffers are parsed when images are decoded
+  std::uint64_t decodedBytes = 0;          // of the images decoded so far
+};
 
 // Width and height from a PNG or JPEG header (false: another format or a short header).
 bool imageSize(const unsigned char* bytes, int size, int& w, int& h) {
@@ -142,16 +166,19 @@ bool imageSize(const unsigned char* bytes, int size, int& w, int& h) {
   return false;
 }
 
-// tinygltf's image callback: an image larger than the tools load refuses the file (by its header,
-// before decoding); then libpng or libjpeg (image_decode.hpp), never stb_image.
+// tinygltf's image callback: libpng or libjpeg (image_decode.hpp), never stb_image. An image larger
+// than the tools load, or one that does not decode, is left empty with a warning; images that
+// together would decode to more than kMaxDecodedImageBytes refuse the file (by their headers,
+// before decoding).
 bool limitedImageLoader(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int, int,
                         const unsigned char* bytes, int size, void* user) {
   // An image stored in a bufferView arrives as a pointer into the buffer and the view's byteLength:
   // tinygltf 2.7 (Debian 12) does not check that the view lies inside the buffer, so a view past its
   // end had the decoder read past the heap block (found by tests/fuzz). The model's buffers are
   // parsed by now: the view is checked against the bytes the buffer really holds.
+  auto& budget = *static_cast<ImageBudget*>(user);
   if (image->bufferView >= 0) {
-    const auto& model = *static_cast<const tinygltf::Model*>(user);
+    const auto& model = *budget.model;
     const size_t viewIndex = static_cast<size_t>(image->bufferView);
     bool inside = viewIndex < model.bufferViews.size();
     if (inside) {
@@ -169,26 +196,37 @@ bool limitedImageLoader(tinygltf::Image* image, const int index, std::string* er
       return false;
     }
   }
-  int w = 0, h = 0;
-  if (imageSize(bytes, size, w, h) && (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide)) {
+  auto notDecoded = [&](const std::string& why) {
+    // The geometry is still good: the image is left empty and its materials keep their factors
+    // (loadMaterials warns per material).
+    if (warn) *warn += "image " + std::to_string(index) + " ('" + printable(image->uri) + "') not decoded: " + why + "\n";
+    image->width = image->height = 0;
+    image->image.clear();
+    return true;
+  };
+  auto overBudget = [&](std::uint64_t bytesMore) {
+    if (budget.decodedBytes + bytesMore <= kMaxDecodedImageBytes) return false;
     if (err)
-      *err += "image " + std::to_string(index) + " ('" + printable(image->uri) + "') is " + std::to_string(w) + "x" +
-              std::to_string(h) + ": the tools load images up to " + std::to_string(kMaxImageSide) + "x" +
-              std::to_string(kMaxImageSide) + "\n";
-    return false;
+      *err += "image " + std::to_string(index) + " ('" + printable(image->uri) + "') would bring the file's decoded images to " +
+              std::to_string((budget.decodedBytes + bytesMore) >> 20) + " MiB: the tools load up to " +
+              std::to_string(kMaxDecodedImageBytes >> 20) + " MiB of images (RGBA8) per file\n";
+    return true;
+  };
+  int w = 0, h = 0;
+  if (imageSize(bytes, size, w, h)) {
+    if (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide)
+      return notDecoded("it is " + std::to_string(w) + "x" + std::to_string(h) + ": the tools load images up to " +
+                        std::to_string(kMaxImageSide) + "x" + std::to_string(kMaxImageSide));
+    if (overBudget(std::uint64_t(w) * std::uint64_t(h) * 4)) return false;
   }
   // The decoder's own limit stays as the guard on what it allocates: the header sniff above may
   // miss a JPEG's frame marker.
   DecodedImage decoded;
   if (std::string why = decodePngOrJpeg(bytes, size > 0 ? static_cast<size_t>(size) : 0, kMaxImageSide, decoded);
-      !why.empty()) {
-    // The geometry is still good: the image is left empty and its materials keep their factors
-    // (loadMaterials warns per material).
-    if (warn) *warn += "image " + std::to_string(index) + " ('" + printable(image->uri) + "') not decoded: " + printable(why) + "\n";
-    image->width = image->height = 0;
-    image->image.clear();
-    return true;
-  }
+      !why.empty())
+    return notDecoded(printable(why));
+  if (overBudget(w > 0 ? 0 : decoded.rgba8.size())) return false;  // a size the header sniff missed
+  budget.decodedBytes += decoded.rgba8.size();
   image->width = decoded.width;
   image->height = decoded.height;
   image->component = 4;
@@ -301,6 +339,7 @@ bool finiteMatrix(const glm::dmat4& m) {
 using Ignored = std::set<std::string>;
 
 void loadMaterials(const tinygltf::Model& model, Scene& scene, Ignored& ignored) {
+  std::map<int, int> textureOfImage;
   for (size_t i = 0; i < model.materials.size(); ++i) {
     const auto& pbr = model.materials[i].pbrMetallicRoughness;
     Material m;
@@ -334,8 +373,10 @@ void loadMaterials(const tinygltf::Model& model, Scene& scene, Ignored& ignored)
         const tinygltf::Image& img = model.images[model.textures[tex].source];
         if (img.width <= 0 || img.height <= 0 || img.bits != 8 || img.component < 1 ||
             img.image.size() < static_cast<size_t>(img.width) * img.height * img.component) {
-          scene.warnings.push_back("material " + std::to_string(i) + ": base colour image '" + img.uri +
+          scene.warnings.push_back("material " + std::to_string(i) + ": base colour image '" + printable(img.uri) +
                                    "' was not decoded; using the factor only");
+        } else if (auto shared = textureOfImage.find(model.textures[tex].source); shared != textureOfImage.end()) {
+          m.baseColorTexture = shared->second;  // one texture per image, however many materials use it
         } else {
           Texture t;
           t.width = img.width;
@@ -350,6 +391,7 @@ void loadMaterials(const tinygltf::Model& model, Scene& scene, Ignored& ignored)
           }
           scene.textures.push_back(std::move(t));
           m.baseColorTexture = static_cast<int>(scene.textures.size() - 1);
+          textureOfImage[model.textures[tex].source] = m.baseColorTexture;
         }
       }
     }
@@ -461,52 +503,117 @@ void loadPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim
   scene.meshes.push_back(std::move(mesh));
 }
 
+// Every node that draws a mesh gets a copy of its vertices (and the renderer and the ground truth
+// one more each): 65k vertices under 2,000 nodes would take 7 GB. The copies' size is known from
+// the accessors' counts before anything is built, and a file past the budget is refused.
+constexpr std::uint64_t kMaxGeometryBytes = std::uint64_t(2) << 30;  // 2 GiB, as loaded
+
+void checkGeometryBudget(const tinygltf::Model& model, const std::vector<std::pair<int, glm::dmat4>>& instances) {
+  // An accessor's count as far as its bufferView could hold it: a count past that is left to
+  // viewAccessor's message when the primitive loads.
+  auto countOf = [&](int accessor) -> std::uint64_t {
+    if (accessor < 0 || static_cast<size_t>(accessor) >= model.accessors.size()) return 0;
+    const tinygltf::Accessor& a = model.accessors[static_cast<size_t>(accessor)];
+    if (a.bufferView < 0 || static_cast<size_t>(a.bufferView) >= model.bufferViews.size()) return 0;
+    const int elementBytes = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType)) *
+                             tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type));
+    const size_t viewBytes = model.bufferViews[static_cast<size_t>(a.bufferView)].byteLength;
+    return elementBytes > 0 && a.count <= viewBytes / static_cast<size_t>(elementBytes) ? a.count : 0;
+  };
+  std::uint64_t bytes = 0, vertices = 0, indices = 0;
+  for (const auto& instance : instances)
+    for (const tinygltf::Primitive& prim : model.meshes[static_cast<size_t>(instance.first)].primitives) {
+      auto pos = prim.attributes.find("POSITION");
+      const std::uint64_t v = pos == prim.attributes.end() ? 0 : countOf(pos->second);
+      const std::uint64_t i = prim.indices >= 0 ? countOf(prim.indices) : v;
+      vertices += v;
+      indices += i;
+      // Position, normal and uv per vertex; a strip or fan's index list grows to 3 per triangle.
+      const bool expands = prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP || prim.mode == TINYGLTF_MODE_TRIANGLE_FAN;
+      // (Counts are untrusted: each is bounded before it is multiplied.)
+      bytes = v > kMaxGeometryBytes || i > kMaxGeometryBytes
+                  ? kMaxGeometryBytes + 1
+                  : bytes + v * (sizeof(glm::vec3) * 2 + sizeof(glm::vec2)) + i * (expands ? 3 : 1) * sizeof(std::uint32_t);
+      if (bytes > kMaxGeometryBytes)
+        throw LoadError{std::to_string(instances.size()) + " mesh instances (nodes that draw a mesh) with " +
+                        std::to_string(vertices) + "+ vertices and " + std::to_string(indices) +
+                        "+ indices need more than " + std::to_string(kMaxGeometryBytes >> 20) +
+                        " MiB of geometry: the tools load up to " + std::to_string(kMaxGeometryBytes >> 20) +
+                        " MiB of geometry, each node's copy of its mesh counted"};
+    }
+}
+
 std::uint32_t le32(const unsigned char* p) { return p[0] | p[1] << 8 | p[2] << 16 | std::uint32_t(p[3]) << 24; }
 
 // A GLB's second chunk (BIN) must lie inside the length its header states, its own 8-byte chunk
 // header included. tinygltf 2.7 (Debian 12) forgets those 8 bytes when it checks, and then copies a
-// buffer from up to 8 bytes past the end of the file it read (found by the fuzzer). `in` is the
-// file, read past its 20-byte header; "" when the layout is sound or is left to tinygltf's checks.
-std::string checkBinChunk(std::ifstream& in, std::uint32_t glbLength, std::uint32_t jsonLength) {
+// buffer from up to 8 bytes past the end of the file it read (found by the fuzzer). "" when the
+// layout is sound or is left to tinygltf's checks.
+std::string checkBinChunk(const std::vector<unsigned char>& file, std::uint32_t glbLength, std::uint32_t jsonLength) {
   const std::uint64_t binStart = 20ull + jsonLength;  // where the BIN chunk's header starts
-  if (binStart + 8 > glbLength) return {};           // no BIN chunk, or tinygltf refuses the stub
-  unsigned char chunk[8] = {};
-  in.seekg(static_cast<std::streamoff>(binStart));
-  if (!in.read(reinterpret_cast<char*>(chunk), sizeof chunk)) return {};
-  const std::uint64_t binEnd = binStart + 8 + le32(chunk);
+  if (binStart + 8 > glbLength || binStart + 8 > file.size()) return {};  // no BIN chunk, or tinygltf refuses it
+  const std::uint64_t binEnd = binStart + 8 + le32(&file[binStart]);
   if (binEnd <= glbLength) return {};
-  return "the GLB's BIN chunk (" + std::to_string(le32(chunk)) + " bytes after its header at byte " +
+  return "the GLB's BIN chunk (" + std::to_string(le32(&file[binStart])) + " bytes after its header at byte " +
          std::to_string(binStart) + ") ends at byte " + std::to_string(binEnd) + ", past the " +
          std::to_string(glbLength) + " bytes the GLB header states";
 }
 
-// What must be known before tinygltf parses the file: its glTF version and the extensions it
-// requires (tinygltf rejects a Draco-compressed file with "accessor[0] invalid bufferView", and
-// parses glTF 1.0 into an empty scene), and of a .glb that its BIN chunk fits. Reads the JSON (of
-// a .glb: its first chunk) once more; "" when the file may be parsed, else why not. Other malformed
-// input is left to tinygltf's messages.
-std::string precheck(const std::string& path, bool binary) {
-  std::ifstream in(path, std::ios::binary);
-  std::string json;
+// Deepest nesting of arrays and objects a file may have. glTF itself needs about 8; tinygltf's
+// parser converts JSON to its values recursively, one stack frame per level, and a 41 KB file
+// nesting 20,000 deep overflows the stack.
+constexpr int kMaxJsonNesting = 128;
+
+// "" if the JSON text nests arrays and objects at most kMaxJsonNesting deep, else where it goes
+// deeper. A scan of the bytes (strings and their escapes skipped), so it costs no memory and
+// cannot recurse itself.
+std::string checkNesting(const unsigned char* json, size_t size) {
+  int depth = 0;
+  bool inString = false, escaped = false;
+  for (size_t i = 0; i < size; ++i) {
+    const unsigned char c = json[i];
+    if (inString) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonNesting)
+        return "the JSON nests arrays and objects more than " + std::to_string(kMaxJsonNesting) +
+               " deep (at byte " + std::to_string(i) + "); the tools read files nested up to " +
+               std::to_string(kMaxJsonNesting) + " levels";
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return {};
+}
+
+// What must be known before tinygltf parses the file: that its JSON is not nested deeper than
+// the parser's recursion bears, its glTF version and the extensions it requires (tinygltf rejects a
+// Draco-compressed file with "accessor[0] invalid bufferView", and parses glTF 1.0 into an empty
+// scene), and of a .glb its layout. `binary`: the file starts with the GLB magic. "" when the file
+// may be parsed, else why not. Other malformed input is left to tinygltf's messages.
+std::string precheck(const std::vector<unsigned char>& file, bool binary) {
+  const unsigned char* json = file.data();
+  size_t jsonLength = file.size();
+  if (file.empty()) return "the file is empty";
   if (binary) {
-    unsigned char header[20] = {};
-    if (!in.read(reinterpret_cast<char*>(header), sizeof header)) return {};
-    const std::uint32_t jsonLength = le32(header + 12);
-    const bool jsonChunk = header[16] == 'J' && header[17] == 'S' && header[18] == 'O' && header[19] == 'N';
+    if (file.size() < 20)
+      return "the file is " + std::to_string(file.size()) +
+             " bytes, shorter than a GLB's 12-byte header and its JSON chunk's 8-byte header";
+    jsonLength = le32(&file[12]);
+    const bool jsonChunk = file[16] == 'J' && file[17] == 'S' && file[18] == 'O' && file[19] == 'N';
     if (!jsonChunk) return {};  // tinygltf refuses it
     // Whatever the JSON's size: tinygltf copies the BIN chunk either way.
-    if (std::string why = checkBinChunk(in, le32(header + 8), jsonLength); !why.empty()) return why;
-    if (jsonLength > (64u << 20)) return {};
-    in.clear();
-    in.seekg(20);
-    json.resize(jsonLength);
-    if (!in.read(json.data(), jsonLength)) return {};
-  } else {
-    std::error_code ec;
-    if (std::filesystem::file_size(path, ec) > (std::uintmax_t(256) << 20)) return {};
-    json.assign(std::istreambuf_iterator<char>(in), {});
+    if (std::string why = checkBinChunk(file, le32(&file[8]), static_cast<std::uint32_t>(jsonLength)); !why.empty())
+      return why;
+    if (jsonLength > file.size() - 20) return {};  // tinygltf refuses it
+    json = &file[20];
   }
-  const nlohmann::json j = nlohmann::json::parse(json, nullptr, false);
+  if (std::string why = checkNesting(json, jsonLength); !why.empty()) return why;
+  const nlohmann::json j = nlohmann::json::parse(json, json + jsonLength, nullptr, false);
   if (j.is_discarded() || !j.is_object()) return {};
   if (auto asset = j.find("asset"); asset != j.end() && asset->is_object()) {
     if (auto v = asset->find("version"); v != asset->end() && v->is_string()) {
@@ -556,26 +663,35 @@ Expected<Scene> loadGltf(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::exists(path, ec)) return Status::error(path + ": file not found");
-  if (!fs::is_regular_file(path, ec)) return Status::error(path + ": not a regular file");
+  // The model is read once, through the descriptor that was checked; what follows parses those
+  // bytes (tinygltf reads only the external buffers and images, through the jail below).
+  std::vector<unsigned char> file;
+  if (std::string why = readChecked(path, nullptr, kMaxExternalFileBytes, file); !why.empty())
+    return Status::error(path + ": " + why);
   FolderJail jail;
   jail.modelFile = fs::weakly_canonical(fs::path(path), ec).string();
   jail.root = fs::path(jail.modelFile).parent_path();
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({&jailFileExists, &jailExpandFilePath, &jailReadWholeFile, &jailWriteWholeFile, &jail});
   tinygltf::Model model;
-  loader.SetImageLoader(&limitedImageLoader, &model);  // it checks views against model.buffers
+  ImageBudget imageBudget{&model, 0};
+  loader.SetImageLoader(&limitedImageLoader, &imageBudget);  // it checks views against model.buffers
   std::string err, warn;
-  const bool binary = path.size() >= 4 && (path.substr(path.size() - 4) == ".glb" || path.substr(path.size() - 4) == ".GLB");
-  if (std::string why = precheck(path, binary); !why.empty()) return Status::error(path + ": " + why);
+  // A GLB by its magic, whatever the file's name says.
+  const bool binary = file.size() >= 4 && std::memcmp(file.data(), "glTF", 4) == 0;
+  if (std::string why = precheck(file, binary); !why.empty()) return Status::error(path + ": " + why);
+  const std::string baseDir = jail.root.string();
   bool ok = false;
   try {
-    ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+    ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, file.data(), static_cast<unsigned>(file.size()), baseDir)
+                : loader.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(file.data()),
+                                             static_cast<unsigned>(file.size()), baseDir);
   } catch (const std::bad_alloc&) {
     return Status::error(path + ": out of memory while parsing (a buffer or image larger than memory?)");
   } catch (const std::exception& e) {
     return Status::error(path + ": malformed glTF: " + printable(e.what()));
   }
+  file = {};
   if (!ok) {
     if (model.asset.version.rfind("1.", 0) == 0)
       return Status::error(path + ": glTF " + printable(model.asset.version, 16) + " is not supported (glTF 2.0 only)");
@@ -636,6 +752,7 @@ Expected<Scene> loadGltf(const std::string& path) {
         if (parent[i] < 0) roots.push_back(static_cast<int>(i));
     }
     std::optional<Camera> camera;
+    std::vector<std::pair<int, glm::dmat4>> instances;  // mesh, worldFromModel: one copy each
     std::vector<bool> visited(nodeCount, false);
     std::vector<std::pair<int, glm::dmat4>> stack;
     for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, glm::dmat4(1.0));
@@ -653,10 +770,7 @@ Expected<Scene> loadGltf(const std::string& path) {
       if (node.mesh >= 0) {
         if (node.mesh >= static_cast<int>(model.meshes.size()))
           throw LoadError{"node " + std::to_string(nodeIndex) + ": mesh " + std::to_string(node.mesh) + " does not exist"};
-        const auto& prims = model.meshes[node.mesh].primitives;
-        for (size_t p = 0; p < prims.size(); ++p)
-          loadPrimitive(model, prims[p], "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p),
-                        world, scene, ignored);
+        instances.emplace_back(node.mesh, world);
       }
       if (node.camera >= 0 && !camera && node.camera < static_cast<int>(model.cameras.size())) {
         const tinygltf::Camera& gc = model.cameras[node.camera];
@@ -681,6 +795,13 @@ Expected<Scene> loadGltf(const std::string& path) {
           scene.warnings.push_back("camera " + std::to_string(node.camera) + " ignored: " + why);
       }
       for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.emplace_back(*it, world);
+    }
+    checkGeometryBudget(model, instances);
+    for (const auto& [meshIndex, world] : instances) {
+      const auto& prims = model.meshes[static_cast<size_t>(meshIndex)].primitives;
+      for (size_t p = 0; p < prims.size(); ++p)
+        loadPrimitive(model, prims[p], "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(p),
+                      world, scene, ignored);
     }
     for (const std::string& what : ignored) scene.warnings.push_back("ignored: " + what);
     if (scene.meshes.empty()) {

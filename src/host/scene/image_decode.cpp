@@ -3,6 +3,7 @@
 #include <png.h>
 
 #include <csetjmp>
+#include <cstdint>
 #include <cstdio>  // jpeglib.h needs FILE
 #include <cstring>
 
@@ -11,6 +12,8 @@
 namespace sslr::host {
 
 namespace {
+
+constexpr std::uint64_t kMaxDeflateRatio = 1032;
 
 std::string tooLarge(unsigned width, unsigned height, int maxSide) {
   return std::to_string(width) + "x" + std::to_string(height) + ": the tools load images up to " +
@@ -54,9 +57,13 @@ std::string decodePng(const unsigned char* bytes, std::size_t size, int maxSide,
   }
   // Set after setjmp and read after a jump back: volatile, or their values would be indeterminate.
   volatile png_uint_32 width = 0, height = 0;
-  volatile bool large = false;
+  volatile bool large = false, missing = false;
   if (setjmp(png_jmpbuf(png)) != 0) {
     png_destroy_read_struct(&png, &info, nullptr);
+    if (missing)
+      return "PNG of " + std::to_string(width) + "x" + std::to_string(height) + " in " + std::to_string(size) +
+             " bytes: too few to hold its pixels (deflate packs at most " + std::to_string(kMaxDeflateRatio) +
+             ":1); truncated or forged";
     return large ? "PNG of " + tooLarge(width, height, maxSide) : std::string("PNG: ") + source.message;
   }
   png_set_read_fn(png, &source, pngRead);
@@ -66,6 +73,13 @@ std::string decodePng(const unsigned char* bytes, std::size_t size, int maxSide,
   if (width > unsigned(maxSide) || height > unsigned(maxSide)) {
     large = true;
     png_error(png, "too large");
+  }
+  // Deflate packs at most 1032 bytes into one, so a file too small to hold its pixels even at that
+  // ratio is truncated or forged: refused before the pixels' memory is allocated.
+  const std::uint64_t rawBytes = std::uint64_t(height) * (std::uint64_t(png_get_rowbytes(png, info)) + 1);
+  if (rawBytes / kMaxDeflateRatio > size) {
+    missing = true;
+    png_error(png, "too little data");
   }
   png_set_expand(png);     // palette -> RGB, grey below 8 bits -> 8 bits, tRNS -> alpha
   png_set_strip_16(png);   // 16-bit -> 8-bit

@@ -72,6 +72,26 @@ size_t Scene::triangleCount() const {
   return n;
 }
 
+glm::dmat3 normalMatrixOf(const glm::dmat4& spaceFromModel) {
+  glm::dmat3 m(spaceFromModel);
+  auto largestOf = [](const glm::dmat3& a) {
+    double largest = 0.0;
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r) largest = std::max(largest, std::abs(a[c][r]));
+    return largest;
+  };
+  // Scaled first, so the products below neither overflow nor underflow for any finite transform.
+  const double scale = largestOf(m);
+  if (!(scale > 0.0) || !std::isfinite(scale)) return glm::dmat3(1.0);
+  m /= scale;
+  // Cofactor matrix: column i is the cross product of the other two columns.
+  glm::dmat3 cof(glm::cross(m[1], m[2]), glm::cross(m[2], m[0]), glm::cross(m[0], m[1]));
+  const double det = glm::dot(m[0], cof[0]);
+  const double largest = largestOf(cof);
+  if (!(largest > 0.0)) return glm::dmat3(1.0);  // rank 1 or less: no face keeps an area
+  return cof * ((det < 0.0 ? -1.0 : 1.0) / largest);
+}
+
 float reflectance(const Material& m) {
   const float metalF0 = std::max({m.baseColor.r, m.baseColor.g, m.baseColor.b});
   return glm::mix(0.04f, metalF0, glm::clamp(m.metallic, 0.0f, 1.0f));

@@ -37,7 +37,7 @@ Expected<std::unique_ptr<RayTracer>> RayTracer::create(const Scene& scene, const
   rtcSetSceneBuildQuality(im.scene, RTC_BUILD_QUALITY_HIGH);
   for (const Mesh& m : scene.meshes) {
     const glm::dmat4 viewFromModel = viewFromWorld * m.worldFromModel;
-    const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(glm::dmat3(viewFromModel)));
+    const glm::dmat3 normalMatrix = normalMatrixOf(viewFromModel);
     RTCGeometry geom = rtcNewGeometry(im.device, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                           3 * sizeof(float), m.positions.size()));
@@ -88,7 +88,11 @@ RayTracer::Hit RayTracer::intersect(glm::vec3 o, glm::vec3 d, float tFar) const 
   const std::uint32_t* tri = &idx[3 * static_cast<size_t>(rh.hit.primID)];
   const float u = rh.hit.u, v = rh.hit.v;
   glm::vec3 n = nrm[tri[0]] * (1.0f - u - v) + nrm[tri[1]] * u + nrm[tri[2]] * v;
-  n = glm::normalize(n);
+  // Vertex normals that a singular transform flattened to zero: the face's own normal, as the
+  // G-buffer pass takes it.
+  const float length2 = glm::dot(n, n);
+  n = length2 > 1e-30f && std::isfinite(length2) ? n / std::sqrt(length2)
+                                                  : glm::normalize(glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
   if (glm::dot(n, d) > 0.0f) n = -n;  // two-sided, like the G-buffer pass
   h.vsNormal = n;
   return h;

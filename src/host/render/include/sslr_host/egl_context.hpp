@@ -20,6 +20,9 @@ struct EglOptions {
 class HeadlessContext {
  public:
   static Expected<std::unique_ptr<HeadlessContext>> create(const EglOptions& options = {});
+  // Whether `device` (EglOptions::device; "" reads $SSLR_EGL_DEVICE) names a choice create() can
+  // make: a tool checks it with its other options, before any GL work.
+  static Status checkDevice(const std::string& device);
   ~HeadlessContext();
   HeadlessContext(const HeadlessContext&) = delete;
   HeadlessContext& operator=(const HeadlessContext&) = delete;

@@ -39,9 +39,17 @@ Status writeImage(const std::string& path, const Image& image,
 Expected<std::vector<unsigned char>> encodeImage(const std::string& path, const Image& image,
                                                  const std::vector<std::string>& channelNames = {},
                                                  ImageCodec codec = defaultImageCodec());
-// Writes every file under a temporary name, checking each write, then renames them all into
-// place; on any failure every temporary is removed and no file is touched.
+// Writes every file under a temporary name of its own (a hidden, unique name beside it, created
+// with O_CREAT | O_EXCL | O_NOFOLLOW), checking each write, then renames them all into place; on
+// any failure every temporary is removed and no file is touched. A link at a destination is
+// replaced, never followed.
 Status writeFiles(const std::vector<std::pair<std::string, std::vector<unsigned char>>>& files);
+Status writeTextFile(const std::string& path, const std::string& text);
+// Creates and removes a uniquely named file in `dir`: "" if the tools can write there.
+Status probeWritableDirectory(const std::string& dir);
+// SIGINT, SIGTERM and SIGHUP remove the temporaries being written, then end the process as the
+// signal would have (the tools call it once at start).
+void removeTemporariesOnSignal();
 // PNG (8 or 16 bit) reads as stored, scaled to [0,1] (no sRGB decoding); EXR channels R, G, B, A
 // come first in that order whatever the file's order.
 Expected<Image> readImage(const std::string& path, ImageCodec codec = defaultImageCodec());

@@ -67,6 +67,14 @@ inline constexpr double kMaxSceneExtent = 1e8;
 // Near and far planes that hold the whole box as seen from the camera's eye.
 void fitClipPlanes(Camera& camera, const Bounds& bounds);
 
+// The matrix that carries a model's normals into the space `spaceFromModel` maps to: the cofactor
+// matrix of its upper 3x3 (the inverse transpose times the determinant, so it exists for a
+// singular transform too: a node scaled to zero along one axis keeps the normals of its flat
+// faces), its sign fixed so a mirroring transform keeps normals' orientation, and scaled so its
+// largest element is 1 (finite in float whatever the transform's scale). Normals it maps to zero
+// (faces a singular transform flattens to lines) are left to the caller's fallback.
+glm::dmat3 normalMatrixOf(const glm::dmat4& spaceFromModel);
+
 // F0 the G-buffer stores for a material: 0.04 for dielectrics, base colour for metals.
 float reflectance(const Material& m);
 
