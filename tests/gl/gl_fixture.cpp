@@ -37,7 +37,10 @@ void GlTest::SetUp() {
 }
 
 void GlTest::TearDown() {
-  if (gContext) EXPECT_EQ(gContext->glErrorCount(), 0) << "GL errors were reported during the test";
+  if (!gContext) return;
+  EXPECT_EQ(gContext->glErrorCount(), 0) << "GL errors were reported during the test";
+  EXPECT_EQ(gContext->highSeverityCount(), 0)
+      << "HIGH-severity KHR_debug messages were reported during the test (an engine that stops on them would stop)";
 }
 
 }  // namespace sslr::test

@@ -17,6 +17,7 @@ struct EglAccess {
                              const GLchar* message, const void* user) {
     auto* self = static_cast<HeadlessContext*>(const_cast<void*>(user));
     if (type == GL_DEBUG_TYPE_ERROR) ++self->errors_;
+    if (severity == GL_DEBUG_SEVERITY_HIGH) ++self->highSeverity_;
     if (severity == GL_DEBUG_SEVERITY_NOTIFICATION) return;
     // Push/pop group markers are informational.
     if (type == GL_DEBUG_TYPE_PUSH_GROUP || type == GL_DEBUG_TYPE_POP_GROUP) return;

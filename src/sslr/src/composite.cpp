@@ -6,7 +6,39 @@
 
 namespace sslr {
 
+// The image draw buffer 0 of `framebuffer` writes must cover the context's size: a smaller one
+// would get only part of the reflection. (The default framebuffer's size is the window system's,
+// which GL does not report: it is the host's to match.)
+Status Context::Impl::checkCompositeTarget(GLName framebuffer) const {
+  if (framebuffer == 0) return {};
+  GLint attachment = GL_NONE;
+  gl.GetIntegerv(GL_DRAW_BUFFER0, &attachment);  // of the bound draw framebuffer
+  if (attachment == GL_NONE)
+    return Status::error("sslr: composite(): framebuffer " + std::to_string(framebuffer) +
+                         " has no image on draw buffer 0, where the reflection is written");
+  GLint type = GL_NONE, name = 0, level = 0, w = 0, h = 0;
+  gl.GetNamedFramebufferAttachmentParameteriv(framebuffer, static_cast<GLenum>(attachment), GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+  gl.GetNamedFramebufferAttachmentParameteriv(framebuffer, static_cast<GLenum>(attachment), GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &name);
+  if (type == GL_TEXTURE) {
+    gl.GetNamedFramebufferAttachmentParameteriv(framebuffer, static_cast<GLenum>(attachment), GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL, &level);
+    gl.GetTextureLevelParameteriv(static_cast<GLuint>(name), level, GL_TEXTURE_WIDTH, &w);
+    gl.GetTextureLevelParameteriv(static_cast<GLuint>(name), level, GL_TEXTURE_HEIGHT, &h);
+  } else if (type == GL_RENDERBUFFER) {
+    gl.GetNamedRenderbufferParameteriv(static_cast<GLuint>(name), GL_RENDERBUFFER_WIDTH, &w);
+    gl.GetNamedRenderbufferParameteriv(static_cast<GLuint>(name), GL_RENDERBUFFER_HEIGHT, &h);
+  } else {
+    return {};
+  }
+  if (w < width || h < height)
+    return Status::error("sslr: composite(): framebuffer " + std::to_string(framebuffer) + "'s draw buffer 0 (" +
+                         (type == GL_TEXTURE ? "texture " : "renderbuffer ") + std::to_string(name) + ") is " +
+                         std::to_string(w) + "x" + std::to_string(h) + ", smaller than the context's " +
+                         std::to_string(width) + "x" + std::to_string(height));
+  return {};
+}
+
 Status Context::Impl::composite(GLName framebuffer, const CompositeOptions& options) {
+  if (Status s = checkCurrentContext("composite()"); !s) return s;
   if (!haveFrame)
     return Status::error("sslr: composite() needs a successful dispatch() first");
   if (framebuffer != 0 && !gl.IsFramebuffer(framebuffer))
@@ -39,22 +71,24 @@ Status Context::Impl::composite(GLName framebuffer, const CompositeOptions& opti
   if (gl.CheckNamedFramebufferStatus(framebuffer, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     return Status::error("sslr: composite(): framebuffer " + std::to_string(framebuffer) +
                          " is not complete");
+  if (Status s = checkCompositeTarget(framebuffer); !s) return s;
   gl.PushDebugGroup(GL_DEBUG_SOURCE_THIRD_PARTY, 0, -1, "sslr.composite");
   gl.BindVertexArray(vao);
   gl.BindBufferBase(GL_UNIFORM_BUFFER, SSLR_BINDING_FRAME_UBO, frameUbo);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_TILE_SSBO, tileBuffer);
   gl.BindBuffer(GL_DRAW_INDIRECT_BUFFER, tileBuffer);
-  gl.BindTextureUnit(4, resolved);
+  gl.bindTexture2D(4, resolved);
   gl.BindSampler(4, nearestSampler);
-  gl.BindTextureUnit(5, blendOverFallback ? options.fallbackSpecularTexture : 0);
+  gl.bindTexture2D(5, blendOverFallback ? options.fallbackSpecularTexture : 0);
   gl.BindSampler(5, nearestSampler);
-  gl.Viewport(0, 0, width, height);
+  // Viewport and scissor index 0 only (the draw uses index 0; glViewport and glDisable would set
+  // every index), and no per-fragment state of the host's that would change what is written.
+  const GLfloat viewport[4] = {0.0f, 0.0f, static_cast<GLfloat>(width), static_cast<GLfloat>(height)};
+  gl.ViewportIndexedfv(0, viewport);
+  gl.Disablei(GL_SCISSOR_TEST, 0);
   gl.PolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-  gl.Disable(GL_DEPTH_TEST);
-  gl.Disable(GL_STENCIL_TEST);
-  gl.Disable(GL_CULL_FACE);
-  gl.Disable(GL_SCISSOR_TEST);
-  gl.Disable(GL_RASTERIZER_DISCARD);
+  for (GLenum cap : detail::kCompositeDisables) gl.Disable(cap);
+  for (GLenum i = 0; i < detail::kClipDistances; ++i) gl.Disable(GL_CLIP_DISTANCE0 + i);
   // Draw buffer 0 only (its alpha kept); other draw buffers are masked.
   gl.Enablei(GL_BLEND, 0);
   gl.BlendFuncSeparatei(0, GL_ONE, GL_ONE, GL_ZERO, GL_ONE);

@@ -138,6 +138,10 @@ struct Context::Impl {
   Status dispatch(const FrameInputs& in, const Settings& settings);
   // composite.cpp
   Status composite(GLName framebuffer, const CompositeOptions& options);
+  Status checkCompositeTarget(GLName framebuffer) const;
+  // An error when no GL context is current on the calling thread (every GL call would then be
+  // lost, and the first texture check would blame a texture).
+  Status checkCurrentContext(const char* call) const;
   // stats.cpp: reads the slots whose fence has signalled (the newest wins); with `waitNewest`,
   // first waits for the newest pending one.
   void harvestStats(bool waitNewest) const;

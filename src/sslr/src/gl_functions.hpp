@@ -30,7 +30,10 @@ namespace sslr::detail {
   X(PFNGLDEPTHMASKPROC, DepthMask)                                               \
   X(PFNGLBLENDFUNCSEPARATEIPROC, BlendFuncSeparatei)                             \
   X(PFNGLBLENDEQUATIONSEPARATEIPROC, BlendEquationSeparatei)                     \
-  X(PFNGLVIEWPORTPROC, Viewport)                                                 \
+  X(PFNGLVIEWPORTINDEXEDFVPROC, ViewportIndexedfv)                               \
+  X(PFNGLGETFLOATI_VPROC, GetFloati_v)                                           \
+  X(PFNGLGETNAMEDFRAMEBUFFERATTACHMENTPARAMETERIVPROC, GetNamedFramebufferAttachmentParameteriv) \
+  X(PFNGLGETNAMEDRENDERBUFFERPARAMETERIVPROC, GetNamedRenderbufferParameteriv)   \
   X(PFNGLPOLYGONMODEPROC, PolygonMode)                                           \
   X(PFNGLGETFLOATVPROC, GetFloatv)                                               \
   X(PFNGLISTEXTUREPROC, IsTexture)                                               \
@@ -101,6 +104,17 @@ struct Gl {
 
   // Loads every entry point; on failure returns the names that could not be found.
   Status load(GetProcAddress getProcAddress);
+
+  // Binds `texture` (a GL_TEXTURE_2D, or 0) to the 2D target of `unit` and nothing else:
+  // glBindTextureUnit(unit, 0) would unbind every target of the unit, a host's cube map too.
+  void bindTexture2D(GLuint unit, GLuint texture) const {
+    if (texture != 0) {
+      BindTextureUnit(unit, texture);
+      return;
+    }
+    ActiveTexture(GL_TEXTURE0 + unit);  // the state guard restores the host's active unit
+    BindTexture(GL_TEXTURE_2D, 0);
+  }
 };
 
 }  // namespace sslr::detail

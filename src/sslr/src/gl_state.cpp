@@ -52,13 +52,11 @@ StateGuard::StateGuard(const Gl& gl, bool forDraw) : gl_(gl), forDraw_(forDraw) 
   gl.GetIntegerv(GL_DRAW_INDIRECT_BUFFER_BINDING, &drawIndirect_);
   gl.GetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao_);
   gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer_);
-  gl.GetIntegerv(GL_VIEWPORT, viewport_);
+  gl.GetFloati_v(GL_VIEWPORT, 0, viewport0_);
   gl.GetIntegerv(GL_POLYGON_MODE, polygonMode_);
-  depthTest_ = gl.IsEnabled(GL_DEPTH_TEST);
-  stencilTest_ = gl.IsEnabled(GL_STENCIL_TEST);
-  cullFace_ = gl.IsEnabled(GL_CULL_FACE);
-  scissorTest_ = gl.IsEnabled(GL_SCISSOR_TEST);
-  discard_ = gl.IsEnabled(GL_RASTERIZER_DISCARD);
+  for (int i = 0; i < kCompositeDisableCount; ++i) disabled_[i] = gl.IsEnabled(kCompositeDisables[i]);
+  for (GLenum i = 0; i < kClipDistances; ++i) clipDistances_[i] = gl.IsEnabled(GL_CLIP_DISTANCE0 + i);
+  scissorTest0_ = gl.IsEnabledi(GL_SCISSOR_TEST, 0);
   blend0_ = gl.IsEnabledi(GL_BLEND, 0);
   gl.GetIntegeri_v(GL_BLEND_SRC_RGB, 0, &blendSrcRgb_);
   gl.GetIntegeri_v(GL_BLEND_DST_RGB, 0, &blendDstRgb_);
@@ -99,14 +97,12 @@ StateGuard::~StateGuard() {
   gl.BindBuffer(GL_DRAW_INDIRECT_BUFFER, static_cast<GLuint>(drawIndirect_));
   gl.BindVertexArray(static_cast<GLuint>(vao_));
   gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(drawFramebuffer_));
-  gl.Viewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
+  gl.ViewportIndexedfv(0, viewport0_);
   gl.PolygonMode(GL_FRONT_AND_BACK, static_cast<GLenum>(polygonMode_[0]));
   auto set = [&](GLenum cap, GLboolean on) { on ? gl.Enable(cap) : gl.Disable(cap); };
-  set(GL_DEPTH_TEST, depthTest_);
-  set(GL_STENCIL_TEST, stencilTest_);
-  set(GL_CULL_FACE, cullFace_);
-  set(GL_SCISSOR_TEST, scissorTest_);
-  set(GL_RASTERIZER_DISCARD, discard_);
+  for (int i = 0; i < kCompositeDisableCount; ++i) set(kCompositeDisables[i], disabled_[i]);
+  for (GLenum i = 0; i < kClipDistances; ++i) set(GL_CLIP_DISTANCE0 + i, clipDistances_[i]);
+  scissorTest0_ ? gl.Enablei(GL_SCISSOR_TEST, 0) : gl.Disablei(GL_SCISSOR_TEST, 0);
   blend0_ ? gl.Enablei(GL_BLEND, 0) : gl.Disablei(GL_BLEND, 0);
   gl.BlendFuncSeparatei(0, static_cast<GLenum>(blendSrcRgb_), static_cast<GLenum>(blendDstRgb_),
                         static_cast<GLenum>(blendSrcAlpha_), static_cast<GLenum>(blendDstAlpha_));

@@ -14,6 +14,17 @@ inline constexpr int kImageUnits = 6;    // 0 reflection / blur output / pyramid
 inline constexpr int kSsboBindings = 3;  // 0 tile list, 1 stats, 2 retrace list / curved quads
 inline constexpr int kUboBindings = 1;   // 0 frame constants
 
+// Per-fragment state of the host's that the composite draw switches off (and the guard restores):
+// a logic op, alpha-to-coverage, sample coverage or a sample mask would change what it writes.
+inline constexpr GLenum kCompositeDisables[] = {GL_DEPTH_TEST,   GL_STENCIL_TEST,
+                                                GL_CULL_FACE,    GL_RASTERIZER_DISCARD,
+                                                GL_COLOR_LOGIC_OP, GL_SAMPLE_ALPHA_TO_COVERAGE,
+                                                GL_SAMPLE_COVERAGE, GL_SAMPLE_MASK};
+inline constexpr int kCompositeDisableCount = sizeof(kCompositeDisables) / sizeof(kCompositeDisables[0]);
+// Clip distances the host enabled: the composite's vertex shader writes none, which leaves an
+// enabled one undefined. GL 4.5 has at least 8; sslr saves and clears the first 8.
+inline constexpr GLenum kClipDistances = 8;
+
 class StateGuard {
  public:
   // `forDraw` additionally saves what the composite draw touches.
@@ -41,9 +52,11 @@ class StateGuard {
   GLint genericSsbo_ = 0, genericUbo_ = 0, dispatchIndirect_ = 0;
   // Draw state (composite only).
   GLint drawIndirect_ = 0, vao_ = 0, drawFramebuffer_ = 0;
-  GLint viewport_[4] = {};
+  GLfloat viewport0_[4] = {};  // viewport index 0, the only one the composite sets
   GLint polygonMode_[2] = {GL_FILL, GL_FILL};  // a host's GL_LINE would draw the composite as wireframe
-  GLboolean depthTest_ = 0, stencilTest_ = 0, cullFace_ = 0, scissorTest_ = 0, discard_ = 0;
+  std::array<GLboolean, kCompositeDisableCount> disabled_{};
+  std::array<GLboolean, kClipDistances> clipDistances_{};
+  GLboolean scissorTest0_ = 0;  // scissor test of viewport index 0
   GLboolean blend0_ = 0;
   GLint blendSrcRgb_ = 0, blendDstRgb_ = 0, blendSrcAlpha_ = 0, blendDstAlpha_ = 0;
   GLint blendEqRgb_ = 0, blendEqAlpha_ = 0;

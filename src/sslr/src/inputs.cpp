@@ -40,6 +40,31 @@ FormatInfo formatInfo(GLint f) {
   }
 }
 
+Status Context::Impl::checkCurrentContext(const char* call) const {
+  if (gl.GetString(GL_VERSION) != nullptr) return {};
+  return Status::error(std::string("sslr: ") + call +
+                       ": no OpenGL context is current on this thread (make the context sslr was created "
+                       "with current first)");
+}
+
+namespace {
+// Integer formats by name: sslr samples through float samplers, which read an integer texture as
+// undefined values, so they are refused with what they are.
+const char* integerFormatName(GLint f) {
+  switch (f) {
+    case GL_R8UI: return "R8UI"; case GL_R8I: return "R8I"; case GL_R16UI: return "R16UI"; case GL_R16I: return "R16I";
+    case GL_R32UI: return "R32UI"; case GL_R32I: return "R32I"; case GL_RG8UI: return "RG8UI"; case GL_RG8I: return "RG8I";
+    case GL_RG16UI: return "RG16UI"; case GL_RG16I: return "RG16I"; case GL_RG32UI: return "RG32UI";
+    case GL_RG32I: return "RG32I"; case GL_RGB8UI: return "RGB8UI"; case GL_RGB8I: return "RGB8I";
+    case GL_RGB16UI: return "RGB16UI"; case GL_RGB16I: return "RGB16I"; case GL_RGB32UI: return "RGB32UI";
+    case GL_RGB32I: return "RGB32I"; case GL_RGBA8UI: return "RGBA8UI"; case GL_RGBA8I: return "RGBA8I";
+    case GL_RGB10_A2UI: return "RGB10_A2UI"; case GL_RGBA16UI: return "RGBA16UI"; case GL_RGBA16I: return "RGBA16I";
+    case GL_RGBA32UI: return "RGBA32UI"; case GL_RGBA32I: return "RGBA32I";
+    default: return nullptr;
+  }
+}
+}  // namespace
+
 // Checks one host texture: exists, is 2D, has the context's size and a usable format.
 Status Context::Impl::checkTexture(GLName tex, const char* what, FormatInfo::Kind kind, int minChannels,
                                    FormatInfo* infoOut) const {
@@ -59,6 +84,11 @@ Status Context::Impl::checkTexture(GLName tex, const char* what, FormatInfo::Kin
     return Status::error(where.str());
   }
   FormatInfo info = formatInfo(format);
+  if (const char* integer = integerFormatName(format)) {
+    where << " has internal format 0x" << std::hex << format << std::dec << " (" << integer
+          << "), an integer format: sslr samples it as floats; use a unorm or float format";
+    return Status::error(where.str());
+  }
   if (info.kind != kind) {
     where << " has internal format 0x" << std::hex << format << std::dec << " ("
           << info.name << "); expected " << (kind == FormatInfo::Depth ? "a depth format" :

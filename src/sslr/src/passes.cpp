@@ -9,17 +9,17 @@
 namespace sslr {
 
 void Context::Impl::bindInputs(const FrameInputs& in) const {
-  gl.BindTextureUnit(0, in.depthTexture);
+  gl.bindTexture2D(0, in.depthTexture);
   gl.BindSampler(0, nearestSampler);
-  gl.BindTextureUnit(1, in.normalTexture);
+  gl.bindTexture2D(1, in.normalTexture);
   gl.BindSampler(1, nearestSampler);
-  gl.BindTextureUnit(2, in.colorTexture);
+  gl.bindTexture2D(2, in.colorTexture);
   gl.BindSampler(2, linearSampler);
-  gl.BindTextureUnit(7, in.materialTexture);  // 0 unless the host keeps materials apart
+  gl.bindTexture2D(7, in.materialTexture);  // 0 unless the host keeps materials apart
   gl.BindSampler(7, nearestSampler);
-  gl.BindTextureUnit(8, in.maskTexture);  // 0 unless the host limits where rays start
+  gl.bindTexture2D(8, in.maskTexture);  // 0 unless the host limits where rays start
   gl.BindSampler(8, nearestSampler);
-  gl.BindTextureUnit(6, hiz);  // read by the depth-only trace (built when a mode needs it)
+  gl.bindTexture2D(6, hiz);  // read by the depth-only trace (built when a mode needs it)
   gl.BindSampler(6, nearestSampler);
   gl.BindBufferBase(GL_UNIFORM_BUFFER, SSLR_BINDING_FRAME_UBO, frameUbo);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_TILE_SSBO, tileBuffer);
@@ -39,7 +39,7 @@ void Context::Impl::bindPyramidLevels01() const {
 void Context::Impl::buildPyramid(GLuint blockProgram, GLuint singleProgram) const {
   const int blockTop = std::min(hizLevels, kHizBlockTop);
   gl.UseProgram(blockProgram);
-  gl.BindTextureUnit(6, hiz);
+  gl.bindTexture2D(6, hiz);
   gl.BindSampler(6, nearestSampler);
   gl.ProgramUniform1i(blockProgram, 0, hizLevels);  // uTopLevel
   for (int level = 2; level <= kHizBlockTop; ++level)  // above the top: the top's image, never stored to
@@ -81,6 +81,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   // describe the stored frame).
   const bool hadHistory = historyValid;
   historyValid = false;
+  if (Status s = checkCurrentContext("dispatch()"); !s) return s;
   auto constants = frameConstants(in, settings, width, height);  // validates settings + projection
   if (!constants) return Status::error(constants.error());
   if (Status s = checkInputs(in, settings.method); !s) return s;
@@ -289,7 +290,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   timestamp(0);
   bindInputs(in);
   if (settings.method == Method::PositionBuffer) {
-    gl.BindTextureUnit(5, in.positionTexture);
+    gl.bindTexture2D(5, in.positionTexture);
     gl.BindSampler(5, nearestSampler);
   }
 
@@ -361,9 +362,9 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
       gl.NamedBufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
     }
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-    gl.BindTextureUnit(3, quadHit);  // units 3 and 4 are the blur's, free during the trace
+    gl.bindTexture2D(3, quadHit);  // units 3 and 4 are the blur's, free during the trace
     gl.BindSampler(3, nearestSampler);
-    gl.BindTextureUnit(4, quadSurface);
+    gl.bindTexture2D(4, quadSurface);
     gl.BindSampler(4, nearestSampler);
   }
   gl.UseProgram(trace.value());
@@ -390,14 +391,14 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   if (blur) {
     for (GLuint unit : {3u, 4u, 5u}) gl.BindSampler(unit, nearestSampler);
     gl.UseProgram(blurH.value());
-    gl.BindTextureUnit(3, resolved);
-    gl.BindTextureUnit(4, reflection);
+    gl.bindTexture2D(3, resolved);
+    gl.bindTexture2D(4, reflection);
     gl.BindImageTexture(0, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl.DispatchComputeIndirect(kBlurDispatchOffset);
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     gl.UseProgram(blurV.value());
-    gl.BindTextureUnit(3, blurTemp);
-    gl.BindTextureUnit(5, resolved);  // read where blurTemp is not written (see blur.comp)
+    gl.bindTexture2D(3, blurTemp);
+    gl.bindTexture2D(5, resolved);  // read where blurTemp is not written (see blur.comp)
     gl.BindImageTexture(0, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl.DispatchComputeIndirect(kBlurDispatchOffset);
   }
@@ -406,20 +407,20 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     for (GLuint unit : {3u, 4u, 5u}) gl.BindSampler(unit, nearestSampler);
     gl.UseProgram(temporalBlend.value());
-    gl.BindTextureUnit(6, in.motionTexture);  // unit 6 (the pyramid's) is free after the trace
+    gl.bindTexture2D(6, in.motionTexture);  // unit 6 (the pyramid's) is free after the trace
     gl.BindSampler(6, nearestSampler);
-    gl.BindTextureUnit(9, hit);  // written by the trace on the listed tiles (SSLR_TEMPORAL_HITS)
+    gl.bindTexture2D(9, hit);  // written by the trace on the listed tiles (SSLR_TEMPORAL_HITS)
     gl.BindSampler(9, nearestSampler);
-    gl.BindTextureUnit(3, resolved);
-    gl.BindTextureUnit(4, history);
-    gl.BindTextureUnit(5, historyKey);
+    gl.bindTexture2D(3, resolved);
+    gl.bindTexture2D(4, history);
+    gl.bindTexture2D(5, historyKey);
     gl.BindImageTexture(0, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl.DispatchComputeIndirect(0);
     gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     gl.UseProgram(temporalStore.value());
-    gl.BindTextureUnit(3, blurTemp);
-    gl.BindTextureUnit(4, 0);
-    gl.BindTextureUnit(5, 0);
+    gl.bindTexture2D(3, blurTemp);
+    gl.bindTexture2D(4, 0);
+    gl.bindTexture2D(5, 0);
     gl.BindImageTexture(0, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl.BindImageTexture(1, history, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl.BindImageTexture(2, historyKey, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);

@@ -28,6 +28,9 @@ Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings
   f.surface.height = static_cast<float>(height);
   if (in.surface.space == NormalSpace::World) {
     // Normals transform by the inverse transpose (right for any affine view, scaled ones too).
+    if (in.viewFromWorld == glm::dmat4(0.0))
+      return Status::error("sslr: SurfaceLayout::space is NormalSpace::World but FrameInputs::viewFromWorld is "
+                           "not given (all zeros): set it to the frame's view matrix");
     const glm::dmat3 linear(in.viewFromWorld);
     const double det = glm::determinant(linear);
     bool finite = std::isfinite(det);

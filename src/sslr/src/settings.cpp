@@ -72,7 +72,8 @@ std::string validate(const Settings& s) {
   if (!finite(s.cameraFadeStart) || !finite(s.cameraFadeEnd) || s.cameraFadeEnd < s.cameraFadeStart)
     why << "cameraFadeStart/End = " << s.cameraFadeStart << "/" << s.cameraFadeEnd
         << " (must be finite, start <= end); ";
-  if (!finite(s.roughnessCutoff)) why << "roughnessCutoff is not finite; ";
+  if (!(s.roughnessCutoff >= 0.0f && s.roughnessCutoff <= 1.0f))
+    why << "roughnessCutoff = " << s.roughnessCutoff << " (must be 0..1, a roughness); ";
   if (!finite(s.minReflectance)) why << "minReflectance is not finite; ";
   if (!finite(s.blurMaxRadiusPx) || s.blurMaxRadiusPx < 0.0f || s.blurMaxRadiusPx > 32.0f)
     why << "blurMaxRadiusPx = " << s.blurMaxRadiusPx << " (must be 0..32); ";

@@ -114,7 +114,7 @@ struct FrameInputs {
                                // vectors, uv units); where history is looked up instead of the
                                // matrix reprojection, so moving objects are followed
   glm::dmat4 clipFromView{1.0};  // the exact projection that rasterized the depth (jitter incl.)
-  glm::dmat4 viewFromWorld{1.0}; // NormalSpace::World only: the view matrix of the frame
+  glm::dmat4 viewFromWorld{0.0}; // NormalSpace::World only: the view matrix of the frame (all zeros = not given: an error then)
   // Settings::temporal only: where this frame's view-space points were in the previous frame's
   // clip space = previous clipFromView (its jitter included) x previous viewFromWorld x this
   // frame's worldFromView (the inverse of viewFromWorld). All zeros = not given.

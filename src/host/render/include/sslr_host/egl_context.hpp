@@ -34,7 +34,10 @@ class HeadlessContext {
 
   // GL errors (KHR_debug type ERROR) seen since creation; tests assert this stays 0.
   int glErrorCount() const { return errors_.load(); }
-  void resetGlErrorCount() { errors_ = 0; }
+  void resetGlErrorCount() { errors_ = 0; highSeverity_ = 0; }
+  // KHR_debug messages of GL_DEBUG_SEVERITY_HIGH since creation (errors and, on some drivers,
+  // shader compiler warnings): an engine that stops on them would stop; tests assert none.
+  int highSeverityCount() const { return highSeverity_.load(); }
 
   static sslr::GetProcAddress getProcAddress();
 
@@ -43,7 +46,7 @@ class HeadlessContext {
   void* display_ = nullptr;
   void* context_ = nullptr;
   std::string renderer_, version_, deviceDescription_;
-  std::atomic<int> errors_{0};
+  std::atomic<int> errors_{0}, highSeverity_{0};
   friend struct EglAccess;
 };
 
