@@ -11,6 +11,8 @@
 #include "common/gltf_writer.hpp"
 #include "sslr_host/gltf_loader.hpp"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 using namespace sslr::host;
 namespace fs = std::filesystem;
 
@@ -453,6 +455,134 @@ TEST_F(Gltf, HugeImageIsSkippedWithItsSize) {
   std::string warnings;
   for (const std::string& w : s.value().warnings) warnings += w + "\n";
   EXPECT_NE(warnings.find("20000x20000: the tools load images up to 16384x16384"), std::string::npos) << warnings;
+}
+
+}  // namespace
+
+namespace {
+
+// gltfText's file with `extra` inserted as the asset's "extras" member.
+std::string withAssetExtras(const std::string& extras) {
+  std::string text = gltfText(Tri{});
+  const std::string asset = R"("asset":{"version":"2.0"})";
+  text.replace(text.find(asset), asset.size(), R"("asset":{"version":"2.0","extras":)" + extras + "}");
+  return text;
+}
+
+TEST_F(Gltf, DeeplyNestedJsonIsRefusedBeforeParsing) {
+  // 20,000 levels of arrays in "extras" (41 KB) overflowed tinygltf's recursive parser's stack and
+  // killed every tool; 100 levels are a legal if odd file.
+  expectError(write("deep.gltf", withAssetExtras(std::string(20000, '[') + std::string(20000, ']'))),
+              "nests arrays and objects more than 128 deep");
+  std::string objects;
+  for (int i = 0; i < 20000; ++i) objects += "{\"a\":";
+  objects += "1" + std::string(20000, '}');
+  expectError(write("deep-objects.gltf", withAssetExtras(objects)), "more than 128 deep");
+  // Brackets inside strings are text, not nesting.
+  auto fine = loadGltf(write("brackets-in-strings.gltf", withAssetExtras("{\"note\":\"" + std::string(500, '[') + "\"}")));
+  EXPECT_TRUE(fine) << fine.error();
+  auto shallow = loadGltf(write("nested-100.gltf", withAssetExtras(std::string(100, '[') + std::string(100, ']'))));
+  EXPECT_TRUE(shallow) << shallow.error();
+}
+
+TEST_F(Gltf, GlbIsKnownByItsMagicNotItsName) {
+  auto glbNamedGltf = loadGltf(write("binary.Glb", glbOf()));
+  EXPECT_TRUE(glbNamedGltf) << glbNamedGltf.error();
+  auto jsonNamedGlb = loadGltf(write("text.glb", gltfText(Tri{})));
+  EXPECT_TRUE(jsonNamedGlb) << jsonNamedGlb.error();
+  expectError(write("empty.glb", ""), "the file is empty");
+}
+
+// One mesh of `vertices` unindexed vertices (a .bin beside the file) drawn by `nodes` nodes.
+std::string instancedMesh(const fs::path& dir, const std::string& name, int vertices, int nodes) {
+  std::vector<float> pos(static_cast<size_t>(vertices) * 3);
+  for (int v = 0; v < vertices; ++v) {
+    pos[v * 3] = static_cast<float>(v % 3 == 1);
+    pos[v * 3 + 1] = static_cast<float>(v % 3 == 2);
+    pos[v * 3 + 2] = static_cast<float>(v / 3) * 1e-3f;
+  }
+  std::ofstream(dir / (name + ".bin"), std::ios::binary) << bytesOf(pos);
+  std::ostringstream j;
+  j << R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[)";
+  for (int n = 0; n < nodes; ++n) j << (n ? "," : "") << n;
+  j << R"(]}],"nodes":[)";
+  for (int n = 0; n < nodes; ++n) j << (n ? "," : "") << R"({"mesh":0,"translation":[)" << n << ",0,0]}";
+  j << R"(],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"buffers":[{"byteLength":)" << pos.size() * 4
+    << R"(,"uri":")" << name << R"(.bin"}],"bufferViews":[{"buffer":0,"byteLength":)" << pos.size() * 4
+    << R"(}],"accessors":[{"bufferView":0,"componentType":5126,"count":)" << vertices
+    << R"(,"type":"VEC3","min":[0,0,0],"max":[1,1,100]}]})";
+  const fs::path p = dir / (name + ".gltf");
+  std::ofstream(p) << j.str();
+  return p.string();
+}
+
+TEST_F(Gltf, InstancedGeometryIsBudgetedBeforeItIsBuilt) {
+  // 60,000 vertices (0.7 MB) drawn by 2,000 nodes: each node's copy makes 3.6 GB, over the 2 GiB
+  // budget; refused from the accessors' counts, quickly, before any copy is made.
+  const auto start = std::chrono::steady_clock::now();
+  expectError(instancedMesh(dir, "instanced-2000", 60000, 2000), "MiB of geometry");
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(60)) << "a refusal, not a build";
+  // The same mesh under 20 nodes loads: one mesh per node.
+  auto s = loadGltf(instancedMesh(dir, "instanced-20", 60000, 20));
+  ASSERT_TRUE(s) << s.error();
+  EXPECT_EQ(s.value().meshes.size(), 20u);
+}
+
+std::string pngHeader(unsigned width, unsigned height) {
+  std::string png("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR", 16);
+  for (unsigned v : {width, height})
+    for (int k = 3; k >= 0; --k) png += static_cast<char>((v >> (8 * k)) & 0xff);
+  return png + std::string("\x08\x02\0\0\0", 5);
+}
+
+TEST_F(Gltf, DecodedImagesAreBudgetedByTheirHeaders) {
+  // Five image entries of 8192x8192 (256 MiB each decoded): over the 1 GiB of images a file may
+  // hold, refused by their headers (what the file claims is what it may cost, decodable or not).
+  std::string images;
+  for (int i = 0; i < 5; ++i)
+    images += std::string(i ? "," : "") + "{\"uri\":\"data:image/png;base64," + base64(pngHeader(8192, 8192)) + "\"}";
+  std::string text = gltfText(Tri{});
+  text.replace(text.find("\"buffers\""), 9, "\"images\":[" + images + "],\"buffers\"");
+  expectError(write("many-images.gltf", text), "MiB of images");
+}
+
+TEST_F(Gltf, ImageUrisArePrintedAsPrintableText) {
+  // A URI with an escape sequence (it would recolour or retitle a terminal) is shown with '?'.
+  std::string text = patched("\"roughnessFactor\":0.2}", "\"roughnessFactor\":0.2,\"baseColorTexture\":{\"index\":0}}");
+  text.replace(text.find("\"buffers\""), 9,
+               R"("textures":[{"source":0}],"images":[{"uri":"evil\u001b]0;title\u0007.png"}],"buffers")");
+  write("evil\x1b]0;title\x07.png", "not an image");
+  auto s = loadGltf(write("escape-uri.gltf", text));
+  ASSERT_TRUE(s) << s.error();
+  std::string warnings;
+  for (const std::string& w : s.value().warnings) warnings += w + "\n";
+  EXPECT_NE(warnings.find("evil?]0;title?.png"), std::string::npos) << warnings;
+  EXPECT_EQ(warnings.find('\x1b'), std::string::npos) << "a raw escape reached the warnings";
+}
+
+TEST(NormalMatrix, SingularAndExtremeTransformsKeepFiniteNormals) {
+  // A node scaled to zero along z keeps its faces in the xy plane: their normal is +-z.
+  const glm::dmat3 flat = normalMatrixOf(glm::scale(glm::dmat4(1.0), glm::dvec3(1, 1, 0)));
+  const glm::dvec3 n = flat * glm::dvec3(0, 0, 1);
+  EXPECT_GT(n.z, 0.0);
+  EXPECT_NEAR(n.x, 0.0, 1e-12);
+  EXPECT_DOUBLE_EQ(glm::length(flat * glm::dvec3(0, 1, 0)), 0.0) << "a face flattened to a line has no normal";
+  for (double scale : {1e-300, 1e-30, 1e30, 1e300}) {
+    const glm::dmat3 m = normalMatrixOf(glm::scale(glm::dmat4(1.0), glm::dvec3(scale, 2 * scale, scale)));
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r) ASSERT_TRUE(std::isfinite(float(m[c][r]))) << "scale " << scale;
+    const glm::vec3 f = glm::normalize(glm::vec3(m * glm::dvec3(0, 1, 0)));
+    EXPECT_NEAR(f.y, 1.0f, 1e-6f) << "scale " << scale;
+  }
+  // Mirroring keeps the normal's orientation (the inverse transpose's, not the cofactor's sign).
+  const glm::dmat3 mirrored = normalMatrixOf(glm::scale(glm::dmat4(1.0), glm::dvec3(-1, 1, 1)));
+  EXPECT_GT((mirrored * glm::dvec3(0, 0, 1)).z, 0.0);
+  EXPECT_LT((mirrored * glm::dvec3(1, 0, 0)).x, 0.0);
+  // An ordinary transform: the normalized inverse transpose.
+  const glm::dmat4 general = glm::rotate(glm::scale(glm::dmat4(1.0), glm::dvec3(2, 3, 0.5)), 0.7, glm::dvec3(1, 2, 3));
+  const glm::dvec3 expected = glm::normalize(glm::transpose(glm::inverse(glm::dmat3(general))) * glm::dvec3(0.3, -0.4, 0.8));
+  const glm::dvec3 got = glm::normalize(normalMatrixOf(general) * glm::dvec3(0.3, -0.4, 0.8));
+  EXPECT_NEAR(glm::distance(expected, got), 0.0, 1e-12);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // the same libraries' encoders.
 #include <gtest/gtest.h>
 #include <png.h>
+#include <zlib.h>
 
 #include <cstdio>
 #include <cstring>
@@ -144,6 +145,26 @@ TEST(ImageDecode, SidesAboveTheLimitAreRefusedBeforeDecoding) {
   const unsigned char colour[3] = {1, 2, 3};
   EXPECT_NE(decode(writeJpeg(8, 48, colour), out, 32).find("8x48"), std::string::npos);
   EXPECT_TRUE(out.rgba8.empty());
+}
+
+TEST(ImageDecode, PngTooSmallForItsPixelsIsRefusedBeforeAllocating) {
+  // A 16384x16384 header over a few bytes of data: deflate cannot pack 805 MB of rows into them,
+  // so it is refused from the header (it allocated 1.15 GB before failing on the missing data).
+  std::vector<unsigned char> small(4 * 4 * 4, 7);
+  std::vector<unsigned char> bytes = writePng(4, 4, PNG_FORMAT_RGBA, small.data());
+  for (int k = 0; k < 4; ++k) {  // IHDR's width and height, then a fresh CRC is not needed:
+    bytes[16 + k] = static_cast<unsigned char>((16384u >> (8 * (3 - k))) & 0xff);
+    bytes[20 + k] = static_cast<unsigned char>((16384u >> (8 * (3 - k))) & 0xff);
+  }
+  png_uint_32 crc = static_cast<png_uint_32>(crc32(0, bytes.data() + 12, 17));  // "IHDR" + 13 bytes
+  for (int k = 0; k < 4; ++k) bytes[29 + k] = static_cast<unsigned char>((crc >> (8 * (3 - k))) & 0xff);
+  DecodedImage out;
+  const std::string why = decode(bytes, out);
+  EXPECT_NE(why.find("PNG of 16384x16384 in"), std::string::npos) << why;
+  EXPECT_NE(why.find("too few to hold its pixels"), std::string::npos) << why;
+  EXPECT_TRUE(out.rgba8.empty());
+  // The same image with its own size decodes (the bound is far above what real files need).
+  EXPECT_EQ(decode(writePng(4, 4, PNG_FORMAT_RGBA, small.data()), out), "");
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <cstring>
 
+#include <EGL/egl.h>
+
 #include "gl/gl_fixture.hpp"
 #include "sslr/reference.hpp"
 #include "sslr/sslr.hpp"
@@ -98,7 +100,8 @@ TEST_F(Api, DispatchRejectsEveryBadInputWithAMessage) {
       {"normalTexture", [](FrameInputs& in) { in.normalTexture = 0; }},
       {"is not a texture name", [&](FrameInputs& in) { in.colorTexture = 987654; }},
       {"but the context is 64x48", [&](FrameInputs& in) { in.colorTexture = wrongSize; }},
-      {"expected a float or unorm colour format", [&](FrameInputs& in) { in.normalTexture = integerTex; }},
+      {"(RGBA16UI), an integer format", [&](FrameInputs& in) { in.normalTexture = integerTex; }},
+      {"viewFromWorld is not given (all zeros)", [](FrameInputs& in) { in.surface.space = NormalSpace::World; }},
       {"expected a depth format", [&](FrameInputs& in) { in.depthTexture = good.colorTexture; }},
       {"expected a float or unorm colour format", [&](FrameInputs& in) { in.colorTexture = depthAsColor; }},
       {"needs 2", [&](FrameInputs& in) { in.normalTexture = oneChannel; }},
@@ -123,6 +126,11 @@ TEST_F(Api, DispatchRejectsEveryBadInputWithAMessage) {
   const Status st = ctx->dispatch(good, bad);
   ASSERT_FALSE(st);
   EXPECT_NE(st.message().find("maxIterations"), std::string::npos) << st.message();
+  Settings negativeCutoff;
+  negativeCutoff.roughnessCutoff = -0.1f;
+  const Status cutoff = ctx->dispatch(good, negativeCutoff);
+  ASSERT_FALSE(cutoff);
+  EXPECT_NE(cutoff.message().find("roughnessCutoff = -0.1 (must be 0..1"), std::string::npos) << cutoff.message();
   // A failed dispatch leaves nothing to composite.
   EXPECT_FALSE(ctx->composite(0));
   // Bad framebuffer names are refused.
@@ -153,7 +161,10 @@ struct Snapshot {
     glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
     for (int u = 0; u < 10; ++u) {
       glActiveTexture(GL_TEXTURE0 + u);
-      i(GL_TEXTURE_BINDING_2D);
+      for (GLenum target : {GL_TEXTURE_BINDING_2D, GL_TEXTURE_BINDING_CUBE_MAP, GL_TEXTURE_BINDING_3D,
+                            GL_TEXTURE_BINDING_2D_ARRAY, GL_TEXTURE_BINDING_1D, GL_TEXTURE_BINDING_RECTANGLE,
+                            GL_TEXTURE_BINDING_CUBE_MAP_ARRAY, GL_TEXTURE_BINDING_2D_MULTISAMPLE})
+        i(target);
       i(GL_SAMPLER_BINDING);
     }
     glActiveTexture(static_cast<GLenum>(active));
@@ -171,9 +182,16 @@ struct Snapshot {
                      GL_BLEND_DST_ALPHA, GL_BLEND_EQUATION_RGB, GL_BLEND_EQUATION_ALPHA, GL_DEPTH_FUNC,
                      GL_ARRAY_BUFFER_BINDING, GL_PIXEL_PACK_BUFFER_BINDING})
       i(e);
-    GLint vp[4];
-    glGetIntegerv(GL_VIEWPORT, vp);
-    s.values.insert(s.values.end(), vp, vp + 4);
+    for (GLuint k = 0; k < 2; ++k) {  // indexed: glViewport and glDisable(GL_SCISSOR_TEST) set every index
+      GLfloat vp[4];
+      glGetFloati_v(GL_VIEWPORT, k, vp);
+      s.values.insert(s.values.end(), vp, vp + 4);
+      s.values.push_back(glIsEnabledi(GL_SCISSOR_TEST, k));
+    }
+    for (GLenum cap : {GL_COLOR_LOGIC_OP, GL_SAMPLE_ALPHA_TO_COVERAGE, GL_SAMPLE_COVERAGE, GL_SAMPLE_MASK,
+                       GL_CLIP_DISTANCE0, GL_CLIP_DISTANCE7})
+      s.values.push_back(glIsEnabled(cap));
+    i(GL_LOGIC_OP_MODE);
     GLint polygonMode[2] = {0, 0};
     glGetIntegerv(GL_POLYGON_MODE, polygonMode);
     s.values.push_back(polygonMode[0]);
@@ -205,7 +223,18 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   GLuint fboTex = makeTexture(GL_RGBA16F);
   glCreateFramebuffers(1, &hostFbo);
   glNamedFramebufferTexture(hostFbo, GL_COLOR_ATTACHMENT0, fboTex, 0);
+  // Textures of other targets on the same units: sslr binds only the 2D target of a unit.
+  GLuint hostCube = 0, host3d = 0, hostArray = 0;
+  glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &hostCube);
+  glTextureStorage2D(hostCube, 1, GL_RGBA8, 4, 4);
+  glCreateTextures(GL_TEXTURE_3D, 1, &host3d);
+  glTextureStorage3D(host3d, 1, GL_RGBA8, 4, 4, 4);
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &hostArray);
+  glTextureStorage3D(hostArray, 1, GL_RGBA8, 4, 4, 2);
   for (int u = 0; u < 10; ++u) {  // every unit sslr uses (6: its depth pyramid, 7: material, 8: mask, 9: hit)
+    glBindTextureUnit(u, hostCube);
+    glBindTextureUnit(u, host3d);
+    glBindTextureUnit(u, hostArray);
     glBindTextureUnit(u, hostTex[u % 3]);
     glBindSampler(u, hostSampler);
   }
@@ -224,10 +253,15 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   glBindVertexArray(hostVao);
   glBindFramebuffer(GL_FRAMEBUFFER, hostFbo);
   glViewport(3, 4, 20, 10);
+  glViewportIndexedf(1, 1.5f, 2.0f, 7.0f, 9.0f);  // a second viewport (a host's layered pass)
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_GEQUAL);
   glEnable(GL_CULL_FACE);
-  glEnable(GL_SCISSOR_TEST);
+  glEnablei(GL_SCISSOR_TEST, 1);  // on index 1 only
+  glEnable(GL_COLOR_LOGIC_OP);
+  glLogicOp(GL_XOR);
+  glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+  glEnable(GL_CLIP_DISTANCE7);
   glEnable(GL_BLEND);
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ZERO);
   glBlendEquationSeparate(GL_FUNC_SUBTRACT, GL_MAX);
@@ -265,6 +299,11 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   glDisable(GL_SCISSOR_TEST);
+  glViewportIndexedf(1, 0.0f, 0.0f, 1.0f, 1.0f);
+  glDisable(GL_COLOR_LOGIC_OP);
+  glLogicOp(GL_COPY);
+  glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+  glDisable(GL_CLIP_DISTANCE7);
   glDisable(GL_BLEND);
   glDepthMask(GL_TRUE);
   glColorMaski(0, 1, 1, 1, 1);
@@ -274,6 +313,9 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   glDeleteProgram(hostProgram);
   glDeleteFramebuffers(1, &hostFbo);
   glDeleteTextures(3, hostTex);
+  glDeleteTextures(1, &hostCube);
+  glDeleteTextures(1, &host3d);
+  glDeleteTextures(1, &hostArray);
   glDeleteTextures(1, &fboTex);
   glDeleteSamplers(1, &hostSampler);
   glDeleteBuffers(3, hostBuf);
@@ -749,6 +791,75 @@ TEST_F(Api, CompositeIsFilledWhateverThePolygonMode) {
   for (float v : filled) energy += v;
   ASSERT_GT(energy, 1.0) << "the frame must have reflections";
   EXPECT_EQ(wire, filled);
+}
+
+// A host's per-fragment state that would change what the composite writes (a logic op on a
+// fixed-point target, alpha-to-coverage, a clip distance its vertex shader does not write) is
+// switched off for its draw and restored after it: the target gets the same pixels.
+TEST_F(Api, CompositeIsUnchangedByTheHostsFragmentState) {
+  auto ctx = makeContext();
+  Frame f;
+  ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), Settings{}));
+  auto compositeInto = [&](GLenum cap) {
+    GLuint target = makeTexture(GL_RGBA8), fbo = 0;
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, target, 0);
+    const float grey[4] = {0.25f, 0.25f, 0.25f, 1.0f};
+    glClearNamedFramebufferfv(fbo, GL_COLOR, 0, grey);
+    glLogicOp(GL_XOR);
+    if (cap != GL_NONE) glEnable(cap);
+    EXPECT_TRUE(ctx->composite(fbo));
+    if (cap != GL_NONE) {
+      EXPECT_TRUE(glIsEnabled(cap)) << "the host's state is restored";
+      glDisable(cap);
+    }
+    glLogicOp(GL_COPY);
+    std::vector<unsigned char> pixels(static_cast<size_t>(W) * H * 4);
+    glGetTextureImage(target, 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(pixels.size()), pixels.data());
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &target);
+    return pixels;
+  };
+  const std::vector<unsigned char> plain = compositeInto(GL_NONE);
+  size_t changed = 0;
+  for (size_t i = 0; i < plain.size(); i += 4) changed += plain[i] != 64 ? 1 : 0;
+  ASSERT_GT(changed, 100u) << "the frame must have reflections";
+  for (GLenum cap : {GL_COLOR_LOGIC_OP, GL_SAMPLE_ALPHA_TO_COVERAGE, GL_CLIP_DISTANCE0})
+    EXPECT_EQ(compositeInto(cap), plain) << "with cap 0x" << std::hex << cap << " enabled";
+}
+
+TEST_F(Api, CompositeRefusesATargetSmallerThanTheContext) {
+  auto ctx = makeContext();
+  Frame f;
+  ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), Settings{}));
+  GLuint small = makeTexture(GL_RGBA16F, W / 2, H), fbo = 0;
+  glCreateFramebuffers(1, &fbo);
+  glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, small, 0);
+  const Status st = ctx->composite(fbo);
+  ASSERT_FALSE(st);
+  EXPECT_NE(st.message().find("is 32x48, smaller than the context's 64x48"), std::string::npos) << st.message();
+  glDeleteFramebuffers(1, &fbo);
+  glDeleteTextures(1, &small);
+}
+
+TEST_F(Api, CallsWithoutACurrentContextSaySo) {
+  auto ctx = makeContext();
+  Frame f;
+  const FrameInputs in = f.gbuffer->frameInputs();
+  EGLDisplay display = eglGetCurrentDisplay();
+  EGLContext context = eglGetCurrentContext();
+  EGLSurface draw = eglGetCurrentSurface(EGL_DRAW), read = eglGetCurrentSurface(EGL_READ);
+  ASSERT_TRUE(eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT));
+  const Status dispatched = ctx->dispatch(in, Settings{});
+  const Status composited = ctx->composite(0);
+  ASSERT_TRUE(eglMakeCurrent(display, draw, read, context));
+  ASSERT_FALSE(dispatched);
+  EXPECT_NE(dispatched.message().find("dispatch(): no OpenGL context is current"), std::string::npos)
+      << dispatched.message();
+  ASSERT_FALSE(composited);
+  EXPECT_NE(composited.message().find("composite(): no OpenGL context is current"), std::string::npos)
+      << composited.message();
+  EXPECT_TRUE(ctx->dispatch(in, Settings{})) << "the same context works once current again";
 }
 
 }  // namespace

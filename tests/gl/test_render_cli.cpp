@@ -1,5 +1,6 @@
 // sslr-render as a user runs it: help, exit codes, messages, files written (or not).
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -62,6 +63,13 @@ TEST(RenderCliNoGl, BadArgumentsExitTwoWithAMessageAndWriteNothing) {
       {"--preset low --hiz-verify", "hierarchicalVerify needs hierarchicalFallback"},
       {"--no-such-option", "no-such-option"},
       {"--method raymarch", "--method must be"},
+      // Checked before any GL work (they used to exit 1 after starting GL, or render nothing).
+      {"--fovy 1e-320", "vertical field of view must be in [0.001, 180)"},
+      {"--near 1e-300 --far 1e300", "near plane must be >= 1e-20"},
+      {"--near 1e-3 --far 1e7", "far / near is above 1e9"},
+      {"--near 1 --far 1.0000001", "near and far planes are too close"},
+      {"--device bogus", "--device: EGL device 'bogus' is not one of"},
+      {"--device 99", "--device: EGL device index 99 is out of range"},
   };
   for (const auto& c : cases) {
     const fs::path out = freshDir("bad");
@@ -287,3 +295,104 @@ TEST(RenderCliNoGl, SizeThatCannotFitInMemoryIsRefusedWithAnEstimate) {
 }
 
 }  // namespace
+
+namespace {
+
+// Regular files under `dir` (hidden ones too), by name.
+std::vector<std::string> filesIn(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace
+
+TEST_F(RenderCli, OutputsReplaceLinksInsteadOfWritingThroughThem) {
+  // A link planted where an output goes (final.png) must be replaced by the output, and the file
+  // it points to, outside --out, left as it was; no temporary is left behind.
+  const fs::path out = freshDir("links");
+  fs::create_directories(out);
+  const fs::path outside = fs::path(SSLR_TEST_TMP) / "cli" / "outside-target";
+  { std::ofstream(outside) << "not to be touched"; }
+  fs::create_symlink(outside, out / "final.png");
+  const Result r = run("--size 32x18 --out " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream in(outside);
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_EQ(text, "not to be touched");
+  EXPECT_FALSE(fs::is_symlink(out / "final.png"));
+  EXPECT_TRUE(fs::is_regular_file(out / "final.png"));
+  EXPECT_EQ(filesIn(out), std::vector<std::string>{"final.png"});
+}
+
+TEST_F(RenderCli, ConcurrentRunsIntoOneFolderAllSucceed) {
+  // Temporary names are unique per process and write: runs sharing --out never collide.
+  const fs::path out = freshDir("concurrent");
+  const std::string cmd = std::string(SSLR_RENDER_EXE) + " --size 32x18 --dump --out " + out.string();
+  for (int round = 0; round < 3; ++round) {
+    const Result r = sslr::test::runShell("bash -c '(" + cmd + " >/dev/null 2>&1; echo A$?) & (" + cmd +
+                                          " >/dev/null 2>&1; echo B$?) & wait'");
+    EXPECT_NE(r.output.find("A0"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("B0"), std::string::npos) << r.output;
+  }
+  for (const std::string& name : filesIn(out)) EXPECT_NE(name[0], '.') << "a temporary was left: " << name;
+}
+
+TEST(RenderCliNoGl, BenchRefusesAnUnwritableOutBeforeRunning) {
+  const fs::path file = fs::path(SSLR_TEST_TMP) / "cli" / "bench-out-is-a-file";
+  fs::create_directories(file.parent_path());
+  { std::ofstream(file) << "x"; }
+  const Result r = sslr::test::runShell(std::string(SSLR_BENCH_EXE) + " --out " + file.string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("--out " + file.string()), std::string::npos) << r.output;
+}
+
+namespace {
+
+// A unit box with a vertex per face corner (no normals: the loader computes them), drawn by a
+// node with the given scale; positions multiplied by `positionScale`.
+std::string scaledBoxGltf(const std::string& nodeScale, float positionScale) {
+  std::vector<float> pos;
+  std::vector<std::uint16_t> idx;
+  for (int axis = 0; axis < 3; ++axis)
+    for (float side : {-0.5f, 0.5f}) {
+      const auto base = static_cast<std::uint16_t>(pos.size() / 3);
+      for (int corner = 0; corner < 4; ++corner) {
+        float p[3];
+        p[axis] = side;
+        p[(axis + 1) % 3] = (corner & 1) ? 0.5f : -0.5f;
+        p[(axis + 2) % 3] = (corner & 2) ? 0.5f : -0.5f;
+        for (float v : p) pos.push_back(v * positionScale);
+      }
+      for (int k : {0, 1, 2, 2, 1, 3}) idx.push_back(static_cast<std::uint16_t>(base + k));
+    }
+  std::string text = sslr::test::meshGltf(pos, idx);
+  text.replace(text.find(R"("nodes":[{"mesh":0}])"), 20, R"("nodes":[{"mesh":0,"scale":)" + nodeScale + "}]");
+  return text;
+}
+
+}  // namespace
+
+TEST_F(RenderCli, SingularNodeTransformsRenderFiniteColour) {
+  // A node scale of [1,1,0] made the inverse-transpose normal matrix NaN: the object came out
+  // black (NaN lit colour) with exit 0. So did 1e30 on 1e-30 positions (the matrix overflowed).
+  for (const auto& [name, text] : {std::pair{"flat", scaledBoxGltf("[1,1,0]", 1.0f)},
+                                   std::pair{"tiny-scaled-up", scaledBoxGltf("[1e30,1e30,1e30]", 1e-30f)}}) {
+    const fs::path out = freshDir(std::string("singular-") + name);
+    fs::create_directories(out);
+    const fs::path file = out / "scene.gltf";
+    { std::ofstream(file) << text; }
+    const Result r = run("--scene " + file.string() + " --size 48x32 --dump --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << name << "\n" << r.output;
+    auto color = sslr::host::readImage((out / "color.exr").string());
+    auto normal = sslr::host::readImage((out / "normal.exr").string());
+    ASSERT_TRUE(color && normal);
+    EXPECT_EQ(sslr::host::countNonFinite(color.value()), 0u) << name;
+    EXPECT_EQ(sslr::host::countNonFinite(normal.value()), 0u) << name;
+    size_t lit = 0;
+    for (size_t p = 0; p < color.value().pixels.size() / 4; ++p)
+      lit += color.value().pixels[p * 4] + color.value().pixels[p * 4 + 1] + color.value().pixels[p * 4 + 2] > 0.05f;
+    EXPECT_GT(lit, 48u * 32u / 10) << name << ": the object must be lit, not black";
+  }
+}

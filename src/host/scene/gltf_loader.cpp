@@ -217,7 +217,10 @@ bool limitedImageLoader(tinygltf::Image* image, const int index, std::string* er
     if (w <= 0 || h <= 0 || w > kMaxImageSide || h > kMaxImageSide)
       return notDecoded("it is " + std::to_string(w) + "x" + std::to_string(h) + ": the tools load images up to " +
                         std::to_string(kMaxImageSide) + "x" + std::to_string(kMaxImageSide));
-    if (overBudget(std::uint64_t(w) * std::uint64_t(h) * 4)) return false;
+    // Counted from the header, before decoding: what the file claims is what it may cost.
+    const std::uint64_t claimed = std::uint64_t(w) * std::uint64_t(h) * 4;
+    if (overBudget(claimed)) return false;
+    budget.decodedBytes += claimed;
   }
   // The decoder's own limit stays as the guard on what it allocates: the header sniff above may
   // miss a JPEG's frame marker.
@@ -225,8 +228,10 @@ bool limitedImageLoader(tinygltf::Image* image, const int index, std::string* er
   if (std::string why = decodePngOrJpeg(bytes, size > 0 ? static_cast<size_t>(size) : 0, kMaxImageSide, decoded);
       !why.empty())
     return notDecoded(printable(why));
-  if (overBudget(w > 0 ? 0 : decoded.rgba8.size())) return false;  // a size the header sniff missed
-  budget.decodedBytes += decoded.rgba8.size();
+  if (w <= 0) {  // a size the header sniff missed, counted once decoded
+    if (overBudget(decoded.rgba8.size())) return false;
+    budget.decodedBytes += decoded.rgba8.size();
+  }
   image->width = decoded.width;
   image->height = decoded.height;
   image->component = 4;
