@@ -57,5 +57,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   for (const sslr::host::Texture& t : s.textures)
     require(t.rgba8.size() == static_cast<std::size_t>(t.width) * t.height * 4, "texture sizes that match");
+  // What the renderer and the ground truth do with a loaded scene before any GL call: frame it,
+  // validate the camera, and carry every normal into view space (the normal matrix of each node's
+  // transform, singular or extreme ones included) with a finite result.
+  if (!s.checkExtent().empty()) return 0;  // refused by the tools with that message
+  const sslr::host::Camera camera = s.camera ? *s.camera : s.defaultCamera();
+  if (!camera.validate().empty()) return 0;
+  const glm::dmat4 viewFromWorld = camera.viewFromWorld();
+  for (const sslr::host::Mesh& m : s.meshes) {
+    const glm::mat3 normalMatrix(sslr::host::normalMatrixOf(viewFromWorld * m.worldFromModel));
+    for (const auto& n : m.normals) {
+      const glm::vec3 v = normalMatrix * n;
+      require(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z), "finite view-space normals");
+    }
+  }
   return 0;
 }

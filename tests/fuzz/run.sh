@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Builds the glTF/GLB loader fuzzer (the `fuzz` preset: clang, libFuzzer, ASan + UBSan) and runs
 # it for a bounded time: tests/fuzz/run.sh [SECONDS=120] [JOBS=1].
-# Seeds: Debian's assimp-testmodels glTF 2.0 files, the built-in scenes as glTF (assets/scenes),
-# and every input kept in tests/fuzz/regressions. A crashing input is copied into
+# Seeds: Debian's assimp-testmodels glTF 2.0 files (a .gltf with external buffers or images gets
+# them embedded as data: URIs by embed_external.py, so the seed loads as the model does), the
+# built-in scenes as glTF (assets/scenes), the crafted seeds in tests/fuzz/seeds (strips, fans, a
+# texture, a camera, a flattened node, nested extras) and every input kept in tests/fuzz/regressions. A crashing input is copied into
 # tests/fuzz/regressions (replayed by the `Gltf.FuzzRegressions*` test in every build) and the
 # script fails. Prints libFuzzer's final statistics (executions, coverage) at the end.
 set -euo pipefail
@@ -16,11 +18,15 @@ work=$(mktemp -d /tmp/sslr-fuzz-run.XXXXXX)
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$work/corpus" "$work/seeds" "$work/artifacts"
 n=0
-for dir in /usr/share/assimp/models/glTF2 assets/scenes tests/fuzz/regressions; do
+for dir in /usr/share/assimp/models/glTF2 assets/scenes tests/fuzz/seeds tests/fuzz/regressions; do
   [ -d "$dir" ] || continue
   while IFS= read -r -d '' f; do
-    size=$(stat -c %s "$f")
-    if [ "$size" -le 262144 ]; then cp "$f" "$work/seeds/seed-$n-$(basename "$f")"; n=$((n + 1)); fi
+    seed="$work/seeds/seed-$n-$(basename "$f")"
+    case "$f" in
+      *.gltf) tests/fuzz/embed_external.py "$f" "$seed" || cp "$f" "$seed" ;;
+      *) cp "$f" "$seed" ;;
+    esac
+    if [ "$(stat -c %s "$seed")" -le 262144 ]; then n=$((n + 1)); else rm -f "$seed"; fi
   done < <(find "$dir" -type f \( -iname '*.gltf' -o -iname '*.glb' -o -path '*regressions/*' \) ! -name README.md -print0)
 done
 echo "fuzz: $n seed files, ${seconds}s, $jobs job(s)"
