@@ -7,10 +7,12 @@
 #include <string>
 
 #include "sslr_host/scene.hpp"
+#include "sslr_host/image_io.hpp"
 #include "sslr_host/viewer.hpp"
 
 int main(int argc, char** argv) {
   using namespace sslr::host;
+  removeTemporariesOnSignal();  // a screenshot being written when the viewer is interrupted
   auto joined = [](const std::vector<std::string>& names) {
     std::string out;
     for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;

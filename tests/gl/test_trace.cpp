@@ -1,5 +1,6 @@
 // The tracer against ray-traced truth on analytic scenes (mirror floor + box, tilted mirror,
 // orthographic camera, reversed-Z and GL-default depth), and the default scene's golden image.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -973,6 +974,12 @@ INSTANTIATE_TEST_SUITE_P(Sizes, DepthPyramid,
                                            // Levels 2..7 in one dispatch of blocks of 128x128 pixels,
                                            // several blocks across; level 8 in a second one.
                                            std::make_tuple(1030, 40, DepthMode::Reversed, false),
-                                           std::make_tuple(2061, 27, DepthMode::ZeroToOne, false)));
+                                           std::make_tuple(2061, 27, DepthMode::ZeroToOne, false)),
+                         [](const auto& info) {  // e.g. 161x91_reversed_curved
+                           std::string mode = toString(std::get<2>(info.param));
+                           std::replace(mode.begin(), mode.end(), '-', '_');
+                           return std::to_string(std::get<0>(info.param)) + "x" + std::to_string(std::get<1>(info.param)) +
+                                  "_" + mode + (std::get<3>(info.param) ? "_curved" : "");
+                         });
 
 }  // namespace
