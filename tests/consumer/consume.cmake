@@ -1,5 +1,5 @@
 # Installs the build tree into a scratch prefix, then configures, builds and runs the consumer.
-# Inputs: BUILD_DIR, SOURCE_DIR, WORK_DIR.
+# Inputs: BUILD_DIR, SOURCE_DIR, WORK_DIR, INTEGRATION_DOC (docs/integration.md: its cpp blocks compile too).
 file(REMOVE_RECURSE "${WORK_DIR}")
 execute_process(COMMAND ${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${WORK_DIR}/prefix" --component Unspecified
                 RESULT_VARIABLE rc OUTPUT_QUIET)
@@ -7,7 +7,8 @@ if(rc)
   message(FATAL_ERROR "cmake --install failed: ${rc}")
 endif()
 execute_process(COMMAND ${CMAKE_COMMAND} -S "${SOURCE_DIR}" -B "${WORK_DIR}/build" -G Ninja
-                        "-DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix" RESULT_VARIABLE rc)
+                        "-DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix" "-DSSLR_INTEGRATION_DOC=${INTEGRATION_DOC}"
+                RESULT_VARIABLE rc)
 if(rc)
   message(FATAL_ERROR "configuring the consumer failed: ${rc}")
 endif()

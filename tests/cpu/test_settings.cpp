@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
+#include <string>
 #include <utility>
 
 #include "sslr/sslr.hpp"
@@ -59,6 +61,8 @@ TEST(Settings, EveryInvalidFieldIsNamed) {
       {"edgeFade", [](Settings& s) { s.edgeFade = 0.7f; }},
       {"cameraFadeStart", [](Settings& s) { s.cameraFadeStart = 0.9f; s.cameraFadeEnd = 0.1f; }},
       {"roughnessCutoff", [](Settings& s) { s.roughnessCutoff = NAN; }},
+      {"roughnessCutoff", [](Settings& s) { s.roughnessCutoff = -0.1f; }},
+      {"roughnessCutoff", [](Settings& s) { s.roughnessCutoff = 1.5f; }},
       {"minReflectance", [](Settings& s) { s.minReflectance = INFINITY; }},
       {"blurMaxRadiusPx", [](Settings& s) { s.blurMaxRadiusPx = 100.0f; }},
       {"blurConeScale", [](Settings& s) { s.blurConeScale = -1.0f; }},
@@ -71,4 +75,19 @@ TEST(Settings, EveryInvalidFieldIsNamed) {
     const std::string why = validate(s);
     EXPECT_NE(why.find(b.field), std::string::npos) << b.field << " -> '" << why << "'";
   }
+}
+
+// Expected's operator-> reaches a value's members, and through a pointer-like value its pointee's
+// (what `ctx->dispatch(...)` on Context::create's result needs); operator* is the value.
+TEST(ExpectedAccess, ArrowReachesTheValueOrThePointee) {
+  sslr::Expected<std::string> text(std::string("abc"));
+  EXPECT_EQ(text->size(), 3u);
+  EXPECT_EQ(*text, "abc");
+  sslr::Expected<std::unique_ptr<std::string>> pointer(std::make_unique<std::string>("hello"));
+  EXPECT_EQ(pointer->size(), 5u) << "through the unique_ptr to the string";
+  const auto& constPointer = pointer;
+  EXPECT_EQ(constPointer->size(), 5u);
+  sslr::Expected<std::string> failed(sslr::Status::error("no"));
+  EXPECT_FALSE(failed);
+  EXPECT_EQ(failed.error(), "no");
 }

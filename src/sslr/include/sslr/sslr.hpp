@@ -57,6 +57,18 @@ class Expected {
   explicit operator bool() const { return ok(); }
   T& value() { return *value_; }
   const T& value() const { return *value_; }
+  T& operator*() { return *value_; }
+  const T& operator*() const { return *value_; }
+  // The value's members; for a pointer-like value (Context::create's unique_ptr) its pointee's,
+  // so `ctx->dispatch(...)` works on what create() returned. Only on success, like value().
+  decltype(auto) operator->() {
+    if constexpr (requires(T& t) { t.operator->(); }) return (*value_);
+    else return &*value_;
+  }
+  decltype(auto) operator->() const {
+    if constexpr (requires(const T& t) { t.operator->(); }) return (*value_);
+    else return &*value_;
+  }
   const std::string& error() const { return error_.message(); }
 
  private:
