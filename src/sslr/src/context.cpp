@@ -130,7 +130,10 @@ Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
   impl->label(GL_BUFFER, impl->frameUbo, "sslr.frame");
   for (Impl::StatsSlot& slot : impl->statsRing) {
     gl.CreateBuffers(1, &slot.buffer);
-    gl.NamedBufferStorage(slot.buffer, 8 * sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    // Read back by the CPU every frame that collects stats: kept in client memory (NVIDIA warned of a
+    // move from video to host memory on each read of a buffer without these hints).
+    gl.NamedBufferStorage(slot.buffer, 8 * sizeof(GLuint), nullptr,
+                          GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT | GL_CLIENT_STORAGE_BIT);
     impl->label(GL_BUFFER, slot.buffer, "sslr.stats");
     gl.CreateQueries(GL_TIMESTAMP, Impl::kTimestamps, slot.queries);
   }
