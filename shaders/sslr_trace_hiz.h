@@ -309,11 +309,10 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
 }
 
 // The depth-only tracer of a pixel: adaptive L (the article's method), the hierarchical traversal
-// where adaptive L did not converge or had its hit rejected (t.hizMode = SSLR_HIZ_FALLBACK), or
-// the traversal alone. A ray that adaptive L saw leave the screen or run into the background gets
-// no second trace: tracing those again took 10% of mirror-room's pixels through the traversal
-// for no measurable recall on any scene once rays towards the camera go there first
-// (docs/algorithm.md).
+// wherever adaptive L has no confident hit (t.hizMode = SSLR_HIZ_FALLBACK), or the traversal
+// alone. "Off the screen" and "into the background" are adaptive L's guesses too: its probes
+// sample the ray, and a ray can pass over geometry between two probes, so those exits go to the
+// traversal like a miss (the default then never finds less than the traversal alone).
 //
 // SSLR_HIZ_VERIFY also traces every adaptive-L hit: adaptive L converges on *an* intersection,
 // not always the first (its probes can step over a thin occluder onto the surface behind). The
@@ -341,9 +340,7 @@ SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTracePa
   if (sslrTraversalFirst(p, t, vsP, vsR)) return sslrNoHit(SSLR_STATUS_MISS);
   SslrHit first = sslrTraceAdaptiveL(p, s, t, pxOrigin, vsP, vsR);
   bool firstHit = sslrConfidentHit(first);
-  needsTraversal = sslrHasHiZFallback(t) && (firstHit ? sslrHiZMode(t) == SSLR_HIZ_VERIFY
-                                                      : first.status != SSLR_STATUS_SKY &&
-                                                            first.status != SSLR_STATUS_OFF_SCREEN);
+  needsTraversal = sslrHasHiZFallback(t) && (!firstHit || sslrHiZMode(t) == SSLR_HIZ_VERIFY);
   return first;
 }
 
