@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 
 #include <EGL/egl.h>
 
@@ -761,32 +762,42 @@ TEST_F(Api, ResizeFollowsTheHost) {
 
 namespace {
 
+// Composites the context's last frame into a new `format` target cleared to `clear`, with the
+// host state `hostState` sets on and `check` run after the call (it also puts the state back):
+// the target's pixels, as floats.
+std::vector<float> compositeInto(Context& ctx, GLenum format, float clear, const std::function<void()>& hostState,
+                                 const std::function<void()>& check) {
+  GLuint target = makeTexture(format), fbo = 0;
+  glCreateFramebuffers(1, &fbo);
+  glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, target, 0);
+  const float colour[4] = {clear, clear, clear, 1.0f};
+  glClearNamedFramebufferfv(fbo, GL_COLOR, 0, colour);
+  hostState();
+  EXPECT_TRUE(ctx.composite(fbo));
+  check();
+  std::vector<float> pixels(static_cast<size_t>(W) * H * 4);
+  glGetTextureImage(target, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels.size() * sizeof(float)), pixels.data());
+  glDeleteFramebuffers(1, &fbo);
+  glDeleteTextures(1, &target);
+  return pixels;
+}
+
 // A host that left a wireframe polygon mode on still gets the filled composite (issue: engine
 // integration, item 6), and gets its polygon mode back.
 TEST_F(Api, CompositeIsFilledWhateverThePolygonMode) {
   auto ctx = makeContext();
   Frame f;
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), Settings{}));
-  auto compositeInto = [&](GLenum polygonMode) {
-    GLuint target = makeTexture(GL_RGBA16F), fbo = 0;
-    glCreateFramebuffers(1, &fbo);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, target, 0);
-    const float black[4] = {0, 0, 0, 0};
-    glClearNamedFramebufferfv(fbo, GL_COLOR, 0, black);
-    glPolygonMode(GL_FRONT_AND_BACK, polygonMode);
-    EXPECT_TRUE(ctx->composite(fbo));
-    GLint after[2] = {0, 0};
-    glGetIntegerv(GL_POLYGON_MODE, after);
-    EXPECT_EQ(after[0], GLint(polygonMode)) << "the host's polygon mode is restored";
-    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-    std::vector<float> pixels(static_cast<size_t>(W) * H * 4);
-    glGetTextureImage(target, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels.size() * sizeof(float)), pixels.data());
-    glDeleteFramebuffers(1, &fbo);
-    glDeleteTextures(1, &target);
-    return pixels;
+  auto withPolygonMode = [&](GLenum mode) {
+    return compositeInto(*ctx, GL_RGBA16F, 0.0f, [&] { glPolygonMode(GL_FRONT_AND_BACK, mode); }, [&] {
+      GLint after[2] = {0, 0};
+      glGetIntegerv(GL_POLYGON_MODE, after);
+      EXPECT_EQ(after[0], GLint(mode)) << "the host's polygon mode is restored";
+      glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+    });
   };
-  const std::vector<float> filled = compositeInto(GL_FILL);
-  const std::vector<float> wire = compositeInto(GL_LINE);
+  const std::vector<float> filled = withPolygonMode(GL_FILL);
+  const std::vector<float> wire = withPolygonMode(GL_LINE);
   double energy = 0.0;
   for (float v : filled) energy += v;
   ASSERT_GT(energy, 1.0) << "the frame must have reflections";
@@ -800,32 +811,27 @@ TEST_F(Api, CompositeIsUnchangedByTheHostsFragmentState) {
   auto ctx = makeContext();
   Frame f;
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), Settings{}));
-  auto compositeInto = [&](GLenum cap) {
-    GLuint target = makeTexture(GL_RGBA8), fbo = 0;
-    glCreateFramebuffers(1, &fbo);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, target, 0);
-    const float grey[4] = {0.25f, 0.25f, 0.25f, 1.0f};
-    glClearNamedFramebufferfv(fbo, GL_COLOR, 0, grey);
-    glLogicOp(GL_XOR);
-    if (cap != GL_NONE) glEnable(cap);
-    EXPECT_TRUE(ctx->composite(fbo));
-    if (cap != GL_NONE) {
-      EXPECT_TRUE(glIsEnabled(cap)) << "the host's state is restored";
-      glDisable(cap);
-    }
-    glLogicOp(GL_COPY);
-    std::vector<unsigned char> pixels(static_cast<size_t>(W) * H * 4);
-    glGetTextureImage(target, 0, GL_RGBA, GL_UNSIGNED_BYTE, static_cast<GLsizei>(pixels.size()), pixels.data());
-    glDeleteFramebuffers(1, &fbo);
-    glDeleteTextures(1, &target);
-    return pixels;
+  auto withCap = [&](GLenum cap) {
+    return compositeInto(
+        *ctx, GL_RGBA8, 0.25f,
+        [&] {
+          glLogicOp(GL_XOR);
+          if (cap != GL_NONE) glEnable(cap);
+        },
+        [&] {
+          if (cap != GL_NONE) {
+            EXPECT_TRUE(glIsEnabled(cap)) << "the host's state is restored";
+            glDisable(cap);
+          }
+          glLogicOp(GL_COPY);
+        });
   };
-  const std::vector<unsigned char> plain = compositeInto(GL_NONE);
+  const std::vector<float> plain = withCap(GL_NONE);
   size_t changed = 0;
-  for (size_t i = 0; i < plain.size(); i += 4) changed += plain[i] != 64 ? 1 : 0;
+  for (size_t i = 0; i < plain.size(); i += 4) changed += plain[i] != 64.0f / 255.0f ? 1 : 0;
   ASSERT_GT(changed, 100u) << "the frame must have reflections";
   for (GLenum cap : {GL_COLOR_LOGIC_OP, GL_SAMPLE_ALPHA_TO_COVERAGE, GL_CLIP_DISTANCE0})
-    EXPECT_EQ(compositeInto(cap), plain) << "with cap 0x" << std::hex << cap << " enabled";
+    EXPECT_EQ(withCap(cap), plain) << "with cap 0x" << std::hex << cap << " enabled";
 }
 
 TEST_F(Api, CompositeRefusesATargetSmallerThanTheContext) {
