@@ -210,8 +210,8 @@ int main(int argc, char** argv) {
   if (!bo.configs.empty())
     for (const RunRecord& r : result.value().runs)
       nameWidth = std::max(nameWidth, static_cast<int>(r.method.size() + 1 + r.label.size()));
-  std::printf("%-14s %-*s %9s %8s %8s %8s %8s %9s\n", "scene", nameWidth, "method", "time ms", "ratio", "rec@1px",
-              "p95 px", "false", "fetch/px");
+  std::printf("%-14s %-*s %9s %8s %8s %8s %8s %9s %9s\n", "scene", nameWidth, "method", "time ms", "ratio", "rec@1px",
+              "p95 px", "false", "fetch/px", "disp/barr");
   for (const auto& sc : result.value().scenes) {
     const SceneDefaults defaults = defaultRuns(result.value(), sc.scene);
     const RunRecord* p = defaults.tutorial;  // time ratios are to the tutorial's configuration
@@ -222,10 +222,11 @@ int main(int argc, char** argv) {
         if (r.scene == sc.scene && r.method != "baseline") shown.push_back(&r);
     }
     for (const RunRecord* r : shown)
-      std::printf("%-14s %-*s %9.2f %8s %8.4f %8.3f %8.4f %9.1f\n", sc.scene.c_str(), nameWidth,
+      std::printf("%-14s %-*s %9.2f %8s %8.4f %8.3f %8.4f %9.1f %5u/%-3u\n", sc.scene.c_str(), nameWidth,
                   (bo.configs.empty() ? r->method : r->method + "/" + r->label).c_str(), r->timeMedianMs,
                   p ? std::to_string(r->timeMedianMs / p->timeMedianMs).substr(0, 4).c_str() : "-", r->metrics.recall1px,
-                  r->metrics.p95ErrorPx, r->metrics.falseHitRate, r->fetchesPerTracedPixel);
+                  r->metrics.p95ErrorPx, r->metrics.falseHitRate, r->fetchesPerTracedPixel,
+                  r->commands.dispatches + r->commands.indirectDispatches, r->commands.barriers);
   }
   std::printf("\nfastest configuration per method reaching recall@1px >= %.2f (ratio to adaptive-l's):\n", kParetoRecall);
   for (const auto& sc : result.value().scenes) {

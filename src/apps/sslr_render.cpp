@@ -100,6 +100,16 @@ void checkMemory(int width, int height, bool dump) {
   }
 }
 
+// Prints each pass's commands (FrameStats::*Commands) on the current line.
+void printPassCommands(const FrameStats& st) {
+  const std::pair<const char*, const PassCommands*> passes[] = {
+      {"classify", &st.classifyCommands}, {"pyramid", &st.pyramidCommands},   {"trace", &st.traceCommands},
+      {"blur", &st.blurCommands},         {"temporal", &st.temporalCommands}, {"finish", &st.finishCommands}};
+  for (const auto& [name, c] : passes)
+    std::printf(" %s %u + %u / %u / %u / %u%s", name, c->dispatches, c->indirectDispatches, c->barriers, c->programs,
+                c->uploads, name == passes[5].first ? "" : ",");
+}
+
 // A numeric option, when given: the whole text must parse as the field's type.
 template <typename T>
 void numberOption(const cxxopts::ParseResult& args, const char* name, const char* kind, T& field) {
@@ -386,6 +396,12 @@ int run(int argc, char** argv) {
               << (st.hierarchicalPixels ? (st.traversalDeferred ? ", in a pass of its own" : ", inline") : "") << ")"
               << (st.level1Pass ? "; the pyramid's level 1 in a pass of its own (the frame before listed no tile)" : "")
               << "\n";
+    // The commands each pass recorded (the same on every device: what a GPU pays for per frame).
+    std::printf("  commands (dispatches + indirect / barriers / programs / uploads):");
+    printPassCommands(st);
+    const PassCommands total = st.totalCommands();
+    std::printf("; frame %u + %u / %u / %u / %u\n", total.dispatches, total.indirectDispatches, total.barriers,
+                total.programs, total.uploads);
     if (st.classifyMs >= 0.0 && laterStats.empty())
       std::printf("  pass times (GL_TIMESTAMP%s): classify %.2f ms, pyramid %.2f ms, trace %.2f ms, blur %.2f ms\n",
                   gl.value()->isSoftware() ? "; a software renderer: CPU work; the first frame, with shader compilation"

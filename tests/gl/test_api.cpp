@@ -420,6 +420,49 @@ TEST_F(Api, EmptyFrameTracesNothing) {
 // newest dispatch whose GPU work is done (FrameStats::frame), waitForStats() the newest of all.
 // Counts belong to the frame they say (alternating empty and full frames tell them apart), and
 // with GL_TIMESTAMP the pass times are present and non-negative.
+// FrameStats counts the commands each pass records: the structure of a frame, the same on every
+// device (the traversal kept inline, as a GPU runs it). A change to a pass's dispatches or
+// barriers shows here first, on purpose: they are what a GPU pays for with nothing to do.
+TEST_F(Api, FrameStatsCountEachPassCommands) {
+  auto ctx = makeContext();
+  Frame f;
+  Settings s;
+  s.collectStats = true;
+  s.traversalPass = TraversalPass::Inline;
+  auto expect = [](const PassCommands& c, std::uint32_t direct, std::uint32_t indirect, std::uint32_t barriers,
+                   std::uint32_t programs, const char* what) {
+    EXPECT_EQ(c.dispatches, direct) << what;
+    EXPECT_EQ(c.indirectDispatches, indirect) << what;
+    EXPECT_EQ(c.barriers, barriers) << what;
+    EXPECT_EQ(c.programs, programs) << what;
+  };
+  ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), s));
+  FrameStats st = ctx->waitForStats();
+  ASSERT_GT(st.tracedPixels, 0u);
+  expect(st.classifyCommands, 1, 1, 2, 2, "classify: the screen's tiles, then the clean-up of the last frame's");
+  expect(st.pyramidCommands, 1, 2, 3, 3, "pyramid: its arguments, the curved quads, levels 2-7");
+  expect(st.traceCommands, 0, 1, 1, 1, "trace: one indirect pass over the listed tiles");
+  expect(st.blurCommands, 0, 2, 1, 2, "blur: horizontal and vertical over the listed tiles");
+  expect(st.temporalCommands, 0, 0, 0, 0, "temporal: off");
+  expect(st.finishCommands, 0, 0, 1, 0, "finish: one barrier for the host");
+  EXPECT_GT(st.classifyCommands.uploads, 0u) << "the frame constants at least";
+
+  Settings alone = s;
+  alone.hierarchicalFallback = false;  // adaptive L alone needs no pyramid
+  ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), alone));
+  st = ctx->waitForStats();
+  expect(st.pyramidCommands, 0, 0, 0, 0, "no pyramid for adaptive L alone");
+  expect(st.traceCommands, 0, 1, 1, 1, "trace");
+
+  Settings temporal = s;
+  temporal.temporal = true;
+  FrameInputs in = f.gbuffer->frameInputs();
+  in.previousClipFromView = in.clipFromView;
+  for (int i = 0; i < 2; ++i) ASSERT_TRUE(ctx->dispatch(in, temporal));
+  st = ctx->waitForStats();
+  expect(st.temporalCommands, 0, 3, 3, 3, "temporal: blend, store, history clean-up");
+}
+
 TEST_F(Api, StatsArriveLateWithoutStalling) {
   auto ctx = makeContext();
   Frame f;

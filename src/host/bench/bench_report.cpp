@@ -78,6 +78,10 @@ json runJson(const RunRecord& r) {
           {"tracedPixels", r.tracedPixels},
           {"fetches", r.fetches},
           {"fetchesPerTracedPixel", traced ? num(r.fetchesPerTracedPixel) : json(nullptr)},
+          {"dispatches", r.commands.dispatches},
+          {"indirectDispatches", r.commands.indirectDispatches},
+          {"barriers", r.commands.barriers},
+          {"programs", r.commands.programs},
           {"gbufferBytesPerPixel", r.gbufferBytesPerPixel},
           {"extraBytesPerPixel", r.extraBytesPerPixel}};
 }
@@ -282,7 +286,7 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
     out << "scene,method,label,default,width,height,renderer,timingMethod,timeMedianMs,timeMinMs,timeMaxMs,frames,"
            "visible,occluded,offScreen,escaped,recall1px,recall2px,recall4px,medianErrorPx,p95ErrorPx,falseHitRate,"
            "reflectionRmse,reflectionPsnr,nonFiniteHitPixels,nonFiniteOutputPixels,tracedPixels,fetches,"
-           "fetchesPerTracedPixel,gbufferBytesPerPixel,extraBytesPerPixel,parameters\n";
+           "fetchesPerTracedPixel,dispatches,indirectDispatches,barriers,programs,gbufferBytesPerPixel,extraBytesPerPixel,parameters\n";
     for (const RunRecord& r : result.runs) {
       const json rj = runJson(r);
       auto v = [&](const char* k) { return rj[k].is_null() ? std::string() : rj[k].dump(); };
@@ -297,6 +301,8 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
           << v("recall2px") << "," << v("recall4px") << "," << v("medianErrorPx") << "," << v("p95ErrorPx") << ","
           << v("falseHitRate") << "," << v("reflectionRmse") << "," << v("reflectionPsnr") << "," << r.metrics.nonFinite
           << "," << r.nonFiniteOutputs << "," << r.tracedPixels << "," << r.fetches << "," << v("fetchesPerTracedPixel")
+          << "," << r.commands.dispatches << "," << r.commands.indirectDispatches << "," << r.commands.barriers << ","
+          << r.commands.programs
           << "," << r.gbufferBytesPerPixel << "," << r.extraBytesPerPixel << "," << quoted << "\n";
     }
     if (Status s = writeTextFile((fs::path(outDir) / "results.csv").string(), out.str()); !s) return s;

@@ -454,6 +454,7 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
         const FrameStats stats = fr.sslr().waitForStats();
         r.tracedPixels = stats.tracedPixels;
         r.fetches = stats.fetches;
+        r.commands = stats.totalCommands();
         r.fetchesPerTracedPixel = stats.tracedPixels ? double(stats.fetches) / stats.tracedPixels : 0.0;
         r.nonFiniteOutputs = countNonFinite(fr.readReflection()) + countNonFinite(fr.readResolved());
         if (c.isDefault) {

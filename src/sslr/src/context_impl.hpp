@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <array>
 #include <map>
 #include <string>
 #include <utility>
@@ -81,8 +82,34 @@ struct Context::Impl {
   // hierarchical pixels, pad, tiles, blur tiles), GL_TIMESTAMP queries (before classification,
   // after it, after the pyramid, after the trace, after the blur, after temporal reuse) and a fence.
   static constexpr int kTimestamps = 6;
+  // The commands of the dispatch being recorded, by pass (FrameStats' order: classify, pyramid,
+  // trace, blur, temporal, finish); passes.cpp issues its GL commands through the wrappers below.
+  static constexpr int kPasses = 6;
+  mutable std::array<PassCommands, kPasses> recording{};
+  mutable int recordingPass = 0;
+  void useProgram(GLuint program) const { gl.UseProgram(program); ++recording[recordingPass].programs; }
+  void dispatchCompute(GLuint x, GLuint y, GLuint z) const { gl.DispatchCompute(x, y, z); ++recording[recordingPass].dispatches; }
+  void dispatchComputeIndirect(GLintptr offset) const {
+    gl.DispatchComputeIndirect(offset);
+    ++recording[recordingPass].indirectDispatches;
+  }
+  void memoryBarrier(GLbitfield bits) const { gl.MemoryBarrier(bits); ++recording[recordingPass].barriers; }
+  void bufferSubData(GLuint buffer, GLintptr offset, GLsizeiptr size, const void* data) const {
+    gl.NamedBufferSubData(buffer, offset, size, data);
+    ++recording[recordingPass].uploads;
+  }
+  void copyBufferSubData(GLuint from, GLuint to, GLintptr fromOffset, GLintptr toOffset, GLsizeiptr size) const {
+    gl.CopyNamedBufferSubData(from, to, fromOffset, toOffset, size);
+    ++recording[recordingPass].uploads;
+  }
+  void clearTexImage(GLuint texture, GLenum format, GLenum type, const void* data) const {
+    gl.ClearTexImage(texture, 0, format, type, data);
+    ++recording[recordingPass].uploads;
+  }
+
   struct StatsSlot {
     GLuint buffer = 0;
+    std::array<PassCommands, kPasses> commands{};
     GLuint queries[kTimestamps] = {};
     GLsync fence = nullptr;
     std::uint64_t frame = 0;

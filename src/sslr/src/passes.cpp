@@ -38,21 +38,21 @@ void Context::Impl::bindPyramidLevels01() const {
 // work group per level-7 cell), a second level 8 where the screen has one.
 void Context::Impl::buildPyramid(GLuint blockProgram, GLuint singleProgram) const {
   const int blockTop = std::min(hizLevels, kHizBlockTop);
-  gl.UseProgram(blockProgram);
+  useProgram(blockProgram);
   gl.bindTexture2D(6, hiz);
   gl.BindSampler(6, nearestSampler);
   gl.ProgramUniform1i(blockProgram, 0, hizLevels);  // uTopLevel
   for (int level = 2; level <= kHizBlockTop; ++level)  // above the top: the top's image, never stored to
     gl.BindImageTexture(static_cast<GLuint>(level - 2), hiz, std::min(level, blockTop), GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-  gl.DispatchComputeIndirect(kHizDispatchOffset + 3 * 4 * 1);  // level 2's arguments: the blocks
-  gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  dispatchComputeIndirect(kHizDispatchOffset + 3 * 4 * 1);  // level 2's arguments: the blocks
+  memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   const int single = kHizBlockTop + 1;  // (SSLR_HIZ_MAX_LEVELS is 8: one level at most above the blocks)
   if (hizLevels < single) return;
-  gl.UseProgram(singleProgram);
+  useProgram(singleProgram);
   gl.ProgramUniform1i(singleProgram, 0, single);
   gl.BindImageTexture(0, hiz, single, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-  gl.DispatchComputeIndirect(kHizDispatchOffset + 3 * 4 * (single - 1));  // its level's arguments
-  gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  dispatchComputeIndirect(kHizDispatchOffset + 3 * 4 * (single - 1));  // its level's arguments
+  memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
 // The last fed-back frame's counts (without waiting: a frame still in flight leaves everything as
@@ -85,6 +85,8 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   auto constants = frameConstants(in, settings, width, height);  // validates settings + projection
   if (!constants) return Status::error(constants.error());
   if (Status s = checkInputs(in, settings.method); !s) return s;
+  recording = {};
+  recordingPass = 0;
   // The optional inputs are compiled in or out (common/gbuffer.glsl) rather than branched on: a
   // CPU rasterizer runs an untaken branch's texture fetch under a lane mask (llvmpipe 960x540:
   // classification 9.1 -> 7.0 ms, glossy's blur 58.6 -> 52.2 ms without them).
@@ -233,20 +235,20 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   detail::StateGuard guard(gl, false);
   gl.PushDebugGroup(GL_DEBUG_SOURCE_THIRD_PARTY, 0, -1, "sslr.dispatch");
   const float zero[4] = {0, 0, 0, 0};
-  if (settings.temporal && !useHistory) gl.ClearTexImage(historyKey, 0, GL_RED, GL_FLOAT, zero);
+  if (settings.temporal && !useHistory) clearTexImage(historyKey, GL_RED, GL_FLOAT, zero);
 
   shared::SslrFrame frame = constants.value();
   frame.temporal.history = useHistory ? 1 : 0;
   frameIndex = frameIndex == 0x7fffffff ? 1 : frameIndex + 1;
   frame.trace.frameIndex = frameIndex;
-  gl.NamedBufferSubData(frameUbo, 0, sizeof(frame), &frame);
+  bufferSubData(frameUbo, 0, sizeof(frame), &frame);
   // Tile list header: trace dispatch (0, 1, 1), draw (6 vertices, 0 instances), blur dispatch,
   // pyramid dispatches (0, 1, 1) per level and their real group counts (classify.comp copies them
   // over when it lists a tile).
   // The previous frame's trace dispatch and tile list become the clean-up pass's.
   const GLsizeiptr capacity = static_cast<GLsizeiptr>(tilesX()) * tilesY();
-  gl.CopyNamedBufferSubData(tileBuffer, tileBuffer, 0, kCleanupDispatchOffset, 3 * sizeof(GLuint));
-  gl.CopyNamedBufferSubData(tileBuffer, tileBuffer, kTileHeader * sizeof(GLuint),
+  copyBufferSubData(tileBuffer, tileBuffer, 0, kCleanupDispatchOffset, 3 * sizeof(GLuint));
+  copyBufferSubData(tileBuffer, tileBuffer, kTileHeader * sizeof(GLuint),
                             (kTileHeader + 4 * capacity) * sizeof(GLuint), capacity * sizeof(GLuint));
   GLuint header[kHeaderUpload] = {0, 1, 1, 6, 0, 0, 0, 0, 0, 1, 1, 0};
   // Used: level 1's (the level-1 pass: 8x8 level-1 cells a group), level 2's (hiz.comp's blocks:
@@ -263,13 +265,13 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     real[1] = used ? static_cast<GLuint>((2 * hizHeight + groupPx - 1) / groupPx) : 1u;
     real[2] = 1;
   }
-  gl.NamedBufferSubData(tileBuffer, 0, sizeof(header), header);
+  bufferSubData(tileBuffer, 0, sizeof(header), header);
   // reflection and resolved are not cleared: the clean-up pass (classify.comp, SSLR_CLEANUP)
   // zeroes the tiles the previous frame traced and this one does not. The debug images are
   // cleared whole (debug only).
   if (settings.debugOutputs) {
-    gl.ClearTexImage(hit, 0, GL_RGBA, GL_FLOAT, zero);
-    gl.ClearTexImage(iterations, 0, GL_RED, GL_FLOAT, zero);
+    clearTexImage(hit, GL_RGBA, GL_FLOAT, zero);
+    clearTexImage(iterations, GL_RED, GL_FLOAT, zero);
   }
   // Stats go to the ring slot of this dispatch (the oldest; a slot still unread is overwritten:
   // lastStats then reports a later frame).
@@ -281,11 +283,13 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     slot->fence = nullptr;
     slot->frame = dispatches;
     const GLuint statsZero[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-    gl.NamedBufferSubData(slot->buffer, 0, sizeof(statsZero), statsZero);
+    bufferSubData(slot->buffer, 0, sizeof(statsZero), statsZero);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_STATS_SSBO, slot->buffer);
   }
+  // Pass i starts here: its timestamp, and its commands counted from here on.
   auto timestamp = [&](int i) {
     if (slot != nullptr && timestamps) gl.QueryCounter(slot->queries[i], GL_TIMESTAMP);
+    recordingPass = i;
   };
   timestamp(0);
   bindInputs(in);
@@ -295,43 +299,43 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   }
 
   // Classification covers the screen; everything after runs over the listed tiles only.
-  gl.UseProgram(classify.value());
+  useProgram(classify.value());
   if (pyramid) bindPyramidLevels01();
   if (curvedSolids) {
     // The curved pass's dispatch (0, 1, 1) until the pyramid-args pass sets it; no quad listed.
     const GLuint curvedHeader[8] = {0, 1, 1, 0, 0, 0, 0, 0};
-    gl.NamedBufferSubData(curvedQuads, 0, sizeof(curvedHeader), curvedHeader);
+    bufferSubData(curvedQuads, 0, sizeof(curvedHeader), curvedHeader);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_CURVED_SSBO, curvedQuads);
   }
-  gl.DispatchCompute(static_cast<GLuint>(tilesX()), static_cast<GLuint>(tilesY()), 1);
-  gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+  dispatchCompute(static_cast<GLuint>(tilesX()), static_cast<GLuint>(tilesY()), 1);
+  memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   // Zero the tiles the previous frame traced and this one does not (classify.comp).
-  gl.UseProgram(cleanup.value());
+  useProgram(cleanup.value());
   gl.BindImageTexture(0, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   gl.BindImageTexture(3, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  gl.DispatchComputeIndirect(kCleanupDispatchOffset);
-  gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+  dispatchComputeIndirect(kCleanupDispatchOffset);
+  memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 
   timestamp(1);
   if (pyramid) {
-    gl.UseProgram(hizArgs.value());
-    gl.DispatchCompute(1, 1, 1);
-    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    useProgram(hizArgs.value());
+    dispatchCompute(1, 1, 1);
+    memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     if (level1Pass) {  // level 1 (classify.comp, SSLR_LEVEL1_PASS) through level 1's pyramid arguments
-      gl.UseProgram(level1Program.value());
+      useProgram(level1Program.value());
       bindPyramidLevels01();  // (the clean-up pass took image unit 0)
-      gl.DispatchComputeIndirect(kHizDispatchOffset);
-      gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+      dispatchComputeIndirect(kHizDispatchOffset);
+      memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
                        GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     }
     if (curvedSolids) {  // the listed quads' cells with their solids (classify.comp, SSLR_CURVED_PASS)
-      gl.UseProgram(curvedPass.value());
+      useProgram(curvedPass.value());
       bindPyramidLevels01();
       gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, curvedQuads);
-      gl.DispatchComputeIndirect(0);
+      dispatchComputeIndirect(0);
       gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
-      gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+      memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
     buildPyramid(hizBuild.value(), hizSingle.value());
   }
@@ -339,49 +343,49 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   timestamp(2);
   const GLuint retraceHeader[4] = {0, 1, 1, 0};  // dispatch (0, 1, 1), count 0
   if (retracePass || countTraversal) {
-    gl.NamedBufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
+    bufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_RETRACE_SSBO, retraceBuffer);
   }
   if (settings.halfResolution) {
-    gl.UseProgram(quads.value());
+    useProgram(quads.value());
     gl.BindImageTexture(1, quadHit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     gl.BindImageTexture(2, quadSurface, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    gl.DispatchComputeIndirect(0);  // one group per listed tile
+    dispatchComputeIndirect(0);  // one group per listed tile
     if (quadRetracePass) {  // the quads whose ray needs the traversal
-      gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-      gl.UseProgram(quadRetrace.value());
+      memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+      useProgram(quadRetrace.value());
       gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, retraceBuffer);
-      gl.DispatchComputeIndirect(0);
+      dispatchComputeIndirect(0);
       gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
     }
     if (quadRetracePass || countQuads) {
       // The quads that needed the traversal (Auto's feedback), then the list is the pixels'.
-      gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+      memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
       if (countQuads && feedbackWritten)
-        gl.CopyNamedBufferSubData(retraceBuffer, feedbackBuffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
-      gl.NamedBufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
+        copyBufferSubData(retraceBuffer, feedbackBuffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
+      bufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
     }
-    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     gl.bindTexture2D(3, quadHit);  // units 3 and 4 are the blur's, free during the trace
     gl.BindSampler(3, nearestSampler);
     gl.bindTexture2D(4, quadSurface);
     gl.BindSampler(4, nearestSampler);
   }
-  gl.UseProgram(trace.value());
+  useProgram(trace.value());
   gl.BindImageTexture(0, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   gl.BindImageTexture(3, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   if (settings.debugOutputs || settings.temporal)
     gl.BindImageTexture(1, hit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   if (settings.debugOutputs) gl.BindImageTexture(2, iterations, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-  gl.DispatchComputeIndirect(0);
+  dispatchComputeIndirect(0);
   if (retracePass) {  // the pixels whose quad's ray did not answer them, or that need the traversal
-    gl.MemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-    gl.UseProgram(retrace.value());
+    memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    useProgram(retrace.value());
     gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, retraceBuffer);
-    gl.DispatchComputeIndirect(0);
+    dispatchComputeIndirect(0);
     gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
   }
-  gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+  memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                    GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 
   timestamp(3);
@@ -390,23 +394,23 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   // listed as having a pixel to blur.
   if (blur) {
     for (GLuint unit : {3u, 4u, 5u}) gl.BindSampler(unit, nearestSampler);
-    gl.UseProgram(blurH.value());
+    useProgram(blurH.value());
     gl.bindTexture2D(3, resolved);
     gl.bindTexture2D(4, reflection);
     gl.BindImageTexture(0, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    gl.DispatchComputeIndirect(kBlurDispatchOffset);
-    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    gl.UseProgram(blurV.value());
+    dispatchComputeIndirect(kBlurDispatchOffset);
+    memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    useProgram(blurV.value());
     gl.bindTexture2D(3, blurTemp);
     gl.bindTexture2D(5, resolved);  // read where blurTemp is not written (see blur.comp)
     gl.BindImageTexture(0, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    gl.DispatchComputeIndirect(kBlurDispatchOffset);
+    dispatchComputeIndirect(kBlurDispatchOffset);
   }
   timestamp(4);
   if (settings.temporal) {
-    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     for (GLuint unit : {3u, 4u, 5u}) gl.BindSampler(unit, nearestSampler);
-    gl.UseProgram(temporalBlend.value());
+    useProgram(temporalBlend.value());
     gl.bindTexture2D(6, in.motionTexture);  // unit 6 (the pyramid's) is free after the trace
     gl.BindSampler(6, nearestSampler);
     gl.bindTexture2D(9, hit);  // written by the trace on the listed tiles (SSLR_TEMPORAL_HITS)
@@ -415,28 +419,28 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.bindTexture2D(4, history);
     gl.bindTexture2D(5, historyKey);
     gl.BindImageTexture(0, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    gl.DispatchComputeIndirect(0);
-    gl.MemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    gl.UseProgram(temporalStore.value());
+    dispatchComputeIndirect(0);
+    memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    useProgram(temporalStore.value());
     gl.bindTexture2D(3, blurTemp);
     gl.bindTexture2D(4, 0);
     gl.bindTexture2D(5, 0);
     gl.BindImageTexture(0, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl.BindImageTexture(1, history, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl.BindImageTexture(2, historyKey, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-    gl.DispatchComputeIndirect(0);
-    gl.MemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    gl.UseProgram(historyCleanup.value());
-    gl.DispatchComputeIndirect(kCleanupDispatchOffset);
+    dispatchComputeIndirect(0);
+    memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    useProgram(historyCleanup.value());
+    dispatchComputeIndirect(kCleanupDispatchOffset);
     historyValid = true;
   }
   timestamp(5);
   // The host (and composite) may read the outputs in any way next: make all writes visible.
-  gl.MemoryBarrier(GL_ALL_BARRIER_BITS);
+  memoryBarrier(GL_ALL_BARRIER_BITS);
   if (feedbackWritten) {  // (listed tiles, -, -, pixels or quads that needed the traversal)
-    gl.CopyNamedBufferSubData(tileBuffer, feedbackBuffer, 0, 0, sizeof(GLuint));
+    copyBufferSubData(tileBuffer, feedbackBuffer, 0, 0, sizeof(GLuint));
     if (feedback && !settings.halfResolution)  // (half resolution copied its quads' count above)
-      gl.CopyNamedBufferSubData(retraceBuffer, feedbackBuffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
+      copyBufferSubData(retraceBuffer, feedbackBuffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
     feedbackHasTraversal = feedback;
     feedbackCellsPerTile = settings.halfResolution ? SSLR_TILE_QUADS : SSLR_TILE_SIZE * SSLR_TILE_SIZE;
     feedbackFence = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
@@ -445,9 +449,10 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     slot->traversalDeferred = deferTraversal;
     slot->level1Pass = level1Pass;
     // The tile counts join the counters on the GPU (no read-back), then a fence marks the slot.
-    gl.CopyNamedBufferSubData(tileBuffer, slot->buffer, 0, 4 * sizeof(GLuint), sizeof(GLuint));
-    gl.CopyNamedBufferSubData(tileBuffer, slot->buffer, kBlurDispatchOffset, 5 * sizeof(GLuint), sizeof(GLuint));
+    copyBufferSubData(tileBuffer, slot->buffer, 0, 4 * sizeof(GLuint), sizeof(GLuint));
+    copyBufferSubData(tileBuffer, slot->buffer, kBlurDispatchOffset, 5 * sizeof(GLuint), sizeof(GLuint));
     slot->fence = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    slot->commands = recording;
   }
   gl.PopDebugGroup();
   haveFrame = true;

@@ -4,6 +4,19 @@
 
 namespace sslr {
 
+PassCommands FrameStats::totalCommands() const {
+  PassCommands total;
+  for (const PassCommands* c : {&classifyCommands, &pyramidCommands, &traceCommands, &blurCommands, &temporalCommands,
+                                &finishCommands}) {
+    total.dispatches += c->dispatches;
+    total.indirectDispatches += c->indirectDispatches;
+    total.barriers += c->barriers;
+    total.programs += c->programs;
+    total.uploads += c->uploads;
+  }
+  return total;
+}
+
 void Context::Impl::harvestStats(bool waitNewest) const {
   if (waitNewest) {
     const StatsSlot* newest = nullptr;
@@ -34,6 +47,9 @@ void Context::Impl::harvestStats(bool waitNewest) const {
     f.blurTiles = counters[5];
     f.traversalDeferred = oldest->traversalDeferred;
     f.level1Pass = oldest->level1Pass;
+    PassCommands* commands[kPasses] = {&f.classifyCommands, &f.pyramidCommands, &f.traceCommands,
+                                       &f.blurCommands,     &f.temporalCommands, &f.finishCommands};
+    for (int i = 0; i < kPasses; ++i) *commands[i] = oldest->commands[i];
     if (timestamps) {
       // With a buffer bound to GL_QUERY_BUFFER the result would go into it: unbind it meanwhile.
       GLint queryBuffer = 0;

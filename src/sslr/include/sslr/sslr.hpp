@@ -246,6 +246,18 @@ struct ContextDesc {
   LogCallback log;  // optional: shader compile logs, warnings
 };
 
+// The commands one pass of a frame recorded for the GPU, counted as dispatch() records them: the
+// same on every device for the same inputs and settings (Settings::traversalPass's Auto choice
+// aside). A GPU pays for each dispatch and barrier even when its group counts are zero, so these
+// are a frame's fixed costs, where the times below are its variable ones.
+struct PassCommands {
+  std::uint32_t dispatches = 0;          // glDispatchCompute
+  std::uint32_t indirectDispatches = 0;  // glDispatchComputeIndirect (group counts from the GPU, zero included)
+  std::uint32_t barriers = 0;            // glMemoryBarrier
+  std::uint32_t programs = 0;            // glUseProgram
+  std::uint32_t uploads = 0;             // buffer writes and copies and texture clears
+};
+
 struct FrameStats {  // filled when Settings::collectStats is set
   std::uint64_t frame = 0;          // the dispatch these are of (1 = the context's first; 0 = none yet)
   std::uint32_t tiles = 0;          // classified tiles that were traced
@@ -263,6 +275,9 @@ struct FrameStats {  // filled when Settings::collectStats is set
   double traceMs = -1.0;            // the trace (half resolution: its three passes)
   double blurMs = -1.0;             // the roughness blur
   double temporalMs = -1.0;         // temporal reuse (0 when Settings::temporal is off)
+  // The commands of the same passes; `finishCommands`: the frame's closing barrier and copies.
+  PassCommands classifyCommands, pyramidCommands, traceCommands, blurCommands, temporalCommands, finishCommands;
+  PassCommands totalCommands() const;  // the frame's: every pass's summed
 };
 
 // How composite() puts the resolved reflection into the host's framebuffer.

@@ -49,6 +49,7 @@ struct RunRecord {
   int frames = 0;
   HitMetrics metrics;
   std::uint32_t tracedPixels = 0, fetches = 0;
+  PassCommands commands;  // recorded by one frame (FrameStats::totalCommands; with debug outputs on)
   double fetchesPerTracedPixel = 0;
   int gbufferBytesPerPixel = 0;  // colour + normal + depth (+ position for the tutorial's method)
   int extraBytesPerPixel = 0;    // sslr's own textures (reflection, blur temp, resolved)
