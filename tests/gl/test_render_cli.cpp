@@ -157,6 +157,17 @@ TEST_F(RenderCli, FailedWritesExitOneAndLeaveNothing) {
   EXPECT_TRUE(fs::is_empty(out)) << "no partial or temporary file may remain";
 }
 
+TEST_F(RenderCli, ASignalDuringWritingLeavesNoTemporary) {
+  // The same limit with SIGXFSZ left to its default: the signal ends the process in the middle of a
+  // write. Its handler removes the temporaries before the process ends as the signal says.
+  const fs::path out = freshDir("killed");
+  const Result r = run("--size 160x90 --dump --out " + out.string(), "ulimit -f 8");
+  EXPECT_NE(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.exitCode, 1) << "killed by the signal, not a reported failure: " << r.output;
+  ASSERT_TRUE(fs::is_directory(out));
+  EXPECT_TRUE(fs::is_empty(out)) << "no partial or temporary file may remain";
+}
+
 TEST_F(RenderCli, ScoreAndHierarchicalMethod) {
   const fs::path out = freshDir("score");
   const Result r = run("--size 96x54 --scene facing-mirror --method hiz --score --stats --out " + out.string());

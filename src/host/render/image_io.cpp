@@ -129,7 +129,12 @@ bool writeAll(int fd, const unsigned char* data, size_t size, size_t& written) {
 }  // namespace
 
 void removeTemporariesOnSignal() {
-  for (int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, removeTempsAndRaise);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGXFSZ}) {
+    struct sigaction current {};
+    // A signal the process was started with ignored (nohup, `trap "" XFSZ`) stays ignored.
+    if (::sigaction(sig, nullptr, &current) == 0 && current.sa_handler == SIG_IGN) continue;
+    std::signal(sig, removeTempsAndRaise);
+  }
 }
 
 Status probeWritableDirectory(const std::string& dir) {

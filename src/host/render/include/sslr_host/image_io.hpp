@@ -47,8 +47,9 @@ Status writeFiles(const std::vector<std::pair<std::string, std::vector<unsigned 
 Status writeTextFile(const std::string& path, const std::string& text);
 // Creates and removes a uniquely named file in `dir`: "" if the tools can write there.
 Status probeWritableDirectory(const std::string& dir);
-// SIGINT, SIGTERM and SIGHUP remove the temporaries being written, then end the process as the
-// signal would have (the tools call it once at start).
+// SIGINT, SIGTERM, SIGHUP and SIGXFSZ (a file size limit reached mid-write) remove the temporaries
+// being written, then end the process as the signal would have (the tools call it once at start).
+// A signal the process was started with ignored stays ignored.
 void removeTemporariesOnSignal();
 // PNG (8 or 16 bit) reads as stored, scaled to [0,1] (no sRGB decoding); EXR channels R, G, B, A
 // come first in that order whatever the file's order.
