@@ -24,7 +24,13 @@
   ctx.value()->composite(hostFramebuffer, {sslr::CompositeMode::BlendOverFallback, fallbackTex});
 }
 
+static_assert(SSLR_VERSION_MAJOR >= 0 && SSLR_VERSION_MINOR >= 0 && SSLR_VERSION_PATCH >= 0,
+              "sslr/version.hpp is installed with sslr.hpp");
+
 int main() {
+  // The installed headers and the installed library are of one version.
+  if (std::string(sslr::libraryVersion()) != SSLR_VERSION_STRING) return 1;
+  std::printf("sslr %s\n", sslr::libraryVersion());
   // Without a GL context the library must refuse cleanly, with a message.
   sslr::ContextDesc desc;
   desc.width = 64;

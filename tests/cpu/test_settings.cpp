@@ -91,3 +91,11 @@ TEST(ExpectedAccess, ArrowReachesTheValueOrThePointee) {
   EXPECT_FALSE(failed);
   EXPECT_EQ(failed.error(), "no");
 }
+
+// The version macros come from CMake's project() line, and the library reports the same.
+TEST(Version, MacrosAndLibraryAgree) {
+  const std::string fromMacros = std::to_string(SSLR_VERSION_MAJOR) + "." + std::to_string(SSLR_VERSION_MINOR) + "." +
+                                 std::to_string(SSLR_VERSION_PATCH);
+  EXPECT_EQ(fromMacros, SSLR_VERSION_STRING);
+  EXPECT_EQ(std::string(sslr::libraryVersion()), SSLR_VERSION_STRING);
+}

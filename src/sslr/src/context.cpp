@@ -7,6 +7,9 @@
 
 namespace sslr {
 
+const char* libraryVersion() { return SSLR_VERSION_STRING; }
+
+
 // ---- Render targets -------------------------------------------------------------------------
 
 GLuint Context::Impl::makeTexture(GLenum format, const char* name) const {

@@ -27,6 +27,8 @@
 
 #include <glm/glm.hpp>
 
+#include "sslr/version.hpp"  // SSLR_VERSION_MAJOR/MINOR/PATCH, SSLR_VERSION_STRING
+
 namespace sslr {
 
 using GLProc = void (*)();
@@ -34,6 +36,10 @@ using GetProcAddress = GLProc (*)(const char* name);  // eglGetProcAddress, glfw
 using GLName = std::uint32_t;                          // a GLuint texture / framebuffer name
 
 // ---- Results ---------------------------------------------------------------------------------
+// The version of the library that was linked ("MAJOR.MINOR.PATCH"): a host built against headers
+// of another version can compare it with SSLR_VERSION_STRING at start.
+const char* libraryVersion();
+
 class Status {
  public:
   Status() = default;
