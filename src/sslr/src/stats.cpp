@@ -1,13 +1,23 @@
 // FrameStats without a stall: the dispatch records into a ring slot (passes.cpp); this reads
 // back the slots whose fence has signalled, so a read never waits for the GPU unless asked to.
+#include <array>
+
 #include "context_impl.hpp"
 
 namespace sslr {
 
+namespace {
+// FrameStats' per-pass command counts in pass order (the ring slot's order too).
+template <typename Stats>
+auto passCommandsOf(Stats& f) {
+  return std::array{&f.classifyCommands, &f.pyramidCommands, &f.traceCommands,
+                    &f.blurCommands,     &f.temporalCommands, &f.finishCommands};
+}
+}  // namespace
+
 PassCommands FrameStats::totalCommands() const {
   PassCommands total;
-  for (const PassCommands* c : {&classifyCommands, &pyramidCommands, &traceCommands, &blurCommands, &temporalCommands,
-                                &finishCommands}) {
+  for (const PassCommands* c : passCommandsOf(*this)) {
     total.dispatches += c->dispatches;
     total.indirectDispatches += c->indirectDispatches;
     total.barriers += c->barriers;
@@ -47,8 +57,8 @@ void Context::Impl::harvestStats(bool waitNewest) const {
     f.blurTiles = counters[5];
     f.traversalDeferred = oldest->traversalDeferred;
     f.level1Pass = oldest->level1Pass;
-    PassCommands* commands[kPasses] = {&f.classifyCommands, &f.pyramidCommands, &f.traceCommands,
-                                       &f.blurCommands,     &f.temporalCommands, &f.finishCommands};
+    const auto commands = passCommandsOf(f);
+    static_assert(commands.size() == kPasses);
     for (int i = 0; i < kPasses; ++i) *commands[i] = oldest->commands[i];
     if (timestamps) {
       // With a buffer bound to GL_QUERY_BUFFER the result would go into it: unbind it meanwhile.
