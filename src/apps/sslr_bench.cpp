@@ -50,9 +50,11 @@ class Progress {
 int main(int argc, char** argv) {
   removeTemporariesOnSignal();
   cxxopts::Options options("sslr-bench", "Run time against error: depth-only SSLR vs position-buffer SSR.");
+  std::string defaultScenes;
+  for (const std::string& s : defaultBenchScenes()) defaultScenes += (defaultScenes.empty() ? "" : ",") + s;
   options.add_options()
       ("grid", "parameter grid: quick (CI) or full (docs)", cxxopts::value<std::string>()->default_value("quick"))
-      ("scenes", "comma-separated scenes (default: mirror-room,grazing-plane,thin-objects,sky-heavy,facing-mirror,mirror-walls,curved-mirror,glossy)",
+      ("scenes", "comma-separated scenes (default: " + defaultScenes + ")",
        cxxopts::value<std::string>()->default_value(""))
       ("configs", "run only these configurations of the grid, comma-separated, each a method (adaptive-l, hiz, dda, "
                   "position-buffer) or method/label (e.g. adaptive-l/high); the baseline pass always runs",

@@ -152,6 +152,7 @@ int run(int argc, char** argv) {
   cxxopts::Options options("sslr-render", "Headless render with Screen Space Local Reflections (depth-only SSLR).");
   std::string sceneHelp = "built-in scene (";
   for (const auto& n : builtinSceneNames()) sceneHelp += n + (n == builtinSceneNames().back() ? "" : ", ");
+  for (const auto& n : assetSceneNames()) sceneHelp += ", " + n;
   sceneHelp += ", reflective-N for N% of the screen reflecting) or a .gltf/.glb file";
   options.add_options()
       ("scene", sceneHelp, cxxopts::value<std::string>()->default_value("mirror-room"))
@@ -161,7 +162,9 @@ int run(int argc, char** argv) {
       ("method", "tracer: adaptive-l (depth-only SSLR, hierarchical fallback), hiz (the depth pyramid traversal alone), dda (McGuire & Mara 2014's screen-space DDA) or position-buffer (the tutorial's), for comparison, or none", cxxopts::value<std::string>()->default_value("adaptive-l"))
       ("no-hiz-fallback", "adaptive-l alone, without the hierarchical traversal where it finds nothing")
       ("hiz-verify", "adaptive-l: also run the hierarchical traversal over every hit and keep an earlier one it "
-                     "finds (the ultra preset's default)")
+                     "finds (the high and ultra presets' default)")
+      ("no-hiz-verify", "adaptive-l: take adaptive L's hits unchecked (the low and medium presets' choice; faster, "
+                        "and below the traversal alone where a ray passes behind something)")
       ("preset", "quality preset: low, medium, high, ultra", cxxopts::value<std::string>()->default_value("high"))
       ("fresnel", "weighting: classic (the article) or schlick", cxxopts::value<std::string>()->default_value("classic"))
       ("iterations", "override the preset's adaptive-L iteration cap", cxxopts::value<std::string>())
@@ -191,6 +194,9 @@ int run(int argc, char** argv) {
       ("ortho", "orthographic camera with this view height", cxxopts::value<std::string>())
       ("device", "EGL device: auto, hardware, software, surfaceless or an index (default $SSLR_EGL_DEVICE or auto)",
        cxxopts::value<std::string>()->default_value(""))
+      ("stage", "stage the scene's model for reflections: on-mirror (a mirror floor, a wall and boxes around it, a "
+                "low camera) or as-mirror (the same, every material of the model a sharp mirror, seen from above)",
+       cxxopts::value<std::string>())
       ("export-gltf", "write the scene (with the camera as given) as a self-contained glTF 2.0 file and exit, without rendering", cxxopts::value<std::string>())
       ("stats", "print tiles, traced pixels and depth (or position) fetches")
       ("frames", "render the same view N times; with --stats the pass times are the median of frames 2..N "
@@ -253,7 +259,10 @@ int run(int argc, char** argv) {
     if (composite == "blend") compositeMode = CompositeMode::BlendOverFallback;
     else if (composite == "add") compositeMode = CompositeMode::Add;
     else throw UsageError{"--composite must be blend or add (got '" + composite + "')"};
+    if (args.count("hiz-verify") && args.count("no-hiz-verify"))
+      throw UsageError{"--hiz-verify and --no-hiz-verify exclude each other"};
     if (args.count("hiz-verify")) settings.hierarchicalVerify = true;
+    if (args.count("no-hiz-verify")) settings.hierarchicalVerify = false;
     if (args.count("no-hiz-fallback")) {  // adaptive L alone: no traversal at all
       if (args.count("hiz-verify")) throw UsageError{"--hiz-verify and --no-hiz-fallback exclude each other"};
       settings.hierarchicalFallback = false;
@@ -271,6 +280,14 @@ int run(int argc, char** argv) {
     if (!loaded) throw UsageError{loaded.error()};
     scene = std::move(loaded.value());
     for (const auto& w : scene.warnings) std::cerr << "sslr-render: warning: " << w << "\n";
+    if (args.count("stage")) {
+      const std::string stage = args["stage"].as<std::string>();
+      if (stage != "on-mirror" && stage != "as-mirror")
+        throw UsageError{"--stage must be on-mirror or as-mirror (got '" + stage + "')"};
+      auto staged = stageModel(std::move(scene), stage == "on-mirror" ? ModelStage::OnMirror : ModelStage::AsMirror);
+      if (!staged) throw UsageError{"--stage: " + staged.error()};
+      scene = std::move(staged.value());
+    }
     if (std::string why = scene.checkExtent(); !why.empty()) throw UsageError{args["scene"].as<std::string>() + ": " + why};
     camera = scene.camera ? *scene.camera : scene.defaultCamera();
     if (args.count("eye")) camera.eye = parseVec3("eye", args["eye"].as<std::string>());

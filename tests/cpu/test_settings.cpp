@@ -23,7 +23,8 @@ TEST(Settings, PresetsGrowInEffort) {
                  high = Settings::preset(Preset::High), ultra = Settings::preset(Preset::Ultra);
   EXPECT_FALSE(low.hierarchicalFallback);
   EXPECT_TRUE(med.hierarchicalFallback && high.hierarchicalFallback && ultra.hierarchicalFallback);
-  EXPECT_FALSE(high.hierarchicalVerify);
+  EXPECT_FALSE(low.hierarchicalVerify || med.hierarchicalVerify);
+  EXPECT_TRUE(high.hierarchicalVerify);
   EXPECT_TRUE(ultra.hierarchicalVerify);
   EXPECT_LT(low.maxIterations, med.maxIterations);
   EXPECT_LE(med.maxIterations, high.maxIterations);

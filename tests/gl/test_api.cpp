@@ -449,6 +449,7 @@ TEST_F(Api, FrameStatsCountEachPassCommands) {
 
   Settings alone = s;
   alone.hierarchicalFallback = false;  // adaptive L alone needs no pyramid
+  alone.hierarchicalVerify = false;
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), alone));
   st = ctx->waitForStats();
   expect(st.pyramidCommands, 0, 0, 0, 0, "no pyramid for adaptive L alone");
@@ -766,6 +767,7 @@ TEST_F(Api, MemoryIsAllocatedOnlyForWhatAFrameUses) {
   Frame f;
   Settings alone;
   alone.hierarchicalFallback = false;
+  alone.hierarchicalVerify = false;
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), alone));
   EXPECT_EQ(pyramidCount(), before) << "adaptive L alone traces no pyramid";
   EXPECT_EQ(ctx->hitTexture(), 0u);

@@ -1,6 +1,7 @@
 // assets/scenes: every built-in scene as a glTF file. The files are current (written from the
 // built-in definitions by gltfFromScene, byte for byte) and loading one gives the built-in
 // scene's G-buffer.
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -28,6 +29,68 @@ TEST(Assets, SceneFilesAreCurrent) {
     const std::string onDisk((std::istreambuf_iterator<char>(in)), {});
     EXPECT_TRUE(onDisk == text.value()) << assetPath(name) << " is stale: run assets/scenes/generate.sh";
   }
+}
+
+// The asset scenes (real models staged on or as mirrors) load by name, with their camera, no
+// warnings, the model's own triangles and the stage's mirror floor.
+TEST(Assets, AssetScenesLoadByName) {
+  for (const std::string& name : assetSceneNames()) {
+    auto scene = loadScene(name);
+    ASSERT_TRUE(scene) << name << ": " << scene.error();
+    EXPECT_TRUE(scene.value().camera) << name;
+    EXPECT_TRUE(scene.value().warnings.empty()) << name << ": " << scene.value().warnings.front();
+    EXPECT_GT(scene.value().triangleCount(), 1000u) << name << " must hold the model, not only the stage";
+    const Bounds b = scene.value().worldBounds();
+    EXPECT_NEAR(b.min.y, -1e-3, 1e-6) << name << ": the mirror floor is the lowest thing";
+  }
+}
+
+// A moved asset folder is named in the error, with the variable that points elsewhere.
+TEST(Assets, MissingAssetFolderIsNamed) {
+  ::setenv("SSLR_ASSET_DIR", "/nonexistent-sslr-assets", 1);
+  auto scene = loadScene("wuson-as-mirror");
+  ::unsetenv("SSLR_ASSET_DIR");
+  ASSERT_FALSE(scene);
+  EXPECT_NE(scene.error().find("/nonexistent-sslr-assets/scenes/wuson-as-mirror.gltf"), std::string::npos) << scene.error();
+  EXPECT_NE(scene.error().find("SSLR_ASSET_DIR"), std::string::npos) << scene.error();
+}
+
+// stageModel: the model's largest side becomes 3 units, centred on the origin in x and z and
+// standing on y = 0; AsMirror turns every model material into a sharp mirror; an empty model is
+// refused with its name.
+TEST(Assets, StageModelScalesCentresAndStandsTheModel) {
+  Scene box;
+  box.name = "box";
+  box.materials.push_back(Material{glm::vec3(0.2f, 0.4f, 0.6f), 0.0f, 0.7f});
+  box.meshes.push_back(makeBox({10.0, 5.0, -3.0}, {2.0, 6.0, 1.0}, 0));
+  for (ModelStage stage : {ModelStage::OnMirror, ModelStage::AsMirror}) {
+    auto staged = stageModel(box, stage);
+    ASSERT_TRUE(staged) << staged.error();
+    Scene modelOnly = staged.value();
+    modelOnly.meshes.resize(1);
+    const Bounds b = modelOnly.worldBounds();
+    EXPECT_NEAR(b.max.y - b.min.y, 3.0, 1e-5);
+    EXPECT_NEAR(b.max.x - b.min.x, 1.0, 1e-5);
+    EXPECT_NEAR(b.min.y, 0.0, 1e-5);
+    EXPECT_NEAR(b.min.x + b.max.x, 0.0, 1e-5);
+    EXPECT_NEAR(b.min.z + b.max.z, 0.0, 1e-5);
+    const Material& m = staged.value().materials[0];
+    if (stage == ModelStage::AsMirror) {
+      EXPECT_EQ(m.metallic, 1.0f);
+      EXPECT_EQ(m.roughness, 0.0f);
+      EXPECT_EQ(staged.value().name, "box-as-mirror");
+    } else {
+      EXPECT_EQ(m.roughness, 0.7f);
+      EXPECT_EQ(staged.value().name, "box-on-mirror");
+    }
+    ASSERT_TRUE(staged.value().camera);
+    EXPECT_EQ(staged.value().camera->validate(), "");
+  }
+  Scene empty;
+  empty.name = "nothing";
+  auto refused = stageModel(empty, ModelStage::OnMirror);
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().find("nothing"), std::string::npos) << refused.error();
 }
 
 class AssetsGl : public sslr::test::GlTest {};

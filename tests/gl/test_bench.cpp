@@ -12,7 +12,9 @@
 
 #include "common/shell.hpp"
 #include "gl/gl_fixture.hpp"
+#include "sslr_host/benchmark.hpp"
 #include "sslr_host/image_io.hpp"
+#include "sslr_host/scene.hpp"
 
 namespace fs = std::filesystem;
 
@@ -59,8 +61,10 @@ TEST_F(Bench, QuickGridWritesCompleteResultsAndReport) {
     }
   }
   EXPECT_EQ(methods, (std::set<std::string>{"adaptive-l", "hiz", "dda", "position-buffer", "baseline"}));
-  EXPECT_EQ(scenes.size(), 8u);  // every built-in scene but the two analytic test scenes
-  ASSERT_EQ(j["scenes"].size(), 8u);
+  // Every built-in and asset scene but the two analytic test scenes.
+  EXPECT_EQ(scenes.size(), sslr::host::defaultBenchScenes().size());
+  EXPECT_EQ(scenes.size(), sslr::host::builtinSceneNames().size() + sslr::host::assetSceneNames().size() - 2);
+  ASSERT_EQ(j["scenes"].size(), scenes.size());
   for (const auto& s : j["scenes"]) EXPECT_TRUE(s["hitAgreementDepthVsStored"].is_number());
   // The report and every image it references.
   std::ifstream html(out / "report" / "index.html");

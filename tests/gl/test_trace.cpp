@@ -240,16 +240,16 @@ INSTANTIATE_TEST_SUITE_P(Methods, CpuGpuAgreement,
 
 namespace {
 
-// A built-in scene (192x108 unless given) traced with `s`, scored against Embree truth on the GPU
-// pass and on the CPU run of the same shared headers.
+// A built-in or asset scene (192x108 unless given) traced with `s`, scored against Embree truth on
+// the GPU pass and on the CPU run of the same shared headers.
 struct GpuCpuScores {
   HitMetrics gpu, cpu;
   bool ok = false;
 };
 GpuCpuScores scoreOnGpuAndCpu(const char* sceneName, const Settings& s, int width = 192, int height = 108) {
   GpuCpuScores r;
-  auto scene = makeBuiltinScene(sceneName);
-  EXPECT_TRUE(scene) << sceneName;
+  auto scene = loadScene(sceneName);
+  EXPECT_TRUE(scene) << sceneName << ": " << (scene ? "" : scene.error());
   if (!scene) return r;
   GBufferOptions o;
   o.width = width;
@@ -302,10 +302,11 @@ TEST_P(RobustScenes, RecallAndFalseHitsOnGpuAndCpu) {
 
 // The default (adaptive L with the traversal behind it) never finds less than the traversal alone:
 // every exit adaptive L cannot prove from the depth it read (off the screen, into the background,
-// no convergence) goes to the traversal. Measured at 192x108 (default / traversal alone):
-// mirror-room 0.9939 / 0.9922, thin-objects 0.9074 / 0.8681, glossy 0.9871 / 0.9869, mirror-box
-// 0.9906 / 0.9914, mirror-walls 0.9624 / 0.9513, the others equal; before, glossy 0.9701 and
-// mirror-box 0.9871 (their sky and off-screen exits were taken on adaptive L's word).
+// no convergence) goes to the traversal, and every hit it reports is verified by the traversal up
+// to the hit (a ray carried behind a pillar or a leg). Measured at 192x108 (default / traversal
+// alone): mirror-room 0.9936 / 0.9922, thin-objects 0.9088 / 0.8681, mirror-walls 0.9624 /
+// 0.9513, turned-mirror 0.9549 / 0.9452, mirrors-from-above 0.9468 / 0.9430, wuson-as-mirror
+// 0.9772 / 0.9737, mirror-corridor 0.9622 / 0.9620, spider-on-mirror 0.9823 / 0.9818.
 class DefaultAgainstTraversal : public sslr::test::GlTest, public ::testing::WithParamInterface<const char*> {};
 
 TEST_P(DefaultAgainstTraversal, DefaultFindsNoLessThanTheTraversalAlone) {
@@ -323,7 +324,9 @@ TEST_P(DefaultAgainstTraversal, DefaultFindsNoLessThanTheTraversalAlone) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, DefaultAgainstTraversal,
                          ::testing::Values("mirror-room", "grazing-plane", "thin-objects", "sky-heavy", "facing-mirror",
-                                           "mirror-walls", "curved-mirror", "glossy", "mirror-box", "tilted-mirror"),
+                                           "mirror-walls", "curved-mirror", "glossy", "mirror-box", "tilted-mirror",
+                                           "turned-mirror", "mirror-corridor", "mirrors-from-above", "spider-on-mirror",
+                                           "wuson-as-mirror"),
                          sceneParamName);
 
 // Two options of the depth-only tracer, each judged against itself switched off on the scene that
@@ -472,6 +475,8 @@ TEST_P(TraversalAuto, FollowsTheLastFramesShareOfTraversalPixels) {
   s.collectStats = true;
   s.debugOutputs = true;
   s.halfResolution = GetParam();
+  // Verification sends every hit to the traversal: mirror-room's share would stay above half.
+  s.hierarchicalVerify = false;
   auto facing = makeBuiltinScene("facing-mirror");
   auto room = makeBuiltinScene("mirror-room");
   ASSERT_TRUE(facing && room);
@@ -809,7 +814,18 @@ INSTANTIATE_TEST_SUITE_P(
                       RobustCase{"curved-mirror", Method::AdaptiveL, 0.96, 0.012},
                       RobustCase{"curved-mirror", Method::HierarchicalDepth, 0.96, 0.012},
                       RobustCase{"glossy", Method::AdaptiveL, 0.94, 0.01},
-                      RobustCase{"glossy", Method::HierarchicalDepth, 0.95, 0.01}),
+                      RobustCase{"glossy", Method::HierarchicalDepth, 0.95, 0.01},
+                      // Scenes nobody tuned for (measured default / traversal alone, false hits):
+                      // turned-mirror 0.955 / 0.945, 0.150 and 0.143 (rays running away behind the
+                      // boxes: the depth buffer cannot tell); mirror-corridor 0.962 / 0.962, 0.021;
+                      // mirrors-from-above 0.947 / 0.943, 0.0096; spider-on-mirror 0.982 / 0.982,
+                      // 0.095 (behind the legs); wuson-as-mirror 0.977 / 0.974, 0.0085.
+                      RobustCase{"turned-mirror", Method::AdaptiveL, 0.945, 0.17},
+                      RobustCase{"turned-mirror", Method::HierarchicalDepth, 0.935, 0.17},
+                      RobustCase{"mirror-corridor", Method::AdaptiveL, 0.95, 0.03},
+                      RobustCase{"mirrors-from-above", Method::AdaptiveL, 0.935, 0.015},
+                      RobustCase{"spider-on-mirror", Method::AdaptiveL, 0.97, 0.11},
+                      RobustCase{"wuson-as-mirror", Method::AdaptiveL, 0.965, 0.015}),
     [](const ::testing::TestParamInfo<RobustCase>& info) {
       return gtestName(std::string(info.param.scene) + (info.param.method == Method::AdaptiveL ? "_AdaptiveL" : "_Hiz"));
     });

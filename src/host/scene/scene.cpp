@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -419,6 +420,77 @@ Scene curvedMirror() {
   return s;
 }
 
+// A mirror wall on the right, turned 20 degrees about the vertical away from the view: rays
+// meeting it leave straight along the view direction, away from the camera, towards the boxes
+// standing along it deep in the scene (screen-space steps shrink towards the vanishing point).
+Scene turnedMirror() {
+  Scene s;
+  s.name = "turned-mirror";
+  const int mirror = addMaterial(s, glm::vec3(0.95f), 1.0f, 0.0f);
+  const int floor = addMaterial(s, glm::vec3(0.5f, 0.48f, 0.45f), 0.0f, 0.9f, 0.1f);
+  const int wall = addMaterial(s, glm::vec3(0.68f, 0.66f, 0.62f), 0.0f, 0.9f, 0.1f);
+  const BoxColours box = addBoxColours(s, 0.2f);
+  s.meshes.push_back(makeQuad({0, 0, -5}, {20, 26}, {0, 1, 0}, floor));
+  s.meshes.push_back(makeQuad({0, 3, -17}, {20, 6}, {0, 0, 1}, wall));
+  // Normal (-cos 20, 0, -sin 20): the camera is on its front side, and a ray from the eye to the
+  // wall's near end reflects to (0, 0, -1).
+  const double yaw = glm::radians(20.0);
+  s.meshes.push_back(makeQuad({7.1, 1.75, -5.0}, {14.0, 3.5}, {-std::cos(yaw), 0.0, -std::sin(yaw)}, mirror));
+  s.meshes.push_back(makeBox({3.0, 0.6, -3.0}, {0.8, 1.2, 0.8}, box.red, 20.0));
+  s.meshes.push_back(makeBox({4.3, 0.9, -7.0}, {0.9, 1.8, 0.9}, box.green, -15.0));
+  s.meshes.push_back(makeBox({2.2, 0.4, -9.5}, {0.8, 0.8, 0.8}, box.blue, 30.0));
+  s.meshes.push_back(makeBox({5.6, 1.1, -11.5}, {1.0, 2.2, 1.0}, box.yellow, 10.0));
+  s.meshes.push_back(makeBox({-2.2, 0.5, -4.0}, {1.0, 1.0, 1.0}, box.blue, 40.0));
+  s.camera = perspectiveCamera({0.0, 1.6, 5.0}, {2.6, 1.2, -8.0}, 60.0, 0.1, 100.0);
+  s.background = glm::vec3(0.3f, 0.33f, 0.4f);
+  return s;
+}
+
+// Two parallel mirror walls with pillars between them, seen down their length: rays bounce
+// across the corridor, pass behind the pillars and run towards the vanishing point.
+Scene mirrorCorridor() {
+  Scene s;
+  s.name = "mirror-corridor";
+  const int mirror = addMaterial(s, glm::vec3(0.95f), 1.0f, 0.0f);
+  const int floor = addMaterial(s, glm::vec3(0.52f, 0.5f, 0.46f), 0.0f, 0.9f, 0.1f);
+  const int wall = addMaterial(s, glm::vec3(0.66f, 0.64f, 0.6f), 0.0f, 0.9f, 0.1f);
+  const BoxColours box = addBoxColours(s, 0.2f);
+  s.meshes.push_back(makeQuad({0, 0, -7}, {8, 22}, {0, 1, 0}, floor));
+  s.meshes.push_back(makeQuad({0, 1.7, -18}, {8, 3.4}, {0, 0, 1}, wall));
+  s.meshes.push_back(makeQuad({-2.0, 1.7, -7.0}, {22.0, 3.4}, {1, 0, 0}, mirror));
+  s.meshes.push_back(makeQuad({2.0, 1.7, -7.0}, {22.0, 3.4}, {-1, 0, 0}, mirror));
+  const int pillarColour[4] = {box.red, box.green, box.blue, box.yellow};
+  for (int i = 0; i < 4; ++i)
+    s.meshes.push_back(makeCylinder({i % 2 ? 1.1 : -1.1, 0.0, -3.0 - 3.0 * i}, 0.22, 3.4, pillarColour[i], 48));
+  s.meshes.push_back(makeBox({0.1, 0.3, -4.6}, {0.6, 0.6, 0.6}, box.yellow, 25.0));
+  s.meshes.push_back(makeBox({-0.4, 0.45, -10.5}, {0.9, 0.9, 0.9}, box.red, -20.0));
+  s.camera = perspectiveCamera({0.4, 1.5, 4.0}, {0.0, 1.3, -17.0}, 60.0, 0.1, 100.0);
+  s.background = glm::vec3(0.3f, 0.33f, 0.4f);
+  return s;
+}
+
+// A mirror sphere beside a mirror panel turned about two axes, seen from above at about 47
+// degrees: reflected rays leave in every direction, many of them up and off the screen.
+Scene mirrorsFromAbove() {
+  Scene s;
+  s.name = "mirrors-from-above";
+  const int mirror = addMaterial(s, glm::vec3(0.95f), 1.0f, 0.0f);
+  const int floor = addMaterial(s, glm::vec3(0.5f, 0.5f, 0.46f), 0.0f, 0.9f, 0.1f);
+  const int wall = addMaterial(s, glm::vec3(0.55f, 0.6f, 0.68f), 0.0f, 0.9f, 0.1f);
+  const BoxColours box = addBoxColours(s, 0.2f);
+  s.meshes.push_back(makeQuad({0, 0, -1}, {16, 16}, {0, 1, 0}, floor));
+  s.meshes.push_back(makeQuad({0, 1, -6}, {16, 2}, {0, 0, 1}, wall));
+  s.meshes.push_back(makeSphere({-1.6, 1.1, -1.2}, 1.1, mirror, 48, 96));
+  s.meshes.push_back(makeQuad({1.7, 1.2, -1.6}, {3.0, 2.2}, glm::normalize(glm::dvec3(-0.75, 0.4, 0.35)), mirror));
+  s.meshes.push_back(makeBox({0.0, 0.5, -3.6}, {1.0, 1.0, 1.0}, box.red, 20.0));
+  s.meshes.push_back(makeBox({-3.6, 0.7, 0.6}, {0.8, 1.4, 0.8}, box.green, -15.0));
+  s.meshes.push_back(makeBox({3.7, 0.4, 0.9}, {0.8, 0.8, 0.8}, box.blue, 35.0));
+  s.meshes.push_back(makeBox({0.3, 0.3, 1.3}, {0.6, 0.6, 0.6}, box.yellow, 0.0));
+  s.camera = perspectiveCamera({1.0, 7.5, 5.5}, {0.0, 0.3, -1.2}, 50.0, 0.1, 100.0);
+  s.background = glm::vec3(0.3f, 0.33f, 0.4f);
+  return s;
+}
+
 // A row of floor panels from roughness 0 to 0.5 (the High preset's cutoff) under the same boxes.
 Scene glossy() {
   Scene s;
@@ -493,8 +565,16 @@ Scene reflectiveFraction(int percent) {
 }
 
 std::vector<std::string> builtinSceneNames() {
-  return {"mirror-room",   "grazing-plane", "thin-objects",  "sky-heavy", "mirror-box",
-          "tilted-mirror", "facing-mirror", "mirror-walls", "curved-mirror", "glossy"};
+  return {"mirror-room",   "grazing-plane", "thin-objects",  "sky-heavy",       "mirror-box",
+          "tilted-mirror", "facing-mirror", "mirror-walls",  "curved-mirror",   "glossy",
+          "turned-mirror", "mirror-corridor", "mirrors-from-above"};
+}
+
+std::vector<std::string> assetSceneNames() { return {"spider-on-mirror", "wuson-as-mirror"}; }
+
+std::string assetScenePath(const std::string& name) {
+  const char* dir = std::getenv("SSLR_ASSET_DIR");
+  return std::string(dir && *dir ? dir : SSLR_DEFAULT_ASSET_DIR) + "/scenes/" + name + ".gltf";
 }
 
 Expected<Scene> makeBuiltinScene(const std::string& name) {
@@ -508,6 +588,9 @@ Expected<Scene> makeBuiltinScene(const std::string& name) {
   if (name == "mirror-walls") return mirrorWalls();
   if (name == "curved-mirror") return curvedMirror();
   if (name == "glossy") return glossy();
+  if (name == "turned-mirror") return turnedMirror();
+  if (name == "mirror-corridor") return mirrorCorridor();
+  if (name == "mirrors-from-above") return mirrorsFromAbove();
   if (name.rfind("reflective-", 0) == 0) {
     const std::string digits = name.substr(11);
     if (!digits.empty() && digits.size() <= 3 && std::all_of(digits.begin(), digits.end(), ::isdigit) &&
@@ -516,6 +599,7 @@ Expected<Scene> makeBuiltinScene(const std::string& name) {
   }
   std::string known;
   for (const auto& n : builtinSceneNames()) known += (known.empty() ? "" : ", ") + n;
+  for (const auto& n : assetSceneNames()) known += ", " + n;
   return Status::error("unknown scene '" + name + "' (built-in scenes: " + known +
                        ", reflective-N with N = 0..100; or give a .gltf/.glb file)");
 }
@@ -528,6 +612,14 @@ Expected<Scene> loadScene(const std::string& nameOrPath) {
                       [](char a, char b) { return std::tolower(a) == std::tolower(b); });
   };
   if (endsWith(".gltf") || endsWith(".glb")) return loadGltf(nameOrPath);
+  const auto assets = assetSceneNames();
+  if (std::find(assets.begin(), assets.end(), nameOrPath) != assets.end()) {
+    const std::string path = assetScenePath(nameOrPath);
+    auto scene = loadGltf(path);
+    if (!scene) return Status::error("scene '" + nameOrPath + "' is the file " + path + ": " + scene.error() +
+                                     " (set SSLR_ASSET_DIR to the folder holding scenes/)");
+    return scene;
+  }
   return makeBuiltinScene(nameOrPath);
 }
 
@@ -546,6 +638,45 @@ void addMirrorFloor(Scene& scene) {
                           0.5 * (b.min.z + b.max.z));
   scene.meshes.push_back(makeQuad(center, {extent, extent}, {0.0, 1.0, 0.0},
                                   static_cast<int>(scene.materials.size()) - 1));
+}
+
+
+Expected<Scene> stageModel(Scene model, ModelStage stage) {
+  const Bounds b = model.worldBounds();
+  if (b.empty()) return Status::error("cannot stage '" + model.name + "': it has no triangles");
+  const glm::dvec3 size = b.max - b.min;
+  const double extent = std::max({size.x, size.y, size.z});
+  if (!(extent > 0.0) || !std::isfinite(extent))
+    return Status::error("cannot stage '" + model.name + "': its extent is zero or not finite");
+  // Largest side 3 units, centred on the origin in x and z, standing on y = 0.
+  const double scale = 3.0 / extent;
+  const glm::dvec3 base(0.5 * (b.min.x + b.max.x), b.min.y, 0.5 * (b.min.z + b.max.z));
+  const glm::dmat4 stagedFromWorld = glm::translate(glm::scale(glm::dmat4(1.0), glm::dvec3(scale)), -base);
+  Scene s = std::move(model);
+  for (Mesh& m : s.meshes) m.worldFromModel = stagedFromWorld * m.worldFromModel;
+  if (stage == ModelStage::AsMirror) {
+    for (Material& m : s.materials) m = Material{glm::vec3(0.95f), 1.0f, 0.0f};
+    s.textures.clear();
+  }
+  const double height = size.y * scale;
+  const int mirror = addMaterial(s, glm::vec3(0.9f), 1.0f, 0.0f);
+  const int wall = addMaterial(s, glm::vec3(0.62f, 0.62f, 0.64f), 0.0f, 0.9f, 0.1f);
+  const BoxColours box = addBoxColours(s, 0.2f);
+  // The floor a hair below the model's lowest point, so that its feet do not z-fight with it.
+  s.meshes.push_back(makeQuad({0, -1e-3, -1}, {18, 18}, {0, 1, 0}, mirror));
+  s.meshes.push_back(makeQuad({0, 2.5, -6}, {18, 5}, {0, 0, 1}, wall));
+  s.meshes.push_back(makeBox({-3.0, 0.5, -2.0}, {0.9, 1.0, 0.9}, box.red, 20.0));
+  s.meshes.push_back(makeBox({3.1, 0.7, -2.6}, {0.8, 1.4, 0.8}, box.green, -15.0));
+  s.meshes.push_back(makeBox({0.4, 0.4, -4.3}, {0.8, 0.8, 0.8}, box.blue, 30.0));
+  s.meshes.push_back(makeBox({-2.2, 0.3, 1.8}, {0.6, 0.6, 0.6}, box.yellow, 10.0));
+  // On a mirror: a low camera, the model's reflection in front of it. As the mirror: from above
+  // its top, so that its curved faces reflect the floor, the boxes and the wall.
+  s.camera = stage == ModelStage::OnMirror
+                 ? perspectiveCamera({0.6, 0.3 * height + 0.25, 5.2}, {0.0, 0.35 * height, -1.0}, 50.0, 0.1, 100.0)
+                 : perspectiveCamera({0.8, height + 1.6, 5.0}, {0.0, 0.45 * height, -0.8}, 50.0, 0.1, 100.0);
+  s.background = glm::vec3(0.3f, 0.33f, 0.4f);
+  s.name += stage == ModelStage::OnMirror ? "-on-mirror" : "-as-mirror";
+  return s;
 }
 
 }  // namespace sslr::host

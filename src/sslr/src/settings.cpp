@@ -15,6 +15,7 @@ Settings Settings::preset(Preset preset) {
       // Adaptive L alone: with 8 iterations it fails often enough that a fallback made the
       // cheapest preset the slowest (measured 1.55x high's time on mirror-room, llvmpipe).
       s.hierarchicalFallback = false;
+      s.hierarchicalVerify = false;
       s.blurMaxRadiusPx = 4.0f;
       s.roughnessCutoff = 0.3f;
       break;
@@ -24,15 +25,15 @@ Settings Settings::preset(Preset preset) {
       // medium had the article's 10 iterations and 48 steps: on llvmpipe now slower than high on
       // the open scenes (more pixels fall back) and 0.10-0.14 recall lower on the hard ones.
       s.hierarchicalMaxSteps = 96;
+      s.hierarchicalVerify = false;  // adaptive L's hits unchecked: cheaper, below the traversal alone
       s.blurMaxRadiusPx = 6.0f;
       s.roughnessCutoff = 0.4f;
       break;
     case Preset::High:
-      break;  // the defaults
+      break;  // the defaults: adaptive L, every hit verified and every miss retraced by the traversal
     case Preset::Ultra:
       s.maxIterations = 32;
       s.convergenceEps = 0.0005f;
-      s.hierarchicalVerify = true;  // thin-objects recall 0.963 -> 0.984 at 960x540 (docs/algorithm.md)
       s.hierarchicalMaxSteps = 256;
       s.blurMaxRadiusPx = 12.0f;
       s.roughnessCutoff = 0.6f;

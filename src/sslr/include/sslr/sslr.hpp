@@ -194,9 +194,10 @@ struct Settings {
   FresnelMode fresnel = FresnelMode::Classic;
   int maxIterations = 16;            // adaptive-L iterations (each one depth fetch); article: 10
   bool hierarchicalFallback = true;  // AdaptiveL: trace the pyramid where adaptive L finds no hit
-  bool hierarchicalVerify = false;   // ... and over every adaptive-L hit, keeping an earlier crossing
-                                     // it finds (thin occluders adaptive L steps over; costs about
-                                     // the traversal alone; on in Preset::Ultra)
+  bool hierarchicalVerify = true;    // ... and over every adaptive-L hit, keeping an earlier crossing
+                                     // it finds (a ray adaptive L carried behind something): the
+                                     // default then never finds less than the traversal alone. Off
+                                     // in Preset::Low/Medium; needs hierarchicalFallback
   int hierarchicalMaxSteps = 128;    // pyramid cells visited per ray at most (each one fetch)
   TraversalPass traversalPass = TraversalPass::Auto;  // inline or in a pass of its own (same hits)
   float objectThickness = 0.075f;    // depth of what the screen shows, fraction of its view depth:

@@ -109,6 +109,8 @@ struct TemporalSummary {
 std::vector<TemporalSummary> summarizeTemporal(const std::vector<TemporalPoint>& points);
 
 std::vector<BenchConfig> benchGrid(const std::string& grid);
+// The scenes a run without --scenes measures, the hardest first.
+std::vector<std::string> defaultBenchScenes();
 
 // The configurations of `grid` that `names` select ("method" or "method/label", see
 // BenchOptions::configs), in grid order, with the baseline; an error names a name that selects

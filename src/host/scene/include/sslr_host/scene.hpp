@@ -85,12 +85,26 @@ float reflectance(const Material& m);
 std::vector<std::string> builtinSceneNames();
 Expected<Scene> makeBuiltinScene(const std::string& name);
 
-// A scene by built-in name or glTF path (.gltf/.glb).
+// Scenes kept as glTF files in assets/scenes because the code cannot build them alone: real models
+// nobody here made (Debian's assimp-testmodels), staged on or as mirrors by stageModel
+// (assets/scenes/generate.sh): spider-on-mirror, wuson-as-mirror.
+std::vector<std::string> assetSceneNames();
+// The file of an asset scene: $SSLR_ASSET_DIR/scenes/NAME.gltf, or the source tree's assets.
+std::string assetScenePath(const std::string& name);
+
+// A scene by built-in name, asset scene name or glTF path (.gltf/.glb).
 Expected<Scene> loadScene(const std::string& nameOrPath);
 
 // Adds a mirror floor under the scene (three times its size, just below its lowest point): most
 // models have nothing to reflect in.
 void addMirrorFloor(Scene& scene);
+
+// A model staged for the reflection tests: scaled to a largest side of 3 units, standing on a
+// mirror floor at the origin, a wall and four coloured boxes around it, and a camera. OnMirror
+// keeps its materials and looks from low down; AsMirror makes every material of the model a sharp
+// mirror (a curved mirror nobody here modelled) and looks from above.
+enum class ModelStage { OnMirror, AsMirror };
+Expected<Scene> stageModel(Scene model, ModelStage stage);
 
 // Mesh building helpers (also used by tests).
 Mesh makeBox(glm::dvec3 center, glm::dvec3 size, int material, double rotationYDegrees = 0.0);
