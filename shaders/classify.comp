@@ -161,14 +161,22 @@ bool quadNormalsTurn(ivec2 cell) {
 void writeLevels01(ivec2 cell, vec4 depths) {
   // The gather's clamp repeats a pixel of the same quad when the quad straddles the screen's edge
   // (neutral for the min-max, harmless for the flag); a quad wholly outside is empty.
+#if defined(SSLR_BACK_DEPTH) && SSLR_BACK_DEPTH
+  // Measured thickness (sslr_shared.h): the solids' backs in level 1, their extra depths in level 0.
+  vec4 extra;
+  vec2 level1 = sslrHiZLevel1Measured(frame.proj, frame.surface, frame.trace, depths,
+                                      SSLR_GATHER_QUAD(uBackDepth, cell, 0), extra);
+#else
   vec2 level1 = sslrHiZLevel1Plain(frame.surface, depths);
+  vec4 extra = vec4(0.0f);
+#endif
   bool outside = any(greaterThan(cell * 2, ivec2(frame.surface.width, frame.surface.height) - 1));
   if (outside) level1 = sslrHiZEmpty();
   if (all(lessThan(cell, imageSize(uLevel1)))) {
     imageStore(uLevel1, cell, vec4(level1, 0.0f, 0.0f));
     // A quad of background alone gets no level-0 texels: the traversal skips its level-1 cell
     // (nothing there can stop a ray) and never reads them. On sparse frames most quads are sky.
-    if (!outside && sslrHiZCellHoldsGeometry(frame.surface, level1)) writeLevel0(cell, depths, vec4(0.0f));
+    if (!outside && sslrHiZCellHoldsGeometry(frame.surface, level1)) writeLevel0(cell, depths, extra);
 #if defined(SSLR_CURVED_SOLIDS) && SSLR_CURVED_SOLIDS
     // Curved surfaces reach deeper than the slab (sslr_shared.h, "Curved solids"): a quad whose
     // normals turn is listed for the curved pass, which overwrites its cell with the solids' backs

@@ -44,15 +44,16 @@ shared vec2 sLevel4[8][8];
 shared vec2 sLevel5[4][4];
 shared vec2 sLevel6[2][2];
 
-ivec2 gLevel1Size;
-// A level-1 cell; outside the level (past its padding) neutral.
-vec2 level1(ivec2 c) {
-  return all(lessThan(c, gLevel1Size)) ? texelFetch(uHiZ, c, 1).rg : sslrHiZEmpty();
+// A level-1 cell; outside the level (past its padding, `size`) neutral. The size is passed, not
+// kept in a global set by main(): Mesa's compiler warns of a global read before it is set (a
+// KHR_debug message of high severity on a fresh compile).
+vec2 level1(ivec2 c, ivec2 size) {
+  return all(lessThan(c, size)) ? texelFetch(uHiZ, c, 1).rg : sslrHiZEmpty();
 }
 vec2 reduce4(vec2 a, vec2 b, vec2 c, vec2 d) { return sslrHiZReduce(sslrHiZReduce(a, b), sslrHiZReduce(c, d)); }
 
 void main() {
-  gLevel1Size = textureSize(uHiZ, 1);
+  ivec2 level1Size = textureSize(uHiZ, 1);
   ivec2 local = ivec2(gl_LocalInvocationID.xy);
   ivec2 cell4 = ivec2(gl_WorkGroupID.xy) * 8 + local;
   vec2 m4 = sslrHiZEmpty();
@@ -62,7 +63,8 @@ void main() {
     for (int k = 0; k < 4; ++k) {  // the four level-2 cells of that level-3 cell
       ivec2 cell2 = cell3 * 2 + ivec2(k & 1, k >> 1);
       ivec2 c = cell2 * 2;
-      vec2 m2 = reduce4(level1(c), level1(c + ivec2(1, 0)), level1(c + ivec2(0, 1)), level1(c + ivec2(1, 1)));
+      vec2 m2 = reduce4(level1(c, level1Size), level1(c + ivec2(1, 0), level1Size), level1(c + ivec2(0, 1), level1Size),
+                        level1(c + ivec2(1, 1), level1Size));
       imageStore(uLevel2, cell2, vec4(m2, 0.0f, 0.0f));
       m3 = sslrHiZReduce(m3, m2);
     }

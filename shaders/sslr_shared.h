@@ -68,6 +68,9 @@ using glm::sqrt;
 #define SSLR_STATUS_OFF_SCREEN 2  // the probe left the screen or crossed the near plane
 #define SSLR_STATUS_MISS 3        // did not converge, or the hit failed validation
 #define SSLR_STATUS_SKY 4         // the ray ran into the background (nothing on screen to hit)
+#define SSLR_STATUS_HIDDEN 5      // the traversal ran into a solid the back-face depth measured, or
+                                  // past Settings::hiddenPassageLimitPx behind the depth buffer: what
+                                  // the ray meets is hidden (L: where that was known)
 
 #define SSLR_HIZ_OFF 0       // adaptive L alone (the article's method, made robust)
 #define SSLR_HIZ_FALLBACK 1  // adaptive L first; the hierarchical traversal where it finds no hit
@@ -135,7 +138,7 @@ struct SslrSurface {
   vec4 normalFromStored2;
   int separateMaterial;      // 1: roughness/reflectance channels are of the material texture
   int hasMask;               // 1: rays start only where the mask texture's first channel > 0.5
-  int surfacePad1;
+  int hasBackDepth;          // 1: FrameInputs::backDepthTexture measures what a pixel shows is deep
   int surfacePad2;
 };
 
@@ -165,6 +168,10 @@ struct SslrTraceParams {
                               // behind a surface is inside the object (stops); farther: behind it
   int outlineThinning;        // 1: that depth shrinks near the object's outline (sslrSlabNearOutline)
   int curvedSolids;           // 1: ... and grows behind convex curved surfaces (sslrCurvedExtraDepth)
+  float hiddenPassageLimitPx; // hierarchical: pixels a ray may travel behind the depth buffer
+  float ffxDepthBufferThickness;  // Method::FidelityFxSssr (sslr_trace_ffx.h)
+  int ffxMaxIntersections;
+  int tracePad2;
 };
 
 // The position-buffer comparison method ("3D Game Shaders For Beginners", SSR chapter).
@@ -241,16 +248,16 @@ inline SslrProjection sslrProjectionFromMatrix(const glm::dmat4& clipFromView, b
 }
 static_assert(sizeof(SslrProjection) == 48, "std140 mirror");
 static_assert(sizeof(SslrSurface) == 96, "std140 mirror");
-static_assert(sizeof(SslrTraceParams) == 96, "std140 mirror");
+static_assert(sizeof(SslrTraceParams) == 112, "std140 mirror");
 static_assert(offsetof(SslrFrame, surface) == 48, "std140 mirror");
 static_assert(offsetof(SslrFrame, trace) == 144, "std140 mirror");
 static_assert(sizeof(SslrPositionParams) == 16, "std140 mirror");
-static_assert(offsetof(SslrFrame, positionBuffer) == 240, "std140 mirror");
+static_assert(offsetof(SslrFrame, positionBuffer) == 256, "std140 mirror");
 static_assert(sizeof(SslrDdaParams) == 32, "std140 mirror");
-static_assert(offsetof(SslrFrame, dda) == 256, "std140 mirror");
+static_assert(offsetof(SslrFrame, dda) == 272, "std140 mirror");
 static_assert(sizeof(SslrTemporalParams) == 96, "std140 mirror");
-static_assert(offsetof(SslrFrame, temporal) == 288, "std140 mirror");
-static_assert(sizeof(SslrFrame) == 384, "std140 mirror");
+static_assert(offsetof(SslrFrame, temporal) == 304, "std140 mirror");
+static_assert(sizeof(SslrFrame) == 400, "std140 mirror");
 #endif
 
 // ---- Pure math ----------------------------------------------------------------------------
@@ -581,6 +588,35 @@ SSLR_FN vec4 sslrQuadCurvedExtraDepth(SslrProjection p, SslrSurface s, SslrTrace
               ok.z ? sslrCurvedExtraDepth(p, t, vs2, n2, r) : 0.0f, ok.w ? sslrCurvedExtraDepth(p, t, vs3, n3, r) : 0.0f);
 }
 
+// ---- Measured thickness: back-face depth (FrameInputs::backDepthTexture) ----------------------
+// With a back-face depth (the host's depth pass with front faces culled: per pixel, the nearest
+// back face), what a pixel shows is as deep as measured, not objectThickness x its distance: a
+// leg thinner than the slab lets rays pass just behind it, a box seen across its diagonal stops
+// rays deeper than the slab. The measurement enters where the curved solids' estimate does (it
+// replaces it): as the pixel's extra depth over the slab, in level 0 of the pyramid and in the
+// far key of level 1 where positive. Negative extra depths thin the slab (down to nothing: the
+// traversal then lets a ray just behind a very thin object pass). Compiled in (SSLR_BACK_DEPTH)
+// on the GPU.
+SSLR_FN bool sslrBackDepth(SslrSurface s) {
+#ifdef SSLR_BACK_DEPTH
+  return SSLR_BACK_DEPTH != 0;
+#else
+  return s.hasBackDepth != 0;
+#endif
+}
+
+// A pixel's measured extra depth over the slab (view units), or 0 where nothing is measured: no
+// back face behind it (a floor, an open mesh, the background), or the back face not behind the
+// shown surface (a one-sided face seen from behind is its own back face).
+SSLR_FN float sslrMeasuredExtraDepth(SslrProjection p, SslrSurface s, SslrTraceParams t, float depth, float backDepth) {
+  if (!sslrIsGeometryDepth(s, depth) || !sslrIsGeometryDepth(s, backDepth)) return 0.0f;
+  float front = sslrViewDepthFromDepth(p, depth);
+  float thickness = sslrViewDepthFromDepth(p, backDepth) - front;
+  if (!(thickness > 1e-4f * front)) return 0.0f;
+  float extra = thickness - t.objectThickness * front;
+  return extra != 0.0f ? extra : 1e-7f * front;  // 0 means "not measured"
+}
+
 // A pixel's texel of level 1 when its solid reaches extra deeper than the slab: (min, max) of its
 // depth and of the depth of the solid's back (clamped to the depth range).
 SSLR_FN vec2 sslrHiZSolidTexel(SslrProjection p, SslrSurface s, float depth, vec3 vsPos, float extra) {
@@ -595,6 +631,25 @@ SSLR_FN vec2 sslrHiZSolidTexel(SslrProjection p, SslrSurface s, float depth, vec
 // neutral for the min-max and flat for the curvature.
 SSLR_FN ivec2 sslrQuadPixel(ivec2 cell, int k, ivec2 last) {
   return min(cell * 2 + ivec2(k & 1, k >> 1), last);
+}
+
+// Level 1 with measured thickness: the (min, max) of the quad's depths and, where a solid reaches
+// deeper than the slab, of its back (sslrHiZSolidTexel); `extra` receives the pixels' measured
+// extra depths (sslrMeasuredExtraDepth) for level 0.
+SSLR_FN vec2 sslrHiZLevel1Measured(SslrProjection p, SslrSurface s, SslrTraceParams t, vec4 depths, vec4 backDepths,
+                                   SSLR_OUT(vec4) extra) {
+  extra = vec4(sslrMeasuredExtraDepth(p, s, t, depths.x, backDepths.x),
+               sslrMeasuredExtraDepth(p, s, t, depths.y, backDepths.y),
+               sslrMeasuredExtraDepth(p, s, t, depths.z, backDepths.z),
+               sslrMeasuredExtraDepth(p, s, t, depths.w, backDepths.w));
+  vec3 v0 = vec3(0.0f, 0.0f, -sslrViewDepthFromDepth(p, depths.x));
+  vec3 v1 = vec3(0.0f, 0.0f, -sslrViewDepthFromDepth(p, depths.y));
+  vec3 v2 = vec3(0.0f, 0.0f, -sslrViewDepthFromDepth(p, depths.z));
+  vec3 v3 = vec3(0.0f, 0.0f, -sslrViewDepthFromDepth(p, depths.w));
+  return sslrHiZReduce(sslrHiZReduce(sslrHiZSolidTexel(p, s, depths.x, v0, extra.x),
+                                     sslrHiZSolidTexel(p, s, depths.y, v1, extra.y)),
+                       sslrHiZReduce(sslrHiZSolidTexel(p, s, depths.z, v2, extra.z),
+                                     sslrHiZSolidTexel(p, s, depths.w, v3, extra.w)));
 }
 
 // Level 1 of the pyramid without solids: the (min, max) of a quad's four depths.

@@ -106,6 +106,17 @@ SSLR_FN vec3 sslrWindowFromView(SslrProjection p, vec2 sizePx, float keySign, ve
   return vec3(sslrUvFromNdc(vec2(ndc.x, ndc.y)) * sizePx, keySign * sslrDepthFromNdcZ(p, ndc.z));
 }
 
+// The window-space direction of the ray from vsP along vsR (unnormalized): towards a second point
+// of the ray, kept well in front of the camera plane (a point behind it would project to the
+// wrong side); any such point gives the same window-space line. Orthographic: ~64 pixels of
+// travel, so the direction keeps its precision at any scale.
+SSLR_FN vec3 sslrWindowDirection(SslrProjection p, SslrSurface s, float keySign, vec3 vsP, vec3 vsR, vec3 wP) {
+  float distP = sslrViewDistance(p, vsP);
+  float probeL = p.orthographic != 0 ? 64.0f * sslrPixelFootprint(p, s.height, 1.0f) : max(distP, 1e-6f);
+  if (p.orthographic == 0 && vsR.z > 0.0f) probeL = min(probeL, 0.5f * distP / vsR.z);
+  return sslrWindowFromView(p, vec2(s.width, s.height), keySign, vsP + vsR * probeL) - wP;
+}
+
 // The hit a candidate pixel stands for: where the ray meets the pixel's tangent plane, checked
 // against the pixel it lands in. A pixel holds one depth sample, so a ray running along a surface
 // seen at a grazing angle shows its crossing a few pixels late: the plane's hit is then re-planed

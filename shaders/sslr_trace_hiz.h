@@ -110,6 +110,10 @@ SSLR_FN bool sslrCornerHit(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   // A curved surface is no corner (its solid is the sphere of its curvature).
   if (sslrCurvedSolids(t) && sslrLoadPyramidTexel(0, px).y > 0.0f) return false;
   float slab = t.objectThickness * -vsSurface.z;
+  if (sslrBackDepth(s)) {  // measured (0: nothing measured there, the slab assumed)
+    float measured = sslrLoadPyramidTexel(0, px).y;
+    if (measured != 0.0f) slab = max(slab + measured, 0.0f);
+  }
   // The outline on the shown face's plane, and the side's outward normal.
   vec2 wEdge = acrossX ? vec2(float(px.x) + (outward.x > 0 ? 1.0f : 0.0f), wEntry.y)
                        : vec2(wEntry.x, float(px.y) + (outward.y > 0 ? 1.0f : 0.0f));
@@ -133,6 +137,13 @@ SSLR_FN bool sslrCornerHit(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   return outside >= -0.05f && outside <= 0.5f;
 }
 
+// The ray's length L at window-space parameter tRay (o + d tRay), for a HIDDEN answer.
+SSLR_FN float sslrRayLengthAt(SslrProjection p, vec2 sizePx, float keySign, vec3 o, vec3 d, float tRay, vec3 vsP,
+                              vec3 vsR) {
+  vec3 w = o + d * tRay;
+  return dot(sslrViewFromUvDepth(p, vec2(w.x, w.y) / sizePx, keySign * w.z) - vsP, vsR);
+}
+
 SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin,
                                       vec3 vsP, vec3 vsR) {
   SslrHit hit = sslrNoHit(SSLR_STATUS_MISS);
@@ -140,14 +151,8 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   vec2 sizePx = vec2(s.width, s.height);
   float keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
 
-  // A second point of the ray, kept well in front of the camera plane (a point behind it would
-  // project to the wrong side); any point gives the same window-space line.
-  float distP = sslrViewDistance(p, vsP);
-  // Orthographic: ~64 pixels of travel, so the direction keeps its precision at any scale.
-  float probeL = p.orthographic != 0 ? 64.0f * sslrPixelFootprint(p, s.height, 1.0f) : max(distP, 1e-6f);
-  if (p.orthographic == 0 && vsR.z > 0.0f) probeL = min(probeL, 0.5f * distP / vsR.z);
   vec3 o = sslrWindowFromView(p, sizePx, keySign, vsP);
-  vec3 d = sslrWindowFromView(p, sizePx, keySign, vsP + vsR * probeL) - o;
+  vec3 d = sslrWindowDirection(p, s, keySign, vsP, vsR, o);
   float majorPx = max(abs(d.x), abs(d.y));
   // A ray along the view direction stays in its own pixel: nothing on screen can answer it.
   if (!(majorPx > 1e-3f)) return hit;
@@ -171,6 +176,10 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   // crossed onto an object's side (sslrCornerHit, tried once, if the ray ends in the slab).
   float tRun = -1.0f;
   bool inSlab = false;
+  bool measuredSlab = false;  // ... inside a solid whose depth the back-face depth measured
+  // Pixels travelled behind what the screen shows (Settings::hiddenPassageLimitPx): there hidden
+  // geometry may stop the ray unseen, and a hit found after a long passage is a guess.
+  float hiddenPx = 0.0f;
   // Two phases per pixel the ray reaches: the walk (skip, descend) over cells until the ray
   // reaches a pixel it does not pass in front of or far behind, then that pixel's test. In SIMD
   // lanes that run in step (CPU rasterizers run every instruction of a loop body under lane
@@ -179,7 +188,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   while (i < t.hizMaxSteps) {
     bool reached = false;  // a pixel to test: cell, tExit, segFar, keyNear, extra are its
     vec2 cell = vec2(0.0f);
-    float tExit = 0.0f, segFar = 0.0f, keyNear = 0.0f, extra = 0.0f;
+    float tExit = 0.0f, segNear = 0.0f, segFar = 0.0f, keyNear = 0.0f, extra = 0.0f;
     for (; i < t.hizMaxSteps; ++i) {
       vec3 pos = o + d * tRay;
       if (!(pos.x >= 0.0f && pos.y >= 0.0f && pos.x < sizePx.x && pos.y < sizePx.y)) {
@@ -201,7 +210,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
       vec2 tBound = ((cell + boundaryStep) * cellSize - vec2(o.x, o.y)) * invD;
       tExit = min(tBound.x, tBound.y);
       float keyExit = o.z + d.z * tExit;
-      float segNear = min(pos.z, keyExit);
+      segNear = min(pos.z, keyExit);
       segFar = max(pos.z, keyExit);
 #ifdef SSLR_HIZ_DEBUG_HOOK
       SSLR_HIZ_DEBUG_HOOK(i, level, cell, tRay, tExit, pos, keyExit, keyNear, keyFar);
@@ -210,16 +219,29 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
       // stop a ray; classification writes no level-0 texels under such a level-1 cell): skip it.
       bool skip = segFar < keyNear || (level > 0 && !sslrHiZCellHoldsGeometry(s, minMax));
       // A pixel on a curved surface reaches deeper than the slab (coarse cells' far keys hold it).
-      extra = level == 0 && sslrCurvedSolids(t) ? texel.y : 0.0f;
+      // With a back-face depth, the pixel's measured extra depth over the slab (either sign).
+      extra = level == 0 && (sslrCurvedSolids(t) || sslrBackDepth(s)) ? texel.y : 0.0f;
       // Behind everything the cell shows, deeper than any tolerance and than the objects' assumed
       // thickness: the ray passes behind what the cell shows. (The slope term of the tolerance is
       // unknown before a pixel is looked at: the largest one, tan = 16, is assumed.)
       float farDepth = keySign * keyFar;
+      bool behindSkip = false;
       if (!skip && segNear > keyFar && sslrIsGeometryDepth(s, farDepth)) {
         float distFar = sslrViewDepthFromDepth(p, farDepth);
         float distRay = sslrViewDepthFromDepth(p, keySign * segNear);
-        float passBehind = max(sslrHitTolerance(p, s, t, distFar, 16.0f), t.objectThickness * distFar) + extra;
+        float tolerance16 = sslrHitTolerance(p, s, t, distFar, 16.0f);
+        float passBehind = sslrBackDepth(s) ? max(tolerance16, t.objectThickness * distFar + extra)
+                                            : max(tolerance16, t.objectThickness * distFar) + extra;
         skip = distRay - distFar > passBehind;
+        behindSkip = skip;
+      }
+      if (behindSkip) {
+        hiddenPx += tExit - tRay;
+        if (hiddenPx > t.hiddenPassageLimitPx) {
+          hit.status = SSLR_STATUS_HIDDEN;
+          hit.L = sslrRayLengthAt(p, sizePx, keySign, o, d, tRay, vsP, vsR);
+          return hit;
+        }
       }
       if (skip) {
         // Look coarser only on entering a new parent cell: the parent of this one was (or will
@@ -285,19 +307,37 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
     // slab it passes behind; within the tolerance it goes on. Inside the slab just past an outline
     // it may have met the object's side, narrower than a pixel (sslrCornerHit).
     float slab = t.objectThickness * distSurface;
+    // A measured solid (back-face depth) holds the ray when any part of its segment in the pixel
+    // lies inside [surface + tolerance, back]: a ray running along the view direction crosses a
+    // box's depth within one pixel, its far end already behind the back.
+    bool measured = sslrBackDepth(s) && extra != 0.0f;
+    float behindNear = measured ? sslrViewDepthFromDepth(p, keySign * segNear) - distSurface : behind;
     if (behind > 0.0f && !ownPixel) {
       // A curved surface's solid reaches deeper; a flat face's gets thinner near its outline (the
       // outline rule reads the pyramid's far keys, which on curved surfaces hold their backs).
-      if (extra > 0.0f) slab += extra;
+      if (measured) slab = max(slab + extra, 0.0f);
+      else if (extra > 0.0f) slab += extra;
       else if (t.outlineThinning != 0 && normalOk && behind > tolerance && behind < slab)
         slab = sslrSlabNearOutline(p, s, t, px, vsSurface, vsSurfaceNormal, segFar, keySign, slab);
       if (tRun < 0.0f) tRun = tRay;
-      if (behind > tolerance && behind < slab) {
+      // A measured solid thinner than twice the tolerance (a face seen at a grazing angle has a
+      // wide one) holds the ray once it is half the solid deep: the measurement says it is inside.
+      float into = measured ? min(tolerance, 0.5f * slab) : tolerance;
+      if (behind > into && behindNear < slab) {
         inSlab = true;
+        measuredSlab = measured;
         break;
       }
     }
-    if (!(behind > 0.0f) || behind >= slab) tRun = -1.0f;
+    if (!(behind > 0.0f) || behindNear >= slab) tRun = -1.0f;
+    if (behind > 0.0f && behindNear >= slab && !ownPixel) {  // passed behind what the pixel shows
+      hiddenPx += tExit - tRay;
+      if (hiddenPx > t.hiddenPassageLimitPx) {
+        hit.status = SSLR_STATUS_HIDDEN;
+        hit.L = sslrRayLengthAt(p, sizePx, keySign, o, d, tRay, vsP, vsR);
+        return hit;
+      }
+    }
     tRay = tExit + nudge;
     level = sslrHiZNextLevel(o, d, tRay, cell, 0, topLevel);
   }
@@ -305,6 +345,10 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   float Lc = 0.0f;
   if (inSlab && sslrCornerHit(p, s, t, o + d * tRun, d, vsP, vsR, Lc) && Lc <= t.maxDistance)
     return sslrFinishHit(p, hit, vsP, vsR, Lc, 1.0f);
+  if (measuredSlab) {  // known hidden: where the ray entered the solid's pixels, for verification
+    hit.status = SSLR_STATUS_HIDDEN;
+    hit.L = sslrRayLengthAt(p, sizePx, keySign, o, d, tRun, vsP, vsR);
+  }
   return hit;
 }
 
@@ -352,6 +396,8 @@ SSLR_FN SslrHit sslrTraceSecondStage(SslrProjection p, SslrSurface s, SslrTraceP
   second.iterations += first.iterations;
   if (sslrConfidentHit(first)) {  // verification (SSLR_HIZ_VERIFY)
     if (sslrConfidentHit(second) && second.L < 0.97f * first.L) return second;
+    // With a back-face depth: the ray ran into a measured solid before adaptive L's hit.
+    if (second.status == SSLR_STATUS_HIDDEN && second.L < 0.97f * first.L) return second;
   } else if (second.status == SSLR_STATUS_HIT && second.confidence > first.confidence) {
     return second;
   }

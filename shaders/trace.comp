@@ -126,6 +126,9 @@ vec2 sslrLoadPyramidTexel(int level, ivec2 cell) {
   return texelFetch(uHiZ, cell, level).rg;
 }
 #include "sslr_trace_hiz.h"
+#ifdef SSLR_METHOD_FFX
+#include "sslr_trace_ffx.h"
+#endif
 #endif
 
 // The configured tracer for one ray from pixel px.
@@ -134,6 +137,8 @@ SslrHit sslrTraceRay(ivec2 px, vec3 vsP, vec3 vsV, vec3 vsR) {
   return sslrTracePositionBuffer(frame.proj, frame.surface, frame.positionBuffer, vsP, vsV, vsR);
 #elif defined(SSLR_METHOD_DDA)
   return sslrTraceDda(frame.proj, frame.surface, frame.dda, px, vsP, vsR);
+#elif defined(SSLR_METHOD_FFX)
+  return sslrTraceFfx(frame.proj, frame.surface, frame.trace, px, vsP, vsR);
 #else
   return sslrTraceDepthOnly(frame.proj, frame.surface, frame.trace, px, vsP, vsR);
 #endif

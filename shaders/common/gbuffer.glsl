@@ -8,6 +8,9 @@ layout(binding = 2) uniform sampler2D uColor;   // lit colour (bilinear, clamped
 layout(binding = 7) uniform sampler2D uMaterial;  // optional material texture (nearest)
 
 layout(binding = 8) uniform sampler2D uMask;      // optional: where rays may start (nearest)
+#if defined(SSLR_BACK_DEPTH) && SSLR_BACK_DEPTH
+layout(binding = 10) uniform sampler2D uBackDepth;  // optional: the nearest back face's depth (nearest)
+#endif
 
 // The texel holding pixel px's material channels: the host's material texture if it gave one,
 // else the normal texel itself (read already).

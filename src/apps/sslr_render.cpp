@@ -134,6 +134,8 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
   else throw UsageError{"--fresnel must be classic or schlick (got '" + fresnel + "')"};
   if (args.count("no-blur")) s.blur = false;
   numberOption(args, "object-thickness", "a number", s.objectThickness);
+  numberOption(args, "hidden-passage", "a number", s.hiddenPassageLimitPx);
+  numberOption(args, "ffx-thickness", "a number", s.ffx.depthBufferThickness);
   numberOption(args, "iterations", "an integer", s.maxIterations);
   numberOption(args, "hiz-steps", "an integer", s.hierarchicalMaxSteps);
   if (args.count("no-outline-thinning")) s.outlineThinning = false;
@@ -159,7 +161,7 @@ int run(int argc, char** argv) {
       ("size", "output size WxH", cxxopts::value<std::string>()->default_value("960x540"))
       ("out", "output directory", cxxopts::value<std::string>()->default_value("out"))
       ("dump", "also write every buffer as EXR (color, normal, depth, position, hit, reflection, iterations, resolved)")
-      ("method", "tracer: adaptive-l (depth-only SSLR, hierarchical fallback), hiz (the depth pyramid traversal alone), dda (McGuire & Mara 2014's screen-space DDA) or position-buffer (the tutorial's), for comparison, or none", cxxopts::value<std::string>()->default_value("adaptive-l"))
+      ("method", "tracer: adaptive-l (depth-only SSLR, hierarchical fallback), hiz (the depth pyramid traversal alone), dda (McGuire & Mara 2014's screen-space DDA), ffx-sssr (AMD FidelityFX SSSR's hierarchical raymarch) or position-buffer (the tutorial's), for comparison, or none", cxxopts::value<std::string>()->default_value("adaptive-l"))
       ("no-hiz-fallback", "adaptive-l alone, without the hierarchical traversal where it finds nothing")
       ("hiz-verify", "adaptive-l: also run the hierarchical traversal over every hit and keep an earlier one it "
                      "finds (the high and ultra presets' default)")
@@ -180,6 +182,10 @@ int run(int argc, char** argv) {
       ("composite", "how the reflection enters final.png: blend (over the fallback specular, a sky/ground environment, by coverage) or add (on top of it)",
        cxxopts::value<std::string>()->default_value("blend"))
       ("half-res", "one ray per 2x2 quad, reused by the quad's pixels on the same surface")
+      ("hidden-passage", "refuse hits of rays that travelled more than this many pixels behind the depth buffer "
+                         "(Settings::hiddenPassageLimitPx; default off)", cxxopts::value<std::string>())
+      ("ffx-thickness", "--method ffx-sssr: FidelityFX SSSR's depth buffer thickness, view units (default 0.015, "
+                        "its sample's)", cxxopts::value<std::string>())
       ("object-thickness", "assumed depth of what the screen shows, fraction of its view depth (hierarchical traversal)", cxxopts::value<std::string>())
       ("depth", "depth convention: reversed, reversed-infinite, zero-to-one, gl-default",
        cxxopts::value<std::string>()->default_value("reversed"))
@@ -194,6 +200,8 @@ int run(int argc, char** argv) {
       ("ortho", "orthographic camera with this view height", cxxopts::value<std::string>())
       ("device", "EGL device: auto, hardware, software, surfaceless or an index (default $SSLR_EGL_DEVICE or auto)",
        cxxopts::value<std::string>()->default_value(""))
+      ("back-depth", "also render the back-face depth (front faces culled) and hand it to sslr "
+                     "(FrameInputs::backDepthTexture): measured object thickness instead of --object-thickness")
       ("stage", "stage the scene's model for reflections: on-mirror (a mirror floor, a wall and boxes around it, a "
                 "low camera) or as-mirror (the same, every material of the model a sharp mirror, seen from above)",
        cxxopts::value<std::string>())
@@ -241,6 +249,7 @@ int run(int argc, char** argv) {
     if (normals == "octahedral") gopt.normals = NormalEncoding::Octahedral;
     else if (normals == "xyz") gopt.normals = NormalEncoding::XyzUnorm;
     else throw UsageError{"--normals must be octahedral or xyz (got '" + normals + "')"};
+    gopt.withBackDepth = args.count("back-depth") > 0;
     const std::string method = args["method"].as<std::string>();
     settings = parseSettings(args);
     if (method == "none") {
@@ -252,8 +261,10 @@ int run(int argc, char** argv) {
       settings.method = Method::HierarchicalDepth;
     } else if (method == "dda") {
       settings.method = Method::ScreenSpaceDDA;
+    } else if (method == "ffx-sssr") {
+      settings.method = Method::FidelityFxSssr;
     } else if (method != "adaptive-l") {
-      throw UsageError{"--method must be adaptive-l, hiz, dda, position-buffer or none (got '" + method + "')"};
+      throw UsageError{"--method must be adaptive-l, hiz, dda, ffx-sssr, position-buffer or none (got '" + method + "')"};
     }
     const std::string composite = args["composite"].as<std::string>();
     if (composite == "blend") compositeMode = CompositeMode::BlendOverFallback;
@@ -360,6 +371,7 @@ int run(int argc, char** argv) {
     files.push_back({"fallback.exr", {g.readFallbackSpecular(), {"R", "G", "B"}}});
     files.push_back({"normal.exr", {decodeNormals(g.readNormalPacked(), gopt.normals), {"R", "G", "B"}}});
     files.push_back({"depth.exr", {depth, {"Z"}}});
+    if (gopt.withBackDepth) files.push_back({"back-depth.exr", {g.readBackDepth(), {"Z"}}});
     files.push_back({"position.exr",
                      {reconstructPositions(depth, g.clipFromView(), depthConvention(gopt.depth)), {"R", "G", "B", "A"}}});
     if (reflections) {

@@ -13,6 +13,9 @@
 #include "sslr/sslr.hpp"
 #include "sslr_host/frame_renderer.hpp"
 #include "sslr_host/gbuffer.hpp"
+#include "sslr_shared.h"
+
+#include <glm/gtc/matrix_transform.hpp>
 
 using namespace sslr;
 using namespace sslr::host;
@@ -42,12 +45,14 @@ GLuint makeTexture(GLenum format, int w = W, int h = H) {
 struct Frame {
   std::unique_ptr<GBuffer> gbuffer;
   std::unique_ptr<GpuScene> scene;
-  Frame(DepthMode mode = DepthMode::Reversed, NormalEncoding normals = NormalEncoding::Octahedral) {
+  Frame(DepthMode mode = DepthMode::Reversed, NormalEncoding normals = NormalEncoding::Octahedral,
+        bool backDepth = false) {
     GBufferOptions o;
     o.width = W;
     o.height = H;
     o.depth = mode;
     o.normals = normals;
+    o.withBackDepth = backDepth;
     auto g = GBuffer::create(o);
     EXPECT_TRUE(g) << g.error();
     gbuffer = std::move(g.value());
@@ -160,7 +165,7 @@ struct Snapshot {
     i(GL_ACTIVE_TEXTURE);
     GLint active = 0;
     glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
-    for (int u = 0; u < 10; ++u) {
+    for (int u = 0; u < 11; ++u) {
       glActiveTexture(GL_TEXTURE0 + u);
       for (GLenum target : {GL_TEXTURE_BINDING_2D, GL_TEXTURE_BINDING_CUBE_MAP, GL_TEXTURE_BINDING_3D,
                             GL_TEXTURE_BINDING_2D_ARRAY, GL_TEXTURE_BINDING_1D, GL_TEXTURE_BINDING_RECTANGLE,
@@ -212,7 +217,7 @@ struct Snapshot {
 
 TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   auto ctx = makeContext();
-  Frame f;
+  Frame f(DepthMode::Reversed, NormalEncoding::Octahedral, true);
   // Host state that sslr must not disturb: unusual values everywhere.
   GLuint hostTex[3], hostSampler = 0, hostBuf[3], hostVao = 0, hostFbo = 0;
   glCreateTextures(GL_TEXTURE_2D, 3, hostTex);
@@ -232,7 +237,7 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   glTextureStorage3D(host3d, 1, GL_RGBA8, 4, 4, 4);
   glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &hostArray);
   glTextureStorage3D(hostArray, 1, GL_RGBA8, 4, 4, 2);
-  for (int u = 0; u < 10; ++u) {  // every unit sslr uses (6: its depth pyramid, 7: material, 8: mask, 9: hit)
+  for (int u = 0; u < 11; ++u) {  // every unit sslr uses (6: its depth pyramid, 7: material, 8: mask, 9: hit, 10: back depth)
     glBindTextureUnit(u, hostCube);
     glBindTextureUnit(u, host3d);
     glBindTextureUnit(u, hostArray);
@@ -277,8 +282,12 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   Settings s;
   s.debugOutputs = true;
   s.collectStats = true;
-  ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), s));
+  FrameInputs depthOnly = f.gbuffer->frameInputs();
+  depthOnly.backDepthTexture = 0;
+  ASSERT_TRUE(ctx->dispatch(depthOnly, s));
   EXPECT_EQ(Snapshot::take().values, before.values) << "dispatch changed GL state";
+  ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), s));  // with the back-face depth (unit 10)
+  EXPECT_EQ(Snapshot::take().values, before.values) << "dispatch with a back-face depth changed GL state";
   Settings half = s;
   half.halfResolution = true;  // three more passes, two more textures and a buffer
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), half));
@@ -655,6 +664,64 @@ TEST_F(Api, SeparateMaterialTextureGivesThePackedResult) {
 // A mask limits where rays start: masked-out pixels get nothing (and no tile is listed for them),
 // the others get exactly what they get without a mask (hits: the blur is not compared). Its edge
 // runs through 2x2 quads and an 8x8 tile, which classification reads a quad at a time.
+// The tools' back-face depth pass: a unit box 4.5 units in front of the camera, seen square on,
+// is 1 unit deep at the centre pixel (its back face's view depth 5.5; tolerance: D32F rounding of
+// reversed-Z at that distance, ~1e-5 relative); beside it nothing is behind the floorless sky, so
+// the back depth keeps the clear value. A mirroring node (negative determinant) turns the winding
+// over and measures the same.
+TEST_F(Api, BackDepthPassMeasuresABoxsDepth) {
+  for (double mirrorX : {1.0, -1.0}) {
+    Scene scene;
+    scene.materials.push_back(Material{});
+    Mesh box = makeBox({0.0, 0.0, -5.0}, {1.0, 1.0, 1.0}, 0);
+    box.worldFromModel = glm::scale(box.worldFromModel, glm::dvec3(mirrorX, 1.0, 1.0));
+    scene.meshes.push_back(box);
+    Camera camera;
+    camera.eye = {0.0, 0.0, 0.0};
+    camera.target = {0.0, 0.0, -5.0};
+    camera.fovyDegrees = 40.0;
+    camera.nearPlane = 0.1;
+    camera.farPlane = 100.0;
+    GBufferOptions o;
+    o.width = W;
+    o.height = H;
+    o.withBackDepth = true;
+    auto g = GBuffer::create(o);
+    ASSERT_TRUE(g) << g.error();
+    GpuScene gpu(scene);
+    ASSERT_TRUE(g.value()->render(gpu, camera));
+    const Image front = g.value()->readDepth(), back = g.value()->readBackDepth();
+    const shared::SslrProjection p = shared::sslrProjectionFromMatrix(g.value()->clipFromView(), true);
+    const float frontDist = shared::sslrViewDepthFromDepth(p, front.at(W / 2, H / 2, 0));
+    const float backDist = shared::sslrViewDepthFromDepth(p, back.at(W / 2, H / 2, 0));
+    EXPECT_NEAR(frontDist, 4.5f, 1e-3f) << "mirrorX " << mirrorX;
+    EXPECT_NEAR(backDist, 5.5f, 1e-3f) << "mirrorX " << mirrorX;
+    EXPECT_EQ(back.at(1, 1, 0), 0.0f) << "reversed Z clears to 0; nothing lies behind the corner pixel";
+  }
+}
+
+// A back-face depth that is not the frame's size, not a depth format, or the depth texture itself
+// is refused, the message naming it.
+TEST_F(Api, BadBackDepthTextureIsNamed) {
+  Frame f;
+  auto ctx = makeContext();
+  ASSERT_TRUE(ctx);
+  FrameInputs in = f.gbuffer->frameInputs();
+  const GLuint small = makeTexture(GL_DEPTH_COMPONENT32F, W / 2, H / 2), colour = makeTexture(GL_RGBA8);
+  const std::pair<GLuint, const char*> cases[] = {
+      {small, "32x24 but the context is 64x48"}, {colour, "expected a depth format"}, {in.depthTexture, "itself"}};
+  for (const auto& [tex, expected] : cases) {
+    in.backDepthTexture = tex;
+    const Status st = ctx->dispatch(in, Settings{});
+    ASSERT_FALSE(st) << expected;
+    EXPECT_NE(st.message().find("backDepthTexture"), std::string::npos) << st.message();
+    EXPECT_NE(st.message().find(expected), std::string::npos) << st.message();
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  }
+  glDeleteTextures(1, &small);
+  glDeleteTextures(1, &colour);
+}
+
 TEST_F(Api, MaskTextureLimitsWhereRaysStart) {
   auto ctx = makeContext();
   Frame f;

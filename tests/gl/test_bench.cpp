@@ -60,7 +60,7 @@ TEST_F(Bench, QuickGridWritesCompleteResultsAndReport) {
       EXPECT_LE(r["recall1px"].get<double>(), r["recall4px"].get<double>());
     }
   }
-  EXPECT_EQ(methods, (std::set<std::string>{"adaptive-l", "hiz", "dda", "position-buffer", "baseline"}));
+  EXPECT_EQ(methods, (std::set<std::string>{"adaptive-l", "hiz", "dda", "ffx-sssr", "position-buffer", "baseline"}));
   // Every built-in and asset scene but the two analytic test scenes.
   EXPECT_EQ(scenes.size(), sslr::host::defaultBenchScenes().size());
   EXPECT_EQ(scenes.size(), sslr::host::builtinSceneNames().size() + sslr::host::assetSceneNames().size() - 2);

@@ -61,6 +61,10 @@ TEST(RenderCliNoGl, BadArgumentsExitTwoWithAMessageAndWriteNothing) {
       {"--traversal-pass sideways", "--traversal-pass must be"},
       {"--hiz-verify --no-hiz-fallback", "exclude each other"},
       {"--preset low --hiz-verify", "hierarchicalVerify needs hierarchicalFallback"},
+      {"--hiz-verify --no-hiz-verify", "exclude each other"},
+      {"--hidden-passage -3", "hiddenPassageLimitPx"},
+      {"--hidden-passage far", "--hidden-passage expects a number"},
+      {"--stage sideways", "--stage must be on-mirror or as-mirror"},
       {"--no-such-option", "no-such-option"},
       {"--method raymarch", "--method must be"},
       // Checked before any GL work (they used to exit 1 after starting GL, or render nothing).

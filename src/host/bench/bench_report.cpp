@@ -29,6 +29,9 @@ json settingsJson(const BenchConfig& c) {
   if (c.method == "dda")
     return {{"stride", s.dda.stride},     {"thickness", s.dda.thickness}, {"maxSteps", s.dda.maxSteps},
             {"maxDistance", s.dda.maxDistance}, {"jitter", s.dda.jitter},   {"refine", s.dda.refine}};
+  if (c.method == "ffx-sssr")
+    return {{"depthBufferThickness", s.ffx.depthBufferThickness},
+            {"maxTraversalIntersections", s.ffx.maxTraversalIntersections}};
   if (c.method == "baseline") return json::object();
   const char* traversalPass = s.traversalPass == TraversalPass::Auto     ? "auto"
                               : s.traversalPass == TraversalPass::Inline ? "inline"
@@ -37,6 +40,8 @@ json settingsJson(const BenchConfig& c) {
           {"hierarchicalVerify", s.hierarchicalVerify}, {"hierarchicalMaxSteps", s.hierarchicalMaxSteps},
           {"traversalPass", traversalPass},         {"objectThickness", s.objectThickness},
           {"outlineThinning", s.outlineThinning},   {"curvedSolids", s.curvedSolids},
+          {"backDepth", c.backDepth},
+          {"hiddenPassageLimitPx", s.hiddenPassageLimitPx < 1e29f ? json(s.hiddenPassageLimitPx) : json("off")},
           {"convergenceEps", s.convergenceEps},
           {"initialLengthScreen", s.initialLengthScreen}, {"thicknessRelative", s.thicknessRelative},
           {"thicknessPixels", s.thicknessPixels},   {"blurMaxRadiusPx", s.blurMaxRadiusPx},
@@ -117,7 +122,7 @@ std::vector<const RunRecord*> pareto(std::vector<const RunRecord*> runs) {
 const std::map<std::string, std::string>& methodColors() {
   static const std::map<std::string, std::string> colors = {{"adaptive-l", "#1f77b4"}, {"position-buffer", "#ff7f0e"},
                                                             {"hiz", "#2ca02c"},        {"dda", "#9467bd"},
-                                                            {"baseline", "#777777"}};
+                                                            {"ffx-sssr", "#d62728"},   {"baseline", "#777777"}};
   return colors;
 }
 
@@ -170,7 +175,8 @@ std::string plotSvg(const std::vector<const RunRecord*>& runs, double baselineMs
     << W - 160 << "' y='" << T + 52 << "'>position-buffer</text><circle cx='" << W - 170 << "' cy='" << T + 66
     << "' r='5' fill='#2ca02c'/><text x='" << W - 160 << "' y='" << T + 70 << "'>hiz (pyramid alone)</text><circle cx='"
     << W - 170 << "' cy='" << T + 84 << "' r='5' fill='#9467bd'/><text x='" << W - 160 << "' y='" << T + 88
-    << "'>dda (McGuire-Mara)</text></svg>";
+    << "'>dda (McGuire-Mara)</text><circle cx='" << W - 170 << "' cy='" << T + 102 << "' r='5' fill='#d62728'/><text x='"
+    << W - 160 << "' y='" << T + 106 << "'>ffx-sssr (FidelityFX SSSR)</text></svg>";
   return s.str();
 }
 

@@ -50,6 +50,18 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
         unchecked.settings.hierarchicalVerify = false;
         configs.push_back(unchecked);
         // Where the traversal runs (Settings::traversalPass; the default, Auto, is one of the two).
+        // Measured thickness (a back-face depth input), and the hidden-passage rule with and without it.
+        BenchConfig measured{"adaptive-l", "high-back-depth", Settings::preset(preset), false, true};
+        configs.push_back(measured);
+        for (float limit : {16.0f, 8.0f}) {
+          for (bool back : {false, true}) {
+            BenchConfig hidden{"adaptive-l", std::string(back ? "high-back-depth" : "high") + "-hidden" +
+                                                 std::to_string(static_cast<int>(limit)),
+                               Settings::preset(preset), false, back};
+            hidden.settings.hiddenPassageLimitPx = limit;
+            configs.push_back(hidden);
+          }
+        }
         for (auto [label, pass] : {std::pair{"high-inline", TraversalPass::Inline},
                                    std::pair{"high-deferred", TraversalPass::Deferred}}) {
           BenchConfig where{"adaptive-l", label, Settings::preset(preset), false};
@@ -85,6 +97,17 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
       label << "stride" << stride << "-thick" << thick;
       configs.push_back({"dda", label.str(), s, stride == 2.0f && thick == 0.5f});
     }
+  // AMD FidelityFX SSSR's mirror-ray raymarch and hit validation: its sample's defaults (depth
+  // buffer thickness 0.015, 128 intersections), then thicker (the thickness is its only tolerance).
+  std::vector<float> ffxThicknesses = full ? std::vector<float>{0.015f, 0.05f, 0.15f, 0.5f} : std::vector<float>{0.015f};
+  for (float thick : ffxThicknesses) {
+    Settings s;
+    s.method = Method::FidelityFxSssr;
+    s.ffx.depthBufferThickness = thick;
+    std::ostringstream label;
+    label << "thick" << thick;
+    configs.push_back({"ffx-sssr", label.str(), s, thick == 0.015f});
+  }
   // The tutorial's method: its demo values first, then the values its text gives (maxDistance 15,
   // resolution 0.3, steps 10), then a sweep.
   std::vector<float> resolutions = full ? std::vector<float>{0.1f, 0.3f, 0.6f, 1.0f} : std::vector<float>{0.3f, 1.0f};
@@ -231,7 +254,8 @@ std::vector<BenchConfig> defaultConfigs(const std::vector<BenchConfig>& grid) {
 struct SceneFrame {
   Scene scene;
   std::unique_ptr<FrameRenderer> renderer;
-  FrameInputs inputs;
+  FrameInputs inputs;             // without the back-face depth
+  GLuint backDepthTexture = 0;    // the back-face depth (inputsFor)
 };
 Expected<SceneFrame> renderSceneFrame(const std::string& sceneName, int width, int height) {
   auto scene = loadScene(sceneName);
@@ -240,14 +264,23 @@ Expected<SceneFrame> renderSceneFrame(const std::string& sceneName, int width, i
   g.width = width;
   g.height = height;
   g.withPosition = true;  // the position-buffer method needs it; the depth-only ones ignore it
+  g.withBackDepth = true;  // for the configurations that measure thickness (BenchConfig::backDepth)
   auto renderer = FrameRenderer::create(g);
   if (!renderer) return Status::error(renderer.error());
-  SceneFrame f{std::move(scene.value()), std::move(renderer.value()), {}};
+  SceneFrame f{std::move(scene.value()), std::move(renderer.value()), {}, 0};
   GpuScene gpu(f.scene);
   const Camera camera = f.scene.camera ? *f.scene.camera : f.scene.defaultCamera();
   if (Status st = f.renderer->render(gpu, camera, nullptr); !st) return Status::error(st.message());
   f.inputs = f.renderer->gbuffer().frameInputs();
+  f.backDepthTexture = f.inputs.backDepthTexture;
+  f.inputs.backDepthTexture = 0;  // only the configurations that measure thickness get it
   return f;
+}
+
+FrameInputs inputsFor(const SceneFrame& f, const BenchConfig& c) {
+  FrameInputs in = f.inputs;
+  if (c.backDepth) in.backDepthTexture = f.backDepthTexture;
+  return in;
 }
 
 // One sslr context per timed configuration, created on first use (at one size). A context keeps
@@ -294,7 +327,8 @@ Expected<std::vector<std::vector<double>>> timeInterleaved(const std::vector<Ben
     if (configs[i].method == "baseline") continue;
     auto ctx = contexts.get(i);
     if (!ctx) return Status::error(ctx.error());
-    if (Status st = ctx.value()->dispatch(f.inputs, configs[i].settings); !st) return Status::error(st.message());
+    if (Status st = ctx.value()->dispatch(inputsFor(f, configs[i]), configs[i].settings); !st)
+      return Status::error(st.message());
   }
   std::vector<std::vector<double>> times(configs.size());
   for (int round = 0; round < options.warmup + options.frames; ++round)
@@ -306,7 +340,8 @@ Expected<std::vector<std::vector<double>>> timeInterleaved(const std::vector<Ben
       } else {
         auto ctx = contexts.get(i);
         if (!ctx) return Status::error(ctx.error());
-        ms = timer.timeMs([&] { if (st) st = ctx.value()->dispatch(f.inputs, configs[i].settings); },
+        const FrameInputs in = inputsFor(f, configs[i]);
+        ms = timer.timeMs([&] { if (st) st = ctx.value()->dispatch(in, configs[i].settings); },
                           timer.repeats(options.batch));
       }
       if (!st) return Status::error(st.message());
@@ -456,7 +491,7 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
         Settings s = c.settings;
         s.debugOutputs = true;
         s.collectStats = true;
-        if (Status st = fr.sslr().dispatch(inputs, s); !st) return Status::error(st.message());
+        if (Status st = fr.sslr().dispatch(inputsFor(sf, c), s); !st) return Status::error(st.message());
         const Image hit = fr.readHit();
         r.metrics = compareHits(gt, hit, kReportedConfidence, &color);
         const FrameStats stats = fr.sslr().waitForStats();

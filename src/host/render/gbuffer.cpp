@@ -97,6 +97,15 @@ Expected<std::unique_ptr<GBuffer>> GBuffer::create(const GBufferOptions& o) {
   g->depth_ = make(o.depth == DepthMode::GlDefault ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT32F,
                    "host.gbuffer.depth");
   if (o.withPosition) g->position_ = make(GL_RGBA32F, "host.gbuffer.position");
+  if (o.withBackDepth) {
+    g->backDepth_ = make(o.depth == DepthMode::GlDefault ? GL_DEPTH_COMPONENT24 : GL_DEPTH_COMPONENT32F,
+                         "host.gbuffer.backDepth");
+    glCreateFramebuffers(1, &g->backFbo_);
+    glNamedFramebufferTexture(g->backFbo_, GL_DEPTH_ATTACHMENT, g->backDepth_, 0);
+    glNamedFramebufferDrawBuffer(g->backFbo_, GL_NONE);
+    if (glCheckNamedFramebufferStatus(g->backFbo_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      return Status::error("back-face depth framebuffer is incomplete");
+  }
   g->fallback_ = make(GL_R11F_G11F_B10F, "host.fallbackSpecular");
   glCreateFramebuffers(1, &g->fbo_);
   glNamedFramebufferTexture(g->fbo_, GL_COLOR_ATTACHMENT0, g->color_, 0);
@@ -117,8 +126,9 @@ Expected<std::unique_ptr<GBuffer>> GBuffer::create(const GBufferOptions& o) {
 
 GBuffer::~GBuffer() {
   glDeleteFramebuffers(1, &fbo_);
-  const GLuint textures[5] = {color_, normal_, depth_, position_, fallback_};
-  glDeleteTextures(5, textures);
+  glDeleteFramebuffers(1, &backFbo_);
+  const GLuint textures[6] = {color_, normal_, depth_, position_, fallback_, backDepth_};
+  glDeleteTextures(6, textures);
   glDeleteProgram(program_);
 }
 
@@ -179,10 +189,31 @@ Status GBuffer::render(const GpuScene& gpu, const Camera& camera, glm::dvec2 jit
     glDrawElementsBaseVertex(GL_TRIANGLES, d.indexCount, GL_UNSIGNED_INT,
                              reinterpret_cast<const void*>(d.firstIndex * 4), d.baseVertex);
   }
+  if (backFbo_ != 0) renderBackDepth(gpu, clearDepth);
   glBindVertexArray(0);
   glUseProgram(0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   return {};
+}
+
+// The same draws into the back-face depth alone, front faces culled: per pixel, the nearest back
+// face. A transform that mirrors (negative determinant) turns a mesh's winding over.
+void GBuffer::renderBackDepth(const GpuScene& gpu, float clearDepth) {
+  glBindFramebuffer(GL_FRAMEBUFFER, backFbo_);
+  glClearNamedFramebufferfv(backFbo_, GL_DEPTH, 0, &clearDepth);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_FRONT);
+  for (const GpuScene::Draw& d : gpu.draws()) {
+    const glm::dmat4 viewFromModel = viewFromWorld_ * d.worldFromModel;
+    const glm::mat4 clipFromModel = toFloat(clipFromView_ * viewFromModel);
+    glProgramUniformMatrix4fv(program_, 0, 1, GL_FALSE, &clipFromModel[0][0]);
+    glFrontFace(glm::determinant(glm::dmat3(d.worldFromModel)) < 0.0 ? GL_CW : GL_CCW);
+    glDrawElementsBaseVertex(GL_TRIANGLES, d.indexCount, GL_UNSIGNED_INT,
+                             reinterpret_cast<const void*>(d.firstIndex * 4), d.baseVertex);
+  }
+  glFrontFace(GL_CCW);
+  glCullFace(GL_BACK);
+  glDisable(GL_CULL_FACE);
 }
 
 FrameInputs GBuffer::frameInputs() const {
@@ -191,6 +222,7 @@ FrameInputs GBuffer::frameInputs() const {
   in.normalTexture = normal_;
   in.depthTexture = depth_;
   in.positionTexture = position_;
+  in.backDepthTexture = backDepth_;
   in.clipFromView = clipFromView_;
   in.depth = depthConvention(options_.depth);
   if (options_.normals == NormalEncoding::Octahedral) {
@@ -223,6 +255,9 @@ Image GBuffer::readColor() const { return readTexture(color_, width(), height(),
 Image GBuffer::readFallbackSpecular() const { return readTexture(fallback_, width(), height(), 3); }
 Image GBuffer::readNormalPacked() const { return readTexture(normal_, width(), height(), 4); }
 Image GBuffer::readDepth() const { return readTexture(depth_, width(), height(), 1, GL_DEPTH_COMPONENT); }
+Image GBuffer::readBackDepth() const {
+  return backDepth_ != 0 ? readTexture(backDepth_, width(), height(), 1, GL_DEPTH_COMPONENT) : Image{};
+}
 Image GBuffer::readPosition() const {
   return position_ != 0 ? readTexture(position_, width(), height(), 4) : Image{};
 }

@@ -45,6 +45,7 @@ bool sslrLoadSurface(ivec2 px, vec3& vsPos) {
 }  // namespace sslr::shared
 
 #include "sslr_trace_dda.h"
+#include "sslr_trace_ffx.h"
 #include "sslr_trace_hiz.h"
 #include "sslr_trace_position.h"
 
@@ -94,9 +95,15 @@ Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& set
           const ivec2 q0 = sslrQuadPixel(cell, 0, last), q1 = sslrQuadPixel(cell, 1, last);
           const ivec2 q2 = sslrQuadPixel(cell, 2, last), q3 = sslrQuadPixel(cell, 3, last);
           vec4 extra;
-          m = sslrHiZLevel1Cell(proj, surf, t, q0, q1, q2, q3,
-                                vec4(sslrLoadDepth(q0), sslrLoadDepth(q1), sslrLoadDepth(q2), sslrLoadDepth(q3)),
-                                sslrLoadNormal(q0), sslrLoadNormal(q1), sslrLoadNormal(q2), sslrLoadNormal(q3), extra);
+          const vec4 depths(sslrLoadDepth(q0), sslrLoadDepth(q1), sslrLoadDepth(q2), sslrLoadDepth(q3));
+          if (sslrBackDepth(surf) && g.backDepth) {  // classification's measured cells
+            auto back = [&](ivec2 q) { return g.backDepth->at(q.x, q.y, 0); };
+            m = sslrHiZLevel1Measured(proj, surf, t, depths, vec4(back(q0), back(q1), back(q2), back(q3)), extra);
+            if (!sslrHiZCellHoldsGeometry(surf, m)) extra = vec4(0.0f);
+          } else {
+            m = sslrHiZLevel1Cell(proj, surf, t, q0, q1, q2, q3, depths, sslrLoadNormal(q0), sslrLoadNormal(q1),
+                                  sslrLoadNormal(q2), sslrLoadNormal(q3), extra);
+          }
           for (int k = 0; k < 4; ++k) {  // the curved pass's level-0 texels: the quad's pixels on screen
             const ivec2 q(2 * cx + (k & 1), 2 * cy + (k >> 1));
             if (q.x < w && q.y < h) tPyramid[0][static_cast<size_t>(q.y) * w + q.x].y = extra[k];
@@ -139,6 +146,8 @@ Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& set
       const SslrHit r = positionMethod ? sslrTracePositionBuffer(proj, surf, pb, vsP, vsV, vsR)
                         : settings.method == Method::ScreenSpaceDDA
                             ? sslrTraceDda(proj, surf, frame.value().dda, px, vsP, vsR)
+                        : settings.method == Method::FidelityFxSssr
+                            ? sslrTraceFfx(proj, surf, t, px, vsP, vsR)
                             : sslrTraceDepthOnly(proj, surf, t, px, vsP, vsR);
       float* o = &hit.at(x, y, 0);
       o[0] = r.uvHit.x;

@@ -136,6 +136,13 @@ Status Context::Impl::checkInputs(const FrameInputs& in, Method method) const {
   if (in.maskTexture != 0) {
     if (Status s = checkTexture(in.maskTexture, "FrameInputs::maskTexture", FormatInfo::Color, 1); !s) return s;
   }
+  if (in.backDepthTexture != 0) {
+    if (Status s = checkTexture(in.backDepthTexture, "FrameInputs::backDepthTexture", FormatInfo::Depth, 1); !s)
+      return Status::error(s.message() + " (the back-face depth: the host's depth pass with front faces culled)");
+    if (in.backDepthTexture == in.depthTexture)
+      return Status::error("sslr: FrameInputs::backDepthTexture is the depthTexture itself; it must be a depth pass "
+                           "of its own with front faces culled");
+  }
   if (in.motionTexture != 0) {
     if (Status s = checkTexture(in.motionTexture, "FrameInputs::motionTexture", FormatInfo::Color, 2); !s) return s;
   }

@@ -19,6 +19,8 @@ void Context::Impl::bindInputs(const FrameInputs& in) const {
   gl.BindSampler(7, nearestSampler);
   gl.bindTexture2D(8, in.maskTexture);  // 0 unless the host limits where rays start
   gl.BindSampler(8, nearestSampler);
+  gl.bindTexture2D(10, in.backDepthTexture);  // 0 unless the host measures thickness
+  gl.BindSampler(10, nearestSampler);
   gl.bindTexture2D(6, hiz);  // read by the depth-only trace (built when a mode needs it)
   gl.BindSampler(6, nearestSampler);
   gl.BindBufferBase(GL_UNIFORM_BUFFER, SSLR_BINDING_FRAME_UBO, frameUbo);
@@ -94,6 +96,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   // material channels (classification gathers them: a gather's channel is a constant).
   const shared::SslrSurface& surface = constants.value().surface;
   inputDefines = std::string(in.maskTexture != 0 ? "#define SSLR_HAS_MASK 1\n" : "") +
+                 "#define SSLR_BACK_DEPTH " + (in.backDepthTexture != 0 ? "1\n" : "0\n") +
                  (in.materialTexture != 0 ? "#define SSLR_SEPARATE_MATERIAL 1\n" : "") +
                  "#define SSLR_NORMAL_ENCODING " + std::to_string(surface.normalEncoding) + "\n" +
                  "#define SSLR_WORLD_NORMALS " + (surface.normalFromStored0.w != 0.0f ? "1" : "0") + "\n" +
@@ -113,6 +116,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   methodDefines += curvedDefine;
   if (settings.method == Method::PositionBuffer) methodDefines += "#define SSLR_METHOD_POSITION_BUFFER 1\n";
   if (settings.method == Method::ScreenSpaceDDA) methodDefines += "#define SSLR_METHOD_DDA 1\n";
+  if (settings.method == Method::FidelityFxSssr) methodDefines += "#define SSLR_METHOD_FFX 1\n";
   const std::string statsDefine = settings.collectStats ? "#define SSLR_COLLECT_STATS 1\n" : "";
   std::string traceDefines = methodDefines + statsDefine;
   if (settings.debugOutputs) traceDefines += "#define SSLR_DEBUG_OUTPUTS 1\n";

@@ -24,6 +24,7 @@ Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings
   f.surface.constantReflectance = in.surface.constantReflectance;
   f.surface.separateMaterial = in.materialTexture != 0 ? 1 : 0;
   f.surface.hasMask = in.maskTexture != 0 ? 1 : 0;
+  f.surface.hasBackDepth = in.backDepthTexture != 0 ? 1 : 0;
   f.surface.width = static_cast<float>(width);
   f.surface.height = static_cast<float>(height);
   if (in.surface.space == NormalSpace::World) {
@@ -65,14 +66,19 @@ Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings
   t.maxIterations = s.maxIterations;
   t.fresnelMode = s.fresnel == FresnelMode::Classic ? SSLR_FRESNEL_CLASSIC : SSLR_FRESNEL_SCHLICK;
   t.outlineThinning = s.outlineThinning ? 1 : 0;
-  t.curvedSolids = s.curvedSolids ? 1 : 0;
-  t.hizMode = s.method == Method::HierarchicalDepth
+  // A measured thickness (back-face depth) replaces the curved solids' estimate.
+  t.curvedSolids = s.curvedSolids && in.backDepthTexture == 0 && s.method != Method::FidelityFxSssr ? 1 : 0;
+  // FidelityFX SSSR's raymarch reads the pyramid too (its nearest depths).
+  t.hizMode = s.method == Method::HierarchicalDepth || s.method == Method::FidelityFxSssr
                   ? SSLR_HIZ_ONLY
                   : (s.method == Method::AdaptiveL && s.hierarchicalFallback
                          ? (s.hierarchicalVerify ? SSLR_HIZ_VERIFY : SSLR_HIZ_FALLBACK)
                          : SSLR_HIZ_OFF);
   t.hizMaxSteps = s.hierarchicalMaxSteps;
   t.objectThickness = s.objectThickness;
+  t.hiddenPassageLimitPx = s.hiddenPassageLimitPx;
+  t.ffxDepthBufferThickness = s.ffx.depthBufferThickness;
+  t.ffxMaxIntersections = s.ffx.maxTraversalIntersections;
   t.hizLevels = shared::sslrHiZLevelCount(width, height);
   f.positionBuffer.maxDistance = s.positionBuffer.maxDistance;
   f.positionBuffer.resolution = s.positionBuffer.resolution;

@@ -54,6 +54,8 @@ std::string validate(const Settings& s) {
     why << "traversalPass = " << static_cast<int>(s.traversalPass) << " (not a TraversalPass); ";
   if (s.hierarchicalMaxSteps < 1 || s.hierarchicalMaxSteps > 1024)
     why << "hierarchicalMaxSteps = " << s.hierarchicalMaxSteps << " (must be 1..1024); ";
+  if (std::isnan(s.hiddenPassageLimitPx) || s.hiddenPassageLimitPx < 0.0f)
+    why << "hiddenPassageLimitPx = " << s.hiddenPassageLimitPx << " (must be >= 0; 1e30 = off); ";
   if (!finite(s.objectThickness) || s.objectThickness < 0.0f)
     why << "objectThickness = " << s.objectThickness << " (must be >= 0); ";
   if (!finite(s.convergenceEps) || s.convergenceEps < 0.0f)
@@ -99,8 +101,12 @@ std::string validate(const Settings& s) {
     why << "dda.thickness = " << dda.thickness << " (must be >= 0); ";
   if (!(dda.maxDistance > 0.0f)) why << "dda.maxDistance = " << dda.maxDistance << " (must be > 0); ";
   if (dda.maxSteps < 1 || dda.maxSteps > 16384) why << "dda.maxSteps = " << dda.maxSteps << " (must be 1..16384); ";
+  if (!finite(s.ffx.depthBufferThickness) || !(s.ffx.depthBufferThickness > 0.0f))
+    why << "ffx.depthBufferThickness = " << s.ffx.depthBufferThickness << " (must be > 0); ";
+  if (s.ffx.maxTraversalIntersections < 1 || s.ffx.maxTraversalIntersections > 16384)
+    why << "ffx.maxTraversalIntersections = " << s.ffx.maxTraversalIntersections << " (must be 1..16384); ";
   if (s.method != Method::AdaptiveL && s.method != Method::HierarchicalDepth && s.method != Method::PositionBuffer &&
-      s.method != Method::ScreenSpaceDDA)
+      s.method != Method::ScreenSpaceDDA && s.method != Method::FidelityFxSssr)
     why << "method = " << static_cast<int>(s.method) << " (not a sslr::Method); ";
   if (!finite(s.temporalWeight) || s.temporalWeight < 0.0f || s.temporalWeight > 0.98f)
     why << "temporalWeight = " << s.temporalWeight << " (must be 0..0.98); ";

@@ -127,6 +127,12 @@ struct FrameInputs {
                                // channels refer to (0: they are channels of normalTexture)
   GLName maskTexture = 0;      // optional: rays start only where its first channel is > 0.5
                                // (an engine's "SSR here" stencil, copied to a colour texture)
+  GLName backDepthTexture = 0; // optional: the nearest back face's depth per pixel (the host's depth
+                               // pass again with front faces culled; a depth format, the same size
+                               // and convention as depthTexture). The depth-only tracers then take
+                               // what each pixel shows to be as deep as measured instead of
+                               // Settings::objectThickness x its distance (where a back face lies
+                               // behind it): rays pass behind thin legs and stop inside boxes
   GLName motionTexture = 0;    // optional, Settings::temporal: RG = this pixel's uv minus the uv the
                                // same surface point had in the previous frame (the host's motion
                                // vectors, uv units); where history is looked up instead of the
@@ -156,6 +162,8 @@ enum class Method {
   HierarchicalDepth,   // depth-only: the min-max depth pyramid traversal alone (for comparison)
   PositionBuffer,      // comparison: "3D Game Shaders For Beginners" march on a position texture
   ScreenSpaceDDA,      // comparison, depth-only: McGuire & Mara 2014's perspective-correct DDA
+  FidelityFxSssr,      // comparison, depth-only: AMD FidelityFX SSSR 1.1.4's hierarchical raymarch
+                       // and hit validation for mirror rays (shaders/sslr_trace_ffx.h)
 };
 
 // Where the hierarchical traversal of Method::AdaptiveL runs (the answers are the same).
@@ -187,10 +195,17 @@ struct DdaSettings {
   bool refine = true;            // re-march the stride of a hit one pixel at a time (stride > 1)
 };
 
+// Parameters of Method::FidelityFxSssr, with FFX SSSR's sample defaults.
+struct FfxSssrSettings {
+  float depthBufferThickness = 0.015f;  // view units: confidence (1 - smoothstep(0, this, d))^2
+  int maxTraversalIntersections = 128;  // steps of the hierarchical raymarch at most
+};
+
 struct Settings {
   Method method = Method::AdaptiveL;
   PositionBufferSettings positionBuffer;  // used by Method::PositionBuffer only
   DdaSettings dda;                        // used by Method::ScreenSpaceDDA only
+  FfxSssrSettings ffx;                    // used by Method::FidelityFxSssr only
   FresnelMode fresnel = FresnelMode::Classic;
   int maxIterations = 16;            // adaptive-L iterations (each one depth fetch); article: 10
   bool hierarchicalFallback = true;  // AdaptiveL: trace the pyramid where adaptive L finds no hit
@@ -206,6 +221,10 @@ struct Settings {
   bool outlineThinning = true;       // ... and less deep near the outline of what a pixel shows
                                      // (a box is no deeper at its edge than its faces' corner
                                      // allows: rays pass behind edges; docs/algorithm.md)
+  float hiddenPassageLimitPx = 1.0e30f;  // a ray that travels more than this many pixels behind
+                                     // what the screen shows (where hidden geometry may stop it,
+                                     // unseen) reports no hit; off by default (docs/results.md,
+                                     // "Rays through hidden space": the recall/false-hit trade)
   bool curvedSolids = true;          // ... and deeper behind convex curved surfaces: a sphere of
                                      // the surface's own curvature (curved-mirror false hits 2.2% ->
                                      // 0.85% at 320x180; docs/algorithm.md)

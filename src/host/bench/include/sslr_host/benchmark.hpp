@@ -38,6 +38,7 @@ struct BenchConfig {
   std::string label;   // e.g. "high", "res0.3-steps5-dist8"
   Settings settings;
   bool isDefault = false;  // the method's default configuration (image strips, summary)
+  bool backDepth = false;  // hand sslr the back-face depth (FrameInputs::backDepthTexture)
 };
 
 struct RunRecord {

@@ -26,6 +26,8 @@ struct GBufferOptions {
   DepthMode depth = DepthMode::Reversed;
   NormalEncoding normals = NormalEncoding::Octahedral;
   bool withPosition = false;  // also write view-space position (RGBA32F, w = 1 on geometry)
+  bool withBackDepth = false; // also render the back-face depth (front faces culled), for
+                              // FrameInputs::backDepthTexture
 };
 
 // A scene uploaded to GL: one vertex/index buffer pair, one draw per mesh.
@@ -72,6 +74,7 @@ class GBuffer {
   GLuint normalTexture() const { return normal_; }
   GLuint depthTexture() const { return depth_; }
   GLuint positionTexture() const { return position_; }
+  GLuint backDepthTexture() const { return backDepth_; }  // withBackDepth only, else 0
   GLuint fallbackSpecularTexture() const { return fallback_; }
   GLuint framebuffer() const { return fbo_; }
   const glm::dmat4& clipFromView() const { return clipFromView_; }
@@ -87,12 +90,15 @@ class GBuffer {
   Image readNormalPacked() const;  // RGBA as stored
   Image readDepth() const;         // 1 channel, raw window depth
   Image readPosition() const;      // RGBA32F position texture (withPosition only)
+  Image readBackDepth() const;     // 1 channel, raw window depth of the nearest back face (withBackDepth only)
   Image readFallbackSpecular() const;  // RGB
 
  private:
   GBuffer() = default;
   GBufferOptions options_;
   GLuint fbo_ = 0, color_ = 0, normal_ = 0, depth_ = 0, position_ = 0, fallback_ = 0, program_ = 0;
+  GLuint backFbo_ = 0, backDepth_ = 0;
+  void renderBackDepth(const GpuScene& gpu, float clearDepth);
   glm::dmat4 clipFromView_{1.0}, viewFromWorld_{1.0};
 };
 

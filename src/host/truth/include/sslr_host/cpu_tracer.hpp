@@ -13,6 +13,7 @@ struct CpuGBuffer {
   const Image* depth = nullptr;         // 1 channel, raw window depth
   const Image* normalPacked = nullptr;  // 4 channels as stored
   const Image* positions = nullptr;     // optional RGBA view positions (w = 1 on geometry)
+  const Image* backDepth = nullptr;     // FrameInputs::backDepthTexture's contents, when it is given
 };
 
 enum class SurfaceSource {
