@@ -1,4 +1,4 @@
-// Pass 1: tile classification, one invocation per 2x2 quad: the first quad of an 8x8 tile found
+// Pass 1 (classification; passes.cpp runClassify): tile classification, one invocation per 2x2 quad: the first quad of an 8x8 tile found
 // to need tracing appends the tile to the tile list (a per-tile stamp says "listed this frame");
 // all later passes run over listed tiles only. No shared memory and no barrier: on CPU
 // rasterizers a barrier splits the shader (an empty frame took 1.12x as long with the group flag

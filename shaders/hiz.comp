@@ -1,4 +1,4 @@
-// Builds the min-max depth pyramid's levels 2 and up (sslr_shared.h, "Min-max depth pyramid"):
+// Pass 2 (pyramid; passes.cpp runPyramid): builds the min-max depth pyramid's levels 2 and up (sslr_shared.h, "Min-max depth pyramid"):
 // each cell is the (min, max) raw depth of its 2x2 children. Levels 0 and 1 are classification's
 // (classify.comp reads every depth anyway).
 //

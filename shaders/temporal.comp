@@ -1,4 +1,4 @@
-// Pass 6 (Settings::temporal), over the listed tiles: blends this frame's resolved output with the
+// Pass 5 (temporal reuse; passes.cpp runTemporal; Settings::temporal), over the listed tiles: blends this frame's resolved output with the
 // previous frame's, reprojected through FrameInputs::previousClipFromView.
 //   default:              resolved (+ history, history keys) -> blurTemp
 //   SSLR_TEMPORAL_STORE:  blurTemp -> resolved and history; this frame's keys -> history keys

@@ -1,4 +1,4 @@
-// Pass 2: trace over listed tiles. Writes the reflection (rgb = hit colour x weights, a = blur
+// Pass 3 (trace; passes.cpp runTrace): trace over listed tiles. Writes the reflection (rgb = hit colour x weights, a = blur
 // weight), the unblurred resolved output (same rgb, a = coverage) and, with SSLR_DEBUG_OUTPUTS,
 // the hit and iteration images.
 // Tracer: the depth-only tracer (adaptive L, with the hierarchical traversal as fallback or alone,

@@ -156,13 +156,50 @@ struct Context::Impl {
   Status checkTexture(GLName tex, const char* what, FormatInfo::Kind kind, int minChannels,
                       FormatInfo* infoOut = nullptr) const;
   Status checkInputs(const FrameInputs& in, Method method) const;
-  // passes.cpp
+  // passes.cpp: a frame's plan (which passes run, their switches and programs), then one function
+  // per pass, in the order they run.
+  struct FramePlan {
+    shared::SslrFrame frame{};  // the constants the passes read (frameConstants)
+    Method method = Method::AdaptiveL;
+    bool halfResolution = false, temporal = false, debugOutputs = false, collectStats = false;
+    bool pyramid = false;          // the trace reads the depth pyramid
+    bool curvedSolids = false;     // ... with the curved quads' pass
+    bool level1Pass = false;       // level 1 in a pass of its own (the last frame listed no tile)
+    bool feedback = false;         // TraversalPass::Auto on a software renderer
+    bool feedbackWritten = false;  // this frame's counts go to the feedback buffer
+    bool deferTraversal = false;   // the traversal in the retrace pass
+    bool countTraversal = false, countQuads = false;  // Auto inline: count what needed it
+    bool retracePass = false, quadRetracePass = false;
+    bool blur = false;
+    bool useHistory = false;       // temporal: the previous frame stored a history
+    StatsSlot* slot = nullptr;     // Settings::collectStats: this frame's ring slot
+    struct {
+      GLuint classify = 0, level1 = 0, cleanup = 0, hizBuild = 0, hizSingle = 0, hizArgs = 0, curved = 0;
+      GLuint trace = 0, quads = 0, quadRetrace = 0, retrace = 0, blurH = 0, blurV = 0;
+      GLuint temporalBlend = 0, temporalStore = 0, historyCleanup = 0;
+    } programs;
+  };
   void bindInputs(const FrameInputs& in) const;
   void createPyramid();
   void bindPyramidLevels01() const;
   void buildPyramid(GLuint blockProgram, GLuint singleProgram) const;
   void readFeedback();
   Status dispatch(const FrameInputs& in, const Settings& settings);
+  FramePlan planFrame(const Settings& settings, const shared::SslrFrame& constants,
+                      bool hadHistory);
+  Status buildPrograms(FramePlan& plan, const FrameInputs& in, const Settings& settings);
+  Expected<GLuint> optionalProgram(bool wanted, const char* entry, const std::string& defines);
+  void createFrameResources(const FramePlan& plan);
+  void beginFrame(FramePlan& plan);
+  void writeTileHeader() const;
+  void beginPass(const FramePlan& plan, int pass) const;
+  void runClassify(const FramePlan& plan, const FrameInputs& in) const;
+  void runPyramid(const FramePlan& plan) const;
+  void runTrace(const FramePlan& plan) const;
+  void runQuads(const FramePlan& plan) const;
+  void runBlur(const FramePlan& plan) const;
+  void runTemporal(const FramePlan& plan, const FrameInputs& in);
+  void finishFrame(const FramePlan& plan);
   // composite.cpp
   Status composite(GLName framebuffer, const CompositeOptions& options);
   Status checkCompositeTarget(GLName framebuffer) const;

@@ -76,6 +76,9 @@ void Context::Impl::readFeedback() {
   traversalInline = share > (traversalInline ? kInlineTraversalShare - 0.05 : kInlineTraversalShare + 0.05);
 }
 
+// A frame: validate, plan (which passes run and with which programs, before any GL state is
+// touched), create what the plan needs, then the passes in order. Each pass function issues its
+// GL commands through the counting wrappers (FrameStats' per-pass commands).
 Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) {
   haveFrame = false;
   // Temporal history is the previous dispatch's only if that one stored it: a failed or
@@ -89,12 +92,70 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   if (Status s = checkInputs(in, settings.method); !s) return s;
   recording = {};
   recordingPass = 0;
-  // The optional inputs are compiled in or out (common/gbuffer.glsl) rather than branched on: a
-  // CPU rasterizer runs an untaken branch's texture fetch under a lane mask (llvmpipe 960x540:
-  // classification 9.1 -> 7.0 ms, glossy's blur 58.6 -> 52.2 ms without them).
-  // So are the normal encoding and the world-to-view normal transform (sslrDecodeNormal), and the
-  // material channels (classification gathers them: a gather's channel is a constant).
-  const shared::SslrSurface& surface = constants.value().surface;
+  FramePlan plan = planFrame(settings, constants.value(), hadHistory);
+  if (Status s = buildPrograms(plan, in, settings); !s) return s;
+  createFrameResources(plan);
+  detail::StateGuard guard(gl, false);
+  gl.PushDebugGroup(GL_DEBUG_SOURCE_THIRD_PARTY, 0, -1, "sslr.dispatch");
+  beginFrame(plan);
+  runClassify(plan, in);
+  runPyramid(plan);
+  runTrace(plan);
+  runBlur(plan);
+  runTemporal(plan, in);
+  finishFrame(plan);
+  gl.PopDebugGroup();
+  haveFrame = true;
+  return {};
+}
+
+// Which passes this frame runs. Reads the last frame's feedback (readFeedback), which decides
+// where level 1 is written and where the traversal runs.
+Context::Impl::FramePlan Context::Impl::planFrame(const Settings& settings,
+                                                  const shared::SslrFrame& constants, bool hadHistory) {
+  FramePlan f;
+  f.frame = constants;
+  f.method = settings.method;
+  f.halfResolution = settings.halfResolution;
+  f.temporal = settings.temporal;
+  f.debugOutputs = settings.debugOutputs;
+  f.collectStats = settings.collectStats;
+  // frameConstants decided whether the trace uses the traversal; the pyramid follows it, and so
+  // do the curved solids (sslr_shared.h).
+  f.pyramid = constants.trace.hizMode != SSLR_HIZ_OFF;
+  f.curvedSolids = f.pyramid && constants.trace.curvedSolids != 0;
+  // TraversalPass::Auto defers the traversal on software renderers, unless most pixels (at half
+  // resolution: quads) needed it last frame (then it runs inline: the pass of its own costs more
+  // than it saves, measured at both resolutions). The share is fed back from each such frame.
+  const bool adaptiveWithTraversal = settings.method == Method::AdaptiveL && f.pyramid;
+  f.feedback = adaptiveWithTraversal && settings.traversalPass == TraversalPass::Auto && softwareRenderer;
+  if (f.pyramid) readFeedback();
+  // This frame's counts go to the feedback buffer unless an earlier frame's are still unread there.
+  f.feedbackWritten = f.pyramid && feedbackFence == nullptr;
+  // After a frame that listed no tile, classification does not write level 1: a pass of its own
+  // does, dispatched only if this frame lists one (an empty frame's classification then reads the
+  // G-buffer and nothing more; measured in docs/algorithm.md).
+  f.level1Pass = f.pyramid && lastFrameListedNoTile;
+  f.deferTraversal = adaptiveWithTraversal && (settings.traversalPass == TraversalPass::Deferred ||
+                                               (f.feedback && !traversalInline));
+  // Inline under Auto: the trace (at half resolution the quad pass) counts the pixels (quads) that
+  // needed the traversal, as deferred would have listed them.
+  f.countTraversal = f.feedback && !f.deferTraversal;
+  f.countQuads = f.feedback && settings.halfResolution;
+  f.retracePass = settings.halfResolution || f.deferTraversal;
+  f.quadRetracePass = settings.halfResolution && f.deferTraversal;
+  f.blur = settings.blur && settings.blurMaxRadiusPx > 0.0f;
+  // History of the previous frame only if it stored one (else its keys may be older: cleared).
+  f.useHistory = settings.temporal && hadHistory;
+  return f;
+}
+
+// Every program the plan runs, built (or found in the cache) before any state is touched. The
+// optional inputs, the normal encoding, the material channels and the tracer's role are compiled
+// in or out rather than branched on: a CPU rasterizer runs an untaken branch under a lane mask
+// (llvmpipe 960x540: classification 9.1 -> 7.0 ms, glossy's blur 58.6 -> 52.2 ms without them).
+Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const Settings& settings) {
+  const shared::SslrSurface& surface = f.frame.surface;
   inputDefines = std::string(in.maskTexture != 0 ? "#define SSLR_HAS_MASK 1\n" : "") +
                  "#define SSLR_BACK_DEPTH " + (in.backDepthTexture != 0 ? "1\n" : "0\n") +
                  (in.materialTexture != 0 ? "#define SSLR_SEPARATE_MATERIAL 1\n" : "") +
@@ -102,17 +163,8 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
                  "#define SSLR_WORLD_NORMALS " + (surface.normalFromStored0.w != 0.0f ? "1" : "0") + "\n" +
                  "#define SSLR_ROUGHNESS_CHANNEL " + std::to_string(surface.roughnessChannel) + "\n" +
                  "#define SSLR_REFLECTANCE_CHANNEL " + std::to_string(surface.reflectanceChannel) + "\n";
-
-  // Build every program this frame needs before touching any state.
-  // The traversal's role too (sslrHiZMode): the paths a mode never takes are compiled out, not
-  // run under lane masks (the verification's second inlined traversal made every trace ~12%
-  // slower on llvmpipe while switched off).
-  std::string methodDefines = "#define SSLR_HIZ_MODE " + std::to_string(constants.value().trace.hizMode) + "\n";
-  // frameConstants decided whether the trace uses the traversal; the pyramid follows it.
-  const bool pyramid = constants.value().trace.hizMode != SSLR_HIZ_OFF;
-  // The curved solids (sslr_shared.h) likewise: their work is in every traversal step.
-  const bool curvedSolids = pyramid && constants.value().trace.curvedSolids != 0;
-  const std::string curvedDefine = std::string("#define SSLR_CURVED_SOLIDS ") + (curvedSolids ? "1\n" : "0\n");
+  std::string methodDefines = "#define SSLR_HIZ_MODE " + std::to_string(f.frame.trace.hizMode) + "\n";
+  const std::string curvedDefine = std::string("#define SSLR_CURVED_SOLIDS ") + (f.curvedSolids ? "1\n" : "0\n");
   methodDefines += curvedDefine;
   if (settings.method == Method::PositionBuffer) methodDefines += "#define SSLR_METHOD_POSITION_BUFFER 1\n";
   if (settings.method == Method::ScreenSpaceDDA) methodDefines += "#define SSLR_METHOD_DDA 1\n";
@@ -121,82 +173,51 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   std::string traceDefines = methodDefines + statsDefine;
   if (settings.debugOutputs) traceDefines += "#define SSLR_DEBUG_OUTPUTS 1\n";
   if (settings.temporal) traceDefines += "#define SSLR_TEMPORAL_HITS 1\n";
-  // The traversal in a pass of its own (trace.comp, SSLR_DEFER_TRAVERSAL): the pixels (or, at half
-  // resolution, the quads) that need it are listed for a retrace pass.
-  // Auto defers it on software renderers, unless most pixels (at half resolution: quads) needed it
-  // last frame (then it runs inline: the pass of its own costs more than it saves, measured at both
-  // resolutions). The share is fed back from each such frame (readFeedback).
-  const bool adaptiveWithTraversal = settings.method == Method::AdaptiveL && pyramid;
-  const bool autoSoftware =
-      adaptiveWithTraversal && settings.traversalPass == TraversalPass::Auto && softwareRenderer;
-  const bool feedback = autoSoftware;
-  if (pyramid) readFeedback();
-  // This frame's counts go to the feedback buffer unless an earlier frame's are still unread there.
-  const bool feedbackWritten = pyramid && feedbackFence == nullptr;
-  // After a frame that listed no tile, classification does not write level 1: a pass of its own
-  // does, dispatched only if this frame lists one (an empty frame's classification then reads the
-  // G-buffer and nothing more; measured in docs/algorithm.md).
-  const bool level1Pass = pyramid && lastFrameListedNoTile;
-  const bool deferTraversal =
-      adaptiveWithTraversal && (settings.traversalPass == TraversalPass::Deferred ||
-                                (autoSoftware && !traversalInline));
-  const std::string deferDefine = deferTraversal ? "#define SSLR_DEFER_TRAVERSAL 1\n" : "";
-  // Inline under Auto: the trace (at half resolution the quad pass) counts the pixels (quads) that
-  // needed the traversal in the retrace buffer's count, as deferred would have listed them.
-  // At half resolution the quad pass counts the quads for the feedback whichever way it runs.
-  const bool countTraversal = feedback && !deferTraversal;
-  const bool countQuads = feedback && settings.halfResolution;
+  const std::string deferDefine = f.deferTraversal ? "#define SSLR_DEFER_TRAVERSAL 1\n" : "";
   const std::string countDefine = "#define SSLR_COUNT_TRAVERSAL 1\n";
-  // Half resolution: a quad pass (the tracer, one ray per 2x2 quad; deferred: its first stage, and
-  // a quad retrace pass for the rest) before the full-resolution pass, which reuses those rays.
+  // Half resolution: a quad pass (one ray per 2x2 quad; deferred: its first stage, and a quad
+  // retrace pass for the rest) before the full-resolution pass, which reuses those rays.
   const std::string quadDefines = "#define SSLR_HALF_QUADS 1\n" + methodDefines + statsDefine;
   const std::string retraceDefines = traceDefines + "#define SSLR_HALF_RETRACE 1\n";
   if (settings.halfResolution) traceDefines += "#define SSLR_HALF_RES 1\n";
-  else traceDefines += deferDefine + (countTraversal ? countDefine : "");
-  const bool retracePass = settings.halfResolution || deferTraversal;
-  const bool quadRetracePass = settings.halfResolution && deferTraversal;
+  else traceDefines += deferDefine + (f.countTraversal ? countDefine : "");
   // With the pyramid, classification (which reads every depth anyway) writes its level 1, unless
   // the last frame listed no tile (then the level-1 pass does, if this frame lists one).
-  auto classify =
-      computeProgram("classify.comp", pyramid && !level1Pass ? "#define SSLR_CLASSIFY_LEVEL1 1\n" + curvedDefine : "");
-  Expected<GLuint> level1Program = level1Pass
-                                       ? computeProgram("classify.comp", "#define SSLR_LEVEL1_PASS 1\n" + curvedDefine)
-                                       : Expected<GLuint>(GLuint(0));
-  auto cleanup = computeProgram("classify.comp", "#define SSLR_CLEANUP 1\n");
-  Expected<GLuint> hizBuild = pyramid ? computeProgram("hiz.comp") : Expected<GLuint>(GLuint(0));
-  Expected<GLuint> hizSingle = pyramid && hizLevels > kHizBlockTop
-                                   ? computeProgram("hiz.comp", "#define SSLR_HIZ_SINGLE 1\n")
-                                   : Expected<GLuint>(GLuint(0));
-  Expected<GLuint> hizArgs = pyramid ? computeProgram("classify.comp", "#define SSLR_PYRAMID_ARGS 1\n" + curvedDefine)
-                                     : Expected<GLuint>(GLuint(0));
-  Expected<GLuint> curvedPass =
-      curvedSolids ? computeProgram("classify.comp", "#define SSLR_CURVED_PASS 1\n" + curvedDefine)
-                   : Expected<GLuint>(GLuint(0));
-  auto trace = computeProgram("trace.comp", traceDefines);
-  const Expected<GLuint> none = GLuint(0);
-  Expected<GLuint> quads =
-      settings.halfResolution ? computeProgram("trace.comp", quadDefines + deferDefine + (countQuads ? countDefine : ""))
-                              : none;
-  Expected<GLuint> quadRetrace =
-      quadRetracePass ? computeProgram("trace.comp", quadDefines + "#define SSLR_HALF_QUAD_RETRACE 1\n") : none;
-  Expected<GLuint> retrace = retracePass ? computeProgram("trace.comp", retraceDefines) : none;
-  const bool blur = settings.blur && settings.blurMaxRadiusPx > 0.0f;
-  Expected<GLuint> blurH = GLuint(0), blurV = GLuint(0);
-  if (blur) {
-    blurH = computeProgram("blur.comp", "#define SSLR_BLUR_AXIS ivec2(1, 0)\n");
-    blurV = computeProgram("blur.comp", "#define SSLR_BLUR_AXIS ivec2(0, 1)\n#define SSLR_BLUR_VERTICAL 1\n");
+  const std::pair<GLuint*, Expected<GLuint>> built[] = {
+      {&f.programs.classify, computeProgram("classify.comp", f.pyramid && !f.level1Pass
+                                                                 ? "#define SSLR_CLASSIFY_LEVEL1 1\n" + curvedDefine
+                                                                 : "")},
+      {&f.programs.level1, optionalProgram(f.level1Pass, "classify.comp", "#define SSLR_LEVEL1_PASS 1\n" + curvedDefine)},
+      {&f.programs.cleanup, computeProgram("classify.comp", "#define SSLR_CLEANUP 1\n")},
+      {&f.programs.hizBuild, optionalProgram(f.pyramid, "hiz.comp", "")},
+      {&f.programs.hizSingle, optionalProgram(f.pyramid && hizLevels > kHizBlockTop, "hiz.comp", "#define SSLR_HIZ_SINGLE 1\n")},
+      {&f.programs.hizArgs, optionalProgram(f.pyramid, "classify.comp", "#define SSLR_PYRAMID_ARGS 1\n" + curvedDefine)},
+      {&f.programs.curved, optionalProgram(f.curvedSolids, "classify.comp", "#define SSLR_CURVED_PASS 1\n" + curvedDefine)},
+      {&f.programs.trace, computeProgram("trace.comp", traceDefines)},
+      {&f.programs.quads, optionalProgram(settings.halfResolution, "trace.comp",
+                                          quadDefines + deferDefine + (f.countQuads ? countDefine : ""))},
+      {&f.programs.quadRetrace, optionalProgram(f.quadRetracePass, "trace.comp", quadDefines + "#define SSLR_HALF_QUAD_RETRACE 1\n")},
+      {&f.programs.retrace, optionalProgram(f.retracePass, "trace.comp", retraceDefines)},
+      {&f.programs.blurH, optionalProgram(f.blur, "blur.comp", "#define SSLR_BLUR_AXIS ivec2(1, 0)\n")},
+      {&f.programs.blurV, optionalProgram(f.blur, "blur.comp", "#define SSLR_BLUR_AXIS ivec2(0, 1)\n#define SSLR_BLUR_VERTICAL 1\n")},
+      {&f.programs.temporalBlend, optionalProgram(settings.temporal, "temporal.comp", "")},
+      {&f.programs.temporalStore, optionalProgram(settings.temporal, "temporal.comp", "#define SSLR_TEMPORAL_STORE 1\n")},
+      {&f.programs.historyCleanup, optionalProgram(settings.temporal, "classify.comp",
+                                                   "#define SSLR_CLEANUP 1\n#define SSLR_CLEANUP_HISTORY 1\n")}};
+  for (const auto& [slot, program] : built) {
+    if (!program) return Status::error(program.error());
+    *slot = program.value();
   }
-  Expected<GLuint> temporalBlend = none, temporalStore = none, historyCleanup = none;
-  if (settings.temporal) {
-    temporalBlend = computeProgram("temporal.comp");
-    temporalStore = computeProgram("temporal.comp", "#define SSLR_TEMPORAL_STORE 1\n");
-    historyCleanup = computeProgram("classify.comp", "#define SSLR_CLEANUP 1\n#define SSLR_CLEANUP_HISTORY 1\n");
-  }
-  for (const auto* p : {&classify, &cleanup, &hizBuild, &hizSingle, &hizArgs, &level1Program, &curvedPass, &trace, &quads, &quadRetrace, &retrace, &blurH, &blurV,
-                        &temporalBlend, &temporalStore, &historyCleanup})
-    if (!*p) return Status::error(p->error());
+  return {};
+}
 
-  if (settings.halfResolution && quadHit == 0) {
+Expected<GLuint> Context::Impl::optionalProgram(bool wanted, const char* entry, const std::string& defines) {
+  return wanted ? computeProgram(entry, defines) : Expected<GLuint>(GLuint(0));
+}
+
+// The textures and buffers the plan needs that no earlier frame created.
+void Context::Impl::createFrameResources(const FramePlan& f) {
+  if (f.halfResolution && quadHit == 0) {
     const int qw = (width + 1) / 2, qh = (height + 1) / 2;
     gl.CreateTextures(GL_TEXTURE_2D, 1, &quadHit);
     gl.TextureStorage2D(quadHit, 1, GL_RGBA32F, qw, qh);
@@ -205,19 +226,19 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     gl.TextureStorage2D(quadSurface, 1, GL_RGBA16F, qw, qh);
     label(GL_TEXTURE, quadSurface, "sslr.quadSurface");
   }
-  if (curvedSolids && curvedQuads == 0) {
+  if (f.curvedSolids && curvedQuads == 0) {
     gl.CreateBuffers(1, &curvedQuads);  // header (classify.comp) + one entry per quad
     gl.NamedBufferStorage(curvedQuads, static_cast<GLsizeiptr>((8 + static_cast<size_t>(hizWidth) * hizHeight) * sizeof(GLuint)),
                           nullptr, GL_DYNAMIC_STORAGE_BIT);
     label(GL_BUFFER, curvedQuads, "sslr.curvedQuads");
   }
-  if (pyramid && hiz == 0) createPyramid();
-  if (pyramid && feedbackBuffer == 0) {
+  if (f.pyramid && hiz == 0) createPyramid();
+  if (f.pyramid && feedbackBuffer == 0) {
     gl.CreateBuffers(1, &feedbackBuffer);
     gl.NamedBufferStorage(feedbackBuffer, 4 * sizeof(GLuint), nullptr, 0);
     label(GL_BUFFER, feedbackBuffer, "sslr.feedback");
   }
-  if ((retracePass || countTraversal) && retraceBuffer == 0) {
+  if ((f.retracePass || f.countTraversal) && retraceBuffer == 0) {
     gl.CreateBuffers(1, &retraceBuffer);
     // Header, then a pixel list (at most every pixel of the traced tiles) or the quad list (a slot
     // and a tile's quads per tile; trace.comp).
@@ -227,33 +248,54 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
                           nullptr, GL_DYNAMIC_STORAGE_BIT);
     label(GL_BUFFER, retraceBuffer, "sslr.retrace");
   }
-  // History of the previous frame only if it stored one (else its keys may be older: cleared).
-  const bool useHistory = settings.temporal && hadHistory;
   // The hit record and iteration images only for the frames that write them (20 B per pixel).
-  if ((settings.debugOutputs || settings.temporal) && hit == 0) hit = makeTexture(GL_RGBA32F, "sslr.hit");
-  if (settings.debugOutputs && iterations == 0) iterations = makeTexture(GL_R32F, "sslr.iterations");
-  if (settings.temporal && history == 0) {
+  if ((f.debugOutputs || f.temporal) && hit == 0) hit = makeTexture(GL_RGBA32F, "sslr.hit");
+  if (f.debugOutputs && iterations == 0) iterations = makeTexture(GL_R32F, "sslr.iterations");
+  if (f.temporal && history == 0) {
     history = makeTexture(GL_RGBA16F, "sslr.history");
     historyKey = makeTexture(GL_R32F, "sslr.historyKey");
   }
-  detail::StateGuard guard(gl, false);
-  gl.PushDebugGroup(GL_DEBUG_SOURCE_THIRD_PARTY, 0, -1, "sslr.dispatch");
-  const float zero[4] = {0, 0, 0, 0};
-  if (settings.temporal && !useHistory) clearTexImage(historyKey, GL_RED, GL_FLOAT, zero);
+}
 
-  shared::SslrFrame frame = constants.value();
-  frame.temporal.history = useHistory ? 1 : 0;
+// The frame's constants, the tile list's header, the debug images and the stats slot.
+void Context::Impl::beginFrame(FramePlan& f) {
+  const float zero[4] = {0, 0, 0, 0};
+  if (f.temporal && !f.useHistory) clearTexImage(historyKey, GL_RED, GL_FLOAT, zero);
+  f.frame.temporal.history = f.useHistory ? 1 : 0;
   frameIndex = frameIndex == 0x7fffffff ? 1 : frameIndex + 1;
-  frame.trace.frameIndex = frameIndex;
-  bufferSubData(frameUbo, 0, sizeof(frame), &frame);
-  // Tile list header: trace dispatch (0, 1, 1), draw (6 vertices, 0 instances), blur dispatch,
-  // pyramid dispatches (0, 1, 1) per level and their real group counts (classify.comp copies them
-  // over when it lists a tile).
-  // The previous frame's trace dispatch and tile list become the clean-up pass's.
+  f.frame.trace.frameIndex = frameIndex;
+  bufferSubData(frameUbo, 0, sizeof(f.frame), &f.frame);
+  writeTileHeader();
+  // reflection and resolved are not cleared: the clean-up pass (classify.comp, SSLR_CLEANUP)
+  // zeroes the tiles the previous frame traced and this one does not. The debug images are
+  // cleared whole (debug only).
+  if (f.debugOutputs) {
+    clearTexImage(hit, GL_RGBA, GL_FLOAT, zero);
+    clearTexImage(iterations, GL_RED, GL_FLOAT, zero);
+  }
+  // Stats go to the ring slot of this dispatch (the oldest; a slot still unread is overwritten:
+  // lastStats then reports a later frame).
+  ++dispatches;
+  if (f.collectStats) {
+    f.slot = &statsRing[dispatches % kStatsRing];
+    if (f.slot->fence != nullptr) gl.DeleteSync(f.slot->fence);
+    f.slot->fence = nullptr;
+    f.slot->frame = dispatches;
+    const GLuint statsZero[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    bufferSubData(f.slot->buffer, 0, sizeof(statsZero), statsZero);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_STATS_SSBO, f.slot->buffer);
+  }
+}
+
+// Tile list header: trace dispatch (0, 1, 1), draw (6 vertices, 0 instances), blur dispatch,
+// pyramid dispatches (0, 1, 1) per level and their real group counts (classify.comp copies them
+// over when it lists a tile). The previous frame's trace dispatch and tile list become the
+// clean-up pass's.
+void Context::Impl::writeTileHeader() const {
   const GLsizeiptr capacity = static_cast<GLsizeiptr>(tilesX()) * tilesY();
   copyBufferSubData(tileBuffer, tileBuffer, 0, kCleanupDispatchOffset, 3 * sizeof(GLuint));
   copyBufferSubData(tileBuffer, tileBuffer, kTileHeader * sizeof(GLuint),
-                            (kTileHeader + 4 * capacity) * sizeof(GLuint), capacity * sizeof(GLuint));
+                    (kTileHeader + 4 * capacity) * sizeof(GLuint), capacity * sizeof(GLuint));
   GLuint header[kHeaderUpload] = {0, 1, 1, 6, 0, 0, 0, 0, 0, 1, 1, 0};
   // Used: level 1's (the level-1 pass: 8x8 level-1 cells a group), level 2's (hiz.comp's blocks:
   // one kHizBlockTop cell a group) and the level above the blocks' (8x8 of its cells a group).
@@ -270,42 +312,26 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
     real[2] = 1;
   }
   bufferSubData(tileBuffer, 0, sizeof(header), header);
-  // reflection and resolved are not cleared: the clean-up pass (classify.comp, SSLR_CLEANUP)
-  // zeroes the tiles the previous frame traced and this one does not. The debug images are
-  // cleared whole (debug only).
-  if (settings.debugOutputs) {
-    clearTexImage(hit, GL_RGBA, GL_FLOAT, zero);
-    clearTexImage(iterations, GL_RED, GL_FLOAT, zero);
-  }
-  // Stats go to the ring slot of this dispatch (the oldest; a slot still unread is overwritten:
-  // lastStats then reports a later frame).
-  ++dispatches;
-  StatsSlot* slot = nullptr;
-  if (settings.collectStats) {
-    slot = &statsRing[dispatches % kStatsRing];
-    if (slot->fence != nullptr) gl.DeleteSync(slot->fence);
-    slot->fence = nullptr;
-    slot->frame = dispatches;
-    const GLuint statsZero[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-    bufferSubData(slot->buffer, 0, sizeof(statsZero), statsZero);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_STATS_SSBO, slot->buffer);
-  }
-  // Pass i starts here: its timestamp, and its commands counted from here on.
-  auto timestamp = [&](int i) {
-    if (slot != nullptr && timestamps) gl.QueryCounter(slot->queries[i], GL_TIMESTAMP);
-    recordingPass = i;
-  };
-  timestamp(0);
+}
+
+// Pass `pass` starts here: its timestamp, and its commands counted from here on.
+void Context::Impl::beginPass(const FramePlan& f, int pass) const {
+  if (f.slot != nullptr && timestamps) gl.QueryCounter(f.slot->queries[pass], GL_TIMESTAMP);
+  recordingPass = pass;
+}
+
+// Pass 1: classification over the screen (the tile list; with the pyramid, its levels 0 and 1),
+// then the clean-up of the tiles the previous frame traced and this one does not.
+void Context::Impl::runClassify(const FramePlan& f, const FrameInputs& in) const {
+  beginPass(f, 0);
   bindInputs(in);
-  if (settings.method == Method::PositionBuffer) {
+  if (f.method == Method::PositionBuffer) {
     gl.bindTexture2D(5, in.positionTexture);
     gl.BindSampler(5, nearestSampler);
   }
-
-  // Classification covers the screen; everything after runs over the listed tiles only.
-  useProgram(classify.value());
-  if (pyramid) bindPyramidLevels01();
-  if (curvedSolids) {
+  useProgram(f.programs.classify);
+  if (f.pyramid) bindPyramidLevels01();
+  if (f.curvedSolids) {
     // The curved pass's dispatch (0, 1, 1) until the pyramid-args pass sets it; no quad listed.
     const GLuint curvedHeader[8] = {0, 1, 1, 0, 0, 0, 0, 0};
     bufferSubData(curvedQuads, 0, sizeof(curvedHeader), curvedHeader);
@@ -313,154 +339,168 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   }
   dispatchCompute(static_cast<GLuint>(tilesX()), static_cast<GLuint>(tilesY()), 1);
   memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
-                   GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  // Zero the tiles the previous frame traced and this one does not (classify.comp).
-  useProgram(cleanup.value());
+                GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  useProgram(f.programs.cleanup);
   gl.BindImageTexture(0, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   gl.BindImageTexture(3, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   dispatchComputeIndirect(kCleanupDispatchOffset);
   memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
 
-  timestamp(1);
-  if (pyramid) {
-    useProgram(hizArgs.value());
-    dispatchCompute(1, 1, 1);
-    memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-    if (level1Pass) {  // level 1 (classify.comp, SSLR_LEVEL1_PASS) through level 1's pyramid arguments
-      useProgram(level1Program.value());
-      bindPyramidLevels01();  // (the clean-up pass took image unit 0)
-      dispatchComputeIndirect(kHizDispatchOffset);
-      memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
-                       GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-    }
-    if (curvedSolids) {  // the listed quads' cells with their solids (classify.comp, SSLR_CURVED_PASS)
-      useProgram(curvedPass.value());
-      bindPyramidLevels01();
-      gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, curvedQuads);
-      dispatchComputeIndirect(0);
-      gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
-      memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    }
-    buildPyramid(hizBuild.value(), hizSingle.value());
+// Pass 2: the depth pyramid, when the trace reads it: its dispatch arguments (zero groups unless a
+// tile was listed), level 1 where classification left it, the curved quads' cells, levels 2+.
+void Context::Impl::runPyramid(const FramePlan& f) const {
+  beginPass(f, 1);
+  if (!f.pyramid) return;
+  useProgram(f.programs.hizArgs);
+  dispatchCompute(1, 1, 1);
+  memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+  if (f.level1Pass) {  // level 1 (classify.comp, SSLR_LEVEL1_PASS) through level 1's pyramid arguments
+    useProgram(f.programs.level1);
+    bindPyramidLevels01();  // (the clean-up pass took image unit 0)
+    dispatchComputeIndirect(kHizDispatchOffset);
+    memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                  GL_COMMAND_BARRIER_BIT);
   }
+  if (f.curvedSolids) {  // the listed quads' cells with their solids (classify.comp, SSLR_CURVED_PASS)
+    useProgram(f.programs.curved);
+    bindPyramidLevels01();
+    gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, curvedQuads);
+    dispatchComputeIndirect(0);
+    gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
+    memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+  }
+  buildPyramid(f.programs.hizBuild, f.programs.hizSingle);
+}
 
-  timestamp(2);
+// Pass 3: the trace over the listed tiles (half resolution: the quad pass first; a deferred
+// traversal or half resolution: the retrace pass after).
+void Context::Impl::runTrace(const FramePlan& f) const {
+  beginPass(f, 2);
   const GLuint retraceHeader[4] = {0, 1, 1, 0};  // dispatch (0, 1, 1), count 0
-  if (retracePass || countTraversal) {
+  if (f.retracePass || f.countTraversal) {
     bufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_RETRACE_SSBO, retraceBuffer);
   }
-  if (settings.halfResolution) {
-    useProgram(quads.value());
-    gl.BindImageTexture(1, quadHit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    gl.BindImageTexture(2, quadSurface, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    dispatchComputeIndirect(0);  // one group per listed tile
-    if (quadRetracePass) {  // the quads whose ray needs the traversal
-      memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-      useProgram(quadRetrace.value());
-      gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, retraceBuffer);
-      dispatchComputeIndirect(0);
-      gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
-    }
-    if (quadRetracePass || countQuads) {
-      // The quads that needed the traversal (Auto's feedback), then the list is the pixels'.
-      memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-      if (countQuads && feedbackWritten)
-        copyBufferSubData(retraceBuffer, feedbackBuffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
-      bufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
-    }
-    memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-    gl.bindTexture2D(3, quadHit);  // units 3 and 4 are the blur's, free during the trace
-    gl.BindSampler(3, nearestSampler);
-    gl.bindTexture2D(4, quadSurface);
-    gl.BindSampler(4, nearestSampler);
-  }
-  useProgram(trace.value());
+  if (f.halfResolution) runQuads(f);
+  useProgram(f.programs.trace);
   gl.BindImageTexture(0, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   gl.BindImageTexture(3, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  if (settings.debugOutputs || settings.temporal)
-    gl.BindImageTexture(1, hit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  if (settings.debugOutputs) gl.BindImageTexture(2, iterations, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  if (f.debugOutputs || f.temporal) gl.BindImageTexture(1, hit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  if (f.debugOutputs) gl.BindImageTexture(2, iterations, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
   dispatchComputeIndirect(0);
-  if (retracePass) {  // the pixels whose quad's ray did not answer them, or that need the traversal
+  if (f.retracePass) {  // the pixels whose quad's ray did not answer them, or that need the traversal
     memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-    useProgram(retrace.value());
+    useProgram(f.programs.retrace);
     gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, retraceBuffer);
     dispatchComputeIndirect(0);
     gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
   }
-  memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
-                   GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+  memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                GL_COMMAND_BARRIER_BIT);
+}
 
-  timestamp(3);
-  // The trace wrote resolved = (reflection rgb, coverage) everywhere; the separable blur (resolved
-  // -> blurTemp -> resolved, radii from the reflection's alpha) runs only over the tiles the trace
-  // listed as having a pixel to blur.
-  if (blur) {
-    for (GLuint unit : {3u, 4u, 5u}) gl.BindSampler(unit, nearestSampler);
-    useProgram(blurH.value());
-    gl.bindTexture2D(3, resolved);
-    gl.bindTexture2D(4, reflection);
-    gl.BindImageTexture(0, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    dispatchComputeIndirect(kBlurDispatchOffset);
-    memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    useProgram(blurV.value());
-    gl.bindTexture2D(3, blurTemp);
-    gl.bindTexture2D(5, resolved);  // read where blurTemp is not written (see blur.comp)
-    gl.BindImageTexture(0, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    dispatchComputeIndirect(kBlurDispatchOffset);
-  }
-  timestamp(4);
-  if (settings.temporal) {
-    memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-    for (GLuint unit : {3u, 4u, 5u}) gl.BindSampler(unit, nearestSampler);
-    useProgram(temporalBlend.value());
-    gl.bindTexture2D(6, in.motionTexture);  // unit 6 (the pyramid's) is free after the trace
-    gl.BindSampler(6, nearestSampler);
-    gl.bindTexture2D(9, hit);  // written by the trace on the listed tiles (SSLR_TEMPORAL_HITS)
-    gl.BindSampler(9, nearestSampler);
-    gl.bindTexture2D(3, resolved);
-    gl.bindTexture2D(4, history);
-    gl.bindTexture2D(5, historyKey);
-    gl.BindImageTexture(0, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+// Half resolution's quad pass (one ray per 2x2 quad), its retrace of the quads that need the
+// traversal, and the retrace list handed on to the pixels.
+void Context::Impl::runQuads(const FramePlan& f) const {
+  const GLuint retraceHeader[4] = {0, 1, 1, 0};
+  useProgram(f.programs.quads);
+  gl.BindImageTexture(1, quadHit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  gl.BindImageTexture(2, quadSurface, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  dispatchComputeIndirect(0);  // one group per listed tile
+  if (f.quadRetracePass) {  // the quads whose ray needs the traversal
+    memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    useProgram(f.programs.quadRetrace);
+    gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, retraceBuffer);
     dispatchComputeIndirect(0);
-    memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    useProgram(temporalStore.value());
-    gl.bindTexture2D(3, blurTemp);
-    gl.bindTexture2D(4, 0);
-    gl.bindTexture2D(5, 0);
-    gl.BindImageTexture(0, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    gl.BindImageTexture(1, history, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    gl.BindImageTexture(2, historyKey, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-    dispatchComputeIndirect(0);
-    memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    useProgram(historyCleanup.value());
-    dispatchComputeIndirect(kCleanupDispatchOffset);
-    historyValid = true;
+    gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
   }
-  timestamp(5);
-  // The host (and composite) may read the outputs in any way next: make all writes visible.
-  memoryBarrier(GL_ALL_BARRIER_BITS);
-  if (feedbackWritten) {  // (listed tiles, -, -, pixels or quads that needed the traversal)
-    copyBufferSubData(tileBuffer, feedbackBuffer, 0, 0, sizeof(GLuint));
-    if (feedback && !settings.halfResolution)  // (half resolution copied its quads' count above)
+  if (f.quadRetracePass || f.countQuads) {
+    // The quads that needed the traversal (Auto's feedback), then the list is the pixels'.
+    memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    if (f.countQuads && f.feedbackWritten)
       copyBufferSubData(retraceBuffer, feedbackBuffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
-    feedbackHasTraversal = feedback;
-    feedbackCellsPerTile = settings.halfResolution ? SSLR_TILE_QUADS : SSLR_TILE_SIZE * SSLR_TILE_SIZE;
+    bufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
+  }
+  memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+  gl.bindTexture2D(3, quadHit);  // units 3 and 4 are the blur's, free during the trace
+  gl.BindSampler(3, nearestSampler);
+  gl.bindTexture2D(4, quadSurface);
+  gl.BindSampler(4, nearestSampler);
+}
+
+// Pass 4: the separable blur (resolved -> blurTemp -> resolved, radii from the reflection's alpha)
+// over the tiles the trace listed as having a pixel to blur.
+void Context::Impl::runBlur(const FramePlan& f) const {
+  beginPass(f, 3);
+  if (!f.blur) return;
+  for (GLuint unit : {3u, 4u, 5u}) gl.BindSampler(unit, nearestSampler);
+  useProgram(f.programs.blurH);
+  gl.bindTexture2D(3, resolved);
+  gl.bindTexture2D(4, reflection);
+  gl.BindImageTexture(0, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  dispatchComputeIndirect(kBlurDispatchOffset);
+  memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  useProgram(f.programs.blurV);
+  gl.bindTexture2D(3, blurTemp);
+  gl.bindTexture2D(5, resolved);  // read where blurTemp is not written (see blur.comp)
+  gl.BindImageTexture(0, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  dispatchComputeIndirect(kBlurDispatchOffset);
+}
+
+// Pass 5 (Settings::temporal): blend with the reprojected history, store this frame's output and
+// keys, forget the tiles traced last frame and not now.
+void Context::Impl::runTemporal(const FramePlan& f, const FrameInputs& in) {
+  beginPass(f, 4);
+  if (!f.temporal) return;
+  memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  for (GLuint unit : {3u, 4u, 5u}) gl.BindSampler(unit, nearestSampler);
+  useProgram(f.programs.temporalBlend);
+  gl.bindTexture2D(6, in.motionTexture);  // unit 6 (the pyramid's) is free after the trace
+  gl.BindSampler(6, nearestSampler);
+  gl.bindTexture2D(9, hit);  // written by the trace on the listed tiles (SSLR_TEMPORAL_HITS)
+  gl.BindSampler(9, nearestSampler);
+  gl.bindTexture2D(3, resolved);
+  gl.bindTexture2D(4, history);
+  gl.bindTexture2D(5, historyKey);
+  gl.BindImageTexture(0, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  dispatchComputeIndirect(0);
+  memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  useProgram(f.programs.temporalStore);
+  gl.bindTexture2D(3, blurTemp);
+  gl.bindTexture2D(4, 0);
+  gl.bindTexture2D(5, 0);
+  gl.BindImageTexture(0, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  gl.BindImageTexture(1, history, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  gl.BindImageTexture(2, historyKey, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  dispatchComputeIndirect(0);
+  memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  useProgram(f.programs.historyCleanup);
+  dispatchComputeIndirect(kCleanupDispatchOffset);
+  historyValid = true;
+}
+
+// The end of a frame: every write made visible to the host, the feedback and the stats copied on
+// the GPU (no read-back) and fenced.
+void Context::Impl::finishFrame(const FramePlan& f) {
+  beginPass(f, 5);
+  memoryBarrier(GL_ALL_BARRIER_BITS);
+  if (f.feedbackWritten) {  // (listed tiles, -, -, pixels or quads that needed the traversal)
+    copyBufferSubData(tileBuffer, feedbackBuffer, 0, 0, sizeof(GLuint));
+    if (f.feedback && !f.halfResolution)  // (half resolution copied its quads' count in runQuads)
+      copyBufferSubData(retraceBuffer, feedbackBuffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
+    feedbackHasTraversal = f.feedback;
+    feedbackCellsPerTile = f.halfResolution ? SSLR_TILE_QUADS : SSLR_TILE_SIZE * SSLR_TILE_SIZE;
     feedbackFence = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
   }
-  if (slot != nullptr) {
-    slot->traversalDeferred = deferTraversal;
-    slot->level1Pass = level1Pass;
-    // The tile counts join the counters on the GPU (no read-back), then a fence marks the slot.
-    copyBufferSubData(tileBuffer, slot->buffer, 0, 4 * sizeof(GLuint), sizeof(GLuint));
-    copyBufferSubData(tileBuffer, slot->buffer, kBlurDispatchOffset, 5 * sizeof(GLuint), sizeof(GLuint));
-    slot->fence = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    slot->commands = recording;
+  if (f.slot != nullptr) {
+    f.slot->traversalDeferred = f.deferTraversal;
+    f.slot->level1Pass = f.level1Pass;
+    copyBufferSubData(tileBuffer, f.slot->buffer, 0, 4 * sizeof(GLuint), sizeof(GLuint));
+    copyBufferSubData(tileBuffer, f.slot->buffer, kBlurDispatchOffset, 5 * sizeof(GLuint), sizeof(GLuint));
+    f.slot->fence = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    f.slot->commands = recording;
   }
-  gl.PopDebugGroup();
-  haveFrame = true;
-  return {};
 }
 
 }  // namespace sslr

@@ -11,6 +11,41 @@ std::string entry(int col, int row, double v) {
   s << "clipFromView[" << col << "][" << row << "] = " << v;
   return s.str();
 }
+
+// Where the declared convention puts the two ends of a perspective matrix's depth range, as view
+// distances: dist(ndcZ) = zOffset / (ndcZ + zScale). The near end must lie in front of the camera
+// and the far end beyond it (or at infinity). A reversed matrix declared with GL's -1..1 range
+// puts the far end behind the camera: half the depth range would be unused and the depth read
+// back would be misread.
+Status checkPerspectiveDepthRange(double zScale, double zOffset, const DepthConvention& depth) {
+  const bool zeroToOne = depth.range == DepthRange::ZeroToOne;
+  const double ndcNear = depth.reversedZ ? 1.0 : (zeroToOne ? 0.0 : -1.0);
+  const double ndcFar = depth.reversedZ ? (zeroToOne ? 0.0 : -1.0) : 1.0;
+  const double nearDist = zOffset / (ndcNear + zScale);
+  const double farDen = ndcFar + zScale;
+  const double farDist = farDen == 0.0 ? INFINITY : zOffset / farDen;
+  const char* range = zeroToOne ? "DepthRange::ZeroToOne" : "DepthRange::NegativeOneToOne";
+  if (!(nearDist > 0.0) || !std::isfinite(nearDist)) {
+    std::ostringstream why;
+    why << "sslr: depth convention mismatch: with " << range << " and reversedZ = "
+        << (depth.reversedZ ? "true" : "false") << ", clipFromView puts the near end of the depth range at view "
+        << "distance " << nearDist << " (it must be in front of the camera): the matrix was built for another "
+        << "depth range or convention";
+    return Status::error(why.str());
+  }
+  if (farDist < nearDist * (1.0 + 1e-9) && !(farDist == INFINITY)) {
+    std::ostringstream why;
+    why << "sslr: depth convention mismatch: with " << range << " and reversedZ = "
+        << (depth.reversedZ ? "true" : "false") << ", clipFromView puts the far end of the depth range at view "
+        << "distance " << farDist << ", not beyond the near end (" << nearDist << ")"
+        << (depth.reversedZ && !zeroToOne ? ": a reversed-Z projection needs glClipControl(..., GL_ZERO_TO_ONE) "
+                                            "and DepthRange::ZeroToOne"
+                                          : ": the matrix was built for another depth range or convention");
+    return Status::error(why.str());
+  }
+  return {};
+}
+
 }  // namespace
 
 Expected<shared::SslrProjection> reduceProjection(const glm::dmat4& m, const DepthConvention& depth) {
@@ -60,36 +95,7 @@ Expected<shared::SslrProjection> reduceProjection(const glm::dmat4& m, const Dep
                          (reversedMatrix ? "larger" : "smaller") + " depth");
 
   if (persp) {
-    // Where the declared convention puts the two ends of the depth range, as view distances:
-    // dist(ndcZ) = zOffset / (ndcZ + zScale). The near end must lie in front of the camera and
-    // the far end beyond it (or at infinity). A reversed matrix declared with GL's -1..1 range
-    // puts the far end behind the camera: half the depth range would be unused and the depth
-    // read back would be misread.
-    const bool zeroToOne = depth.range == DepthRange::ZeroToOne;
-    const double ndcNear = depth.reversedZ ? 1.0 : (zeroToOne ? 0.0 : -1.0);
-    const double ndcFar = depth.reversedZ ? (zeroToOne ? 0.0 : -1.0) : 1.0;
-    const double nearDist = zOffset / (ndcNear + zScale);
-    const double farDen = ndcFar + zScale;
-    const double farDist = farDen == 0.0 ? INFINITY : zOffset / farDen;
-    const char* range = zeroToOne ? "DepthRange::ZeroToOne" : "DepthRange::NegativeOneToOne";
-    if (!(nearDist > 0.0) || !std::isfinite(nearDist)) {
-      std::ostringstream why;
-      why << "sslr: depth convention mismatch: with " << range << " and reversedZ = "
-          << (depth.reversedZ ? "true" : "false") << ", clipFromView puts the near end of the depth range at view "
-          << "distance " << nearDist << " (it must be in front of the camera): the matrix was built for another "
-          << "depth range or convention";
-      return Status::error(why.str());
-    }
-    if (farDist < nearDist * (1.0 + 1e-9) && !(farDist == INFINITY)) {
-      std::ostringstream why;
-      why << "sslr: depth convention mismatch: with " << range << " and reversedZ = "
-          << (depth.reversedZ ? "true" : "false") << ", clipFromView puts the far end of the depth range at view "
-          << "distance " << farDist << ", not beyond the near end (" << nearDist << ")"
-          << (depth.reversedZ && !zeroToOne ? ": a reversed-Z projection needs glClipControl(..., GL_ZERO_TO_ONE) "
-                                              "and DepthRange::ZeroToOne"
-                                            : ": the matrix was built for another depth range or convention");
-      return Status::error(why.str());
-    }
+    if (Status st = checkPerspectiveDepthRange(zScale, zOffset, depth); !st) return Status::error(st.message());
   }
 
   const shared::SslrProjection p =

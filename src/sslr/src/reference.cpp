@@ -9,12 +9,10 @@
 
 namespace sslr {
 
-Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings& s, int width, int height) {
-  if (std::string why = validate(s); !why.empty()) return Status::error(why);
-  auto proj = detail::reduceProjection(in.clipFromView, in.depth);
-  if (!proj) return Status::error(proj.error());
-  shared::SslrFrame f{};
-  f.proj = proj.value();
+namespace {
+
+// How the passes read the G-buffer: layout, convention, optional inputs, world-space normals.
+Status surfaceConstants(const FrameInputs& in, int width, int height, shared::SslrFrame& f) {
   f.surface.normalEncoding =
       in.surface.normals == NormalEncoding::Octahedral ? SSLR_NORMALS_OCTAHEDRAL : SSLR_NORMALS_XYZ_UNORM;
   f.surface.roughnessChannel = in.surface.roughnessChannel;
@@ -45,6 +43,11 @@ Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings
     f.surface.normalFromStored1 = glm::vec4(glm::vec3(normalFromWorld[1]), 0.0f);
     f.surface.normalFromStored2 = glm::vec4(glm::vec3(normalFromWorld[2]), 0.0f);
   }
+  return {};
+}
+
+// The tracers' parameters, and the comparison methods'.
+void traceConstants(const FrameInputs& in, const Settings& s, int width, int height, shared::SslrFrame& f) {
   shared::SslrTraceParams& t = f.trace;
   // At least 4 pixels: a shorter first step leaves the probe in or next to its own pixel, whose
   // depth says nothing about the ray (measured: 64x48 frames lose a third of their hits).
@@ -90,6 +93,10 @@ Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings
   f.dda.maxSteps = s.dda.maxSteps;
   f.dda.jitter = s.dda.jitter ? 1 : 0;
   f.dda.refine = s.dda.refine ? 1 : 0;
+}
+
+// Temporal reuse's reprojection (Settings::temporal only).
+Status temporalConstants(const FrameInputs& in, const Settings& s, shared::SslrFrame& f) {
   if (s.temporal) {
     bool finite = true, zero = true;
     for (int c = 0; c < 4; ++c)
@@ -116,6 +123,20 @@ Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings
         f.temporal.previousEye = glm::vec4(glm::vec3(eye), 1.0f);
     }
   }
+  return {};
+}
+
+}  // namespace
+
+Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings& s, int width, int height) {
+  if (std::string why = validate(s); !why.empty()) return Status::error(why);
+  auto proj = detail::reduceProjection(in.clipFromView, in.depth);
+  if (!proj) return Status::error(proj.error());
+  shared::SslrFrame f{};
+  f.proj = proj.value();
+  if (Status st = surfaceConstants(in, width, height, f); !st) return Status::error(st.message());
+  traceConstants(in, s, width, height, f);
+  if (Status st = temporalConstants(in, s, f); !st) return Status::error(st.message());
   return f;
 }
 
