@@ -5,11 +5,16 @@
 
 #include <cxxopts.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include "sslr_host/benchmark.hpp"
 #include "sslr_host/egl_context.hpp"
@@ -45,10 +50,9 @@ class Progress {
   double lastPrint_ = -1e9;
 };
 
-}  // namespace
 
-int main(int argc, char** argv) {
-  removeTemporariesOnSignal();
+// Every option, with its help.
+cxxopts::Options benchOptions() {
   cxxopts::Options options("sslr-bench", "Run time against error: depth-only SSLR vs position-buffer SSR.");
   std::string defaultScenes;
   for (const std::string& s : defaultBenchScenes()) defaultScenes += (defaultScenes.empty() ? "" : ",") + s;
@@ -57,7 +61,7 @@ int main(int argc, char** argv) {
       ("scenes", "comma-separated scenes (default: " + defaultScenes + ")",
        cxxopts::value<std::string>()->default_value(""))
       ("configs", "run only these configurations of the grid, comma-separated, each a method (adaptive-l, hiz, dda, "
-                  "position-buffer) or method/label (e.g. adaptive-l/high); the baseline pass always runs",
+                  "ffx-sssr, position-buffer) or method/label (e.g. adaptive-l/high); the baseline pass always runs",
        cxxopts::value<std::string>())
       ("size", "resolution WxH", cxxopts::value<std::string>())
       ("frames", "timed frames per configuration (median reported)", cxxopts::value<std::string>())
@@ -76,6 +80,187 @@ int main(int argc, char** argv) {
       ("out", "output directory", cxxopts::value<std::string>()->default_value("bench-out"))
       ("device", "EGL device: auto, hardware, software, surfaceless or an index", cxxopts::value<std::string>()->default_value(""))
       ("h,help", "show this help");
+  return options;
+}
+
+// A list option's items, comma-separated, empty ones skipped.
+std::vector<std::string> listItems(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream list(text);
+  for (std::string item; std::getline(list, item, ',');)
+    if (!item.empty()) items.push_back(item);
+  return items;
+}
+
+// WxH with each side in [lo, hi], or an error naming the option.
+std::pair<int, int> parseSizeOption(const std::string& text, const std::string& option, int lo, int hi) {
+  std::istringstream in(text);
+  int w = 0, h = 0;
+  char x = 0;
+  if (!(in >> w >> x >> h) || x != 'x' || !in.eof() || w < lo || h < lo || w > hi || h > hi)
+    throw std::runtime_error("--" + option + (option == "curve-sizes" ? " expects WxH,WxH,... with " : " expects WxH with ") + std::to_string(lo) + ".." + std::to_string(hi) +
+                             " each (got '" + text + "')");
+  return {w, h};
+}
+
+// The grid, the configurations, the size, the frame counts and the scenes.
+void parseGrid(const cxxopts::ParseResult& args, BenchOptions& bo) {
+  bo.grid = args["grid"].as<std::string>();
+  if (bo.grid != "quick" && bo.grid != "full") throw std::runtime_error("--grid must be quick or full");
+  if (bo.grid == "full") {
+    bo.width = 960;
+    bo.height = 540;
+    bo.frames = 15;
+    bo.warmup = 2;
+  }
+  if (args.count("configs")) {
+    bo.configs = listItems(args["configs"].as<std::string>());
+    if (auto check = selectConfigs(benchGrid(bo.grid), bo.configs); !check) throw std::runtime_error(check.error());
+  }
+  auto positiveInt = [&](const char* name, int& value, int lo, int hi) {
+    if (!args.count(name)) return;
+    std::istringstream in(args[name].as<std::string>());
+    if (!(in >> value) || !in.eof() || value < lo || value > hi)
+      throw std::runtime_error(std::string("--") + name + " expects an integer in " + std::to_string(lo) + ".." +
+                               std::to_string(hi));
+  };
+  positiveInt("frames", bo.frames, 1, 1000);
+  positiveInt("warmup", bo.warmup, 0, 100);
+  positiveInt("batch", bo.batch, 1, 64);
+  if (args.count("size")) std::tie(bo.width, bo.height) = parseSizeOption(args["size"].as<std::string>(), "size", 8, 8192);
+  for (const std::string& s : listItems(args["scenes"].as<std::string>())) {
+    if (auto check = loadScene(s); !check) throw std::runtime_error(check.error());
+    bo.scenes.push_back(s);
+  }
+}
+
+// The cost curves and the temporal study, when asked for (the full grid runs both).
+void parseStudies(const cxxopts::ParseResult& args, BenchOptions& bo) {
+  bool curves = bo.grid == "full" || args.count("curves") || args.count("curve-sizes") || args.count("curve-fractions");
+  if (args.count("no-curves")) curves = false;
+  if (curves) {
+    bo.curveSizes = {{480, 270}, {960, 540}, {1920, 1080}};
+    if (bo.grid == "full") bo.curveSizes.push_back({3840, 2160});
+    bo.curveFractions = {0, 1, 10, 50, 100};
+    if (args.count("curve-sizes")) {
+      bo.curveSizes.clear();
+      for (const std::string& item : listItems(args["curve-sizes"].as<std::string>()))
+        bo.curveSizes.push_back(parseSizeOption(item, "curve-sizes", 8, 8192));
+    }
+    if (args.count("curve-fractions")) {
+      bo.curveFractions.clear();
+      for (const std::string& item : listItems(args["curve-fractions"].as<std::string>())) {
+        std::istringstream in(item);
+        int n = -1;
+        if (!(in >> n) || !in.eof() || n < 0 || n > 100)
+          throw std::runtime_error("--curve-fractions expects percentages 0..100 (got '" + item + "')");
+        bo.curveFractions.push_back(n);
+      }
+    }
+  }
+  bool temporal = bo.grid == "full" || args.count("temporal") || args.count("temporal-scenes");
+  if (args.count("no-temporal")) temporal = false;
+  if (!temporal) return;
+  std::tie(bo.temporalWidth, bo.temporalHeight) =
+      parseSizeOption(args["temporal-size"].as<std::string>(), "temporal-size", 8, 4096);
+  bo.temporalScenes = {"mirror-room", "curved-mirror", "glossy"};
+  if (args.count("temporal-scenes")) {
+    bo.temporalScenes.clear();
+    for (const std::string& s : listItems(args["temporal-scenes"].as<std::string>())) {
+      if (auto check = loadScene(s); !check) throw std::runtime_error("--temporal-scenes: " + check.error());
+      bo.temporalScenes.push_back(s);
+    }
+  }
+}
+
+// The output directory, checked before any GL work: a typo or a read-only place costs no run.
+void checkOutputDirectory(const std::string& outDir) {
+  std::error_code ec;
+  std::filesystem::create_directories(std::filesystem::path(outDir) / "report", ec);
+  if (ec) throw std::runtime_error("--out " + outDir + ": cannot create the directory: " + ec.message());
+  if (Status s = probeWritableDirectory(outDir); !s) throw std::runtime_error("--out " + outDir + " is not writable: " + s.message());
+}
+
+// The defaults per scene (with --configs: every configuration run), times as ratios to the
+// tutorial's configuration. The method column fits the longest name shown.
+void printRuns(const BenchResult& result, const BenchOptions& bo) {
+  int nameWidth = 16;
+  if (!bo.configs.empty())
+    for (const RunRecord& r : result.runs) nameWidth = std::max(nameWidth, static_cast<int>(r.method.size() + 1 + r.label.size()));
+  std::printf("%-14s %-*s %9s %8s %8s %8s %8s %9s %9s\n", "scene", nameWidth, "method", "time ms", "ratio", "rec@1px",
+              "p95 px", "false", "fetch/px", "disp/barr");
+  for (const auto& sc : result.scenes) {
+    const SceneDefaults defaults = defaultRuns(result, sc.scene);
+    const RunRecord* p = defaults.tutorial;
+    std::vector<const RunRecord*> shown = defaults.runs;
+    if (!bo.configs.empty()) {
+      shown.clear();
+      for (const RunRecord& r : result.runs)
+        if (r.scene == sc.scene && r.method != "baseline") shown.push_back(&r);
+    }
+    for (const RunRecord* r : shown)
+      std::printf("%-14s %-*s %9.2f %8s %8.4f %8.3f %8.4f %9.1f %5u/%-3u\n", sc.scene.c_str(), nameWidth,
+                  (bo.configs.empty() ? r->method : r->method + "/" + r->label).c_str(), r->timeMedianMs,
+                  p ? std::to_string(r->timeMedianMs / p->timeMedianMs).substr(0, 4).c_str() : "-", r->metrics.recall1px,
+                  r->metrics.p95ErrorPx, r->metrics.falseHitRate, r->fetchesPerTracedPixel,
+                  r->commands.dispatches + r->commands.indirectDispatches, r->commands.barriers);
+  }
+}
+
+// The fastest configuration of each method reaching kParetoRecall, as a ratio to adaptive L's.
+void printFastest(const BenchResult& result) {
+  std::printf("\nfastest configuration per method reaching recall@1px >= %.2f (ratio to adaptive-l's):\n", kParetoRecall);
+  for (const auto& sc : result.scenes) {
+    const auto fastest = fastestReaching(result, sc.scene, kParetoRecall);
+    const RunRecord* ours = nullptr;
+    for (const FastestRun& f : fastest)
+      if (f.method == "adaptive-l") ours = f.run;
+    for (const FastestRun& f : fastest) {
+      if (!f.run) {
+        std::printf("%-14s %-16s none reaches it\n", sc.scene.c_str(), f.method.c_str());
+        continue;
+      }
+      const std::string ratio = ours ? std::to_string(f.run->timeMedianMs / ours->timeMedianMs).substr(0, 4) : "-";
+      std::printf("%-14s %-16s %9.2f %8s %8.4f  %s\n", sc.scene.c_str(), f.method.c_str(), f.run->timeMedianMs,
+                  ratio.c_str(), f.run->metrics.recall1px, f.run->label.c_str());
+    }
+  }
+}
+
+// The cost curves, each point as a ratio to the baseline pass at the same point; the temporal study.
+void printStudies(const BenchResult& result, const BenchOptions& bo) {
+  for (const char* curve : {"resolution", "fraction"}) {
+    bool header = false;
+    for (const CurvePoint& p : result.curves) {
+      if (p.curve != curve || p.method == "baseline") continue;
+      if (!header) std::printf("\ncost against %s (median ms; ratio to the baseline pass):\n", curve);
+      header = true;
+      double base = 0;
+      for (const CurvePoint& q : result.curves)
+        if (q.curve == p.curve && q.method == "baseline" && q.width == p.width && q.height == p.height &&
+            q.percent == p.percent)
+          base = q.timeMedianMs;
+      const std::string point = p.percent >= 0 ? "reflective-" + std::to_string(p.percent)
+                                               : std::to_string(p.width) + "x" + std::to_string(p.height);
+      std::printf("  %-16s %-15s traced %6.4f %9.2f ms  %6.2fx baseline\n", p.method.c_str(), point.c_str(),
+                  p.tracedFraction, p.timeMedianMs, base > 0 ? p.timeMedianMs / base : 0.0);
+    }
+  }
+  if (result.temporal.empty()) return;
+  std::printf("\ntemporal study (%dx%d; RMSE against the ideal reflection; still = its last 4 frames):\n",
+              bo.temporalWidth, bo.temporalHeight);
+  std::printf("  %-14s %-22s %-6s %8s %8s %8s %8s\n", "scene", "configuration", "segment", "rmse", "rmse A", "rmse B-D",
+              "ms");
+  for (const TemporalSummary& t : summarizeTemporal(result.temporal))
+    std::printf("  %-14s %-22s %-6s %8.4f %8.4f %8.4f %8.2f\n", t.scene.c_str(), t.config.c_str(), t.segment.c_str(),
+                t.rmse, t.rmseVisible, t.rmseHidden, t.dispatchMs);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  removeTemporariesOnSignal();
+  cxxopts::Options options = benchOptions();
   BenchOptions bo;
   std::string outDir, device;
   try {
@@ -85,102 +270,12 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (!args.unmatched().empty()) throw std::runtime_error("unexpected argument '" + args.unmatched().front() + "'");
-    bo.grid = args["grid"].as<std::string>();
-    if (bo.grid != "quick" && bo.grid != "full") throw std::runtime_error("--grid must be quick or full");
-    if (bo.grid == "full") {
-      bo.width = 960;
-      bo.height = 540;
-      bo.frames = 15;
-      bo.warmup = 2;
-    }
-    if (args.count("configs")) {
-      std::stringstream list(args["configs"].as<std::string>());
-      for (std::string name; std::getline(list, name, ',');)
-        if (!name.empty()) bo.configs.push_back(name);
-      if (auto check = selectConfigs(benchGrid(bo.grid), bo.configs); !check) throw std::runtime_error(check.error());
-    }
-    auto positiveInt = [&](const char* name, int& value, int lo, int hi) {
-      if (!args.count(name)) return;
-      std::istringstream in(args[name].as<std::string>());
-      if (!(in >> value) || !in.eof() || value < lo || value > hi)
-        throw std::runtime_error(std::string("--") + name + " expects an integer in " + std::to_string(lo) + ".." +
-                                 std::to_string(hi));
-    };
-    positiveInt("frames", bo.frames, 1, 1000);
-    positiveInt("warmup", bo.warmup, 0, 100);
-    positiveInt("batch", bo.batch, 1, 64);
-    if (args.count("size")) {
-      std::istringstream in(args["size"].as<std::string>());
-      char x = 0;
-      if (!(in >> bo.width >> x >> bo.height) || x != 'x' || !in.eof() || bo.width < 8 || bo.height < 8 ||
-          bo.width > 8192 || bo.height > 8192)
-        throw std::runtime_error("--size expects WxH with 8..8192 each");
-    }
-    std::stringstream scenes(args["scenes"].as<std::string>());
-    for (std::string s; std::getline(scenes, s, ',');)
-      if (!s.empty()) {
-        auto check = loadScene(s);
-        if (!check) throw std::runtime_error(check.error());
-        bo.scenes.push_back(s);
-      }
-    bool curves = bo.grid == "full" || args.count("curves") || args.count("curve-sizes") || args.count("curve-fractions");
-    if (args.count("no-curves")) curves = false;
-    if (curves) {
-      bo.curveSizes = {{480, 270}, {960, 540}, {1920, 1080}};
-      if (bo.grid == "full") bo.curveSizes.push_back({3840, 2160});
-      bo.curveFractions = {0, 1, 10, 50, 100};
-      if (args.count("curve-sizes")) {
-        bo.curveSizes.clear();
-        std::stringstream list(args["curve-sizes"].as<std::string>());
-        for (std::string item; std::getline(list, item, ',');) {
-          std::istringstream in(item);
-          int w = 0, h = 0;
-          char x = 0;
-          if (!(in >> w >> x >> h) || x != 'x' || !in.eof() || w < 8 || h < 8 || w > 8192 || h > 8192)
-            throw std::runtime_error("--curve-sizes expects WxH,WxH,... with 8..8192 each (got '" + item + "')");
-          bo.curveSizes.push_back({w, h});
-        }
-      }
-      if (args.count("curve-fractions")) {
-        bo.curveFractions.clear();
-        std::stringstream list(args["curve-fractions"].as<std::string>());
-        for (std::string item; std::getline(list, item, ',');) {
-          std::istringstream in(item);
-          int n = -1;
-          if (!(in >> n) || !in.eof() || n < 0 || n > 100)
-            throw std::runtime_error("--curve-fractions expects percentages 0..100 (got '" + item + "')");
-          bo.curveFractions.push_back(n);
-        }
-      }
-    }
-    bool temporal = bo.grid == "full" || args.count("temporal") || args.count("temporal-scenes");
-    if (args.count("no-temporal")) temporal = false;
-    if (temporal) {
-      std::istringstream size(args["temporal-size"].as<std::string>());
-      char x = 0;
-      if (!(size >> bo.temporalWidth >> x >> bo.temporalHeight) || x != 'x' || !size.eof() || bo.temporalWidth < 8 ||
-          bo.temporalHeight < 8 || bo.temporalWidth > 4096 || bo.temporalHeight > 4096)
-        throw std::runtime_error("--temporal-size expects WxH with 8..4096 each (got '" +
-                                 args["temporal-size"].as<std::string>() + "')");
-      bo.temporalScenes = {"mirror-room", "curved-mirror", "glossy"};
-      if (args.count("temporal-scenes")) {
-        bo.temporalScenes.clear();
-        std::stringstream list(args["temporal-scenes"].as<std::string>());
-        for (std::string s; std::getline(list, s, ',');)
-          if (!s.empty()) {
-            if (auto check = loadScene(s); !check) throw std::runtime_error("--temporal-scenes: " + check.error());
-            bo.temporalScenes.push_back(s);
-          }
-      }
-    }
+    parseGrid(args, bo);
+    parseStudies(args, bo);
     outDir = args["out"].as<std::string>();
     device = args["device"].as<std::string>();
     if (Status st = HeadlessContext::checkDevice(device); !st) throw std::runtime_error("--device: " + st.message());
-    // Checked before any GL work: a typo or a read-only place costs no run.
-    std::error_code ec;
-    std::filesystem::create_directories(std::filesystem::path(outDir) / "report", ec);
-    if (ec) throw std::runtime_error("--out " + outDir + ": cannot create the directory: " + ec.message());
-    if (Status s = probeWritableDirectory(outDir); !s) throw std::runtime_error("--out " + outDir + " is not writable: " + s.message());
+    checkOutputDirectory(outDir);
   } catch (const std::exception& e) {
     std::cerr << "sslr-bench: " << e.what() << "\n";
     return 2;
@@ -206,73 +301,9 @@ int main(int argc, char** argv) {
     std::cerr << "sslr-bench: " << s.message() << "\n";
     return 1;
   }
-  // A short summary on stdout: the defaults per scene (with --configs: every configuration run).
-  // The method column fits the longest name shown (method/label with --configs).
-  int nameWidth = 16;
-  if (!bo.configs.empty())
-    for (const RunRecord& r : result.value().runs)
-      nameWidth = std::max(nameWidth, static_cast<int>(r.method.size() + 1 + r.label.size()));
-  std::printf("%-14s %-*s %9s %8s %8s %8s %8s %9s %9s\n", "scene", nameWidth, "method", "time ms", "ratio", "rec@1px",
-              "p95 px", "false", "fetch/px", "disp/barr");
-  for (const auto& sc : result.value().scenes) {
-    const SceneDefaults defaults = defaultRuns(result.value(), sc.scene);
-    const RunRecord* p = defaults.tutorial;  // time ratios are to the tutorial's configuration
-    std::vector<const RunRecord*> shown = defaults.runs;
-    if (!bo.configs.empty()) {
-      shown.clear();
-      for (const RunRecord& r : result.value().runs)
-        if (r.scene == sc.scene && r.method != "baseline") shown.push_back(&r);
-    }
-    for (const RunRecord* r : shown)
-      std::printf("%-14s %-*s %9.2f %8s %8.4f %8.3f %8.4f %9.1f %5u/%-3u\n", sc.scene.c_str(), nameWidth,
-                  (bo.configs.empty() ? r->method : r->method + "/" + r->label).c_str(), r->timeMedianMs,
-                  p ? std::to_string(r->timeMedianMs / p->timeMedianMs).substr(0, 4).c_str() : "-", r->metrics.recall1px,
-                  r->metrics.p95ErrorPx, r->metrics.falseHitRate, r->fetchesPerTracedPixel,
-                  r->commands.dispatches + r->commands.indirectDispatches, r->commands.barriers);
-  }
-  std::printf("\nfastest configuration per method reaching recall@1px >= %.2f (ratio to adaptive-l's):\n", kParetoRecall);
-  for (const auto& sc : result.value().scenes) {
-    const auto fastest = fastestReaching(result.value(), sc.scene, kParetoRecall);
-    const RunRecord* ours = nullptr;
-    for (const FastestRun& f : fastest)
-      if (f.method == "adaptive-l") ours = f.run;
-    for (const FastestRun& f : fastest) {
-      if (!f.run) {
-        std::printf("%-14s %-16s none reaches it\n", sc.scene.c_str(), f.method.c_str());
-        continue;
-      }
-      const std::string ratio = ours ? std::to_string(f.run->timeMedianMs / ours->timeMedianMs).substr(0, 4) : "-";
-      std::printf("%-14s %-16s %9.2f %8s %8.4f  %s\n", sc.scene.c_str(), f.method.c_str(), f.run->timeMedianMs,
-                  ratio.c_str(), f.run->metrics.recall1px, f.run->label.c_str());
-    }
-  }
-  // The cost curves, each point as a ratio to the baseline pass at the same point.
-  for (const char* curve : {"resolution", "fraction"}) {
-    bool header = false;
-    for (const CurvePoint& p : result.value().curves) {
-      if (p.curve != curve || p.method == "baseline") continue;
-      if (!header) std::printf("\ncost against %s (median ms; ratio to the baseline pass):\n", curve);
-      header = true;
-      double base = 0;
-      for (const CurvePoint& q : result.value().curves)
-        if (q.curve == p.curve && q.method == "baseline" && q.width == p.width && q.height == p.height &&
-            q.percent == p.percent)
-          base = q.timeMedianMs;
-      const std::string point = p.percent >= 0 ? "reflective-" + std::to_string(p.percent)
-                                               : std::to_string(p.width) + "x" + std::to_string(p.height);
-      std::printf("  %-16s %-15s traced %6.4f %9.2f ms  %6.2fx baseline\n", p.method.c_str(), point.c_str(),
-                  p.tracedFraction, p.timeMedianMs, base > 0 ? p.timeMedianMs / base : 0.0);
-    }
-  }
-  if (!result.value().temporal.empty()) {
-    std::printf("\ntemporal study (%dx%d; RMSE against the ideal reflection; still = its last 4 frames):\n",
-                bo.temporalWidth, bo.temporalHeight);
-    std::printf("  %-14s %-22s %-6s %8s %8s %8s %8s\n", "scene", "configuration", "segment", "rmse", "rmse A",
-                "rmse B-D", "ms");
-    for (const TemporalSummary& t : summarizeTemporal(result.value().temporal))
-      std::printf("  %-14s %-22s %-6s %8.4f %8.4f %8.4f %8.2f\n", t.scene.c_str(), t.config.c_str(),
-                  t.segment.c_str(), t.rmse, t.rmseVisible, t.rmseHidden, t.dispatchMs);
-  }
+  printRuns(result.value(), bo);
+  printFastest(result.value());
+  printStudies(result.value(), bo);
   std::printf("timing: %s on %s\nwrote %s/results.json, %s/results.csv, %s/report/index.html\n",
               result.value().timingMethod.c_str(), renderer.c_str(), outDir.c_str(), outDir.c_str(), outDir.c_str());
   return 0;

@@ -150,7 +150,8 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
   return s;  // validated by the caller, once every flag is applied
 }
 
-int run(int argc, char** argv) {
+// Every option, with its help.
+cxxopts::Options renderOptions() {
   cxxopts::Options options("sslr-render", "Headless render with Screen Space Local Reflections (depth-only SSLR).");
   std::string sceneHelp = "built-in scene (";
   for (const auto& n : builtinSceneNames()) sceneHelp += n + (n == builtinSceneNames().back() ? "" : ", ");
@@ -212,6 +213,267 @@ int run(int argc, char** argv) {
       ("temporal", "temporal reuse (Settings::temporal) from the second frame on")
       ("score", "score the traced hits against Embree ground truth (recall, error, false hits), print them and write DIR/error.png (and DIR/truth.exr with --dump)")
       ("h,help", "show this help");
+  return options;
+}
+
+// What one run renders and writes, from the command line.
+struct RenderJob {
+  GBufferOptions gopt;
+  Settings settings;
+  bool reflections = true;
+  CompositeMode compositeMode = CompositeMode::BlendOverFallback;
+  Camera camera;
+  Scene scene;
+  fs::path outDir;
+  bool dump = false, score = false;
+  int frames = 1;
+  std::string device;
+};
+
+// The G-buffer layout, the tracer and its settings (throws UsageError).
+void parseTracing(const cxxopts::ParseResult& args, RenderJob& job) {
+  parseSize(args["size"].as<std::string>(), job.gopt.width, job.gopt.height);
+  checkMemory(job.gopt.width, job.gopt.height, job.dump);
+  if (!parseDepthMode(args["depth"].as<std::string>(), job.gopt.depth))
+    throw UsageError{"--depth must be reversed, reversed-infinite, zero-to-one or gl-default (got '" +
+                     args["depth"].as<std::string>() + "')"};
+  const std::string normals = args["normals"].as<std::string>();
+  if (normals == "octahedral") job.gopt.normals = NormalEncoding::Octahedral;
+  else if (normals == "xyz") job.gopt.normals = NormalEncoding::XyzUnorm;
+  else throw UsageError{"--normals must be octahedral or xyz (got '" + normals + "')"};
+  job.gopt.withBackDepth = args.count("back-depth") > 0;
+  Settings& settings = job.settings;
+  settings = parseSettings(args);
+  const std::string method = args["method"].as<std::string>();
+  if (method == "none") {
+    job.reflections = false;
+  } else if (method == "position-buffer") {
+    settings.method = Method::PositionBuffer;
+    job.gopt.withPosition = true;  // its G-buffer adds an RGBA32F view-space position texture
+  } else if (method == "hiz") {
+    settings.method = Method::HierarchicalDepth;
+  } else if (method == "dda") {
+    settings.method = Method::ScreenSpaceDDA;
+  } else if (method == "ffx-sssr") {
+    settings.method = Method::FidelityFxSssr;
+  } else if (method != "adaptive-l") {
+    throw UsageError{"--method must be adaptive-l, hiz, dda, ffx-sssr, position-buffer or none (got '" + method + "')"};
+  }
+  const std::string composite = args["composite"].as<std::string>();
+  if (composite == "blend") job.compositeMode = CompositeMode::BlendOverFallback;
+  else if (composite == "add") job.compositeMode = CompositeMode::Add;
+  else throw UsageError{"--composite must be blend or add (got '" + composite + "')"};
+  if (args.count("hiz-verify") && args.count("no-hiz-verify"))
+    throw UsageError{"--hiz-verify and --no-hiz-verify exclude each other"};
+  if (args.count("hiz-verify")) settings.hierarchicalVerify = true;
+  if (args.count("no-hiz-verify")) settings.hierarchicalVerify = false;
+  if (args.count("no-hiz-fallback")) {  // adaptive L alone: no traversal at all
+    if (args.count("hiz-verify")) throw UsageError{"--hiz-verify and --no-hiz-fallback exclude each other"};
+    settings.hierarchicalFallback = false;
+    settings.hierarchicalVerify = false;
+  }
+  if (args.count("half-res")) settings.halfResolution = true;
+  settings.debugOutputs = job.dump || job.score;
+  settings.collectStats = args.count("stats") > 0;
+  if (args.count("temporal")) settings.temporal = true;
+  if (std::string why = validate(settings); !why.empty()) throw UsageError{why};  // after every flag
+  job.frames = args["frames"].as<int>();
+  if (job.frames < 1 || job.frames > 10000)
+    throw UsageError{"--frames must be 1..10000 (got " + std::to_string(job.frames) + ")"};
+}
+
+// The scene (loaded, staged) and the camera (throws UsageError).
+void parseScene(const cxxopts::ParseResult& args, RenderJob& job) {
+  auto loaded = loadScene(args["scene"].as<std::string>());
+  if (!loaded) throw UsageError{loaded.error()};
+  Scene& scene = job.scene;
+  scene = std::move(loaded.value());
+  for (const auto& w : scene.warnings) std::cerr << "sslr-render: warning: " << w << "\n";
+  if (args.count("stage")) {
+    const std::string stage = args["stage"].as<std::string>();
+    if (stage != "on-mirror" && stage != "as-mirror")
+      throw UsageError{"--stage must be on-mirror or as-mirror (got '" + stage + "')"};
+    auto staged = stageModel(std::move(scene), stage == "on-mirror" ? ModelStage::OnMirror : ModelStage::AsMirror);
+    if (!staged) throw UsageError{"--stage: " + staged.error()};
+    scene = std::move(staged.value());
+  }
+  if (std::string why = scene.checkExtent(); !why.empty()) throw UsageError{args["scene"].as<std::string>() + ": " + why};
+  Camera& camera = job.camera;
+  camera = scene.camera ? *scene.camera : scene.defaultCamera();
+  if (args.count("eye")) camera.eye = parseVec3("eye", args["eye"].as<std::string>());
+  if (args.count("target")) camera.target = parseVec3("target", args["target"].as<std::string>());
+  // A moved camera sees the scene from elsewhere: its clip planes are fitted to the scene as seen
+  // from the new eye (the scene's own planes would clip a close look at a small model away).
+  if (args.count("eye") || args.count("target")) fitClipPlanes(camera, scene.worldBounds());
+  if (args.count("up")) camera.up = parseVec3("up", args["up"].as<std::string>());
+  if (args.count("fovy")) camera.fovyDegrees = parsePositive("fovy", args["fovy"].as<std::string>());
+  if (args.count("near")) camera.nearPlane = parsePositive("near", args["near"].as<std::string>());
+  if (args.count("far")) camera.farPlane = parsePositive("far", args["far"].as<std::string>());
+  if (args.count("ortho")) {
+    camera.orthographic = true;
+    camera.orthoHeight = parsePositive("ortho", args["ortho"].as<std::string>());
+  }
+  if (std::string why = camera.validate(); !why.empty()) throw UsageError{"camera: " + why};
+}
+
+// --export-gltf: the scene with the camera as given, instead of rendering.
+int exportGltf(const RenderJob& job, const std::string& file) {
+  Scene exported = job.scene;
+  exported.camera = job.camera;
+  auto text = gltfFromScene(exported);
+  if (!text) {
+    std::cerr << "sslr-render: --export-gltf: " << text.error() << "\n";
+    return kExitUsage;
+  }
+  if (Status st = writeFiles({{file, std::vector<unsigned char>(text.value().begin(), text.value().end())}}); !st) {
+    std::cerr << "sslr-render: " << st.message() << "\n";
+    return kExitFailure;
+  }
+  std::cout << "wrote " << file << "\n";
+  return 0;
+}
+
+using NamedImages = std::vector<std::pair<std::string, std::pair<Image, std::vector<std::string>>>>;
+
+// final.png, and with --dump every buffer as EXR.
+NamedImages collectImages(const RenderJob& job, FrameRenderer& r) {
+  NamedImages files;
+  files.push_back({"final.png", {r.readFinal(), {}}});
+  if (!job.dump) return files;
+  GBuffer& g = r.gbuffer();
+  const Image depth = g.readDepth();
+  files.push_back({"color.exr", {g.readColor(), {"R", "G", "B"}}});
+  files.push_back({"fallback.exr", {g.readFallbackSpecular(), {"R", "G", "B"}}});
+  files.push_back({"normal.exr", {decodeNormals(g.readNormalPacked(), job.gopt.normals), {"R", "G", "B"}}});
+  files.push_back({"depth.exr", {depth, {"Z"}}});
+  if (job.gopt.withBackDepth) files.push_back({"back-depth.exr", {g.readBackDepth(), {"Z"}}});
+  files.push_back({"position.exr",
+                   {reconstructPositions(depth, g.clipFromView(), depthConvention(job.gopt.depth)), {"R", "G", "B", "A"}}});
+  if (job.reflections) {
+    files.push_back({"hit.exr", {r.readHit(), {"R", "G", "B", "A"}}});
+    files.push_back({"reflection.exr", {r.readReflection(), {"R", "G", "B", "A"}}});
+    files.push_back({"iterations.exr", {r.readIterations(), {"Y"}}});
+    files.push_back({"resolved.exr", {r.readResolved(), {"R", "G", "B", "A"}}});
+  }
+  return files;
+}
+
+// Every file encoded first, then all written under temporary names and renamed into place: a
+// failed write (disk full) leaves no partial output behind.
+Status writeImages(const NamedImages& files, const fs::path& outDir) {
+  std::vector<std::pair<std::string, std::vector<unsigned char>>> encoded;
+  for (const auto& [name, image] : files) {
+    auto bytes = encodeImage((outDir / name).string(), image.first, image.second);
+    if (!bytes) return Status::error(bytes.error());
+    encoded.emplace_back((outDir / name).string(), std::move(bytes.value()));
+  }
+  return writeFiles(encoded);
+}
+
+// --stats: tiles, traced pixels, fetches, the commands per pass, and the pass times.
+void printStats(const FrameStats& st, const std::vector<FrameStats>& laterStats, int frames, bool software) {
+  std::cout << "  tiles " << st.tiles << " (blurred " << st.blurTiles << "), traced pixels " << st.tracedPixels << ", fetches "
+            << st.fetches << " (" << (st.tracedPixels ? double(st.fetches) / st.tracedPixels : 0.0)
+            << " per traced pixel), hierarchical traversal on " << st.hierarchicalPixels << " ("
+            << (st.tracedPixels ? 100.0 * st.hierarchicalPixels / st.tracedPixels : 0.0) << "% of traced"
+            << (st.hierarchicalPixels ? (st.traversalDeferred ? ", in a pass of its own" : ", inline") : "") << ")"
+            << (st.level1Pass ? "; the pyramid's level 1 in a pass of its own (the frame before listed no tile)" : "")
+            << "\n";
+  // The commands each pass recorded (the same on every device: what a GPU pays for per frame).
+  std::printf("  commands (dispatches + indirect / barriers / programs / uploads):");
+  printPassCommands(st);
+  const PassCommands total = st.totalCommands();
+  std::printf("; frame %u + %u / %u / %u / %u\n", total.dispatches, total.indirectDispatches, total.barriers,
+              total.programs, total.uploads);
+  if (st.classifyMs >= 0.0 && laterStats.empty())
+    std::printf("  pass times (GL_TIMESTAMP%s): classify %.2f ms, pyramid %.2f ms, trace %.2f ms, blur %.2f ms\n",
+                software ? "; a software renderer: CPU work; the first frame, with shader compilation"
+                         : "; the first frame, with shader compilation",
+                st.classifyMs, st.pyramidMs, st.traceMs, st.blurMs);
+  if (st.classifyMs >= 0.0 && !laterStats.empty()) {
+    auto median = [&](double FrameStats::*field) {
+      std::vector<double> v;
+      for (const FrameStats& f : laterStats) v.push_back(f.*field);
+      std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+      return v[v.size() / 2];
+    };
+    std::printf("  pass times (GL_TIMESTAMP, median of frames 2..%d%s): classify %.3f ms, pyramid %.3f ms, "
+                "trace %.3f ms, blur %.3f ms, temporal %.3f ms\n",
+                frames, software ? "; a software renderer: CPU work" : "", median(&FrameStats::classifyMs),
+                median(&FrameStats::pyramidMs), median(&FrameStats::traceMs), median(&FrameStats::blurMs),
+                median(&FrameStats::temporalMs));
+  }
+}
+
+// --score: the truth's classes and the scores.
+void printScore(const HitMetrics& m) {
+  std::printf("  truth: %zu visible (A; %zu of them shown by no pixel within 1 px), %zu occluded (B), %zu off "
+              "screen (C), %zu escaped (D)\n",
+              m.visible, m.unshown, m.occluded, m.offScreen, m.escaped);
+  std::printf("  recall@1px %.4f (of the shown: %.4f) @2px %.4f @4px %.4f  median %.3f px  p95 %.3f px  false hits "
+              "%.4f (%.4f beyond 1 px of the true hit)  reflection RMSE %.4f  non-finite %zu\n",
+              m.recall1px, m.recallShown1px, m.recall2px, m.recall4px, m.medianErrorPx, m.p95ErrorPx, m.falseHitRate,
+              m.falseHitRateBeyond1px, m.reflectionRmse, m.nonFinite);
+}
+
+// Renders the job's frames, scores them if asked, writes the images and prints the summary.
+int render(const RenderJob& job) {
+  EglOptions eopt;
+  eopt.device = job.device;
+  auto gl = HeadlessContext::create(eopt);
+  if (!gl) {
+    std::cerr << "sslr-render: cannot create a headless OpenGL 4.5 context: " << gl.error() << "\n";
+    return kExitFailure;
+  }
+  auto renderer = FrameRenderer::create(job.gopt);
+  if (!renderer) {
+    std::cerr << "sslr-render: " << renderer.error() << "\n";
+    return kExitFailure;
+  }
+  FrameRenderer& r = *renderer.value();
+  r.setCompositeMode(job.compositeMode);
+  GpuScene gpuScene(job.scene);
+  const Settings* settings = job.reflections ? &job.settings : nullptr;
+  const bool stats = job.settings.collectStats && job.reflections;
+  std::vector<FrameStats> laterStats;  // every frame after the first (which compiles the shaders)
+  for (int frame = 0; frame < job.frames; ++frame) {
+    if (Status s = r.render(gpuScene, job.camera, settings); !s) {
+      std::cerr << "sslr-render: " << s.message() << "\n";
+      return kExitFailure;
+    }
+    if (frame > 0 && stats) laterStats.push_back(r.sslr().waitForStats());
+  }
+  NamedImages files = collectImages(job, r);
+  std::optional<HitMetrics> score;
+  if (job.score && job.reflections) {
+    auto truth = groundTruthFor(job.scene, r.gbuffer(), job.settings);
+    if (!truth) {
+      std::cerr << "sslr-render: ground truth: " << truth.error() << "\n";
+      return kExitFailure;
+    }
+    const Image color = r.gbuffer().readColor(), hit = r.readHit();
+    score = compareHits(truth.value(), hit, kReportedConfidence, &color);
+    files.push_back({"error.png", {hitErrorImage(truth.value(), hit), {}}});
+    if (job.dump) files.push_back({"truth.exr", {truthImage(truth.value()), {"R", "G", "B", "A"}}});
+  }
+  if (gl.value()->glErrorCount() > 0) {
+    std::cerr << "sslr-render: " << gl.value()->glErrorCount() << " GL error(s) were reported; no output written\n";
+    return kExitFailure;
+  }
+  if (Status s = writeImages(files, job.outDir); !s) {
+    std::cerr << "sslr-render: " << s.message() << "\n";
+    return kExitFailure;
+  }
+  std::cout << "sslr-render: " << job.scene.name << " " << job.gopt.width << "x" << job.gopt.height << " ("
+            << toString(job.gopt.depth) << " depth, " << job.scene.triangleCount() << " triangles) -> "
+            << (job.outDir / "final.png").string() << (job.dump ? " + buffers" : "") << "\n";
+  if (stats) printStats(r.sslr().waitForStats(), laterStats, job.frames, gl.value()->isSoftware());
+  if (score) printScore(*score);
+  return 0;
+}
+
+int run(int argc, char** argv) {
+  cxxopts::Options options = renderOptions();
   cxxopts::ParseResult args;
   try {
     args = options.parse(argc, argv);
@@ -229,107 +491,17 @@ int run(int argc, char** argv) {
     std::cerr << "sslr-render: unexpected argument '" << args.unmatched().front() << "'\n";
     return kExitUsage;
   }
-
-  GBufferOptions gopt;
-  Settings settings;
-  bool reflections = true;
-  CompositeMode compositeMode = CompositeMode::BlendOverFallback;
-  Camera camera;
-  Scene scene;
-  const fs::path outDir = args["out"].as<std::string>();
-  const bool dump = args.count("dump") > 0;
-  int frames = 1;
+  RenderJob job;
   try {
-    parseSize(args["size"].as<std::string>(), gopt.width, gopt.height);
-    checkMemory(gopt.width, gopt.height, args.count("dump") > 0);
-    if (!parseDepthMode(args["depth"].as<std::string>(), gopt.depth))
-      throw UsageError{"--depth must be reversed, reversed-infinite, zero-to-one or gl-default (got '" +
-                       args["depth"].as<std::string>() + "')"};
-    const std::string normals = args["normals"].as<std::string>();
-    if (normals == "octahedral") gopt.normals = NormalEncoding::Octahedral;
-    else if (normals == "xyz") gopt.normals = NormalEncoding::XyzUnorm;
-    else throw UsageError{"--normals must be octahedral or xyz (got '" + normals + "')"};
-    gopt.withBackDepth = args.count("back-depth") > 0;
-    const std::string method = args["method"].as<std::string>();
-    settings = parseSettings(args);
-    if (method == "none") {
-      reflections = false;
-    } else if (method == "position-buffer") {
-      settings.method = Method::PositionBuffer;
-      gopt.withPosition = true;  // its G-buffer adds an RGBA32F view-space position texture
-    } else if (method == "hiz") {
-      settings.method = Method::HierarchicalDepth;
-    } else if (method == "dda") {
-      settings.method = Method::ScreenSpaceDDA;
-    } else if (method == "ffx-sssr") {
-      settings.method = Method::FidelityFxSssr;
-    } else if (method != "adaptive-l") {
-      throw UsageError{"--method must be adaptive-l, hiz, dda, ffx-sssr, position-buffer or none (got '" + method + "')"};
-    }
-    const std::string composite = args["composite"].as<std::string>();
-    if (composite == "blend") compositeMode = CompositeMode::BlendOverFallback;
-    else if (composite == "add") compositeMode = CompositeMode::Add;
-    else throw UsageError{"--composite must be blend or add (got '" + composite + "')"};
-    if (args.count("hiz-verify") && args.count("no-hiz-verify"))
-      throw UsageError{"--hiz-verify and --no-hiz-verify exclude each other"};
-    if (args.count("hiz-verify")) settings.hierarchicalVerify = true;
-    if (args.count("no-hiz-verify")) settings.hierarchicalVerify = false;
-    if (args.count("no-hiz-fallback")) {  // adaptive L alone: no traversal at all
-      if (args.count("hiz-verify")) throw UsageError{"--hiz-verify and --no-hiz-fallback exclude each other"};
-      settings.hierarchicalFallback = false;
-      settings.hierarchicalVerify = false;
-    }
-    if (args.count("half-res")) settings.halfResolution = true;
-    settings.debugOutputs = dump || args.count("score") > 0;
-    settings.collectStats = args.count("stats") > 0;
-    if (args.count("temporal")) settings.temporal = true;
-    if (std::string why = validate(settings); !why.empty()) throw UsageError{why};  // after every flag
-    frames = args["frames"].as<int>();
-    if (frames < 1 || frames > 10000) throw UsageError{"--frames must be 1..10000 (got " + std::to_string(frames) + ")"};
-
-    auto loaded = loadScene(args["scene"].as<std::string>());
-    if (!loaded) throw UsageError{loaded.error()};
-    scene = std::move(loaded.value());
-    for (const auto& w : scene.warnings) std::cerr << "sslr-render: warning: " << w << "\n";
-    if (args.count("stage")) {
-      const std::string stage = args["stage"].as<std::string>();
-      if (stage != "on-mirror" && stage != "as-mirror")
-        throw UsageError{"--stage must be on-mirror or as-mirror (got '" + stage + "')"};
-      auto staged = stageModel(std::move(scene), stage == "on-mirror" ? ModelStage::OnMirror : ModelStage::AsMirror);
-      if (!staged) throw UsageError{"--stage: " + staged.error()};
-      scene = std::move(staged.value());
-    }
-    if (std::string why = scene.checkExtent(); !why.empty()) throw UsageError{args["scene"].as<std::string>() + ": " + why};
-    camera = scene.camera ? *scene.camera : scene.defaultCamera();
-    if (args.count("eye")) camera.eye = parseVec3("eye", args["eye"].as<std::string>());
-    if (args.count("target")) camera.target = parseVec3("target", args["target"].as<std::string>());
-    // A moved camera sees the scene from elsewhere: its clip planes are fitted to the scene as seen
-    // from the new eye (the scene's own planes would clip a close look at a small model away).
-    if (args.count("eye") || args.count("target")) fitClipPlanes(camera, scene.worldBounds());
-    if (args.count("up")) camera.up = parseVec3("up", args["up"].as<std::string>());
-    if (args.count("fovy")) camera.fovyDegrees = parsePositive("fovy", args["fovy"].as<std::string>());
-    if (args.count("near")) camera.nearPlane = parsePositive("near", args["near"].as<std::string>());
-    if (args.count("far")) camera.farPlane = parsePositive("far", args["far"].as<std::string>());
-    if (args.count("ortho")) {
-      camera.orthographic = true;
-      camera.orthoHeight = parsePositive("ortho", args["ortho"].as<std::string>());
-    }
-    if (std::string why = camera.validate(); !why.empty()) throw UsageError{"camera: " + why};
-    if (args.count("export-gltf")) {
-      const std::string file = args["export-gltf"].as<std::string>();
-      Scene exported = scene;
-      exported.camera = camera;
-      auto text = gltfFromScene(exported);
-      if (!text) throw UsageError{"--export-gltf: " + text.error()};
-      if (Status st = writeFiles({{file, std::vector<unsigned char>(text.value().begin(), text.value().end())}}); !st) {
-        std::cerr << "sslr-render: " << st.message() << "\n";
-        return kExitFailure;
-      }
-      std::cout << "wrote " << file << "\n";
-      return 0;
-    }
-    if (Status st = HeadlessContext::checkDevice(args["device"].as<std::string>()); !st) throw UsageError{"--device: " + st.message()};
-    checkOutputDirectory(outDir);
+    job.outDir = args["out"].as<std::string>();
+    job.dump = args.count("dump") > 0;
+    job.score = args.count("score") > 0;
+    job.device = args["device"].as<std::string>();
+    parseTracing(args, job);
+    parseScene(args, job);
+    if (args.count("export-gltf")) return exportGltf(job, args["export-gltf"].as<std::string>());
+    if (Status st = HeadlessContext::checkDevice(job.device); !st) throw UsageError{"--device: " + st.message()};
+    checkOutputDirectory(job.outDir);
   } catch (const UsageError& e) {
     std::cerr << "sslr-render: " << e.message << "\n";
     return kExitUsage;
@@ -337,130 +509,7 @@ int run(int argc, char** argv) {
     std::cerr << "sslr-render: " << e.what() << "\n";
     return kExitUsage;
   }
-
-  EglOptions eopt;
-  eopt.device = args["device"].as<std::string>();
-  auto gl = HeadlessContext::create(eopt);
-  if (!gl) {
-    std::cerr << "sslr-render: cannot create a headless OpenGL 4.5 context: " << gl.error() << "\n";
-    return kExitFailure;
-  }
-  auto renderer = FrameRenderer::create(gopt);
-  if (!renderer) {
-    std::cerr << "sslr-render: " << renderer.error() << "\n";
-    return kExitFailure;
-  }
-  FrameRenderer& r = *renderer.value();
-  r.setCompositeMode(compositeMode);
-  GpuScene gpuScene(scene);
-  // Per-pass GPU times of every frame after the first (which compiles the shaders).
-  std::vector<FrameStats> laterStats;
-  for (int frame = 0; frame < frames; ++frame) {
-    if (Status s = r.render(gpuScene, camera, reflections ? &settings : nullptr); !s) {
-      std::cerr << "sslr-render: " << s.message() << "\n";
-      return kExitFailure;
-    }
-    if (frame > 0 && settings.collectStats && reflections) laterStats.push_back(r.sslr().waitForStats());
-  }
-  std::vector<std::pair<std::string, std::pair<Image, std::vector<std::string>>>> files;
-  files.push_back({"final.png", {r.readFinal(), {}}});
-  if (dump) {
-    GBuffer& g = r.gbuffer();
-    const Image depth = g.readDepth();
-    files.push_back({"color.exr", {g.readColor(), {"R", "G", "B"}}});
-    files.push_back({"fallback.exr", {g.readFallbackSpecular(), {"R", "G", "B"}}});
-    files.push_back({"normal.exr", {decodeNormals(g.readNormalPacked(), gopt.normals), {"R", "G", "B"}}});
-    files.push_back({"depth.exr", {depth, {"Z"}}});
-    if (gopt.withBackDepth) files.push_back({"back-depth.exr", {g.readBackDepth(), {"Z"}}});
-    files.push_back({"position.exr",
-                     {reconstructPositions(depth, g.clipFromView(), depthConvention(gopt.depth)), {"R", "G", "B", "A"}}});
-    if (reflections) {
-      files.push_back({"hit.exr", {r.readHit(), {"R", "G", "B", "A"}}});
-      files.push_back({"reflection.exr", {r.readReflection(), {"R", "G", "B", "A"}}});
-      files.push_back({"iterations.exr", {r.readIterations(), {"Y"}}});
-      files.push_back({"resolved.exr", {r.readResolved(), {"R", "G", "B", "A"}}});
-    }
-  }
-  std::optional<HitMetrics> score;
-  if (args.count("score") && reflections) {
-    auto truth = groundTruthFor(scene, r.gbuffer(), settings);
-    if (!truth) {
-      std::cerr << "sslr-render: ground truth: " << truth.error() << "\n";
-      return kExitFailure;
-    }
-    const Image color = r.gbuffer().readColor();
-    const Image hit = r.readHit();
-    score = compareHits(truth.value(), hit, kReportedConfidence, &color);
-    files.push_back({"error.png", {hitErrorImage(truth.value(), hit), {}}});
-    if (dump) files.push_back({"truth.exr", {truthImage(truth.value()), {"R", "G", "B", "A"}}});
-  }
-  if (gl.value()->glErrorCount() > 0) {
-    std::cerr << "sslr-render: " << gl.value()->glErrorCount() << " GL error(s) were reported; no output written\n";
-    return kExitFailure;
-  }
-  // Every file is encoded first, then all are written under temporary names and renamed into
-  // place: a failed write (disk full) leaves no partial output behind.
-  std::vector<std::pair<std::string, std::vector<unsigned char>>> encoded;
-  for (const auto& [name, image] : files) {
-    auto bytes = encodeImage((outDir / name).string(), image.first, image.second);
-    if (!bytes) {
-      std::cerr << "sslr-render: " << bytes.error() << "\n";
-      return kExitFailure;
-    }
-    encoded.emplace_back((outDir / name).string(), std::move(bytes.value()));
-  }
-  if (Status s = writeFiles(encoded); !s) {
-    std::cerr << "sslr-render: " << s.message() << "\n";
-    return kExitFailure;
-  }
-  std::cout << "sslr-render: " << scene.name << " " << gopt.width << "x" << gopt.height << " ("
-            << toString(gopt.depth) << " depth, " << scene.triangleCount() << " triangles) -> "
-            << (outDir / "final.png").string() << (dump ? " + buffers" : "") << "\n";
-  if (settings.collectStats && reflections) {
-    const FrameStats st = r.sslr().waitForStats();
-    std::cout << "  tiles " << st.tiles << " (blurred " << st.blurTiles << "), traced pixels " << st.tracedPixels << ", fetches "
-              << st.fetches << " (" << (st.tracedPixels ? double(st.fetches) / st.tracedPixels : 0.0)
-              << " per traced pixel), hierarchical traversal on " << st.hierarchicalPixels << " ("
-              << (st.tracedPixels ? 100.0 * st.hierarchicalPixels / st.tracedPixels : 0.0) << "% of traced"
-              << (st.hierarchicalPixels ? (st.traversalDeferred ? ", in a pass of its own" : ", inline") : "") << ")"
-              << (st.level1Pass ? "; the pyramid's level 1 in a pass of its own (the frame before listed no tile)" : "")
-              << "\n";
-    // The commands each pass recorded (the same on every device: what a GPU pays for per frame).
-    std::printf("  commands (dispatches + indirect / barriers / programs / uploads):");
-    printPassCommands(st);
-    const PassCommands total = st.totalCommands();
-    std::printf("; frame %u + %u / %u / %u / %u\n", total.dispatches, total.indirectDispatches, total.barriers,
-                total.programs, total.uploads);
-    if (st.classifyMs >= 0.0 && laterStats.empty())
-      std::printf("  pass times (GL_TIMESTAMP%s): classify %.2f ms, pyramid %.2f ms, trace %.2f ms, blur %.2f ms\n",
-                  gl.value()->isSoftware() ? "; a software renderer: CPU work; the first frame, with shader compilation"
-                                           : "; the first frame, with shader compilation",
-                  st.classifyMs, st.pyramidMs, st.traceMs, st.blurMs);
-    if (st.classifyMs >= 0.0 && !laterStats.empty()) {
-      auto median = [&](double FrameStats::*field) {
-        std::vector<double> v;
-        for (const FrameStats& f : laterStats) v.push_back(f.*field);
-        std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-        return v[v.size() / 2];
-      };
-      std::printf("  pass times (GL_TIMESTAMP, median of frames 2..%d%s): classify %.3f ms, pyramid %.3f ms, "
-                  "trace %.3f ms, blur %.3f ms, temporal %.3f ms\n",
-                  frames, gl.value()->isSoftware() ? "; a software renderer: CPU work" : "",
-                  median(&FrameStats::classifyMs), median(&FrameStats::pyramidMs), median(&FrameStats::traceMs),
-                  median(&FrameStats::blurMs), median(&FrameStats::temporalMs));
-    }
-  }
-  if (score) {
-    const HitMetrics& m = *score;
-    std::printf("  truth: %zu visible (A; %zu of them shown by no pixel within 1 px), %zu occluded (B), %zu off "
-                "screen (C), %zu escaped (D)\n",
-                m.visible, m.unshown, m.occluded, m.offScreen, m.escaped);
-    std::printf("  recall@1px %.4f (of the shown: %.4f) @2px %.4f @4px %.4f  median %.3f px  p95 %.3f px  false hits "
-                "%.4f (%.4f beyond 1 px of the true hit)  reflection RMSE %.4f  non-finite %zu\n",
-                m.recall1px, m.recallShown1px, m.recall2px, m.recall4px, m.medianErrorPx, m.p95ErrorPx, m.falseHitRate,
-                m.falseHitRateBeyond1px, m.reflectionRmse, m.nonFinite);
-  }
-  return 0;
+  return render(job);
 }
 
 }  // namespace
