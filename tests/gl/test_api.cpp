@@ -664,6 +664,69 @@ TEST_F(Api, SeparateMaterialTextureGivesThePackedResult) {
 // A mask limits where rays start: masked-out pixels get nothing (and no tile is listed for them),
 // the others get exactly what they get without a mask (hits: the blur is not compared). Its edge
 // runs through 2x2 quads and an 8x8 tile, which classification reads a quad at a time.
+// Context::prepare compiles every program a frame with those inputs and settings may use: the
+// frames after it (a traced one, an empty one, the one after it that builds level 1 in a pass of
+// its own, TraversalPass::Auto switching between inline and deferred, both composites) compile
+// nothing more. Counted by the Info messages sslr logs for each program it compiles.
+TEST_F(Api, PrepareCompilesEveryProgramFramesUse) {
+  for (bool half : {false, true}) {
+    int compiled = 0;
+    ContextDesc d;
+    d.width = W;
+    d.height = H;
+    d.getProcAddress = HeadlessContext::getProcAddress();
+    d.log = [&](LogLevel level, const std::string& text) {
+      if (level == LogLevel::Info && text.find("sslr: compiled") != std::string::npos) ++compiled;
+    };
+    auto ctx = Context::create(d);
+    ASSERT_TRUE(ctx) << ctx.error();
+    Frame f(DepthMode::Reversed, NormalEncoding::Octahedral, true);
+    const FrameInputs in = f.gbuffer->frameInputs();
+    Settings s;
+    s.halfResolution = half;
+    s.collectStats = true;
+    ASSERT_TRUE(ctx.value()->prepare(in, s));
+    const int prepared = compiled;
+    EXPECT_GT(prepared, 5) << "half " << half;
+    Settings empty = s;
+    empty.minReflectance = 1.0f;  // nothing reflects: no tile is listed
+    GLuint target = makeTexture(GL_RGBA16F), fbo = 0;
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, target, 0);
+    bool sawDeferred = false, sawInline = false, sawLevel1Pass = false;
+    for (const Settings* frame : {&s, &s, &empty, &s, &s, &s}) {
+      ASSERT_TRUE(ctx.value()->dispatch(in, *frame));
+      const FrameStats st = ctx.value()->waitForStats();
+      if (st.hierarchicalPixels > 0) (st.traversalDeferred ? sawDeferred : sawInline) = true;
+      sawLevel1Pass = sawLevel1Pass || st.level1Pass;
+      ASSERT_TRUE(ctx.value()->composite(fbo));
+      ASSERT_TRUE(ctx.value()->composite(fbo, {CompositeMode::BlendOverFallback, f.gbuffer->fallbackSpecularTexture()}));
+    }
+    EXPECT_EQ(compiled, prepared) << "a frame compiled a program prepare() did not (half " << half << ")";
+    EXPECT_TRUE(sawLevel1Pass) << "the frame after the empty one builds level 1 in a pass of its own";
+    EXPECT_TRUE(sawDeferred || sawInline);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &target);
+  }
+}
+
+// prepare() validates like dispatch(): bad settings and a bad projection are refused, named.
+TEST_F(Api, PrepareRefusesWhatDispatchRefuses) {
+  auto ctx = makeContext();
+  ASSERT_TRUE(ctx);
+  Frame f;
+  Settings bad;
+  bad.maxIterations = 0;
+  const Status st = ctx->prepare(f.gbuffer->frameInputs(), bad);
+  ASSERT_FALSE(st);
+  EXPECT_NE(st.message().find("maxIterations"), std::string::npos) << st.message();
+  FrameInputs identity = f.gbuffer->frameInputs();
+  identity.clipFromView = glm::dmat4(1.0);
+  const Status proj = ctx->prepare(identity, Settings{});
+  ASSERT_FALSE(proj);
+  EXPECT_NE(proj.message().find("identity"), std::string::npos) << proj.message();
+}
+
 // The tools' back-face depth pass: a unit box 4.5 units in front of the camera, seen square on,
 // is 1 unit deep at the centre pixel (its back face's view depth 5.5; tolerance: D32F rounding of
 // reversed-Z at that distance, ~1e-5 relative); beside it nothing is behind the floorless sky, so

@@ -37,6 +37,13 @@ Status Context::Impl::checkCompositeTarget(GLName framebuffer) const {
   return {};
 }
 
+// The composite's program: added (the default), or the fallback's draw (BlendOverFallback).
+Expected<GLuint> Context::Impl::compositeProgram(bool overFallback) {
+  const std::vector<std::pair<GLenum, const char*>> stages = {{GL_VERTEX_SHADER, "composite.vert"},
+                                                               {GL_FRAGMENT_SHADER, "composite.frag"}};
+  return program(stages, overFallback ? "#define SSLR_COMPOSITE_FALLBACK 1\n" : "");
+}
+
 Status Context::Impl::composite(GLName framebuffer, const CompositeOptions& options) {
   if (Status s = checkCurrentContext("composite()"); !s) return s;
   if (!haveFrame)
@@ -57,13 +64,11 @@ Status Context::Impl::composite(GLName framebuffer, const CompositeOptions& opti
     return Status::error("sslr: composite(): CompositeOptions::fallbackSpecularTexture is set but the mode "
                          "is Add, which does not read it (use CompositeMode::BlendOverFallback)");
   }
-  const std::vector<std::pair<GLenum, const char*>> stages = {{GL_VERTEX_SHADER, "composite.vert"},
-                                                               {GL_FRAGMENT_SHADER, "composite.frag"}};
-  auto addProgram = program(stages, "");
+  auto addProgram = compositeProgram(false);
   if (!addProgram) return Status::error(addProgram.error());
   Expected<GLuint> fallbackProgram = GLuint(0);
   if (blendOverFallback) {
-    fallbackProgram = program(stages, "#define SSLR_COMPOSITE_FALLBACK 1\n");
+    fallbackProgram = compositeProgram(true);
     if (!fallbackProgram) return Status::error(fallbackProgram.error());
   }
   detail::StateGuard guard(gl, true);

@@ -179,6 +179,9 @@ int Context::height() const { return impl_->height; }
 Status Context::dispatch(const FrameInputs& inputs, const Settings& settings) {
   return impl_->dispatch(inputs, settings);
 }
+Status Context::prepare(const FrameInputs& inputs, const Settings& settings) {
+  return impl_->prepare(inputs, settings);
+}
 Status Context::composite(GLName framebuffer, const CompositeOptions& options) {
   return impl_->composite(framebuffer, options);
 }

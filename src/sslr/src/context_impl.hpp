@@ -185,6 +185,7 @@ struct Context::Impl {
   void buildPyramid(GLuint blockProgram, GLuint singleProgram) const;
   void readFeedback();
   Status dispatch(const FrameInputs& in, const Settings& settings);
+  Status prepare(const FrameInputs& in, const Settings& settings);
   FramePlan planFrame(const Settings& settings, const shared::SslrFrame& constants,
                       bool hadHistory);
   Status buildPrograms(FramePlan& plan, const FrameInputs& in, const Settings& settings);
@@ -203,6 +204,7 @@ struct Context::Impl {
   // composite.cpp
   Status composite(GLName framebuffer, const CompositeOptions& options);
   Status checkCompositeTarget(GLName framebuffer) const;
+  Expected<GLuint> compositeProgram(bool overFallback);
   // An error when no GL context is current on the calling thread (every GL call would then be
   // lost, and the first texture check would blame a texture).
   Status checkCurrentContext(const char* call) const;

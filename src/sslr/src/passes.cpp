@@ -109,6 +109,31 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   return {};
 }
 
+// Every program variant a dispatch with these inputs and settings can choose: with and without
+// the level-1 pass (a frame after an empty one), and, under TraversalPass::Auto on a software
+// renderer, with the traversal inline and deferred. And both composite programs.
+Status Context::Impl::prepare(const FrameInputs& in, const Settings& settings) {
+  if (Status s = checkCurrentContext("prepare()"); !s) return s;
+  auto constants = frameConstants(in, settings, width, height);  // validates settings + projection
+  if (!constants) return Status::error(constants.error());
+  const FramePlan base = planFrame(settings, constants.value(), false);
+  for (bool level1Pass : {false, true}) {
+    for (bool defer : {false, true}) {
+      if ((level1Pass && !base.pyramid) || (defer != base.deferTraversal && !base.feedback)) continue;
+      FramePlan f = base;
+      f.level1Pass = level1Pass;
+      f.deferTraversal = defer;
+      f.countTraversal = f.feedback && !defer;
+      f.retracePass = f.halfResolution || defer;
+      f.quadRetracePass = f.halfResolution && defer;
+      if (Status s = buildPrograms(f, in, settings); !s) return s;
+    }
+  }
+  for (bool overFallback : {false, true})
+    if (auto p = compositeProgram(overFallback); !p) return Status::error(p.error());
+  return {};
+}
+
 // Which passes this frame runs. Reads the last frame's feedback (readFeedback), which decides
 // where level 1 is written and where the traversal runs.
 Context::Impl::FramePlan Context::Impl::planFrame(const Settings& settings,

@@ -76,6 +76,7 @@ Expected<GLuint> Context::Impl::program(const std::vector<std::pair<GLenum, cons
   for (size_t at; (at = compact.find("#define ")) != std::string::npos;) compact.erase(at, 8);
   std::replace(compact.begin(), compact.end(), '\n', ',');
   label(GL_PROGRAM, prog, labelText + " " + compact);
+  message(LogLevel::Info, "sslr: compiled " + labelText + " " + compact);
   programs.emplace(key, prog);
   return prog;
 }

@@ -338,6 +338,14 @@ class Context {
   // Traces, blurs and resolves one frame. The inputs stay the host's; sizes must match.
   Status dispatch(const FrameInputs& inputs, const Settings& settings);
 
+  // Compiles every program dispatch() and composite() may use with these inputs and settings
+  // (each variant a frame can choose: after an empty frame, with the traversal inline or in a pass
+  // of its own), so that no frame pays for a compile (on llvmpipe 1-4 s; on a GPU driver tens of
+  // ms). Call it at load time, with the inputs as they will be dispatched: their projection and
+  // layout are validated, and which optional textures are non-zero decides what is compiled in
+  // (their contents do not matter). Optional: dispatch compiles what it needs on first use.
+  Status prepare(const FrameInputs& inputs, const Settings& settings);
+
   // Puts the resolved reflection into colour attachment 0 of `framebuffer` (0 = default) over
   // (0, 0, width, height), by options.mode (see CompositeMode); its alpha is kept. Draws only the
   // tiles that had a reflective pixel (elsewhere coverage and reflection are 0).
