@@ -80,10 +80,10 @@ layout(local_size_x = SSLR_TILE_QUADS) in;  // a tile's quads (sslrTileQuad)
 #ifdef SSLR_CLEANUP_HISTORY
 // Temporal reuse, after this frame's history is stored: the tiles traced last frame and not now
 // lose their history keys, so next frame finds history only where this frame stored it.
-layout(binding = 2, r32f) uniform writeonly image2D uHistoryKey;
+layout(binding = SSLR_IMAGE_HISTORY_KEY, r32f) uniform writeonly image2D uHistoryKey;
 #else
-layout(binding = 0, rgba16f) uniform writeonly image2D uReflection;
-layout(binding = 3, rgba16f) uniform writeonly image2D uResolved;
+layout(binding = SSLR_IMAGE_REFLECTION, rgba16f) uniform writeonly image2D uReflection;
+layout(binding = SSLR_IMAGE_RESOLVED, rgba16f) uniform writeonly image2D uResolved;
 #endif
 
 void main() {
@@ -111,8 +111,8 @@ void main() {
 }
 #else
 #if defined(SSLR_CLASSIFY_LEVEL1) || defined(SSLR_LEVEL1_PASS) || defined(SSLR_CURVED_PASS)
-layout(binding = 0, rg32f) uniform writeonly image2D uLevel1;  // the pyramid's level 1 (mip 1)
-layout(binding = 1, rg32f) uniform writeonly image2D uLevel0;  // its level 0 (mip 0)
+layout(binding = SSLR_IMAGE_PYRAMID_LEVEL1, rg32f) uniform writeonly image2D uLevel1;  // the pyramid's level 1 (mip 1)
+layout(binding = SSLR_IMAGE_PYRAMID_LEVEL0, rg32f) uniform writeonly image2D uLevel0;  // its level 0 (mip 0)
 
 // The level-0 texels of level-1 cell `cell`'s pixels. Where the quad straddles the screen's edge,
 // `depths` and `extra` repeat a pixel of the quad for the one past the edge, which lands in the

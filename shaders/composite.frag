@@ -4,9 +4,9 @@
 //                            subtraction (final = existing - coverage x fallback), see composite.cpp.
 #include "sslr_shared.h"
 
-layout(binding = 4) uniform sampler2D uResolved;  // rgb = reflection, a = coverage
+layout(binding = SSLR_UNIT_COMPOSITE_RESOLVED) uniform sampler2D uResolved;  // rgb = reflection, a = coverage
 #ifdef SSLR_COMPOSITE_FALLBACK
-layout(binding = 5) uniform sampler2D uFallbackSpecular;
+layout(binding = SSLR_UNIT_COMPOSITE_FALLBACK) uniform sampler2D uFallbackSpecular;
 #endif
 layout(location = 0) out vec4 oColor;
 

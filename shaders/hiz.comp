@@ -14,11 +14,11 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(binding = 6) uniform sampler2D uHiZ;  // the pyramid: the level(s) read
+layout(binding = SSLR_UNIT_PYRAMID) uniform sampler2D uHiZ;  // the pyramid: the level(s) read
 layout(location = 0) uniform int uTopLevel;   // the pyramid's top level (sslrHiZLevelCount)
 
 #ifdef SSLR_HIZ_SINGLE
-layout(binding = 0, rg32f) uniform writeonly image2D uLevel;  // level uTopLevel, from the one below
+layout(binding = SSLR_IMAGE_PYRAMID_BLOCK, rg32f) uniform writeonly image2D uLevel;  // level uTopLevel, from the one below
 
 void main() {
   ivec2 cell = ivec2(gl_GlobalInvocationID.xy);
@@ -33,12 +33,12 @@ void main() {
 #else
 // Levels 2..7 (a level above the top is bound to the top's image and never stored to). Stores
 // outside a level's image do nothing: a group's block may reach past the (padded) screen.
-layout(binding = 0, rg32f) uniform writeonly image2D uLevel2;
-layout(binding = 1, rg32f) uniform writeonly image2D uLevel3;
-layout(binding = 2, rg32f) uniform writeonly image2D uLevel4;
-layout(binding = 3, rg32f) uniform writeonly image2D uLevel5;
-layout(binding = 4, rg32f) uniform writeonly image2D uLevel6;
-layout(binding = 5, rg32f) uniform writeonly image2D uLevel7;
+layout(binding = SSLR_IMAGE_PYRAMID_BLOCK + 0, rg32f) uniform writeonly image2D uLevel2;
+layout(binding = SSLR_IMAGE_PYRAMID_BLOCK + 1, rg32f) uniform writeonly image2D uLevel3;
+layout(binding = SSLR_IMAGE_PYRAMID_BLOCK + 2, rg32f) uniform writeonly image2D uLevel4;
+layout(binding = SSLR_IMAGE_PYRAMID_BLOCK + 3, rg32f) uniform writeonly image2D uLevel5;
+layout(binding = SSLR_IMAGE_PYRAMID_BLOCK + 4, rg32f) uniform writeonly image2D uLevel6;
+layout(binding = SSLR_IMAGE_PYRAMID_BLOCK + 5, rg32f) uniform writeonly image2D uLevel7;
 
 shared vec2 sLevel4[8][8];
 shared vec2 sLevel5[4][4];

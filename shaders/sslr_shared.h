@@ -90,6 +90,45 @@ using glm::sqrt;
 #define SSLR_BINDING_STATS_SSBO 1
 #define SSLR_BINDING_RETRACE_SSBO 2  // half resolution: pixels that trace their own ray
 #define SSLR_BINDING_CURVED_SSBO 2   // curved solids: the quads whose normals turn (classify.comp's passes)
+
+// Texture units, named once for GLSL, C++ and the GL state contract (gl_state.hpp). The G-buffer's
+// units keep their meaning in every pass; units 3-5 are the inputs of the pass that runs.
+#define SSLR_UNIT_DEPTH 0
+#define SSLR_UNIT_NORMAL 1
+#define SSLR_UNIT_COLOR 2
+#define SSLR_UNIT_QUAD_HIT 3          // trace at half resolution: the quads' hits
+#define SSLR_UNIT_QUAD_SURFACE 4      // ... and surfaces
+#define SSLR_UNIT_BLUR_INPUT 3        // blur: the pass's input (resolved, then blurTemp)
+#define SSLR_UNIT_BLUR_REFLECTION 4   // ... the reflection (its alpha: the radius)
+#define SSLR_UNIT_BLUR_UNBLURRED 5    // ... vertical pass: resolved before it
+#define SSLR_UNIT_TEMPORAL_CURRENT 3  // temporal reuse: this frame's resolved (store: the blend)
+#define SSLR_UNIT_HISTORY 4           // ... the previous frame's output
+#define SSLR_UNIT_HISTORY_KEY 5       // ... its keys
+#define SSLR_UNIT_COMPOSITE_RESOLVED 4  // composite: the resolved output
+#define SSLR_UNIT_COMPOSITE_FALLBACK 5  // ... the host's fallback specular
+#define SSLR_UNIT_POSITION 5          // Method::PositionBuffer: the host's position texture
+#define SSLR_UNIT_PYRAMID 6           // the depth pyramid (trace, hiz.comp)
+#define SSLR_UNIT_MOTION 6            // temporal reuse: the host's motion vectors (after the trace)
+#define SSLR_UNIT_MATERIAL 7
+#define SSLR_UNIT_MASK 8
+#define SSLR_UNIT_HIT_RECORD 9        // temporal reuse: this frame's hits
+#define SSLR_UNIT_BACK_DEPTH 10
+#define SSLR_UNIT_COUNT 11
+// Image units, likewise per pass.
+#define SSLR_IMAGE_REFLECTION 0       // trace, clean-up
+#define SSLR_IMAGE_HIT 1              // trace (debug outputs, temporal reuse)
+#define SSLR_IMAGE_ITERATIONS 2       // trace (debug outputs)
+#define SSLR_IMAGE_RESOLVED 3         // trace, clean-up
+#define SSLR_IMAGE_QUAD_HIT 1         // half resolution's quad pass
+#define SSLR_IMAGE_QUAD_SURFACE 2
+#define SSLR_IMAGE_PYRAMID_LEVEL1 0   // classification, level-1 and curved passes
+#define SSLR_IMAGE_PYRAMID_LEVEL0 1
+#define SSLR_IMAGE_PYRAMID_BLOCK 0    // hiz.comp: levels 2..7 on units 0..5 (its single level: 0)
+#define SSLR_IMAGE_BLUR_OUTPUT 0
+#define SSLR_IMAGE_TEMPORAL_OUTPUT 0  // temporal reuse: the blend (store: resolved)
+#define SSLR_IMAGE_HISTORY 1          // ... store: the history
+#define SSLR_IMAGE_HISTORY_KEY 2      // ... store (and its clean-up): the keys
+#define SSLR_IMAGE_COUNT 6
 #define SSLR_RETRACE_GROUP 64        // invocations per group of the retrace pass
 
 // ---- Uniform block structs (std140: every member 4 bytes, every struct a multiple of 16) ----
@@ -221,6 +260,47 @@ SSLR_FRAME_BLOCK_BEGIN
   SslrDdaParams dda;
   SslrTemporalParams temporal;
 SSLR_FRAME_BLOCK_END
+
+// The tile buffer's header (common/tiles.glsl's SSBO, std430: tightly packed uints), shared by the
+// passes and the C++ code that writes its per-frame part and dispatches through its commands.
+#define SSLR_TILE_HEADER_FIELDS                                                                     \
+  /* DispatchIndirectCommand of the trace: x = listed tiles (classification increments it). */     \
+  uint dispatchX;                                                                                 \
+  uint dispatchY;                                                                                 \
+  uint dispatchZ;                                                                                 \
+  /* DrawArraysIndirectCommand of the composite: 6 vertices per listed tile, instanced. */         \
+  uint drawCount;                                                                                 \
+  uint drawInstances;                                                                             \
+  uint drawFirst;                                                                                 \
+  uint drawBaseInstance;                                                                          \
+  uint reserved0;                                                                                 \
+  /* DispatchIndirectCommand of the blur: x = tiles with a pixel to blur (the trace lists them). */ \
+  uint blurDispatchX;                                                                             \
+  uint blurDispatchY;                                                                             \
+  uint blurDispatchZ;                                                                             \
+  uint reserved1;                                                                                 \
+  /* DispatchIndirectCommand per pyramid level: zero groups unless classification listed a tile; */ \
+  /* then the pyramid-args pass copies each level's real group counts in from hizGroups. */         \
+  uint hizDispatch[3 * SSLR_HIZ_MAX_LEVELS];                                                      \
+  uint hizGroups[3 * SSLR_HIZ_MAX_LEVELS];                                                        \
+  /* DispatchIndirectCommand of the clean-up pass: the previous frame's trace dispatch, copied */   \
+  /* here before this frame's header is written (the CPU never writes it). */                      \
+  uint cleanupDispatchX;                                                                          \
+  uint cleanupDispatchY;                                                                          \
+  uint cleanupDispatchZ;                                                                          \
+  uint reserved2;
+
+#ifdef __cplusplus
+struct SslrTileHeader {
+  SSLR_TILE_HEADER_FIELDS
+};
+static_assert(offsetof(SslrTileHeader, drawCount) == 12, "std430 mirror");
+static_assert(offsetof(SslrTileHeader, blurDispatchX) == 32, "std430 mirror");
+static_assert(offsetof(SslrTileHeader, hizDispatch) == 48, "std430 mirror");
+static_assert(offsetof(SslrTileHeader, hizGroups) == 48 + 12 * SSLR_HIZ_MAX_LEVELS, "std430 mirror");
+static_assert(offsetof(SslrTileHeader, cleanupDispatchX) == 48 + 24 * SSLR_HIZ_MAX_LEVELS, "std430 mirror");
+static_assert(sizeof(SslrTileHeader) == offsetof(SslrTileHeader, cleanupDispatchX) + 16, "std430 mirror");
+#endif
 
 #ifdef __cplusplus
 // The reduced form of a projection matrix (C++ only; the library validates the matrix first,

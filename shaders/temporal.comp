@@ -16,10 +16,10 @@
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 
 #ifdef SSLR_TEMPORAL_STORE
-layout(binding = 3) uniform sampler2D uBlended;
-layout(binding = 0, rgba16f) uniform writeonly image2D uResolved;
-layout(binding = 1, rgba16f) uniform writeonly image2D uHistory;
-layout(binding = 2, r32f) uniform writeonly image2D uHistoryKey;
+layout(binding = SSLR_UNIT_TEMPORAL_CURRENT) uniform sampler2D uBlended;
+layout(binding = SSLR_IMAGE_TEMPORAL_OUTPUT, rgba16f) uniform writeonly image2D uResolved;
+layout(binding = SSLR_IMAGE_HISTORY, rgba16f) uniform writeonly image2D uHistory;
+layout(binding = SSLR_IMAGE_HISTORY_KEY, r32f) uniform writeonly image2D uHistoryKey;
 
 void main() {
   ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
@@ -35,12 +35,12 @@ void main() {
   imageStore(uHistoryKey, px, vec4(key));
 }
 #else
-layout(binding = 3) uniform sampler2D uCurrent;     // resolved: this frame, blurred
-layout(binding = 4) uniform sampler2D uHistory;     // the previous frame's output
-layout(binding = 5) uniform sampler2D uHistoryKey;  // its keys
-layout(binding = 6) uniform sampler2D uMotion;      // optional: uv now - uv then (host motion vectors)
-layout(binding = 9) uniform sampler2D uHitRecord;   // this frame's hits: uv, confidence, L
-layout(binding = 0, rgba16f) uniform writeonly image2D uBlended;
+layout(binding = SSLR_UNIT_TEMPORAL_CURRENT) uniform sampler2D uCurrent;     // resolved: this frame, blurred
+layout(binding = SSLR_UNIT_HISTORY) uniform sampler2D uHistory;     // the previous frame's output
+layout(binding = SSLR_UNIT_HISTORY_KEY) uniform sampler2D uHistoryKey;  // its keys
+layout(binding = SSLR_UNIT_MOTION) uniform sampler2D uMotion;      // optional: uv now - uv then (host motion vectors)
+layout(binding = SSLR_UNIT_HIT_RECORD) uniform sampler2D uHitRecord;   // this frame's hits: uv, confidence, L
+layout(binding = SSLR_IMAGE_TEMPORAL_OUTPUT, rgba16f) uniform writeonly image2D uBlended;
 
 // The history at uvPrevious, bilinear over the four texels around it whose key matches
 // keyPrevious (the same surface); false when none does.

@@ -22,16 +22,16 @@
 // the full-resolution pass reads the quads.
 #ifdef SSLR_HALF_QUADS
 layout(local_size_x = SSLR_TILE_QUADS) in;  // one listed tile's quads (sslrTileQuad)
-layout(binding = 1, rgba32f) uniform writeonly image2D uQuadHitOut;      // see uQuadHit
-layout(binding = 2, rgba16f) uniform writeonly image2D uQuadSurfaceOut;  // see uQuadSurface
+layout(binding = SSLR_IMAGE_QUAD_HIT, rgba32f) uniform writeonly image2D uQuadHitOut;      // see uQuadHit
+layout(binding = SSLR_IMAGE_QUAD_SURFACE, rgba16f) uniform writeonly image2D uQuadSurfaceOut;  // see uQuadSurface
 #elif defined(SSLR_HALF_RETRACE)
 layout(local_size_x = SSLR_RETRACE_GROUP) in;
 #else
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 #endif
 #ifdef SSLR_HALF_RES
-layout(binding = 3) uniform sampler2D uQuadHit;      // xyz: view-space hit point; w: see SSLR_HALF_QUADS
-layout(binding = 4) uniform sampler2D uQuadSurface;  // xy: traced pixel's octahedral normal; zw: hit surface's
+layout(binding = SSLR_UNIT_QUAD_HIT) uniform sampler2D uQuadHit;      // xyz: view-space hit point; w: see SSLR_HALF_QUADS
+layout(binding = SSLR_UNIT_QUAD_SURFACE) uniform sampler2D uQuadSurface;  // xy: traced pixel's octahedral normal; zw: hit surface's
 #endif
 #if defined(SSLR_HALF_RES) || defined(SSLR_HALF_RETRACE) || defined(SSLR_DEFER_TRAVERSAL) || \
     defined(SSLR_HALF_QUAD_RETRACE) || defined(SSLR_COUNT_TRAVERSAL)
@@ -78,16 +78,16 @@ void sslrListForRetrace(ivec2 px) {
 #endif
 #endif
 
-layout(binding = 0, rgba16f) uniform writeonly image2D uReflection;
+layout(binding = SSLR_IMAGE_REFLECTION, rgba16f) uniform writeonly image2D uReflection;
 // The resolved image gets the reflection too: tiles without a pixel to blur are final here,
 // and the blur passes then run only over the tiles listed for them.
-layout(binding = 3, rgba16f) uniform writeonly image2D uResolved;
+layout(binding = SSLR_IMAGE_RESOLVED, rgba16f) uniform writeonly image2D uResolved;
 // The hit record: a debug output, and what temporal reuse (SSLR_TEMPORAL_HITS) reprojects by.
 #if defined(SSLR_DEBUG_OUTPUTS) || defined(SSLR_TEMPORAL_HITS)
-layout(binding = 1, rgba32f) uniform writeonly image2D uHit;
+layout(binding = SSLR_IMAGE_HIT, rgba32f) uniform writeonly image2D uHit;
 #endif
 #ifdef SSLR_DEBUG_OUTPUTS
-layout(binding = 2, r32f) uniform writeonly image2D uIterations;
+layout(binding = SSLR_IMAGE_ITERATIONS, r32f) uniform writeonly image2D uIterations;
 #endif
 #ifdef SSLR_COLLECT_STATS
 layout(std430, binding = SSLR_BINDING_STATS_SSBO) buffer SslrStats {
@@ -108,7 +108,7 @@ bool sslrLoadSurface(ivec2 px, out vec3 vsPos) {
 vec4 sslrLoadNormal(ivec2 px) { return texelFetch(uNormal, px, 0); }
 
 #ifdef SSLR_METHOD_POSITION_BUFFER
-layout(binding = 5) uniform sampler2D uPosition;  // view-space position, w = 1 on geometry
+layout(binding = SSLR_UNIT_POSITION) uniform sampler2D uPosition;  // view-space position, w = 1 on geometry
 bool sslrLoadPosition(ivec2 px, out vec4 vsPosition) {
   gFetches += 1u;
   vsPosition = texelFetch(uPosition, px, 0);
@@ -120,7 +120,7 @@ bool sslrLoadPosition(ivec2 px, out vec4 vsPosition) {
 #else
 // The min-max depth pyramid (classify.comp writes levels 0 and 1, hiz.comp the rest): mip m holds
 // level m.
-layout(binding = 6) uniform sampler2D uHiZ;
+layout(binding = SSLR_UNIT_PYRAMID) uniform sampler2D uHiZ;
 vec2 sslrLoadPyramidTexel(int level, ivec2 cell) {
   gFetches += 1u;
   return texelFetch(uHiZ, cell, level).rg;

@@ -2,14 +2,14 @@
 // so the host's texture parameters do not matter).
 #include "sslr_shared.h"
 
-layout(binding = 0) uniform sampler2D uDepth;   // raw window depth (nearest)
-layout(binding = 1) uniform sampler2D uNormal;  // texel normal + material (nearest)
-layout(binding = 2) uniform sampler2D uColor;   // lit colour (bilinear, clamped)
-layout(binding = 7) uniform sampler2D uMaterial;  // optional material texture (nearest)
+layout(binding = SSLR_UNIT_DEPTH) uniform sampler2D uDepth;   // raw window depth (nearest)
+layout(binding = SSLR_UNIT_NORMAL) uniform sampler2D uNormal;  // texel normal + material (nearest)
+layout(binding = SSLR_UNIT_COLOR) uniform sampler2D uColor;   // lit colour (bilinear, clamped)
+layout(binding = SSLR_UNIT_MATERIAL) uniform sampler2D uMaterial;  // optional material texture (nearest)
 
-layout(binding = 8) uniform sampler2D uMask;      // optional: where rays may start (nearest)
+layout(binding = SSLR_UNIT_MASK) uniform sampler2D uMask;      // optional: where rays may start (nearest)
 #if defined(SSLR_BACK_DEPTH) && SSLR_BACK_DEPTH
-layout(binding = 10) uniform sampler2D uBackDepth;  // optional: the nearest back face's depth (nearest)
+layout(binding = SSLR_UNIT_BACK_DEPTH) uniform sampler2D uBackDepth;  // optional: the nearest back face's depth (nearest)
 #endif
 
 // The texel holding pixel px's material channels: the host's material texture if it gave one,

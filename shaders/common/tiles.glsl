@@ -2,34 +2,7 @@
 #include "sslr_shared.h"
 
 layout(std430, binding = SSLR_BINDING_TILE_SSBO) buffer SslrTiles {
-  // DispatchIndirectCommand: x = number of listed tiles (incremented by classification).
-  uint dispatchX;
-  uint dispatchY;
-  uint dispatchZ;
-  // DrawArraysIndirectCommand for the composite: 6 vertices per listed tile, instanced.
-  uint drawCount;
-  uint drawInstances;
-  uint drawFirst;
-  uint drawBaseInstance;
-  uint reserved0;
-  // DispatchIndirectCommand for the blur: x = number of tiles with a pixel to blur (the trace
-  // appends them to the second half of tileCoords).
-  uint blurDispatchX;
-  uint blurDispatchY;
-  uint blurDispatchZ;
-  uint reserved1;
-  // DispatchIndirectCommand per pyramid level (hiz.comp): zero groups unless classification
-  // listed a tile; then classify.comp's SSLR_PYRAMID_ARGS pass copies the level's real group
-  // counts in from hizGroups (written by the CPU each frame). A frame without listed tiles thus
-  // builds no pyramid.
-  uint hizDispatch[3 * SSLR_HIZ_MAX_LEVELS];
-  uint hizGroups[3 * SSLR_HIZ_MAX_LEVELS];
-  // DispatchIndirectCommand of the clean-up pass: the previous frame's trace dispatch, copied here
-  // before this frame's header is written (the CPU never writes it).
-  uint cleanupDispatchX;
-  uint cleanupDispatchY;
-  uint cleanupDispatchZ;
-  uint reserved2;
+  SSLR_TILE_HEADER_FIELDS  // sslr_shared.h: the indirect commands and the pyramid's group counts
   // [0, cap): traced tiles; [cap, 2 cap): tiles to blur (each entry tile x | tile y << 16);
   // [2 cap, 3 cap): per tile, the frame index in which it was last listed for blurring; [3 cap,
   // 4 cap): per tile, the frame index in which classification last listed it for tracing (stamps:

@@ -82,10 +82,10 @@ Status Context::Impl::composite(GLName framebuffer, const CompositeOptions& opti
   gl.BindBufferBase(GL_UNIFORM_BUFFER, SSLR_BINDING_FRAME_UBO, frameUbo);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_TILE_SSBO, tileBuffer);
   gl.BindBuffer(GL_DRAW_INDIRECT_BUFFER, tileBuffer);
-  gl.bindTexture2D(4, resolved);
-  gl.BindSampler(4, nearestSampler);
-  gl.bindTexture2D(5, blendOverFallback ? options.fallbackSpecularTexture : 0);
-  gl.BindSampler(5, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_COMPOSITE_RESOLVED, resolved);
+  gl.BindSampler(SSLR_UNIT_COMPOSITE_RESOLVED, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_COMPOSITE_FALLBACK, blendOverFallback ? options.fallbackSpecularTexture : 0);
+  gl.BindSampler(SSLR_UNIT_COMPOSITE_FALLBACK, nearestSampler);
   // Viewport and scissor index 0 only (the draw uses index 0; glViewport and glDisable would set
   // every index), and no per-fragment state of the host's that would change what is written.
   const GLfloat viewport[4] = {0.0f, 0.0f, static_cast<GLfloat>(width), static_cast<GLfloat>(height)};

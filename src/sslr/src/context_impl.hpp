@@ -18,18 +18,19 @@
 
 namespace sslr {
 
-// The tile buffer (common/tiles.glsl): a header of indirect commands, then the per-tile arrays.
-constexpr GLintptr kHizDispatchOffset = 12 * 4;       // DispatchIndirectCommand per pyramid level
+// The tile buffer (common/tiles.glsl): a header of indirect commands (shared::SslrTileHeader),
+// then the per-tile arrays. Byte offsets of its commands:
+constexpr GLintptr kHizDispatchOffset = offsetof(shared::SslrTileHeader, hizDispatch);  // per pyramid level
+constexpr GLintptr kDrawArgsOffset = offsetof(shared::SslrTileHeader, drawCount);       // the composite's draw
+constexpr GLintptr kBlurDispatchOffset = offsetof(shared::SslrTileHeader, blurDispatchX);
+constexpr GLintptr kCleanupDispatchOffset = offsetof(shared::SslrTileHeader, cleanupDispatchX);  // the previous trace's
+// The part of the header the CPU writes each frame (all but the clean-up dispatch).
+constexpr GLsizeiptr kHeaderUploadBytes = kCleanupDispatchOffset;
+constexpr GLsizeiptr kTileHeader = sizeof(shared::SslrTileHeader) / 4;  // uints before the tile lists
+constexpr GLsizeiptr kTileArrays = 6;                                   // per-tile arrays after it
 // hiz.comp's work group builds levels 2..kHizBlockTop of one kHizBlockTop cell (its shared arrays
 // are sized for 7: 64x64 level-1 cells); a level above it has a single-level dispatch of its own.
 constexpr int kHizBlockTop = 7;
-constexpr GLsizeiptr kHizGroupsIndex = 12 + 3 * SSLR_HIZ_MAX_LEVELS;  // their real group counts
-constexpr GLsizeiptr kHeaderUpload = 12 + 6 * SSLR_HIZ_MAX_LEVELS;    // uints the CPU writes per frame
-constexpr GLintptr kCleanupDispatchOffset = kHeaderUpload * 4;       // the previous trace dispatch
-constexpr GLsizeiptr kTileHeader = kHeaderUpload + 4;                // uints before the tile lists
-constexpr GLsizeiptr kTileArrays = 6;                                // per-tile arrays after it
-constexpr GLintptr kDrawArgsOffset = 3 * 4;           // DrawArraysIndirectCommand (composite)
-constexpr GLintptr kBlurDispatchOffset = 8 * 4;       // DispatchIndirectCommand (blur)
 // TraversalPass::Auto on a software renderer runs the traversal inline above this share of the
 // traced tiles' pixels needing it (+-0.05 hysteresis). llvmpipe 960x540, deferred / inline time
 // in two runs: 0.59-0.95 at shares 0.001-0.26, 1.04-1.32 at 0.68-0.96 (docs/algorithm.md).

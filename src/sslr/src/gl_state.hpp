@@ -5,12 +5,14 @@
 #include <array>
 
 #include "gl_functions.hpp"
+#include "sslr_shared.h"
 
 namespace sslr::detail {
 
 // Texture units, image units and buffer binding points sslr binds during a call.
-inline constexpr int kTextureUnits = 11;  // 0 depth, 1 normal, 2 colour, 3 blur in, 4 resolved, 5 position, 6 pyramid, 7 material, 8 mask, 9 hit (temporal), 10 back-face depth
-inline constexpr int kImageUnits = 6;    // 0 reflection / blur output / pyramid level 2, 1 hit / level 3, 2 iterations / level 4, 3 resolved / level 5, 4-5 levels 6-7
+// Their names and meaning per pass: SSLR_UNIT_* and SSLR_IMAGE_* in sslr_shared.h.
+inline constexpr int kTextureUnits = SSLR_UNIT_COUNT;
+inline constexpr int kImageUnits = SSLR_IMAGE_COUNT;
 inline constexpr int kSsboBindings = 3;  // 0 tile list, 1 stats, 2 retrace list / curved quads
 inline constexpr int kUboBindings = 1;   // 0 frame constants
 

@@ -9,20 +9,20 @@
 namespace sslr {
 
 void Context::Impl::bindInputs(const FrameInputs& in) const {
-  gl.bindTexture2D(0, in.depthTexture);
-  gl.BindSampler(0, nearestSampler);
-  gl.bindTexture2D(1, in.normalTexture);
-  gl.BindSampler(1, nearestSampler);
-  gl.bindTexture2D(2, in.colorTexture);
-  gl.BindSampler(2, linearSampler);
-  gl.bindTexture2D(7, in.materialTexture);  // 0 unless the host keeps materials apart
-  gl.BindSampler(7, nearestSampler);
-  gl.bindTexture2D(8, in.maskTexture);  // 0 unless the host limits where rays start
-  gl.BindSampler(8, nearestSampler);
-  gl.bindTexture2D(10, in.backDepthTexture);  // 0 unless the host measures thickness
-  gl.BindSampler(10, nearestSampler);
-  gl.bindTexture2D(6, hiz);  // read by the depth-only trace (built when a mode needs it)
-  gl.BindSampler(6, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_DEPTH, in.depthTexture);
+  gl.BindSampler(SSLR_UNIT_DEPTH, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_NORMAL, in.normalTexture);
+  gl.BindSampler(SSLR_UNIT_NORMAL, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_COLOR, in.colorTexture);
+  gl.BindSampler(SSLR_UNIT_COLOR, linearSampler);
+  gl.bindTexture2D(SSLR_UNIT_MATERIAL, in.materialTexture);  // 0 unless the host keeps materials apart
+  gl.BindSampler(SSLR_UNIT_MATERIAL, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_MASK, in.maskTexture);  // 0 unless the host limits where rays start
+  gl.BindSampler(SSLR_UNIT_MASK, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_BACK_DEPTH, in.backDepthTexture);  // 0 unless the host measures thickness
+  gl.BindSampler(SSLR_UNIT_BACK_DEPTH, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_PYRAMID, hiz);  // read by the depth-only trace (built when a mode needs it)
+  gl.BindSampler(SSLR_UNIT_PYRAMID, nearestSampler);
   gl.BindBufferBase(GL_UNIFORM_BUFFER, SSLR_BINDING_FRAME_UBO, frameUbo);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_TILE_SSBO, tileBuffer);
   gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
@@ -31,8 +31,8 @@ void Context::Impl::bindInputs(const FrameInputs& in) const {
 // Levels 0 and 1 of the pyramid, as classification, the level-1 pass and the curved pass write
 // them (classify.comp): image units 1 and 0.
 void Context::Impl::bindPyramidLevels01() const {
-  gl.BindImageTexture(0, hiz, 1, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-  gl.BindImageTexture(1, hiz, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+  gl.BindImageTexture(SSLR_IMAGE_PYRAMID_LEVEL1, hiz, 1, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+  gl.BindImageTexture(SSLR_IMAGE_PYRAMID_LEVEL0, hiz, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
 }
 
 // The min-max depth pyramid above level 1, indirect: the group counts are zero unless
@@ -41,18 +41,18 @@ void Context::Impl::bindPyramidLevels01() const {
 void Context::Impl::buildPyramid(GLuint blockProgram, GLuint singleProgram) const {
   const int blockTop = std::min(hizLevels, kHizBlockTop);
   useProgram(blockProgram);
-  gl.bindTexture2D(6, hiz);
-  gl.BindSampler(6, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_PYRAMID, hiz);
+  gl.BindSampler(SSLR_UNIT_PYRAMID, nearestSampler);
   gl.ProgramUniform1i(blockProgram, 0, hizLevels);  // uTopLevel
   for (int level = 2; level <= kHizBlockTop; ++level)  // above the top: the top's image, never stored to
-    gl.BindImageTexture(static_cast<GLuint>(level - 2), hiz, std::min(level, blockTop), GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+    gl.BindImageTexture(static_cast<GLuint>(SSLR_IMAGE_PYRAMID_BLOCK + level - 2), hiz, std::min(level, blockTop), GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
   dispatchComputeIndirect(kHizDispatchOffset + 3 * 4 * 1);  // level 2's arguments: the blocks
   memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   const int single = kHizBlockTop + 1;  // (SSLR_HIZ_MAX_LEVELS is 8: one level at most above the blocks)
   if (hizLevels < single) return;
   useProgram(singleProgram);
   gl.ProgramUniform1i(singleProgram, 0, single);
-  gl.BindImageTexture(0, hiz, single, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+  gl.BindImageTexture(SSLR_IMAGE_PYRAMID_BLOCK, hiz, single, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
   dispatchComputeIndirect(kHizDispatchOffset + 3 * 4 * (single - 1));  // its level's arguments
   memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
@@ -321,12 +321,15 @@ void Context::Impl::writeTileHeader() const {
   copyBufferSubData(tileBuffer, tileBuffer, 0, kCleanupDispatchOffset, 3 * sizeof(GLuint));
   copyBufferSubData(tileBuffer, tileBuffer, kTileHeader * sizeof(GLuint),
                     (kTileHeader + 4 * capacity) * sizeof(GLuint), capacity * sizeof(GLuint));
-  GLuint header[kHeaderUpload] = {0, 1, 1, 6, 0, 0, 0, 0, 0, 1, 1, 0};
+  shared::SslrTileHeader header{};
+  header.dispatchY = header.dispatchZ = 1;  // the trace: no tile yet
+  header.drawCount = 6;                     // the composite: 6 vertices per tile, no instance yet
+  header.blurDispatchY = header.blurDispatchZ = 1;
   // Used: level 1's (the level-1 pass: 8x8 level-1 cells a group), level 2's (hiz.comp's blocks:
   // one kHizBlockTop cell a group) and the level above the blocks' (8x8 of its cells a group).
   for (int level = 1; level <= SSLR_HIZ_MAX_LEVELS; ++level) {
-    GLuint* live = &header[kHizDispatchOffset / 4 + 3 * (level - 1)];
-    GLuint* real = &header[kHizGroupsIndex + 3 * (level - 1)];
+    GLuint* live = &header.hizDispatch[3 * (level - 1)];
+    GLuint* real = &header.hizGroups[3 * (level - 1)];
     live[0] = 0, live[1] = 1, live[2] = 1;
     // Pixels a group spans: 8 cells of its level (the blocks: one kHizBlockTop cell); the padded
     // screen is 2 hizWidth x 2 hizHeight pixels.
@@ -336,7 +339,7 @@ void Context::Impl::writeTileHeader() const {
     real[1] = used ? static_cast<GLuint>((2 * hizHeight + groupPx - 1) / groupPx) : 1u;
     real[2] = 1;
   }
-  bufferSubData(tileBuffer, 0, sizeof(header), header);
+  bufferSubData(tileBuffer, 0, kHeaderUploadBytes, &header);
 }
 
 // Pass `pass` starts here: its timestamp, and its commands counted from here on.
@@ -351,8 +354,8 @@ void Context::Impl::runClassify(const FramePlan& f, const FrameInputs& in) const
   beginPass(f, 0);
   bindInputs(in);
   if (f.method == Method::PositionBuffer) {
-    gl.bindTexture2D(5, in.positionTexture);
-    gl.BindSampler(5, nearestSampler);
+    gl.bindTexture2D(SSLR_UNIT_POSITION, in.positionTexture);
+    gl.BindSampler(SSLR_UNIT_POSITION, nearestSampler);
   }
   useProgram(f.programs.classify);
   if (f.pyramid) bindPyramidLevels01();
@@ -366,8 +369,8 @@ void Context::Impl::runClassify(const FramePlan& f, const FrameInputs& in) const
   memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
                 GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   useProgram(f.programs.cleanup);
-  gl.BindImageTexture(0, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  gl.BindImageTexture(3, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  gl.BindImageTexture(SSLR_IMAGE_REFLECTION, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  gl.BindImageTexture(SSLR_IMAGE_RESOLVED, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   dispatchComputeIndirect(kCleanupDispatchOffset);
   memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }
@@ -409,10 +412,10 @@ void Context::Impl::runTrace(const FramePlan& f) const {
   }
   if (f.halfResolution) runQuads(f);
   useProgram(f.programs.trace);
-  gl.BindImageTexture(0, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  gl.BindImageTexture(3, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  if (f.debugOutputs || f.temporal) gl.BindImageTexture(1, hit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  if (f.debugOutputs) gl.BindImageTexture(2, iterations, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  gl.BindImageTexture(SSLR_IMAGE_REFLECTION, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  gl.BindImageTexture(SSLR_IMAGE_RESOLVED, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  if (f.debugOutputs || f.temporal) gl.BindImageTexture(SSLR_IMAGE_HIT, hit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  if (f.debugOutputs) gl.BindImageTexture(SSLR_IMAGE_ITERATIONS, iterations, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
   dispatchComputeIndirect(0);
   if (f.retracePass) {  // the pixels whose quad's ray did not answer them, or that need the traversal
     memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
@@ -430,8 +433,8 @@ void Context::Impl::runTrace(const FramePlan& f) const {
 void Context::Impl::runQuads(const FramePlan& f) const {
   const GLuint retraceHeader[4] = {0, 1, 1, 0};
   useProgram(f.programs.quads);
-  gl.BindImageTexture(1, quadHit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  gl.BindImageTexture(2, quadSurface, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  gl.BindImageTexture(SSLR_IMAGE_QUAD_HIT, quadHit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  gl.BindImageTexture(SSLR_IMAGE_QUAD_SURFACE, quadSurface, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   dispatchComputeIndirect(0);  // one group per listed tile
   if (f.quadRetracePass) {  // the quads whose ray needs the traversal
     memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
@@ -448,10 +451,10 @@ void Context::Impl::runQuads(const FramePlan& f) const {
     bufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
   }
   memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-  gl.bindTexture2D(3, quadHit);  // units 3 and 4 are the blur's, free during the trace
-  gl.BindSampler(3, nearestSampler);
-  gl.bindTexture2D(4, quadSurface);
-  gl.BindSampler(4, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_QUAD_HIT, quadHit);
+  gl.BindSampler(SSLR_UNIT_QUAD_HIT, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_QUAD_SURFACE, quadSurface);
+  gl.BindSampler(SSLR_UNIT_QUAD_SURFACE, nearestSampler);
 }
 
 // Pass 4: the separable blur (resolved -> blurTemp -> resolved, radii from the reflection's alpha)
@@ -459,17 +462,18 @@ void Context::Impl::runQuads(const FramePlan& f) const {
 void Context::Impl::runBlur(const FramePlan& f) const {
   beginPass(f, 3);
   if (!f.blur) return;
-  for (GLuint unit : {3u, 4u, 5u}) gl.BindSampler(unit, nearestSampler);
+  for (GLuint unit : {SSLR_UNIT_BLUR_INPUT, SSLR_UNIT_BLUR_REFLECTION, SSLR_UNIT_BLUR_UNBLURRED})
+    gl.BindSampler(unit, nearestSampler);
   useProgram(f.programs.blurH);
-  gl.bindTexture2D(3, resolved);
-  gl.bindTexture2D(4, reflection);
-  gl.BindImageTexture(0, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  gl.bindTexture2D(SSLR_UNIT_BLUR_INPUT, resolved);
+  gl.bindTexture2D(SSLR_UNIT_BLUR_REFLECTION, reflection);
+  gl.BindImageTexture(SSLR_IMAGE_BLUR_OUTPUT, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   dispatchComputeIndirect(kBlurDispatchOffset);
   memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   useProgram(f.programs.blurV);
-  gl.bindTexture2D(3, blurTemp);
-  gl.bindTexture2D(5, resolved);  // read where blurTemp is not written (see blur.comp)
-  gl.BindImageTexture(0, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  gl.bindTexture2D(SSLR_UNIT_BLUR_INPUT, blurTemp);
+  gl.bindTexture2D(SSLR_UNIT_BLUR_UNBLURRED, resolved);  // read where blurTemp is not written (see blur.comp)
+  gl.BindImageTexture(SSLR_IMAGE_BLUR_OUTPUT, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   dispatchComputeIndirect(kBlurDispatchOffset);
 }
 
@@ -479,25 +483,26 @@ void Context::Impl::runTemporal(const FramePlan& f, const FrameInputs& in) {
   beginPass(f, 4);
   if (!f.temporal) return;
   memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-  for (GLuint unit : {3u, 4u, 5u}) gl.BindSampler(unit, nearestSampler);
+  for (GLuint unit : {SSLR_UNIT_TEMPORAL_CURRENT, SSLR_UNIT_HISTORY, SSLR_UNIT_HISTORY_KEY})
+    gl.BindSampler(unit, nearestSampler);
   useProgram(f.programs.temporalBlend);
-  gl.bindTexture2D(6, in.motionTexture);  // unit 6 (the pyramid's) is free after the trace
-  gl.BindSampler(6, nearestSampler);
-  gl.bindTexture2D(9, hit);  // written by the trace on the listed tiles (SSLR_TEMPORAL_HITS)
-  gl.BindSampler(9, nearestSampler);
-  gl.bindTexture2D(3, resolved);
-  gl.bindTexture2D(4, history);
-  gl.bindTexture2D(5, historyKey);
-  gl.BindImageTexture(0, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  gl.bindTexture2D(SSLR_UNIT_MOTION, in.motionTexture);  // the pyramid's unit: free after the trace
+  gl.BindSampler(SSLR_UNIT_MOTION, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_HIT_RECORD, hit);  // written by the trace on the listed tiles (SSLR_TEMPORAL_HITS)
+  gl.BindSampler(SSLR_UNIT_HIT_RECORD, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_TEMPORAL_CURRENT, resolved);
+  gl.bindTexture2D(SSLR_UNIT_HISTORY, history);
+  gl.bindTexture2D(SSLR_UNIT_HISTORY_KEY, historyKey);
+  gl.BindImageTexture(SSLR_IMAGE_TEMPORAL_OUTPUT, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   dispatchComputeIndirect(0);
   memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   useProgram(f.programs.temporalStore);
-  gl.bindTexture2D(3, blurTemp);
-  gl.bindTexture2D(4, 0);
-  gl.bindTexture2D(5, 0);
-  gl.BindImageTexture(0, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  gl.BindImageTexture(1, history, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  gl.BindImageTexture(2, historyKey, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  gl.bindTexture2D(SSLR_UNIT_TEMPORAL_CURRENT, blurTemp);
+  gl.bindTexture2D(SSLR_UNIT_HISTORY, 0);
+  gl.bindTexture2D(SSLR_UNIT_HISTORY_KEY, 0);
+  gl.BindImageTexture(SSLR_IMAGE_TEMPORAL_OUTPUT, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  gl.BindImageTexture(SSLR_IMAGE_HISTORY, history, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  gl.BindImageTexture(SSLR_IMAGE_HISTORY_KEY, historyKey, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
   dispatchComputeIndirect(0);
   memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   useProgram(f.programs.historyCleanup);
