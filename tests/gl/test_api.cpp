@@ -1040,7 +1040,49 @@ TEST_F(Api, CallsWithoutACurrentContextSaySo) {
   ASSERT_FALSE(composited);
   EXPECT_NE(composited.message().find("composite(): no OpenGL context is current"), std::string::npos)
       << composited.message();
+  EXPECT_EQ(dispatched.code(), StatusCode::NoCurrentContext);
+  EXPECT_EQ(composited.code(), StatusCode::NoCurrentContext);
   EXPECT_TRUE(ctx->dispatch(in, Settings{})) << "the same context works once current again";
+}
+
+// Every error carries a code of its kind (Status::code), also through Expected (status()), so a
+// host can react by kind: settings, inputs, projection, size, GL, the order of calls.
+TEST_F(Api, ErrorsCarryTheirKind) {
+  ContextDesc zero;
+  zero.getProcAddress = HeadlessContext::getProcAddress();
+  auto sized = Context::create(zero);
+  ASSERT_FALSE(sized);
+  EXPECT_EQ(sized.status().code(), StatusCode::InvalidSize) << sized.error();
+  ContextDesc noLoader;
+  noLoader.width = W;
+  noLoader.height = H;
+  auto loaderless = Context::create(noLoader);
+  ASSERT_FALSE(loaderless);
+  EXPECT_EQ(loaderless.status().code(), StatusCode::GlUnavailable) << loaderless.error();
+
+  auto ctx = makeContext();
+  ASSERT_TRUE(ctx);
+  const Status early = ctx->composite(0);
+  EXPECT_EQ(early.code(), StatusCode::NoFrame) << early.message();
+  Frame f;
+  const FrameInputs good = f.gbuffer->frameInputs();
+  Settings bad;
+  bad.maxIterations = 0;
+  EXPECT_EQ(ctx->dispatch(good, bad).code(), StatusCode::InvalidSettings);
+  EXPECT_EQ(ctx->prepare(good, bad).code(), StatusCode::InvalidSettings);
+  FrameInputs identity = good;
+  identity.clipFromView = glm::dmat4(1.0);
+  EXPECT_EQ(ctx->dispatch(identity, Settings{}).code(), StatusCode::InvalidProjection);
+  FrameInputs small = good;
+  const GLuint tiny = makeTexture(GL_RGBA8, W / 2, H / 2);
+  small.colorTexture = tiny;
+  const Status wrongSize = ctx->dispatch(small, Settings{});
+  EXPECT_EQ(wrongSize.code(), StatusCode::InvalidInput) << wrongSize.message();
+  EXPECT_STREQ(toString(wrongSize.code()), "invalid input");
+  const Status fine = ctx->dispatch(good, Settings{});
+  EXPECT_TRUE(fine);
+  EXPECT_EQ(fine.code(), StatusCode::Ok);
+  glDeleteTextures(1, &tiny);
 }
 
 }  // namespace

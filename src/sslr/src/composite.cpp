@@ -14,7 +14,7 @@ Status Context::Impl::checkCompositeTarget(GLName framebuffer) const {
   GLint attachment = GL_NONE;
   gl.GetIntegerv(GL_DRAW_BUFFER0, &attachment);  // of the bound draw framebuffer
   if (attachment == GL_NONE)
-    return Status::error("sslr: composite(): framebuffer " + std::to_string(framebuffer) +
+    return Status::error(StatusCode::InvalidInput, "sslr: composite(): framebuffer " + std::to_string(framebuffer) +
                          " has no image on draw buffer 0, where the reflection is written");
   GLint type = GL_NONE, name = 0, level = 0, w = 0, h = 0;
   gl.GetNamedFramebufferAttachmentParameteriv(framebuffer, static_cast<GLenum>(attachment), GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
@@ -30,7 +30,7 @@ Status Context::Impl::checkCompositeTarget(GLName framebuffer) const {
     return {};
   }
   if (w < width || h < height)
-    return Status::error("sslr: composite(): framebuffer " + std::to_string(framebuffer) + "'s draw buffer 0 (" +
+    return Status::error(StatusCode::InvalidInput, "sslr: composite(): framebuffer " + std::to_string(framebuffer) + "'s draw buffer 0 (" +
                          (type == GL_TEXTURE ? "texture " : "renderbuffer ") + std::to_string(name) + ") is " +
                          std::to_string(w) + "x" + std::to_string(h) + ", smaller than the context's " +
                          std::to_string(width) + "x" + std::to_string(height));
@@ -47,34 +47,34 @@ Expected<GLuint> Context::Impl::compositeProgram(bool overFallback) {
 Status Context::Impl::composite(GLName framebuffer, const CompositeOptions& options) {
   if (Status s = checkCurrentContext("composite()"); !s) return s;
   if (!haveFrame)
-    return Status::error("sslr: composite() needs a successful dispatch() first");
+    return Status::error(StatusCode::NoFrame, "sslr: composite() needs a successful dispatch() first");
   if (framebuffer != 0 && !gl.IsFramebuffer(framebuffer))
-    return Status::error("sslr: composite(): " + std::to_string(framebuffer) +
+    return Status::error(StatusCode::InvalidInput, "sslr: composite(): " + std::to_string(framebuffer) +
                          " is not a framebuffer name");
   const bool blendOverFallback = options.mode == CompositeMode::BlendOverFallback;
   if (options.mode != CompositeMode::Add && !blendOverFallback)
-    return Status::error("sslr: composite(): CompositeOptions::mode " +
+    return Status::error(StatusCode::InvalidSettings, "sslr: composite(): CompositeOptions::mode " +
                          std::to_string(static_cast<int>(options.mode)) + " is not a CompositeMode");
   if (blendOverFallback) {
     if (Status s = checkTexture(options.fallbackSpecularTexture, "CompositeOptions::fallbackSpecularTexture",
                                 FormatInfo::Color, 3);
         !s)
-      return Status::error(s.message() + " (CompositeMode::BlendOverFallback reads it)");
+      return Status::error(s.code(), s.message() + " (CompositeMode::BlendOverFallback reads it)");
   } else if (options.fallbackSpecularTexture != 0) {
-    return Status::error("sslr: composite(): CompositeOptions::fallbackSpecularTexture is set but the mode "
+    return Status::error(StatusCode::InvalidSettings, "sslr: composite(): CompositeOptions::fallbackSpecularTexture is set but the mode "
                          "is Add, which does not read it (use CompositeMode::BlendOverFallback)");
   }
   auto addProgram = compositeProgram(false);
-  if (!addProgram) return Status::error(addProgram.error());
+  if (!addProgram) return addProgram.status();
   Expected<GLuint> fallbackProgram = GLuint(0);
   if (blendOverFallback) {
     fallbackProgram = compositeProgram(true);
-    if (!fallbackProgram) return Status::error(fallbackProgram.error());
+    if (!fallbackProgram) return fallbackProgram.status();
   }
   detail::StateGuard guard(gl, true);
   gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
   if (gl.CheckNamedFramebufferStatus(framebuffer, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-    return Status::error("sslr: composite(): framebuffer " + std::to_string(framebuffer) +
+    return Status::error(StatusCode::InvalidInput, "sslr: composite(): framebuffer " + std::to_string(framebuffer) +
                          " is not complete");
   if (Status s = checkCompositeTarget(framebuffer); !s) return s;
   gl.PushDebugGroup(GL_DEBUG_SOURCE_THIRD_PARTY, 0, -1, "sslr.composite");

@@ -7,6 +7,22 @@
 
 namespace sslr {
 
+const char* toString(StatusCode code) {
+  switch (code) {
+    case StatusCode::Ok: return "ok";
+    case StatusCode::InvalidSettings: return "invalid settings";
+    case StatusCode::InvalidInput: return "invalid input";
+    case StatusCode::InvalidProjection: return "invalid projection";
+    case StatusCode::InvalidSize: return "invalid size";
+    case StatusCode::NoCurrentContext: return "no current GL context";
+    case StatusCode::GlUnavailable: return "GL 4.5 unavailable";
+    case StatusCode::ShaderBuild: return "shader build failed";
+    case StatusCode::NoFrame: return "no frame";
+    case StatusCode::Failed: return "failed";
+  }
+  return "unknown";
+}
+
 const char* libraryVersion() { return SSLR_VERSION_STRING; }
 
 
@@ -97,7 +113,7 @@ Context::~Context() = default;
 
 Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
   if (desc.width <= 0 || desc.height <= 0 || desc.width > 16384 || desc.height > 16384)
-    return Status::error("sslr: ContextDesc size " + std::to_string(desc.width) + "x" +
+    return Status::error(StatusCode::InvalidSize, "sslr: ContextDesc size " + std::to_string(desc.width) + "x" +
                          std::to_string(desc.height) + " is invalid (must be 1..16384 each)");
   auto impl = std::make_unique<Impl>();
   impl->log = desc.log;
@@ -111,7 +127,7 @@ Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
   gl.GetIntegerv(GL_MINOR_VERSION, &minor);
   if (major * 10 + minor < 45) {
     impl->gl = {};
-    return Status::error("sslr: needs OpenGL 4.5, the current context is " + std::to_string(major) +
+    return Status::error(StatusCode::GlUnavailable, "sslr: needs OpenGL 4.5, the current context is " + std::to_string(major) +
                          "." + std::to_string(minor));
   }
   if (const GLubyte* renderer = gl.GetString(GL_RENDERER)) {
@@ -123,7 +139,7 @@ Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
   gl.GetIntegerv(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, &vertexSsbos);
   if (vertexSsbos < 1) {
     impl->gl = {};
-    return Status::error("sslr: the GL implementation allows no storage blocks in vertex shaders "
+    return Status::error(StatusCode::GlUnavailable, "sslr: the GL implementation allows no storage blocks in vertex shaders "
                          "(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS = 0); composite needs one");
   }
   impl->width = desc.width;
@@ -163,7 +179,7 @@ Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
 
 Status Context::resize(int width, int height) {
   if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
-    return Status::error("sslr: resize to " + std::to_string(width) + "x" + std::to_string(height) +
+    return Status::error(StatusCode::InvalidSize, "sslr: resize to " + std::to_string(width) + "x" + std::to_string(height) +
                          " is invalid (must be 1..16384 each)");
   if (width == impl_->width && height == impl_->height) return {};
   impl_->destroyTargets();

@@ -42,7 +42,7 @@ FormatInfo formatInfo(GLint f) {
 
 Status Context::Impl::checkCurrentContext(const char* call) const {
   if (gl.GetString(GL_VERSION) != nullptr) return {};
-  return Status::error(std::string("sslr: ") + call +
+  return Status::error(StatusCode::NoCurrentContext, std::string("sslr: ") + call +
                        ": no OpenGL context is current on this thread (make the context sslr was created "
                        "with current first)");
 }
@@ -70,41 +70,41 @@ Status Context::Impl::checkTexture(GLName tex, const char* what, FormatInfo::Kin
                                    FormatInfo* infoOut) const {
   std::ostringstream where;
   where << "sslr: " << what << " (texture " << tex << ")";
-  if (tex == 0) return Status::error(where.str() + " is 0: the texture is required");
-  if (!gl.IsTexture(tex)) return Status::error(where.str() + " is not a texture name");
+  if (tex == 0) return Status::error(StatusCode::InvalidInput, where.str() + " is 0: the texture is required");
+  if (!gl.IsTexture(tex)) return Status::error(StatusCode::InvalidInput, where.str() + " is not a texture name");
   GLint target = 0;
   gl.GetTextureParameteriv(tex, GL_TEXTURE_TARGET, &target);
-  if (target != GL_TEXTURE_2D) return Status::error(where.str() + " is not a GL_TEXTURE_2D");
+  if (target != GL_TEXTURE_2D) return Status::error(StatusCode::InvalidInput, where.str() + " is not a GL_TEXTURE_2D");
   GLint w = 0, h = 0, format = 0;
   gl.GetTextureLevelParameteriv(tex, 0, GL_TEXTURE_WIDTH, &w);
   gl.GetTextureLevelParameteriv(tex, 0, GL_TEXTURE_HEIGHT, &h);
   gl.GetTextureLevelParameteriv(tex, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
   if (w != width || h != height) {
     where << " is " << w << "x" << h << " but the context is " << width << "x" << height;
-    return Status::error(where.str());
+    return Status::error(StatusCode::InvalidInput, where.str());
   }
   FormatInfo info = formatInfo(format);
   if (const char* integer = integerFormatName(format)) {
     where << " has internal format 0x" << std::hex << format << std::dec << " (" << integer
           << "), an integer format: sslr samples it as floats; use a unorm or float format";
-    return Status::error(where.str());
+    return Status::error(StatusCode::InvalidInput, where.str());
   }
   if (info.kind != kind) {
     where << " has internal format 0x" << std::hex << format << std::dec << " ("
           << info.name << "); expected " << (kind == FormatInfo::Depth ? "a depth format" :
                                              "a float or unorm colour format");
-    return Status::error(where.str());
+    return Status::error(StatusCode::InvalidInput, where.str());
   }
   if (info.channels < minChannels) {
     where << " has " << info.channels << " channel(s) (" << info.name << "); needs " << minChannels;
-    return Status::error(where.str());
+    return Status::error(StatusCode::InvalidInput, where.str());
   }
   if (kind == FormatInfo::Depth &&
       (format == GL_DEPTH24_STENCIL8 || format == GL_DEPTH32F_STENCIL8)) {
     GLint mode = 0;
     gl.GetTextureParameteriv(tex, GL_DEPTH_STENCIL_TEXTURE_MODE, &mode);
     if (mode != GL_DEPTH_COMPONENT)
-      return Status::error(where.str() + " samples stencil (GL_DEPTH_STENCIL_TEXTURE_MODE); "
+      return Status::error(StatusCode::InvalidInput, where.str() + " samples stencil (GL_DEPTH_STENCIL_TEXTURE_MODE); "
                            "set it to GL_DEPTH_COMPONENT");
   }
   if (infoOut) *infoOut = info;
@@ -115,7 +115,7 @@ Status Context::Impl::checkInputs(const FrameInputs& in, Method method) const {
   if (Status s = checkTexture(in.depthTexture, "FrameInputs::depthTexture", FormatInfo::Depth, 1); !s) return s;
   if (method == Method::PositionBuffer) {
     if (Status s = checkTexture(in.positionTexture, "FrameInputs::positionTexture", FormatInfo::Color, 4); !s)
-      return Status::error(s.message() + " (Method::PositionBuffer needs a view-space position texture)");
+      return Status::error(s.code(), s.message() + " (Method::PositionBuffer needs a view-space position texture)");
   }
   if (Status s = checkTexture(in.colorTexture, "FrameInputs::colorTexture", FormatInfo::Color, 3); !s) return s;
   const int normalChannels = in.surface.normals == NormalEncoding::Octahedral ? 2 : 3;
@@ -138,9 +138,9 @@ Status Context::Impl::checkInputs(const FrameInputs& in, Method method) const {
   }
   if (in.backDepthTexture != 0) {
     if (Status s = checkTexture(in.backDepthTexture, "FrameInputs::backDepthTexture", FormatInfo::Depth, 1); !s)
-      return Status::error(s.message() + " (the back-face depth: the host's depth pass with front faces culled)");
+      return Status::error(s.code(), s.message() + " (the back-face depth: the host's depth pass with front faces culled)");
     if (in.backDepthTexture == in.depthTexture)
-      return Status::error("sslr: FrameInputs::backDepthTexture is the depthTexture itself; it must be a depth pass "
+      return Status::error(StatusCode::InvalidInput, "sslr: FrameInputs::backDepthTexture is the depthTexture itself; it must be a depth pass "
                            "of its own with front faces culled");
   }
   if (in.motionTexture != 0) {
@@ -148,10 +148,10 @@ Status Context::Impl::checkInputs(const FrameInputs& in, Method method) const {
   }
   auto checkChannel = [&](int channel, const char* name) -> Status {
     if (channel < -1 || channel > 3)
-      return Status::error(std::string("sslr: SurfaceLayout::") + name + " = " +
+      return Status::error(StatusCode::InvalidInput, std::string("sslr: SurfaceLayout::") + name + " = " +
                            std::to_string(channel) + " (must be -1..3)");
     if (channel >= materialInfo.channels)
-      return Status::error(std::string("sslr: SurfaceLayout::") + name + " = " +
+      return Status::error(StatusCode::InvalidInput, std::string("sslr: SurfaceLayout::") + name + " = " +
                            std::to_string(channel) + " but " + materialName + " (" + materialInfo.name +
                            ") has only " + std::to_string(materialInfo.channels) + " channel(s)");
     return {};
@@ -160,11 +160,11 @@ Status Context::Impl::checkInputs(const FrameInputs& in, Method method) const {
   if (Status s = checkChannel(sl.reflectanceChannel, "reflectanceChannel"); !s) return s;
   const int normalUses = separate ? 0 : (sl.normals == NormalEncoding::Octahedral ? 2 : 3);
   if (sl.roughnessChannel >= 0 && sl.roughnessChannel < normalUses)
-    return Status::error("sslr: SurfaceLayout::roughnessChannel overlaps the normal's channels");
+    return Status::error(StatusCode::InvalidInput, "sslr: SurfaceLayout::roughnessChannel overlaps the normal's channels");
   if (sl.reflectanceChannel >= 0 && sl.reflectanceChannel < normalUses)
-    return Status::error("sslr: SurfaceLayout::reflectanceChannel overlaps the normal's channels");
+    return Status::error(StatusCode::InvalidInput, "sslr: SurfaceLayout::reflectanceChannel overlaps the normal's channels");
   if (!std::isfinite(sl.constantRoughness) || !std::isfinite(sl.constantReflectance))
-    return Status::error("sslr: SurfaceLayout constant roughness/reflectance must be finite");
+    return Status::error(StatusCode::InvalidInput, "sslr: SurfaceLayout constant roughness/reflectance must be finite");
   return {};
 }
 

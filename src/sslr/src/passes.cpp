@@ -88,7 +88,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   historyValid = false;
   if (Status s = checkCurrentContext("dispatch()"); !s) return s;
   auto constants = frameConstants(in, settings, width, height);  // validates settings + projection
-  if (!constants) return Status::error(constants.error());
+  if (!constants) return constants.status();
   if (Status s = checkInputs(in, settings.method); !s) return s;
   recording = {};
   recordingPass = 0;
@@ -115,7 +115,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
 Status Context::Impl::prepare(const FrameInputs& in, const Settings& settings) {
   if (Status s = checkCurrentContext("prepare()"); !s) return s;
   auto constants = frameConstants(in, settings, width, height);  // validates settings + projection
-  if (!constants) return Status::error(constants.error());
+  if (!constants) return constants.status();
   const FramePlan base = planFrame(settings, constants.value(), false);
   for (bool level1Pass : {false, true}) {
     for (bool defer : {false, true}) {
@@ -130,7 +130,7 @@ Status Context::Impl::prepare(const FrameInputs& in, const Settings& settings) {
     }
   }
   for (bool overFallback : {false, true})
-    if (auto p = compositeProgram(overFallback); !p) return Status::error(p.error());
+    if (auto p = compositeProgram(overFallback); !p) return p.status();
   return {};
 }
 
@@ -230,7 +230,7 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
       {&f.programs.historyCleanup, optionalProgram(settings.temporal, "classify.comp",
                                                    "#define SSLR_CLEANUP 1\n#define SSLR_CLEANUP_HISTORY 1\n")}};
   for (const auto& [slot, program] : built) {
-    if (!program) return Status::error(program.error());
+    if (!program) return program.status();
     *slot = program.value();
   }
   return {};

@@ -23,7 +23,7 @@ std::string infoLog(GLuint object, GetIv getIv, GetLog getLog) {
 // Compiles one stage from an embedded entry with #defines prepended; logs name the file.
 Expected<GLuint> Context::Impl::compileStage(GLenum stage, const char* entry, const std::string& defines) const {
   const char* body = detail::embeddedShader(entry);
-  if (body == nullptr) return Status::error(std::string("sslr: no embedded shader ") + entry);
+  if (body == nullptr) return Status::error(StatusCode::ShaderBuild, std::string("sslr: no embedded shader ") + entry);
   const std::string header = "#version 450 core\n" + defines;
   const char* sources[] = {header.c_str(), body};
   GLuint shader = gl.CreateShader(stage);
@@ -34,7 +34,7 @@ Expected<GLuint> Context::Impl::compileStage(GLenum stage, const char* entry, co
   if (!ok) {
     const std::string errors = infoLog(shader, gl.GetShaderiv, gl.GetShaderInfoLog);
     gl.DeleteShader(shader);
-    return Status::error(std::string("sslr: compiling ") + entry + " failed:\n" + errors);
+    return Status::error(StatusCode::ShaderBuild, std::string("sslr: compiling ") + entry + " failed:\n" + errors);
   }
   return shader;
 }
@@ -54,7 +54,7 @@ Expected<GLuint> Context::Impl::program(const std::vector<std::pair<GLenum, cons
       for (GLuint s : shaders) gl.DeleteShader(s);
       gl.DeleteProgram(prog);
       message(LogLevel::Error, shader.error());
-      return Status::error(shader.error());
+      return shader.status();
     }
     gl.AttachShader(prog, shader.value());
     shaders.push_back(shader.value());
@@ -66,7 +66,7 @@ Expected<GLuint> Context::Impl::program(const std::vector<std::pair<GLenum, cons
   if (!ok) {
     const std::string errors = infoLog(prog, gl.GetProgramiv, gl.GetProgramInfoLog);
     gl.DeleteProgram(prog);
-    return Status::error("sslr: linking " + key + " failed:\n" + errors);
+    return Status::error(StatusCode::ShaderBuild, "sslr: linking " + key + " failed:\n" + errors);
   }
   // "sslr.program ENTRY... NAME VALUE,...": the entries first and the defines without "#define",
   // since a label is cut at 255 characters.

@@ -31,7 +31,7 @@ Status checkPerspectiveDepthRange(double zScale, double zOffset, const DepthConv
         << (depth.reversedZ ? "true" : "false") << ", clipFromView puts the near end of the depth range at view "
         << "distance " << nearDist << " (it must be in front of the camera): the matrix was built for another "
         << "depth range or convention";
-    return Status::error(why.str());
+    return Status::error(StatusCode::InvalidProjection, why.str());
   }
   if (farDist < nearDist * (1.0 + 1e-9) && !(farDist == INFINITY)) {
     std::ostringstream why;
@@ -41,7 +41,7 @@ Status checkPerspectiveDepthRange(double zScale, double zOffset, const DepthConv
         << (depth.reversedZ && !zeroToOne ? ": a reversed-Z projection needs glClipControl(..., GL_ZERO_TO_ONE) "
                                             "and DepthRange::ZeroToOne"
                                           : ": the matrix was built for another depth range or convention");
-    return Status::error(why.str());
+    return Status::error(StatusCode::InvalidProjection, why.str());
   }
   return {};
 }
@@ -52,18 +52,18 @@ Expected<shared::SslrProjection> reduceProjection(const glm::dmat4& m, const Dep
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r)
       if (!std::isfinite(m[c][r]))
-        return Status::error("sslr: projection is not finite: " + entry(c, r, m[c][r]));
+        return Status::error(StatusCode::InvalidProjection, "sslr: projection is not finite: " + entry(c, r, m[c][r]));
 
   // FrameInputs' default: the host forgot to set its projection (the identity would otherwise
   // pass as a reversed orthographic unit cube and reconstruct nonsense).
   if (m == glm::dmat4(1.0))
-    return Status::error(
+    return Status::error(StatusCode::InvalidProjection, 
         "sslr: clipFromView is the identity (FrameInputs' default): set it to the projection matrix "
         "that rasterized the depth buffer");
   const bool ortho = m[2][3] == 0.0 && m[3][3] == 1.0;
   const bool persp = m[2][3] == -1.0 && m[3][3] == 0.0;
   if (!ortho && !persp)
-    return Status::error(
+    return Status::error(StatusCode::InvalidProjection, 
         "sslr: clipFromView is neither a GL perspective (column 2 row 3 = -1, [3][3] = 0) nor an "
         "orthographic ([2][3] = 0, [3][3] = 1) projection: " + entry(2, 3, m[2][3]) + ", " +
         entry(3, 3, m[3][3]));
@@ -76,33 +76,33 @@ Expected<shared::SslrProjection> reduceProjection(const glm::dmat4& m, const Dep
     const bool wSlot = (c == 3 && r == 3);
     if (offsetSlot || wSlot) continue;  // off-centre / jitter offsets, or w handled above
     if (m[c][r] != 0.0)
-      return Status::error("sslr: clipFromView has skew or oblique terms sslr does not support: " +
+      return Status::error(StatusCode::InvalidProjection, "sslr: clipFromView has skew or oblique terms sslr does not support: " +
                            entry(c, r, m[c][r]));
   }
   const double xScale = m[0][0], yScale = m[1][1], zScale = m[2][2], zOffset = m[3][2];
   if (xScale == 0.0 || yScale == 0.0)
-    return Status::error("sslr: clipFromView is singular (x or y scale is 0)");
+    return Status::error(StatusCode::InvalidProjection, "sslr: clipFromView is singular (x or y scale is 0)");
   // Depth direction: d(ndc z)/d(view distance). Perspective: ndcZ = -zScale + zOffset / dist,
   // so it falls with distance iff zOffset > 0. Orthographic: ndcZ = -zScale * dist + zOffset.
   double slope = persp ? -zOffset : -zScale;
   if (slope == 0.0 || (ortho && zScale == 0.0))
-    return Status::error("sslr: clipFromView maps every distance to the same depth (singular: "
+    return Status::error(StatusCode::InvalidProjection, "sslr: clipFromView maps every distance to the same depth (singular: "
                          "near == far or zero depth scale)");
   const bool reversedMatrix = slope < 0.0;
   if (reversedMatrix != depth.reversedZ)
-    return Status::error(std::string("sslr: depth convention mismatch: DepthConvention::reversedZ = ") +
+    return Status::error(StatusCode::InvalidProjection, std::string("sslr: depth convention mismatch: DepthConvention::reversedZ = ") +
                          (depth.reversedZ ? "true" : "false") + " but clipFromView maps nearer points to " +
                          (reversedMatrix ? "larger" : "smaller") + " depth");
 
   if (persp) {
-    if (Status st = checkPerspectiveDepthRange(zScale, zOffset, depth); !st) return Status::error(st.message());
+    if (Status st = checkPerspectiveDepthRange(zScale, zOffset, depth); !st) return st;
   }
 
   const shared::SslrProjection p =
       shared::sslrProjectionFromMatrix(m, depth.range == DepthRange::ZeroToOne);
   if (!std::isfinite(p.xScale) || !std::isfinite(p.yScale) || !std::isfinite(p.zScale) ||
       !std::isfinite(p.zOffset) || p.xScale == 0.0f || p.yScale == 0.0f)
-    return Status::error("sslr: clipFromView entries overflow or underflow single precision");
+    return Status::error(StatusCode::InvalidProjection, "sslr: clipFromView entries overflow or underflow single precision");
   return p;
 }
 

@@ -28,7 +28,7 @@ Status surfaceConstants(const FrameInputs& in, int width, int height, shared::Ss
   if (in.surface.space == NormalSpace::World) {
     // Normals transform by the inverse transpose (right for any affine view, scaled ones too).
     if (in.viewFromWorld == glm::dmat4(0.0))
-      return Status::error("sslr: SurfaceLayout::space is NormalSpace::World but FrameInputs::viewFromWorld is "
+      return Status::error(StatusCode::InvalidInput, "sslr: SurfaceLayout::space is NormalSpace::World but FrameInputs::viewFromWorld is "
                            "not given (all zeros): set it to the frame's view matrix");
     const glm::dmat3 linear(in.viewFromWorld);
     const double det = glm::determinant(linear);
@@ -36,7 +36,7 @@ Status surfaceConstants(const FrameInputs& in, int width, int height, shared::Ss
     for (int c = 0; c < 4; ++c)
       for (int r = 0; r < 4; ++r) finite = finite && std::isfinite(in.viewFromWorld[c][r]);
     if (!finite || std::abs(det) < 1e-12)
-      return Status::error("sslr: FrameInputs::viewFromWorld is singular or not finite (determinant " +
+      return Status::error(StatusCode::InvalidInput, "sslr: FrameInputs::viewFromWorld is singular or not finite (determinant " +
                            std::to_string(det) + "); NormalSpace::World needs the frame's view matrix");
     const glm::dmat3 normalFromWorld = glm::transpose(glm::inverse(linear));
     f.surface.normalFromStored0 = glm::vec4(glm::vec3(normalFromWorld[0]), 1.0f);
@@ -105,9 +105,9 @@ Status temporalConstants(const FrameInputs& in, const Settings& s, shared::SslrF
         zero = zero && in.previousClipFromView[c][r] == 0.0;
       }
     if (zero)
-      return Status::error("sslr: Settings::temporal needs FrameInputs::previousClipFromView (the previous "
+      return Status::error(StatusCode::InvalidInput, "sslr: Settings::temporal needs FrameInputs::previousClipFromView (the previous "
                            "frame's clipFromView x viewFromWorld x this frame's worldFromView); it is all zeros");
-    if (!finite) return Status::error("sslr: FrameInputs::previousClipFromView is not finite");
+    if (!finite) return Status::error(StatusCode::InvalidInput, "sslr: FrameInputs::previousClipFromView is not finite");
     f.temporal.previousClipFromView = glm::mat4(in.previousClipFromView);
     f.temporal.historyWeight = s.temporalWeight;
     // 2% of the depth: a surface seen again, within a pixel's slope at grazing angles; the
@@ -129,14 +129,14 @@ Status temporalConstants(const FrameInputs& in, const Settings& s, shared::SslrF
 }  // namespace
 
 Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings& s, int width, int height) {
-  if (std::string why = validate(s); !why.empty()) return Status::error(why);
+  if (std::string why = validate(s); !why.empty()) return Status::error(StatusCode::InvalidSettings, why);
   auto proj = detail::reduceProjection(in.clipFromView, in.depth);
-  if (!proj) return Status::error(proj.error());
+  if (!proj) return proj.status();
   shared::SslrFrame f{};
   f.proj = proj.value();
-  if (Status st = surfaceConstants(in, width, height, f); !st) return Status::error(st.message());
+  if (Status st = surfaceConstants(in, width, height, f); !st) return st;
   traceConstants(in, s, width, height, f);
-  if (Status st = temporalConstants(in, s, f); !st) return Status::error(st.message());
+  if (Status st = temporalConstants(in, s, f); !st) return st;
   return f;
 }
 

@@ -40,18 +40,36 @@ using GLName = std::uint32_t;                          // a GLuint texture / fra
 // of another version can compare it with SSLR_VERSION_STRING at start.
 const char* libraryVersion();
 
+// What kind of error a Status carries, for a host that reacts by kind (the message says what and
+// where, for people).
+enum class StatusCode {
+  Ok = 0,
+  InvalidSettings,    // Settings (validate()) or CompositeOptions out of range
+  InvalidInput,       // a host texture, framebuffer or FrameInputs field sslr cannot use
+  InvalidProjection,  // clipFromView / DepthConvention: not a supported or consistent projection
+  InvalidSize,        // a context size out of range
+  NoCurrentContext,   // no GL context current on the calling thread
+  GlUnavailable,      // GL below 4.5, missing entry points or limits
+  ShaderBuild,        // an embedded shader failed to compile or link (a driver problem: report it)
+  NoFrame,            // composite() before a successful dispatch()
+  Failed,             // anything else (the tools' own errors)
+};
+const char* toString(StatusCode code);
+
 class Status {
  public:
   Status() = default;
-  static Status error(std::string message) { return Status(std::move(message)); }
-  bool ok() const { return !failed_; }
+  static Status error(StatusCode code, std::string message) { return Status(code, std::move(message)); }
+  static Status error(std::string message) { return Status(StatusCode::Failed, std::move(message)); }
+  bool ok() const { return code_ == StatusCode::Ok; }
   explicit operator bool() const { return ok(); }
+  StatusCode code() const { return code_; }
   const std::string& message() const { return message_; }
 
  private:
-  explicit Status(std::string message) : message_(std::move(message)), failed_(true) {}
+  Status(StatusCode code, std::string message) : message_(std::move(message)), code_(code) {}
   std::string message_;
-  bool failed_ = false;
+  StatusCode code_ = StatusCode::Ok;
 };
 
 template <typename T>
@@ -76,6 +94,7 @@ class Expected {
     else return &*value_;
   }
   const std::string& error() const { return error_.message(); }
+  const Status& status() const { return error_; }  // the error with its code (Ok on success)
 
  private:
   std::optional<T> value_;
