@@ -687,10 +687,11 @@ SSLR_FN bool sslrBackDepth(SslrSurface s) {
 
 // A pixel's measured extra depth over the slab (view units), or 0 where nothing is measured: no
 // back face behind it (a floor, an open mesh, the background), or the back face not behind the
-// shown surface (a one-sided face seen from behind is its own back face).
-SSLR_FN float sslrMeasuredExtraDepth(SslrProjection p, SslrSurface s, SslrTraceParams t, float depth, float backDepth) {
+// shown surface (a one-sided face seen from behind is its own back face). front: the view depth
+// of `depth` (sslrViewDepthFromDepth).
+SSLR_FN float sslrMeasuredExtraDepth(SslrProjection p, SslrSurface s, SslrTraceParams t, float depth, float front,
+                                     float backDepth) {
   if (!sslrIsGeometryDepth(s, depth) || !sslrIsGeometryDepth(s, backDepth)) return 0.0f;
-  float front = sslrViewDepthFromDepth(p, depth);
   float thickness = sslrViewDepthFromDepth(p, backDepth) - front;
   if (!(thickness > 1e-4f * front)) return 0.0f;
   float extra = thickness - t.objectThickness * front;
@@ -698,12 +699,22 @@ SSLR_FN float sslrMeasuredExtraDepth(SslrProjection p, SslrSurface s, SslrTraceP
 }
 
 // A pixel's texel of level 1 when its solid reaches extra deeper than the slab: (min, max) of its
-// depth and of the depth of the solid's back (clamped to the depth range).
-SSLR_FN vec2 sslrHiZSolidTexel(SslrProjection p, SslrSurface s, float depth, vec3 vsPos, float extra) {
+// depth and of the depth of the solid's back (clamped to the depth range). viewDepth: the
+// pixel's view depth (-z).
+SSLR_FN vec2 sslrHiZSolidTexel(SslrProjection p, SslrSurface s, float depth, float viewDepth, float extra) {
   vec2 texel = sslrHiZTexel(s, depth);
   if (!(extra > 0.0f) || !sslrIsGeometryDepth(s, depth)) return texel;
-  float back = clamp(sslrDepthFromViewDepth(p, -vsPos.z + extra), 0.0f, 1.0f);
+  float back = clamp(sslrDepthFromViewDepth(p, viewDepth + extra), 0.0f, 1.0f);
   return vec2(min(texel.x, back), max(texel.y, back));
+}
+
+// Level 1's cell of a quad whose pixels' solids reach `extra` deeper than the slab (curved or
+// measured): the min-max of the four sslrHiZSolidTexel.
+SSLR_FN vec2 sslrHiZQuadSolids(SslrProjection p, SslrSurface s, vec4 depths, vec4 viewDepths, vec4 extra) {
+  return sslrHiZReduce(sslrHiZReduce(sslrHiZSolidTexel(p, s, depths.x, viewDepths.x, extra.x),
+                                     sslrHiZSolidTexel(p, s, depths.y, viewDepths.y, extra.y)),
+                       sslrHiZReduce(sslrHiZSolidTexel(p, s, depths.z, viewDepths.z, extra.z),
+                                     sslrHiZSolidTexel(p, s, depths.w, viewDepths.w, extra.w)));
 }
 
 // Pixel k (0: (0,0), 1: (1,0), 2: (0,1), 3: (1,1)) of level-1 cell `cell`'s 2x2 quad, clamped to
@@ -718,18 +729,13 @@ SSLR_FN ivec2 sslrQuadPixel(ivec2 cell, int k, ivec2 last) {
 // extra depths (sslrMeasuredExtraDepth) for level 0.
 SSLR_FN vec2 sslrHiZLevel1Measured(SslrProjection p, SslrSurface s, SslrTraceParams t, vec4 depths, vec4 backDepths,
                                    SSLR_OUT(vec4) extra) {
-  extra = vec4(sslrMeasuredExtraDepth(p, s, t, depths.x, backDepths.x),
-               sslrMeasuredExtraDepth(p, s, t, depths.y, backDepths.y),
-               sslrMeasuredExtraDepth(p, s, t, depths.z, backDepths.z),
-               sslrMeasuredExtraDepth(p, s, t, depths.w, backDepths.w));
-  vec3 v0 = vec3(0.0f, 0.0f, -sslrViewDepthFromDepth(p, depths.x));
-  vec3 v1 = vec3(0.0f, 0.0f, -sslrViewDepthFromDepth(p, depths.y));
-  vec3 v2 = vec3(0.0f, 0.0f, -sslrViewDepthFromDepth(p, depths.z));
-  vec3 v3 = vec3(0.0f, 0.0f, -sslrViewDepthFromDepth(p, depths.w));
-  return sslrHiZReduce(sslrHiZReduce(sslrHiZSolidTexel(p, s, depths.x, v0, extra.x),
-                                     sslrHiZSolidTexel(p, s, depths.y, v1, extra.y)),
-                       sslrHiZReduce(sslrHiZSolidTexel(p, s, depths.z, v2, extra.z),
-                                     sslrHiZSolidTexel(p, s, depths.w, v3, extra.w)));
+  vec4 front = vec4(sslrViewDepthFromDepth(p, depths.x), sslrViewDepthFromDepth(p, depths.y),
+                    sslrViewDepthFromDepth(p, depths.z), sslrViewDepthFromDepth(p, depths.w));
+  extra = vec4(sslrMeasuredExtraDepth(p, s, t, depths.x, front.x, backDepths.x),
+               sslrMeasuredExtraDepth(p, s, t, depths.y, front.y, backDepths.y),
+               sslrMeasuredExtraDepth(p, s, t, depths.z, front.z, backDepths.z),
+               sslrMeasuredExtraDepth(p, s, t, depths.w, front.w, backDepths.w));
+  return sslrHiZQuadSolids(p, s, depths, front, extra);
 }
 
 // Level 1 of the pyramid without solids: the (min, max) of a quad's four depths.
@@ -764,10 +770,7 @@ SSLR_FN vec2 sslrHiZLevel1Cell(SslrProjection p, SslrSurface s, SslrTraceParams 
   bool ok3 = sslrSurfaceFromDepth(p, s, p3, depths.w, vs3);
   ok3 = sslrDecodeNormal(s, n3, m3) && ok3;
   extra = sslrQuadCurvedExtraDepth(p, s, t, vs0, vs1, vs2, vs3, m0, m1, m2, m3, bvec4(ok0, ok1, ok2, ok3));
-  return sslrHiZReduce(sslrHiZReduce(sslrHiZSolidTexel(p, s, depths.x, vs0, extra.x),
-                                     sslrHiZSolidTexel(p, s, depths.y, vs1, extra.y)),
-                       sslrHiZReduce(sslrHiZSolidTexel(p, s, depths.z, vs2, extra.z),
-                                     sslrHiZSolidTexel(p, s, depths.w, vs3, extra.w)));
+  return sslrHiZQuadSolids(p, s, depths, vec4(-vs0.z, -vs1.z, -vs2.z, -vs3.z), extra);
 }
 
 // ---- Weights ------------------------------------------------------------------------------

@@ -257,14 +257,14 @@ struct SceneFrame {
   FrameInputs inputs;             // without the back-face depth
   GLuint backDepthTexture = 0;    // the back-face depth (inputsFor)
 };
-Expected<SceneFrame> renderSceneFrame(const std::string& sceneName, int width, int height) {
+Expected<SceneFrame> renderSceneFrame(const std::string& sceneName, int width, int height, bool withBackDepth) {
   auto scene = loadScene(sceneName);
   if (!scene) return Status::error(scene.error());
   GBufferOptions g;
   g.width = width;
   g.height = height;
   g.withPosition = true;  // the position-buffer method needs it; the depth-only ones ignore it
-  g.withBackDepth = true;  // for the configurations that measure thickness (BenchConfig::backDepth)
+  g.withBackDepth = withBackDepth;  // for the configurations that measure thickness (BenchConfig::backDepth)
   auto renderer = FrameRenderer::create(g);
   if (!renderer) return Status::error(renderer.error());
   SceneFrame f{std::move(scene.value()), std::move(renderer.value()), {}, 0};
@@ -355,7 +355,7 @@ Expected<std::vector<std::vector<double>>> timeInterleaved(const std::vector<Ben
 Status timeCurvePoint(const std::string& curve, const std::string& sceneName, int width, int height, int percent,
                       const std::vector<BenchConfig>& grid, const BenchOptions& options, Timer& timer,
                       std::vector<CurvePoint>& out) {
-  auto frame = renderSceneFrame(sceneName, width, height);
+  auto frame = renderSceneFrame(sceneName, width, height, false);  // the defaults measure no thickness
   if (!frame) return Status::error(frame.error());
   SceneFrame& f = frame.value();
   std::vector<BenchConfig> configs = defaultConfigs(grid);
@@ -398,6 +398,8 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
   auto selected = selectConfigs(benchGrid(options.grid), options.configs);
   if (!selected) return Status::error(selected.error());
   const std::vector<BenchConfig>& grid = selected.value();
+  // The back-face depth pass only when a configuration reads it.
+  const bool anyBackDepth = std::any_of(grid.begin(), grid.end(), [](const BenchConfig& c) { return c.backDepth; });
   Timer timer(software);
   const int repeats = timer.repeats(options.batch);
   result.timingMethod = timer.method() + (repeats > 1 ? ", mean of " + std::to_string(repeats) + " dispatches back to back" : "");
@@ -411,7 +413,7 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
   // the state the previous scene left.
   ConfigContexts contexts(options.width, options.height);
   for (const std::string& sceneName : scenes) {
-    auto frame = renderSceneFrame(sceneName, options.width, options.height);
+    auto frame = renderSceneFrame(sceneName, options.width, options.height, anyBackDepth);
     if (!frame) return Status::error(frame.error());
     SceneFrame& sf = frame.value();
     const Scene& scene = sf.scene;
