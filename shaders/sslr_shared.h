@@ -69,14 +69,14 @@ using glm::sqrt;
 #define SSLR_STATUS_MISS 3        // did not converge, or the hit failed validation
 #define SSLR_STATUS_SKY 4         // the ray ran into the background (nothing on screen to hit)
 #define SSLR_STATUS_HIDDEN 5      // the traversal ran into a solid the back-face depth measured, or
-                                  // past Settings::hiddenPassageLimitPx behind the depth buffer: what
+                                  // past Settings::traversal.hiddenPassageLimitPx behind the depth buffer: what
                                   // the ray meets is hidden (L: where that was known)
 
 #define SSLR_HIZ_OFF 0       // adaptive L alone (the article's method, made robust)
 #define SSLR_HIZ_FALLBACK 1  // adaptive L first; the hierarchical traversal where it finds no hit
 #define SSLR_HIZ_ONLY 2      // the hierarchical traversal alone (Method::HierarchicalDepth)
 #define SSLR_HIZ_VERIFY 3    // as FALLBACK, and the traversal also checks every adaptive-L hit for an
-                             // earlier crossing (Settings::hierarchicalVerify)
+                             // earlier crossing (Settings::traversal.verify)
 
 // Most levels of the min-max depth pyramid above the depth buffer (level l: 2^l-pixel cells).
 #define SSLR_HIZ_MAX_LEVELS 8
@@ -89,7 +89,7 @@ using glm::sqrt;
 #define SSLR_BINDING_TILE_SSBO 0
 #define SSLR_BINDING_STATS_SSBO 1
 #define SSLR_BINDING_RETRACE_SSBO 2  // half resolution: pixels that trace their own ray
-#define SSLR_BINDING_CURVED_SSBO 2   // curved solids: the quads whose normals turn (classify.comp's passes)
+#define SSLR_BINDING_CURVED_SSBO 2   // curved solids: the quads whose normals turn (1_classify.comp, 2_pyramid_*.comp)
 
 // Texture units, named once for GLSL, C++ and the GL state contract (gl_state.hpp). The G-buffer's
 // units keep their meaning in every pass; units 3-5 are the inputs of the pass that runs.
@@ -107,7 +107,7 @@ using glm::sqrt;
 #define SSLR_UNIT_COMPOSITE_RESOLVED 4  // composite: the resolved output
 #define SSLR_UNIT_COMPOSITE_FALLBACK 5  // ... the host's fallback specular
 #define SSLR_UNIT_POSITION 5          // Method::PositionBuffer: the host's position texture
-#define SSLR_UNIT_PYRAMID 6           // the depth pyramid (trace, hiz.comp)
+#define SSLR_UNIT_PYRAMID 6           // the depth pyramid (the trace passes, 2_pyramid_*.comp)
 #define SSLR_UNIT_MOTION 6            // temporal reuse: the host's motion vectors (after the trace)
 #define SSLR_UNIT_MATERIAL 7
 #define SSLR_UNIT_MASK 8
@@ -123,7 +123,7 @@ using glm::sqrt;
 #define SSLR_IMAGE_QUAD_SURFACE 2
 #define SSLR_IMAGE_PYRAMID_LEVEL1 0   // classification, level-1 and curved passes
 #define SSLR_IMAGE_PYRAMID_LEVEL0 1
-#define SSLR_IMAGE_PYRAMID_BLOCK 0    // hiz.comp: levels 2..7 on units 0..5 (its single level: 0)
+#define SSLR_IMAGE_PYRAMID_BLOCK 0    // 2_pyramid_levels2to7.comp: levels 2..7 on units 0..5; 2_pyramid_top_level.comp: 0
 #define SSLR_IMAGE_BLUR_OUTPUT 0
 #define SSLR_IMAGE_TEMPORAL_OUTPUT 0  // temporal reuse: the blend (store: resolved)
 #define SSLR_IMAGE_HISTORY 1          // ... store: the history
@@ -186,15 +186,15 @@ struct SslrTraceParams {
   float convergenceEps;       // stop once |L_new - L| <= eps * L
   float errorK;               // the article's "LDelmiter": error = 1 - saturate(L / distance * k)
   float maxDistance;          // reflections longer than this (view units) get zero confidence
-  float thicknessRelative;    // hit tolerance: this fraction of the hit's view distance ...
-  float thicknessPixels;      // ... plus this many pixel footprints (scaled by surface slope)
+  float hitToleranceRelative; // hit tolerance: this fraction of the hit's view distance ...
+  float hitTolerancePixels;   // ... plus this many pixel footprints (scaled by surface slope)
   float edgeFade;             // fade width at the screen border, fraction of the screen [0,0.5]
   float cameraFadeStart;      // rays with dot(R, toCamera) above start fade out ...
   float cameraFadeEnd;        // ... and are gone at end
   float roughnessCutoff;      // pixels rougher than this are not traced
   float minReflectance;       // pixels with reflectance at or below this are not traced
   float blurMaxRadiusPx;      // blur radius (pixels) that alpha = 1 stands for
-  float blurConeScale;        // cone tan(half angle) = roughness^2 * blurConeScale
+  float blurConeScale;        // cone tan(half angle) = roughness^2 * blur.coneScale
   float blurDepthSigma;       // bilateral: weight exp(-|dz| / (sigma * z))
   float blurNormalPower;      // bilateral: weight max(0, dot(n0, n1))^power
   int maxIterations;          // adaptive-L iteration cap
@@ -203,7 +203,7 @@ struct SslrTraceParams {
   int frameIndex;             // increments per dispatch (never 0): per-tile "listed" stamps
   int hizMaxSteps;            // hierarchical traversal: cell visits (each one fetch) at most
   int hizLevels;              // pyramid levels above the depth buffer (sslrHiZLevelCount)
-  float objectThickness;      // hierarchical: a ray less than this fraction of the view depth
+  float objectDepthRelative;  // hierarchical: a ray less than this fraction of the view depth
                               // behind a surface is inside the object (stops); farther: behind it
   int outlineThinning;        // 1: that depth shrinks near the object's outline (sslrSlabNearOutline)
   int curvedSolids;           // 1: ... and grows behind convex curved surfaces (sslrCurvedExtraDepth)
@@ -217,14 +217,14 @@ struct SslrTraceParams {
 struct SslrPositionParams {
   float maxDistance;  // ray length in view units (tutorial: 8)
   float resolution;   // fraction of pixels visited by the coarse march, 0..1 (tutorial: 0.3)
-  float thickness;    // hit tolerance in view units (tutorial: 0.5)
+  float hitTolerance; // view units: a ray point this close behind the stored position hits (tutorial: 0.5)
   int steps;          // binary refinement steps (tutorial: 5)
 };
 
 // The screen-space DDA comparison method (McGuire & Mara 2014).
 struct SslrDdaParams {
   float stride;       // pixels per step (>= 1)
-  float thickness;    // depth assumed behind every visible surface, view units (the paper's zThickness)
+  float objectDepth;  // depth assumed behind every visible surface, view units (the paper's zThickness)
   float maxDistance;  // ray length, view units
   int maxSteps;       // steps at most (each one depth fetch), refinement not included
   int jitter;         // 1: checkerboard offset of half a stride (stride > 1)
@@ -455,8 +455,7 @@ SSLR_FN vec3 sslrOctDecode(vec2 e01) {
 //
 // sslr's compute passes get the encoding and the world-space flag as #defines (the dispatch's
 // inputDefines, equal to these uniforms): a CPU rasterizer runs both sides of a uniform branch
-// under lane masks (llvmpipe 960x540: classification 6.9 -> 5.8 ms, mirror-room's trace 65.9 ->
-// 62.4 ms, glossy's blur 51.4 -> 42.4 ms once the other side is compiled out).
+// under lane masks.
 SSLR_FN bool sslrDecodeNormal(SslrSurface s, vec4 texel, SSLR_OUT(vec3) vsNormal) {
 #ifdef SSLR_NORMAL_ENCODING
   const bool octahedral = SSLR_NORMAL_ENCODING == SSLR_NORMALS_OCTAHEDRAL;
@@ -506,7 +505,7 @@ SSLR_FN bool sslrMaterialTraced(SslrTraceParams t, float reflectance, float roug
 }
 
 // A pixel that may need a ray: geometry (not background) of a traced material. Classification
-// lists tiles by this test (classify.comp), which needs no normal; the passes after it ask
+// lists tiles by this test (1_classify.comp), which needs no normal; the passes after it ask
 // sslrShouldTrace of each pixel.
 SSLR_FN bool sslrTraceCandidate(SslrSurface s, SslrTraceParams t, float depth, float reflectance,
                                 float roughness) {
@@ -518,8 +517,7 @@ SSLR_FN bool sslrTraceCandidate(SslrSurface s, SslrTraceParams t, float depth, f
 // texel itself unless the host gave a separate material texture (SslrSurface::separateMaterial).
 SSLR_FN bool sslrShouldTrace(SslrSurface s, SslrTraceParams t, float depth, vec4 packedNormal, vec4 material) {
   // A branch of its own, not one && chain: shader compilers evaluate such a chain whole, and the
-  // normal decode is most of the test's cost (measured on llvmpipe: classification of a frame
-  // with nothing reflective took 3.7x the baseline pass with the chain).
+  // normal decode is most of the test's cost.
   if (!sslrTraceCandidate(s, t, depth, sslrReflectance(s, material), sslrRoughness(s, material))) return false;
   vec3 n;
   return sslrDecodeNormal(s, packedNormal, n);
@@ -535,7 +533,7 @@ SSLR_FN bool sslrShouldTrace(SslrSurface s, SslrTraceParams t, float depth, vec4
 // there). The traversal's walk thus reads every level, and a pixel's extra depth, in
 // one fetch per step: with level 0 in the depth buffer and the extra depths in a texture of
 // their own, SIMD lanes at different levels fetched from all three (llvmpipe runs every branch's
-// fetch under lane masks; docs/algorithm.md).
+// fetch under lane masks; docs/design-notes.md).
 
 // Levels worth building: the top level's cells are about an eighth of the larger screen side
 // (coarser cells would cover most of the screen and skip nothing).
@@ -585,17 +583,15 @@ SSLR_FN float sslrDepthFromViewDepth(SslrProjection p, float dist) {
 }
 
 // ---- Curved solids (hierarchical traversal) ---------------------------------------------------
-// A depth buffer has no thickness; the traversal assumes what a pixel shows to be objectThickness x
+// A depth buffer has no thickness; the traversal assumes what a pixel shows to be objectDepthRelative x
 // its distance deep. A convex curved surface tells more: it is taken to be the surface of a solid
 // as curved as it looks, a sphere of its own radius of curvature r, which extends 2 r cos(a)
 // behind the pixel along the view ray (a: the view ray's angle to the normal). A mirror sphere of
 // radius 1 seen from 8 units is 2 deep at its centre, the default slab 0.6: rays that run into its
-// hidden side were let through to the wall behind (curved-mirror's false hits, docs/algorithm.md).
+// hidden side would be let through to the wall behind.
 // Flat faces (a box) keep the slab. Settings::curvedSolids (default on); the GPU passes get it
 // compiled in (SSLR_CURVED_SOLIDS). Classification only lists the quads whose normals turn and a
-// pass of its own computes their cells: the math for every quad in classification cost it 4.0 ->
-// 5.9 ms on llvmpipe (960x540), and inside the traversal's loop 1.6x facing-mirror's trace
-// (llvmpipe runs a loop's code under lane masks, taken or not).
+// pass of its own computes their cells, so that the math costs the listed quads alone.
 SSLR_FN bool sslrCurvedSolids(SslrTraceParams t) {
 #ifdef SSLR_CURVED_SOLIDS
   return SSLR_CURVED_SOLIDS != 0;
@@ -628,23 +624,21 @@ SSLR_FN float sslrConvexRadius(SslrSurface s, vec3 vsA, vec3 vsNa, vec3 vsB, vec
   return curved ? along / dn2 : 0.0f;
 }
 
-// How much deeper than the slab (objectThickness x view depth) a pixel's solid extends, in view
+// How much deeper than the slab (objectDepthRelative x view depth) a pixel's solid extends, in view
 // depth: max(0, min(2 r cos a, 4 x slab) |v.z| - slab), v the unit view direction. The cap keeps a
 // gently curved wall from becoming a solid hill. r: the largest radius the pixel shares with a
 // neighbour (sslrConvexRadius).
 SSLR_FN float sslrCurvedExtraDepth(SslrProjection p, SslrTraceParams t, vec3 vsPos, vec3 vsNormal, float r) {
   vec3 v = p.orthographic != 0 ? vec3(0.0f, 0.0f, -1.0f) : vsPos * inversesqrt(dot(vsPos, vsPos));
-  float slab = t.objectThickness * -vsPos.z;
+  float slab = t.objectDepthRelative * -vsPos.z;
   float chord = min(2.0f * r * abs(dot(vsNormal, v)), 4.0f * slab) * abs(v.z);
   return max(chord - slab, 0.0f);
 }
 
 // Two estimates of one radius that agree within a factor of 2 (0 where either is missing): both
 // rows (or both columns) of a quad on a sphere or a cylinder see the same curvature; noise does
-// not. Per-pixel turns like a normal map's passed one pair's test on ~10% of flat pixels and made
-// those faces deep: with ~2 deg of noise on every surface that does not reflect (320x180),
-// facing-mirror's recall fell 0.926 -> 0.868 and mirror-walls' 0.937 -> 0.876 with single pairs;
-// with agreeing pairs 0.926 -> 0.926 and 0.937 -> 0.934 (docs/algorithm.md).
+// not: per-pixel turns like a normal map's pass one pair's test on some flat pixels, and would
+// make those faces deep.
 SSLR_FN float sslrAgreedRadius(float a, float b) {
   return a > 0.0f && b > 0.0f && a < 2.0f * b && b < 2.0f * a ? min(a, b) : 0.0f;
 }
@@ -670,7 +664,7 @@ SSLR_FN vec4 sslrQuadCurvedExtraDepth(SslrProjection p, SslrSurface s, SslrTrace
 
 // ---- Measured thickness: back-face depth (FrameInputs::backDepthTexture) ----------------------
 // With a back-face depth (the host's depth pass with front faces culled: per pixel, the nearest
-// back face), what a pixel shows is as deep as measured, not objectThickness x its distance: a
+// back face), what a pixel shows is as deep as measured, not objectDepthRelative x its distance: a
 // leg thinner than the slab lets rays pass just behind it, a box seen across its diagonal stops
 // rays deeper than the slab. The measurement enters where the curved solids' estimate does (it
 // replaces it): as the pixel's extra depth over the slab, in level 0 of the pyramid and in the
@@ -694,7 +688,7 @@ SSLR_FN float sslrMeasuredExtraDepth(SslrProjection p, SslrSurface s, SslrTraceP
   if (!sslrIsGeometryDepth(s, depth) || !sslrIsGeometryDepth(s, backDepth)) return 0.0f;
   float thickness = sslrViewDepthFromDepth(p, backDepth) - front;
   if (!(thickness > 1e-4f * front)) return 0.0f;
-  float extra = thickness - t.objectThickness * front;
+  float extra = thickness - t.objectDepthRelative * front;
   return extra != 0.0f ? extra : 1e-7f * front;  // 0 means "not measured"
 }
 
@@ -821,16 +815,16 @@ SSLR_FN float sslrBlurRadiusPx(SslrProjection p, float heightPx, float dist, flo
 // The blur pass's bilateral weight of a neighbour `offsetPx` pixels away along the blur's axis,
 // for a centre pixel of blur radius `radiusPx` (>= 0.5) at view distance z0 with normal n0 and a
 // neighbour at z1 with n1:
-//   exp(-offset^2 / (2 sigma^2)) * exp(-|z1 - z0| / (blurDepthSigma z0)) * max(0, n0.n1)^blurNormalPower
+//   exp(-offset^2 / (2 sigma^2)) * exp(-|z1 - z0| / (blur.depthSigma z0)) * max(0, n0.n1)^blur.normalPower
 // with sigma = max(radius / 2, 0.5): a Gaussian, a depth term relative to the centre's distance (so
 // the same surface step counts the same near and far) and a normal term, so a reflection does not
 // bleed across an edge or a crease. Evaluated as one exp2 of a sum of logarithms (one exp2 and one
 // log2 per tap, not two exps and a pow); the per-centre factors are computed once per pixel.
 struct SslrBlurCentre {
   float gaussianLog2;  // log2(e) * -1 / (2 sigma^2): times offset^2
-  float depthLog2;     // log2(e) * -1 / (blurDepthSigma z0): times |z1 - z0|
+  float depthLog2;     // log2(e) * -1 / (blur.depthSigma z0): times |z1 - z0|
   float z;             // view distance z0
-  float normalPower;   // blurNormalPower
+  float normalPower;   // blur.normalPower
   vec3 normal;         // n0
 };
 
@@ -847,7 +841,7 @@ SSLR_FN SslrBlurCentre sslrBlurCentre(SslrTraceParams t, float radiusPx, float z
 }
 
 SSLR_FN float sslrBlurWeight(SslrBlurCentre c, int offsetPx, float z1, vec3 n1) {
-  float normalLog2 = 0.0f;  // blurNormalPower 0: no normal term
+  float normalLog2 = 0.0f;  // blur.normalPower 0: no normal term
   if (c.normalPower > 0.0f) {
     float cosine = dot(c.normal, n1);
     if (!(cosine > 0.0f)) return 0.0f;  // max(0, n0.n1)^power = 0 (log2 would be undefined)

@@ -18,7 +18,7 @@ namespace sslr::shared {
 #define SSLR_MAX_GROWTH 2.0f
 #endif
 // Steps back after a probe left the screen or met the sky, before giving up. Each retreat costs a
-// sky-bound ray one more iteration; a second one recovered almost no hits (docs/algorithm.md).
+// sky-bound ray one more iteration; a second one recovered almost no hits (docs/design-notes.md).
 #ifndef SSLR_MAX_RETREATS
 #define SSLR_MAX_RETREATS 1
 #endif
@@ -77,7 +77,7 @@ SSLR_FN bool sslrHasHiZFallback(SslrTraceParams t) {
 // fraction of the distance (depth precision) plus pixel footprints stretched by the slope.
 SSLR_FN float sslrHitTolerance(SslrProjection p, SslrSurface s, SslrTraceParams t, float dist, float tanView) {
   float footprint = sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : dist);
-  return t.thicknessRelative * abs(dist) + t.thicknessPixels * footprint * (1.0f + tanView);
+  return t.hitToleranceRelative * abs(dist) + t.hitTolerancePixels * footprint * (1.0f + tanView);
 }
 
 SSLR_FN float sslrHitValidation(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsQ,
@@ -184,7 +184,7 @@ SSLR_FN SslrHit sslrFinishHit(SslrProjection p, SslrHit hit, vec3 vsP, vec3 vsR,
 
 // The article's adaptive-L iteration: Q = P + R L, project Q, read the depth there, rebuild P',
 // L = |P' - P|. It is a fixed-point iteration that settles where the ray meets the depth surface.
-// Guards added (docs/algorithm.md): off-screen / behind-near-plane / background exits, a
+// Guards added (docs/design-notes.md): off-screen / behind-near-plane / background exits, a
 // convergence exit, a bracket safeguard, and validation of the final point (the article has none
 // and always returns something).
 //
@@ -199,7 +199,7 @@ SSLR_FN SslrHit sslrFinishHit(SslrProjection p, SslrHit hit, vec3 vsP, vec3 vsR,
 //   spurious fixed point, or crawls, a secant on the gap of the last two free samples steps on.
 // - A probe that overshoots the screen from free space steps back before giving up.
 // This keeps the article's fast steps where they work and converges where they oscillate or
-// stall, e.g. for rays that come back towards the camera (docs/algorithm.md has the numbers).
+// stall, e.g. for rays that come back towards the camera (docs/design-notes.md has the numbers).
 SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTraceParams t,
                                    ivec2 pxOrigin, vec3 vsP, vec3 vsR) {
   SslrHit hit = sslrNoHit(SSLR_STATUS_MISS);
@@ -334,8 +334,7 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
                     : 0.0f;
   if (valid > 0.0f && sslrHasHiZFallback(t) && dot(vsR, vsSurfaceNormal) < -0.05f) {
     // With the hierarchical traversal behind it, a hit must also pass the plane check: a
-    // rejected one gets its second chance there (measured: most false hits of adaptive L on
-    // facing-mirror and mirror-walls fail it, docs/algorithm.md).
+    // rejected one gets its second chance there.
     float planeL;
     valid = sslrPlaneHit(p, s, t, pxOrigin, vsP, vsR, pxSurface, vsSurface, vsSurfaceNormal, planeL);
     if (valid > 0.0f) L = planeL;
@@ -351,7 +350,7 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
 //              Classic mode). A host blends its fallback specular (probes, sky) by 1 - coverage.
 //   reflection the weight applied to the hit's colour: Fresnel term x coverage, with the Fresnel
 //              term reflectance x the article's Fresnel (Classic) or Schlick with F0 = reflectance.
-//   blurAlpha  the roughness blur's radius / blurMaxRadiusPx (stored in the reflection's alpha).
+//   blurAlpha  the roughness blur's radius / blur.maxRadiusPx (stored in the reflection's alpha).
 struct SslrWeights {
   float reflection;
   float coverage;

@@ -108,7 +108,7 @@ SSLR_FN SslrHit sslrTraceDda(SslrProjection p, SslrSurface s, SslrDdaParams d, i
       break;
     }
     hit.iterations += 1;
-    if (sslrDdaStepOverlaps(p, s, Q.z, k, dQ.z, dk, stride * 0.5f, ivec2(floor(px2)), d.thickness, prevZ)) {
+    if (sslrDdaStepOverlaps(p, s, Q.z, k, dQ.z, dk, stride * 0.5f, ivec2(floor(px2)), d.objectDepth, prevZ)) {
       found = true;
       hitP = P;
       break;
@@ -134,7 +134,7 @@ SSLR_FN SslrHit sslrTraceDda(SslrProjection p, SslrSurface s, SslrDdaParams d, i
       vec2 pxf = permute ? vec2(Pf.y, Pf.x) : Pf;
       if (!(pxf.x >= 0.0f && pxf.y >= 0.0f && pxf.x < sizePx.x && pxf.y < sizePx.y)) break;
       hit.iterations += 1;
-      if (sslrDdaStepOverlaps(p, s, Qf.z, kf, dQ.z, dk, 0.5f, ivec2(floor(pxf)), d.thickness, prevFine)) {
+      if (sslrDdaStepOverlaps(p, s, Qf.z, kf, dQ.z, dk, 0.5f, ivec2(floor(pxf)), d.objectDepth, prevFine)) {
         hitP = Pf;
         Q = Qf;
         k = kf;

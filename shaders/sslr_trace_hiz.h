@@ -44,17 +44,16 @@ SSLR_FN int sslrHiZNextLevel(vec3 o, vec3 d, float tRay, vec2 cell, int level, i
   return (parentNext.x != parentNow.x || parentNext.y != parentNow.y) ? level + 1 : level;
 }
 
-// How deep may what pixel px shows extend behind it, where a ray keyRay deep (window key) passes?
-// At most `slab` (objectThickness x distance); less near the outline of what the pixel shows:
+// How deep may what pixel px shows extend behind it, where a ray rayDepthKey deep (window key) passes?
+// At most `slab` (objectDepthRelative x distance); less near the outline of what the pixel shows:
 // there the object has had no room to get deep. An object is taken to be no deeper, at a distance
 // d from its outline, than a right-angled corner of the face the pixel shows would make it:
 // d (cot a + tan a), a the face's angle to the view ray (a box's edge; a face seen edge-on, like a
 // sphere's rim, allows any depth). d is bounded by the smallest pyramid cell around the pixel that
 // holds a surface beyond the ray (seen past the object: its outline lies inside that cell). Only
-// rays the slab would stop pay for this (up to a few fetches). Measured at 960x540: facing-mirror
-// recall 0.943 -> 0.953 (false hits 1.69% -> 1.84%), thin-objects 0.956 -> 0.963 (docs/algorithm.md).
+// rays the slab would stop pay for this (up to a few fetches).
 SSLR_FN float sslrSlabNearOutline(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 px, vec3 vsSurface,
-                                  vec3 vsSurfaceNormal, float keyRay, float keySign, float slab) {
+                                  vec3 vsSurfaceNormal, float rayDepthKey, float keySign, float slab) {
   float sinA = clamp(abs(dot(vsSurfaceNormal, sslrViewDirection(p, vsSurface))), 0.02f, 0.9998f);
   float dist = p.orthographic != 0 ? 1.0f : -vsSurface.z;
   float depthPerPx = sslrPixelFootprint(p, s.height, dist) / (sinA * sqrt(1.0f - sinA * sinA));
@@ -63,7 +62,7 @@ SSLR_FN float sslrSlabNearOutline(SslrProjection p, SslrSurface s, SslrTracePara
     float bound = 1.5f * float(1 << level) * depthPerPx;
     if (bound >= slab) break;  // coarser cells bound it no tighter
     vec2 minMax = sslrLoadPyramidTexel(level, ivec2(px.x >> level, px.y >> level));
-    if (max(keySign * minMax.x, keySign * minMax.y) > keyRay) return bound;
+    if (max(keySign * minMax.x, keySign * minMax.y) > rayDepthKey) return bound;
   }
   return slab;
 }
@@ -86,7 +85,7 @@ SSLR_FN vec3 sslrPlaneAtWindow(SslrProjection p, SslrSurface s, vec2 w, vec3 vsO
 // centre (had the side reached that centre, the outer pixel would show it). A side within ~6
 // degrees of edge-on (cos <= 0.1) is not trusted: rays from many pixels converge on such a
 // sliver, and on mirror-walls at 960x540 they were most of what the rule got wrong (false hits
-// 0.93% -> 1.06% at 0; 0.93% at 0.1; docs/algorithm.md). wEntry: where the ray entered the pixel
+// 0.93% -> 1.06% at 0; 0.93% at 0.1; docs/design-notes.md). wEntry: where the ray entered the pixel
 // (window space, just past the boundary), d: the ray's window-space direction.
 SSLR_FN bool sslrCornerHit(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 wEntry, vec3 d, vec3 vsP,
                            vec3 vsR, SSLR_OUT(float) L) {
@@ -109,7 +108,7 @@ SSLR_FN bool sslrCornerHit(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   if (!sslrLoadSurface(px, vsSurface) || !sslrDecodeNormal(s, sslrLoadNormal(px), vsN)) return false;
   // A curved surface is no corner (its solid is the sphere of its curvature).
   if (sslrCurvedSolids(t) && sslrLoadPyramidTexel(0, px).y > 0.0f) return false;
-  float slab = t.objectThickness * -vsSurface.z;
+  float slab = t.objectDepthRelative * -vsSurface.z;
   if (sslrBackDepth(s)) {  // measured (0: nothing measured there, the slab assumed)
     float measured = sslrLoadPyramidTexel(0, px).y;
     if (measured != 0.0f) slab = max(slab + measured, 0.0f);
@@ -177,7 +176,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   float tRun = -1.0f;
   bool inSlab = false;
   bool measuredSlab = false;  // ... inside a solid whose depth the back-face depth measured
-  // Pixels travelled behind what the screen shows (Settings::hiddenPassageLimitPx): there hidden
+  // Pixels travelled behind what the screen shows (Settings::traversal.hiddenPassageLimitPx): there hidden
   // geometry may stop the ray unseen, and a hit found after a long passage is a guess.
   float hiddenPx = 0.0f;
   // Two phases per pixel the ray reaches: the walk (skip, descend) over cells until the ray
@@ -230,8 +229,8 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
         float distFar = sslrViewDepthFromDepth(p, farDepth);
         float distRay = sslrViewDepthFromDepth(p, keySign * segNear);
         float tolerance16 = sslrHitTolerance(p, s, t, distFar, 16.0f);
-        float passBehind = sslrBackDepth(s) ? max(tolerance16, t.objectThickness * distFar + extra)
-                                            : max(tolerance16, t.objectThickness * distFar) + extra;
+        float passBehind = sslrBackDepth(s) ? max(tolerance16, t.objectDepthRelative * distFar + extra)
+                                            : max(tolerance16, t.objectDepthRelative * distFar) + extra;
         skip = distRay - distFar > passBehind;
         behindSkip = skip;
       }
@@ -301,12 +300,12 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
     float tolerance =
         sslrHitTolerance(p, s, t, distSurface, normalOk ? sslrSlopeTan(p, vsSurface, vsSurfaceNormal) : 16.0f);
     // What the pixel shows is taken to fill [surface, surface + slab] along the view: the slab is
-    // objectThickness x distance, thinner near the object's outline (sslrSlabNearOutline). A ray
+    // objectDepthRelative x distance, thinner near the object's outline (sslrSlabNearOutline). A ray
     // inside it (deeper than the hit tolerance: pixel snapping) ran into the hidden part of the
     // object, from the front or from behind: nothing on screen is its reflection. Deeper than the
     // slab it passes behind; within the tolerance it goes on. Inside the slab just past an outline
     // it may have met the object's side, narrower than a pixel (sslrCornerHit).
-    float slab = t.objectThickness * distSurface;
+    float slab = t.objectDepthRelative * distSurface;
     // A measured solid (back-face depth) holds the ray when any part of its segment in the pixel
     // lies inside [surface + tolerance, back]: a ray running along the view direction crosses a
     // box's depth within one pixel, its far end already behind the back.
@@ -365,7 +364,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
 // traversal's own misses (a slab it stopped in, steps run out) are no better evidence.
 //
 // Two stages, so that a pass can run the first alone and leave the traversal to a pass of its own
-// (Settings::traversalPass): sslrTraceFirstStage answers the pixel or says it needs the second.
+// (Settings::traversal.pass): sslrTraceFirstStage answers the pixel or says it needs the second.
 
 // Rays that come back towards the camera, or run within ~17 degrees of the image plane, are where
 // adaptive L jumps over what stands between (its probes see the front of the occluders, not the

@@ -61,7 +61,7 @@ SSLR_FN SslrHit sslrTracePositionBuffer(SslrProjection p, SslrSurface s, SslrPos
   int hit1 = 0;
   float startDist = sslrDepthAlongView(startView);
   float endDist = sslrDepthAlongView(endView);
-  float depth = pb.thickness;
+  float depth = pb.hitTolerance;
   vec4 positionTo = vec4(0.0f);
   int marchSteps = int(min(delta, 16384.0f));
   for (int i = 0; i < marchSteps; ++i) {
@@ -73,7 +73,7 @@ SSLR_FN SslrHit sslrTracePositionBuffer(SslrProjection p, SslrSurface s, SslrPos
     search1 = clamp(search1, 0.0f, 1.0f);
     depth = sslrRayDistanceAt(p, startDist, endDist, search1) -
             sslrDepthAlongView(vec3(positionTo.x, positionTo.y, positionTo.z));
-    if (positionTo.w > 0.0f && depth > 0.0f && depth < pb.thickness) {
+    if (positionTo.w > 0.0f && depth > 0.0f && depth < pb.hitTolerance) {
       hit0 = 1;
       break;
     } else {
@@ -88,7 +88,7 @@ SSLR_FN SslrHit sslrTracePositionBuffer(SslrProjection p, SslrSurface s, SslrPos
     hit.iterations += 1;
     depth = sslrRayDistanceAt(p, startDist, endDist, search1) -
             sslrDepthAlongView(vec3(positionTo.x, positionTo.y, positionTo.z));
-    if (positionTo.w > 0.0f && depth > 0.0f && depth < pb.thickness) {
+    if (positionTo.w > 0.0f && depth > 0.0f && depth < pb.hitTolerance) {
       hit1 = 1;
       search1 = search0 + ((search1 - search0) / 2.0f);
     } else {
@@ -108,7 +108,7 @@ SSLR_FN SslrHit sslrTracePositionBuffer(SslrProjection p, SslrSurface s, SslrPos
   bool isHit = hit1 != 0 && positionTo.w > 0.0f && onScreen;
   hit.confidence = isHit ? 1.0f : 0.0f;
   hit.fade = isHit ? sslrSaturate((1.0f - max(dot(-vsV, vsR), 0.0f)) *
-                                  (1.0f - clamp(depth / pb.thickness, 0.0f, 1.0f)) *
+                                  (1.0f - clamp(depth / pb.hitTolerance, 0.0f, 1.0f)) *
                                   (1.0f - clamp(hit.L / pb.maxDistance, 0.0f, 1.0f)))
                    : 0.0f;
   hit.status = isHit ? SSLR_STATUS_HIT : (onScreen ? SSLR_STATUS_MISS : SSLR_STATUS_OFF_SCREEN);

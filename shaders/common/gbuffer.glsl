@@ -24,7 +24,7 @@ vec4 sslrMaterialAt(ivec2 px, vec4 normalTexel) {
 
 // sslrShouldTrace for pixel px of the G-buffer, with the host's mask (FrameInputs::maskTexture):
 // the trace, the blur's neighbour test and temporal reuse all ask this one question
-// (classification asks its first half of whole quads: classify.comp). `material` is
+// (classification asks its first half of whole quads: 1_classify.comp). `material` is
 // sslrMaterialAt(px, normalTexel), read by the caller (the trace needs it again).
 bool sslrShouldTracePixel(ivec2 px, float depth, vec4 normalTexel, vec4 material) {
 #ifdef SSLR_HAS_MASK  // FrameInputs::maskTexture given (frame.surface.hasMask)
@@ -40,7 +40,7 @@ vec2 sslrSizePx() { return vec2(frame.surface.width, frame.surface.height); }
 // returns one channel of all four (the sampler's clamp-to-edge repeats the last column or row
 // where the quad straddles the screen's edge, as sslrQuadPixel does). Classification reads the
 // channels it needs this way: three gathers per quad in place of eight fetches and four normal
-// decodes (llvmpipe, 960x540, nothing reflective: 2.9 -> 1.9 ms; docs/algorithm.md).
+// decodes.
 // Components in pixel order p0 = (0, 0), p1 = (1, 0), p2 = (0, 1), p3 = (1, 1): a gather returns
 // (0, 1), (1, 1), (1, 0), (0, 0).
 vec2 sslrQuadCornerUv(ivec2 cell) { return (vec2(cell * 2) + 1.0f) / sslrSizePx(); }

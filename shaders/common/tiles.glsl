@@ -1,4 +1,4 @@
-// The tile list written by classify.comp and consumed through indirect dispatch / draw.
+// The tile list written by classification (1_classify.comp) and consumed through indirect dispatch / draw.
 #include "sslr_shared.h"
 
 layout(std430, binding = SSLR_BINDING_TILE_SSBO) buffer SslrTiles {
@@ -29,9 +29,8 @@ ivec2 sslrBlurTileOrigin(uint index) {
 }
 
 // Quad `index` of a tile (row by row), for the passes that run one invocation per quad in groups
-// of SSLR_TILE_QUADS along x alone: llvmpipe fills its SIMD lanes along x only, so 4x4 groups ran
-// every batch of eight lanes half empty (960x540: classification of an empty frame 1.9 -> 1.2 ms;
-// docs/algorithm.md).
+// of SSLR_TILE_QUADS along x alone: llvmpipe fills its SIMD lanes along x only, so 4x4 groups
+// would run every batch of eight lanes half empty.
 ivec2 sslrTileQuad(uint index) {
   return ivec2(int(index) % (SSLR_TILE_SIZE / 2), int(index) / (SSLR_TILE_SIZE / 2));
 }

@@ -110,6 +110,19 @@ void printPassCommands(const FrameStats& st) {
                 c->uploads, name == passes[5].first ? "" : ",");
 }
 
+// Prints each pass's texture traffic (FrameStats::*Traffic) in MB on the current line, then the frame's.
+void printPassTraffic(const FrameStats& st) {
+  const std::pair<const char*, const PassTraffic*> passes[] = {{"classify", &st.classifyTraffic},
+                                                              {"pyramid", &st.pyramidTraffic},
+                                                              {"trace", &st.traceTraffic},
+                                                              {"blur", &st.blurTraffic},
+                                                              {"temporal", &st.temporalTraffic}};
+  for (const auto& [name, t] : passes)
+    std::printf(" %s %.2f / %.2f,", name, double(t->bytesRead) * 1e-6, double(t->bytesWritten) * 1e-6);
+  const PassTraffic total = st.totalTraffic();
+  std::printf(" frame %.2f / %.2f\n", double(total.bytesRead) * 1e-6, double(total.bytesWritten) * 1e-6);
+}
+
 // A numeric option, when given: the whole text must parse as the field's type.
 template <typename T>
 void numberOption(const cxxopts::ParseResult& args, const char* name, const char* kind, T& field) {
@@ -132,19 +145,19 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
   if (fresnel == "classic") s.fresnel = FresnelMode::Classic;
   else if (fresnel == "schlick") s.fresnel = FresnelMode::Schlick;
   else throw UsageError{"--fresnel must be classic or schlick (got '" + fresnel + "')"};
-  if (args.count("no-blur")) s.blur = false;
-  numberOption(args, "object-thickness", "a number", s.objectThickness);
-  numberOption(args, "hidden-passage", "a number", s.hiddenPassageLimitPx);
+  if (args.count("no-blur")) s.blur.enabled = false;
+  numberOption(args, "object-thickness", "a number", s.traversal.objectDepthRelative);
+  numberOption(args, "hidden-passage", "a number", s.traversal.hiddenPassageLimitPx);
   numberOption(args, "ffx-thickness", "a number", s.ffx.depthBufferThickness);
-  numberOption(args, "iterations", "an integer", s.maxIterations);
-  numberOption(args, "hiz-steps", "an integer", s.hierarchicalMaxSteps);
-  if (args.count("no-outline-thinning")) s.outlineThinning = false;
-  if (args.count("no-curved-solids")) s.curvedSolids = false;
+  numberOption(args, "iterations", "an integer", s.adaptiveL.maxIterations);
+  numberOption(args, "hiz-steps", "an integer", s.traversal.maxSteps);
+  if (args.count("no-outline-thinning")) s.traversal.outlineThinning = false;
+  if (args.count("no-curved-solids")) s.traversal.curvedSolids = false;
   if (args.count("traversal-pass")) {
     const std::string pass = args["traversal-pass"].as<std::string>();
-    if (pass == "auto") s.traversalPass = TraversalPass::Auto;
-    else if (pass == "inline") s.traversalPass = TraversalPass::Inline;
-    else if (pass == "deferred") s.traversalPass = TraversalPass::Deferred;
+    if (pass == "auto") s.traversal.pass = TraversalPass::Auto;
+    else if (pass == "inline") s.traversal.pass = TraversalPass::Inline;
+    else if (pass == "deferred") s.traversal.pass = TraversalPass::Deferred;
     else throw UsageError{"--traversal-pass must be auto, inline or deferred (got '" + pass + "')"};
   }
   return s;  // validated by the caller, once every flag is applied
@@ -184,7 +197,7 @@ cxxopts::Options renderOptions() {
        cxxopts::value<std::string>()->default_value("blend"))
       ("half-res", "one ray per 2x2 quad, reused by the quad's pixels on the same surface")
       ("hidden-passage", "refuse hits of rays that travelled more than this many pixels behind the depth buffer "
-                         "(Settings::hiddenPassageLimitPx; default off)", cxxopts::value<std::string>())
+                         "(Settings::traversal.hiddenPassageLimitPx; default off)", cxxopts::value<std::string>())
       ("ffx-thickness", "--method ffx-sssr: FidelityFX SSSR's depth buffer thickness, view units (default 0.015, "
                         "its sample's)", cxxopts::value<std::string>())
       ("object-thickness", "assumed depth of what the screen shows, fraction of its view depth (hierarchical traversal)", cxxopts::value<std::string>())
@@ -265,17 +278,17 @@ void parseTracing(const cxxopts::ParseResult& args, RenderJob& job) {
   else throw UsageError{"--composite must be blend or add (got '" + composite + "')"};
   if (args.count("hiz-verify") && args.count("no-hiz-verify"))
     throw UsageError{"--hiz-verify and --no-hiz-verify exclude each other"};
-  if (args.count("hiz-verify")) settings.hierarchicalVerify = true;
-  if (args.count("no-hiz-verify")) settings.hierarchicalVerify = false;
+  if (args.count("hiz-verify")) settings.traversal.verify = true;
+  if (args.count("no-hiz-verify")) settings.traversal.verify = false;
   if (args.count("no-hiz-fallback")) {  // adaptive L alone: no traversal at all
     if (args.count("hiz-verify")) throw UsageError{"--hiz-verify and --no-hiz-fallback exclude each other"};
-    settings.hierarchicalFallback = false;
-    settings.hierarchicalVerify = false;
+    settings.traversal.fallback = false;
+    settings.traversal.verify = false;
   }
   if (args.count("half-res")) settings.halfResolution = true;
-  settings.debugOutputs = job.dump || job.score;
-  settings.collectStats = args.count("stats") > 0;
-  if (args.count("temporal")) settings.temporal = true;
+  settings.debug.outputs = job.dump || job.score;
+  settings.debug.collectStats = args.count("stats") > 0;
+  if (args.count("temporal")) settings.temporal.enabled = true;
   if (std::string why = validate(settings); !why.empty()) throw UsageError{why};  // after every flag
   job.frames = args["frames"].as<int>();
   if (job.frames < 1 || job.frames > 10000)
@@ -377,7 +390,7 @@ void printStats(const FrameStats& st, const std::vector<FrameStats>& laterStats,
             << " per traced pixel), hierarchical traversal on " << st.hierarchicalPixels << " ("
             << (st.tracedPixels ? 100.0 * st.hierarchicalPixels / st.tracedPixels : 0.0) << "% of traced"
             << (st.hierarchicalPixels ? (st.traversalDeferred ? ", in a pass of its own" : ", inline") : "") << ")"
-            << (st.level1Pass ? "; the pyramid's level 1 in a pass of its own (the frame before listed no tile)" : "")
+            << (st.followedEmptyFrame ? "; the pyramid's level 1 in a pass of its own (the frame before listed no tile)" : "")
             << "\n";
   // The commands each pass recorded (the same on every device: what a GPU pays for per frame).
   std::printf("  commands (dispatches + indirect / barriers / programs / uploads):");
@@ -385,6 +398,9 @@ void printStats(const FrameStats& st, const std::vector<FrameStats>& laterStats,
   const PassCommands total = st.totalCommands();
   std::printf("; frame %u + %u / %u / %u / %u\n", total.dispatches, total.indirectDispatches, total.barriers,
               total.programs, total.uploads);
+  // The texture memory each pass touched (FrameStats::*Traffic: a model from the counts and formats).
+  std::printf("  texture traffic (MB read / written, modelled):");
+  printPassTraffic(st);
   if (st.classifyMs >= 0.0 && laterStats.empty())
     std::printf("  pass times (GL_TIMESTAMP%s): classify %.2f ms, pyramid %.2f ms, trace %.2f ms, blur %.2f ms\n",
                 software ? "; a software renderer: CPU work; the first frame, with shader compilation"
@@ -434,7 +450,7 @@ int render(const RenderJob& job) {
   r.setCompositeMode(job.compositeMode);
   GpuScene gpuScene(job.scene);
   const Settings* settings = job.reflections ? &job.settings : nullptr;
-  const bool stats = job.settings.collectStats && job.reflections;
+  const bool stats = job.settings.debug.collectStats && job.reflections;
   std::vector<FrameStats> laterStats;  // every frame after the first (which compiles the shaders)
   for (int frame = 0; frame < job.frames; ++frame) {
     if (Status s = r.render(gpuScene, job.camera, settings); !s) {

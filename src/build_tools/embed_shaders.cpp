@@ -8,7 +8,7 @@
 // include guards; a file including itself, directly or not, is an error. The generated source defines, in
 // the given namespace:
 //   const char* embeddedShader(std::string_view entry);   // nullptr if unknown
-//   std::string annotateShaderLog(std::string_view log);  // "0:12(3)" -> "trace.comp:12(3)"
+//   std::string annotateShaderLog(std::string_view log);  // "0:12(3)" -> "3_trace.comp:12(3)"
 // The caller prepends "#version ..." and its #defines; the text starts with a #line marker.
 #include <filesystem>
 #include <fstream>

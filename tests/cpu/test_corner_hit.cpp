@@ -116,7 +116,7 @@ class CornerHit : public ::testing::Test {
 
   static SslrTraceParams params(float slab) {
     SslrTraceParams t{};
-    t.objectThickness = slab / -kFrontZ;
+    t.objectDepthRelative = slab / -kFrontZ;
     return t;
   }
 };

@@ -19,7 +19,7 @@ constexpr float kWidth = test::kFrameWidth, kHeight = test::kFrameHeight;
 using Frame = test::SharedFrame;
 Frame frameFor(DepthMode mode, bool ortho) {
   Frame s = test::sharedFrameFor(mode, ortho);
-  s.trace.objectThickness = 0.075f;
+  s.trace.objectDepthRelative = 0.075f;
   s.trace.curvedSolids = 1;
   return s;
 }
@@ -189,7 +189,7 @@ TEST(CurvedSolids, Level1CellHoldsTheSolidsBack) {
                                       normals[1], normals[2], normals[3], extra);
   // Seen head-on the sphere is 2r = 3 deep, capped at 4 slabs (4 x 0.0975 x 6.5): 1.95.
   const float front = -centre.z - radius;
-  const float slab = s.trace.objectThickness * front;
+  const float slab = s.trace.objectDepthRelative * front;
   for (int k = 0; k < 4; ++k) EXPECT_NEAR(extra[k], 3.0f * slab, 0.02f * slab) << "pixel " << k;
   // Reversed Z: the farther key is the smaller depth; the back lies 3 slabs beyond the front.
   EXPECT_NEAR(sslrViewDepthFromDepth(s.proj, cell.x), front + 3.0f * slab, 0.02f);

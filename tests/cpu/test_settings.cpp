@@ -17,26 +17,26 @@ TEST(Settings, DefaultsAndPresetsAreValid) {
 
 // Each preset spends at least what the one below spends on every knob, and more on some: low is
 // adaptive L alone; medium adds the traversal (capped at 96 steps) with high's adaptive L, since
-// fewer iterations only send more pixels to the traversal (docs/algorithm.md, "Presets").
+// fewer iterations only send more pixels to the traversal (docs/design-notes.md, "Presets").
 TEST(Settings, PresetsGrowInEffort) {
   const Settings low = Settings::preset(Preset::Low), med = Settings::preset(Preset::Medium),
                  high = Settings::preset(Preset::High), ultra = Settings::preset(Preset::Ultra);
-  EXPECT_FALSE(low.hierarchicalFallback);
-  EXPECT_TRUE(med.hierarchicalFallback && high.hierarchicalFallback && ultra.hierarchicalFallback);
-  EXPECT_FALSE(low.hierarchicalVerify || med.hierarchicalVerify);
-  EXPECT_TRUE(high.hierarchicalVerify);
-  EXPECT_TRUE(ultra.hierarchicalVerify);
-  EXPECT_LT(low.maxIterations, med.maxIterations);
-  EXPECT_LE(med.maxIterations, high.maxIterations);
-  EXPECT_LT(high.maxIterations, ultra.maxIterations);
-  EXPECT_GE(low.convergenceEps, med.convergenceEps);
-  EXPECT_GE(med.convergenceEps, high.convergenceEps);
-  EXPECT_GT(high.convergenceEps, ultra.convergenceEps);
-  EXPECT_LT(med.hierarchicalMaxSteps, high.hierarchicalMaxSteps);
-  EXPECT_LT(high.hierarchicalMaxSteps, ultra.hierarchicalMaxSteps);
+  EXPECT_FALSE(low.traversal.fallback);
+  EXPECT_TRUE(med.traversal.fallback && high.traversal.fallback && ultra.traversal.fallback);
+  EXPECT_FALSE(low.traversal.verify || med.traversal.verify);
+  EXPECT_TRUE(high.traversal.verify);
+  EXPECT_TRUE(ultra.traversal.verify);
+  EXPECT_LT(low.adaptiveL.maxIterations, med.adaptiveL.maxIterations);
+  EXPECT_LE(med.adaptiveL.maxIterations, high.adaptiveL.maxIterations);
+  EXPECT_LT(high.adaptiveL.maxIterations, ultra.adaptiveL.maxIterations);
+  EXPECT_GE(low.adaptiveL.convergenceEps, med.adaptiveL.convergenceEps);
+  EXPECT_GE(med.adaptiveL.convergenceEps, high.adaptiveL.convergenceEps);
+  EXPECT_GT(high.adaptiveL.convergenceEps, ultra.adaptiveL.convergenceEps);
+  EXPECT_LT(med.traversal.maxSteps, high.traversal.maxSteps);
+  EXPECT_LT(high.traversal.maxSteps, ultra.traversal.maxSteps);
   for (auto [lower, upper] : {std::pair{low, med}, std::pair{med, high}, std::pair{high, ultra}}) {
-    EXPECT_LT(lower.blurMaxRadiusPx, upper.blurMaxRadiusPx);
-    EXPECT_LT(lower.roughnessCutoff, upper.roughnessCutoff);
+    EXPECT_LT(lower.blur.maxRadiusPx, upper.blur.maxRadiusPx);
+    EXPECT_LT(lower.selection.roughnessCutoff, upper.selection.roughnessCutoff);
   }
 }
 
@@ -46,33 +46,33 @@ TEST(Settings, EveryInvalidFieldIsNamed) {
     void (*apply)(Settings&);
   };
   const Bad cases[] = {
-      {"maxIterations", [](Settings& s) { s.maxIterations = 0; }},
-      {"maxIterations", [](Settings& s) { s.maxIterations = 100000; }},
-      {"hierarchicalVerify", [](Settings& s) { s.hierarchicalVerify = true; s.hierarchicalFallback = false; }},
-      {"hiddenPassageLimitPx", [](Settings& s) { s.hiddenPassageLimitPx = -1.0f; }},
+      {"adaptiveL.maxIterations", [](Settings& s) { s.adaptiveL.maxIterations = 0; }},
+      {"adaptiveL.maxIterations", [](Settings& s) { s.adaptiveL.maxIterations = 100000; }},
+      {"traversal.verify", [](Settings& s) { s.traversal.verify = true; s.traversal.fallback = false; }},
+      {"traversal.hiddenPassageLimitPx", [](Settings& s) { s.traversal.hiddenPassageLimitPx = -1.0f; }},
       {"ffx.depthBufferThickness", [](Settings& s) { s.ffx.depthBufferThickness = 0.0f; }},
       {"ffx.maxTraversalIntersections", [](Settings& s) { s.ffx.maxTraversalIntersections = 0; }},
-      {"hiddenPassageLimitPx", [](Settings& s) { s.hiddenPassageLimitPx = NAN; }},
-      {"traversalPass", [](Settings& s) { s.traversalPass = static_cast<TraversalPass>(7); }},
-      {"convergenceEps", [](Settings& s) { s.convergenceEps = -1.0f; }},
-      {"initialLengthScreen", [](Settings& s) { s.initialLengthScreen = 0.0f; }},
-      {"initialLengthScreen", [](Settings& s) { s.initialLengthScreen = 2.0f; }},
-      {"errorK", [](Settings& s) { s.errorK = NAN; }},
-      {"maxDistance", [](Settings& s) { s.maxDistance = 0.0f; }},
-      {"maxDistance", [](Settings& s) { s.maxDistance = NAN; }},
-      {"thicknessRelative", [](Settings& s) { s.thicknessRelative = -0.1f; }},
-      {"thicknessPixels", [](Settings& s) { s.thicknessPixels = INFINITY; }},
-      {"both 0", [](Settings& s) { s.thicknessPixels = 0.0f; s.thicknessRelative = 0.0f; }},
-      {"edgeFade", [](Settings& s) { s.edgeFade = 0.7f; }},
-      {"cameraFadeStart", [](Settings& s) { s.cameraFadeStart = 0.9f; s.cameraFadeEnd = 0.1f; }},
-      {"roughnessCutoff", [](Settings& s) { s.roughnessCutoff = NAN; }},
-      {"roughnessCutoff", [](Settings& s) { s.roughnessCutoff = -0.1f; }},
-      {"roughnessCutoff", [](Settings& s) { s.roughnessCutoff = 1.5f; }},
-      {"minReflectance", [](Settings& s) { s.minReflectance = INFINITY; }},
-      {"blurMaxRadiusPx", [](Settings& s) { s.blurMaxRadiusPx = 100.0f; }},
-      {"blurConeScale", [](Settings& s) { s.blurConeScale = -1.0f; }},
-      {"blurDepthSigma", [](Settings& s) { s.blurDepthSigma = 0.0f; }},
-      {"blurNormalPower", [](Settings& s) { s.blurNormalPower = NAN; }},
+      {"traversal.hiddenPassageLimitPx", [](Settings& s) { s.traversal.hiddenPassageLimitPx = NAN; }},
+      {"traversal.pass", [](Settings& s) { s.traversal.pass = static_cast<TraversalPass>(7); }},
+      {"adaptiveL.convergenceEps", [](Settings& s) { s.adaptiveL.convergenceEps = -1.0f; }},
+      {"adaptiveL.initialLengthScreen", [](Settings& s) { s.adaptiveL.initialLengthScreen = 0.0f; }},
+      {"adaptiveL.initialLengthScreen", [](Settings& s) { s.adaptiveL.initialLengthScreen = 2.0f; }},
+      {"fades.errorK", [](Settings& s) { s.fades.errorK = NAN; }},
+      {"fades.maxDistance", [](Settings& s) { s.fades.maxDistance = 0.0f; }},
+      {"fades.maxDistance", [](Settings& s) { s.fades.maxDistance = NAN; }},
+      {"hitTolerance.relative", [](Settings& s) { s.hitTolerance.relative = -0.1f; }},
+      {"hitTolerance.pixels", [](Settings& s) { s.hitTolerance.pixels = INFINITY; }},
+      {"both 0", [](Settings& s) { s.hitTolerance.pixels = 0.0f; s.hitTolerance.relative = 0.0f; }},
+      {"fades.screenEdge", [](Settings& s) { s.fades.screenEdge = 0.7f; }},
+      {"fades.cameraStart", [](Settings& s) { s.fades.cameraStart = 0.9f; s.fades.cameraEnd = 0.1f; }},
+      {"selection.roughnessCutoff", [](Settings& s) { s.selection.roughnessCutoff = NAN; }},
+      {"selection.roughnessCutoff", [](Settings& s) { s.selection.roughnessCutoff = -0.1f; }},
+      {"selection.roughnessCutoff", [](Settings& s) { s.selection.roughnessCutoff = 1.5f; }},
+      {"selection.minReflectance", [](Settings& s) { s.selection.minReflectance = INFINITY; }},
+      {"blur.maxRadiusPx", [](Settings& s) { s.blur.maxRadiusPx = 100.0f; }},
+      {"blur.coneScale", [](Settings& s) { s.blur.coneScale = -1.0f; }},
+      {"blur.depthSigma", [](Settings& s) { s.blur.depthSigma = 0.0f; }},
+      {"blur.normalPower", [](Settings& s) { s.blur.normalPower = NAN; }},
   };
   for (const Bad& b : cases) {
     Settings s;

@@ -128,15 +128,15 @@ TEST_F(Api, DispatchRejectsEveryBadInputWithAMessage) {
     EXPECT_EQ(sslr::test::glContext()->glErrorCount(), 0) << "after: " << b.expect;
   }
   Settings bad;
-  bad.maxIterations = -3;
+  bad.adaptiveL.maxIterations = -3;
   const Status st = ctx->dispatch(good, bad);
   ASSERT_FALSE(st);
-  EXPECT_NE(st.message().find("maxIterations"), std::string::npos) << st.message();
+  EXPECT_NE(st.message().find("adaptiveL.maxIterations"), std::string::npos) << st.message();
   Settings negativeCutoff;
-  negativeCutoff.roughnessCutoff = -0.1f;
+  negativeCutoff.selection.roughnessCutoff = -0.1f;
   const Status cutoff = ctx->dispatch(good, negativeCutoff);
   ASSERT_FALSE(cutoff);
-  EXPECT_NE(cutoff.message().find("roughnessCutoff = -0.1 (must be 0..1"), std::string::npos) << cutoff.message();
+  EXPECT_NE(cutoff.message().find("selection.roughnessCutoff = -0.1 (must be 0..1"), std::string::npos) << cutoff.message();
   // A failed dispatch leaves nothing to composite.
   EXPECT_FALSE(ctx->composite(0));
   // Bad framebuffer names are refused.
@@ -280,8 +280,8 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
 
   const Snapshot before = Snapshot::take();
   Settings s;
-  s.debugOutputs = true;
-  s.collectStats = true;
+  s.debug.outputs = true;
+  s.debug.collectStats = true;
   FrameInputs depthOnly = f.gbuffer->frameInputs();
   depthOnly.backDepthTexture = 0;
   ASSERT_TRUE(ctx->dispatch(depthOnly, s));
@@ -293,7 +293,7 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), half));
   EXPECT_EQ(Snapshot::take().values, before.values) << "half-resolution dispatch changed GL state";
   Settings temporal = s;
-  temporal.temporal = true;  // two more passes, two more textures (the second dispatch reads them)
+  temporal.temporal.enabled = true;  // two more passes, two more textures (the second dispatch reads them)
   FrameInputs withPrevious = f.gbuffer->frameInputs();
   withPrevious.previousClipFromView = withPrevious.clipFromView;
   for (int i = 0; i < 2; ++i) ASSERT_TRUE(ctx->dispatch(withPrevious, temporal));
@@ -378,7 +378,7 @@ TEST_F(Api, PoisonedGBufferNeverProducesNanOrInf) {
       in.surface.roughnessChannel = enc == NormalEncoding::Octahedral ? 2 : -1;
       Settings s;
       s.method = method;
-      s.debugOutputs = true;
+      s.debug.outputs = true;
       ASSERT_TRUE(ctx->dispatch(in, s));
       for (auto [tex, ch] : {std::pair{ctx->reflectionTexture(), 4}, {ctx->resolvedTexture(), 4},
                              {ctx->hitTexture(), 4}, {ctx->iterationsTexture(), 1}})
@@ -386,7 +386,7 @@ TEST_F(Api, PoisonedGBufferNeverProducesNanOrInf) {
       const Image iterations = readAll(ctx->iterationsTexture(), 1);
       // Loop counts bounded: adaptive L's cap plus the hierarchical fallback's.
       for (float it : iterations.pixels)
-        ASSERT_LE(it, float(s.maxIterations + s.hierarchicalMaxSteps)) << "loop count bounded";
+        ASSERT_LE(it, float(s.adaptiveL.maxIterations + s.traversal.maxSteps)) << "loop count bounded";
     }
   }
   const GLuint t[3] = {color, normal, depth};
@@ -401,7 +401,7 @@ TEST_F(Api, EmptyFrameTracesNothing) {
   in.surface.reflectanceChannel = -1;
   in.surface.constantReflectance = 0.0f;
   Settings s;
-  s.collectStats = true;
+  s.debug.collectStats = true;
   ASSERT_TRUE(ctx->dispatch(in, s));
   const FrameStats empty = ctx->waitForStats();
   EXPECT_EQ(empty.frame, 1u);
@@ -413,7 +413,7 @@ TEST_F(Api, EmptyFrameTracesNothing) {
   // Reflective, but a constant roughness above the cutoff: nothing either.
   in = f.gbuffer->frameInputs();
   in.surface.roughnessChannel = -1;
-  in.surface.constantRoughness = std::nextafter(s.roughnessCutoff, 2.0f);
+  in.surface.constantRoughness = std::nextafter(s.selection.roughnessCutoff, 2.0f);
   ASSERT_TRUE(ctx->dispatch(in, s));
   EXPECT_EQ(ctx->waitForStats().tiles, 0u);
   // The same frame with reflectance traces and reports its work.
@@ -436,8 +436,8 @@ TEST_F(Api, FrameStatsCountEachPassCommands) {
   auto ctx = makeContext();
   Frame f;
   Settings s;
-  s.collectStats = true;
-  s.traversalPass = TraversalPass::Inline;
+  s.debug.collectStats = true;
+  s.traversal.pass = TraversalPass::Inline;
   auto expect = [](const PassCommands& c, std::uint32_t direct, std::uint32_t indirect, std::uint32_t barriers,
                    std::uint32_t programs, const char* what) {
     EXPECT_EQ(c.dispatches, direct) << what;
@@ -457,20 +457,91 @@ TEST_F(Api, FrameStatsCountEachPassCommands) {
   EXPECT_GT(st.classifyCommands.uploads, 0u) << "the frame constants at least";
 
   Settings alone = s;
-  alone.hierarchicalFallback = false;  // adaptive L alone needs no pyramid
-  alone.hierarchicalVerify = false;
+  alone.traversal.fallback = false;  // adaptive L alone needs no pyramid
+  alone.traversal.verify = false;
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), alone));
   st = ctx->waitForStats();
   expect(st.pyramidCommands, 0, 0, 0, 0, "no pyramid for adaptive L alone");
   expect(st.traceCommands, 0, 1, 1, 1, "trace");
 
   Settings temporal = s;
-  temporal.temporal = true;
+  temporal.temporal.enabled = true;
   FrameInputs in = f.gbuffer->frameInputs();
   in.previousClipFromView = in.clipFromView;
   for (int i = 0; i < 2; ++i) ASSERT_TRUE(ctx->dispatch(in, temporal));
   st = ctx->waitForStats();
   expect(st.temporalCommands, 0, 3, 3, 3, "temporal: blend, store, history clean-up");
+}
+
+// FrameStats' texture traffic follows from the frame's counts and the G-buffer's formats (here
+// D32F depth, RGBA16 normal with the material in its blue and alpha, R11F_G11F_B10F colour): an
+// empty frame reads the screen's depth and material and nothing else; a full frame's trace writes
+// two RGBA16F texels per pixel of its listed tiles, plus the debug images' when asked for.
+TEST_F(Api, FrameStatsModelTextureTraffic) {
+  auto ctx = makeContext();
+  Frame f;
+  const std::uint64_t P = std::uint64_t(W) * H, quads = std::uint64_t((W + 1) / 2) * ((H + 1) / 2);
+  FrameInputs full = f.gbuffer->frameInputs(), empty = full;
+  empty.surface.reflectanceChannel = -1;
+  empty.surface.constantReflectance = 0.0f;
+  Settings s;
+  s.debug.collectStats = true;
+  auto none = [](const PassTraffic& t, const char* what) {
+    EXPECT_EQ(t.texelsRead + t.texelsWritten + t.bytesRead + t.bytesWritten, 0u) << what;
+  };
+
+  // A context's first frame writes the pyramid's levels 0 and 1 in classification (it cannot know
+  // the frame lists no tile): per pixel its depth, one material gather (roughness; reflectance is
+  // a constant here) and, for curved solids, two normal gathers; level 1 whole and level 0 at most
+  // whole.
+  ASSERT_TRUE(ctx->dispatch(empty, s));
+  FrameStats st = ctx->waitForStats();
+  ASSERT_EQ(st.tiles, 0u);
+  EXPECT_EQ(st.classifyTraffic.texelsRead, 4 * P);
+  EXPECT_EQ(st.classifyTraffic.bytesRead, P * (4 + 8 + 2 * 8));
+  EXPECT_EQ(st.classifyTraffic.texelsWritten, quads + P);
+  EXPECT_EQ(st.classifyTraffic.bytesWritten, (quads + P) * 8);
+  none(st.pyramidTraffic, "pyramid: no tile listed");
+  none(st.traceTraffic, "trace: no tile listed");
+  none(st.blurTraffic, "blur");
+  none(st.temporalTraffic, "temporal: off");
+
+  // After an empty frame: the screen's depth and its one material channel, nothing written.
+  ASSERT_TRUE(ctx->dispatch(empty, s));
+  st = ctx->waitForStats();
+  ASSERT_TRUE(st.followedEmptyFrame);
+  EXPECT_EQ(st.classifyTraffic.bytesRead, P * (4 + 8));
+  EXPECT_EQ(st.classifyTraffic.bytesWritten, 0u);
+
+  // A full frame: the trace writes reflection and resolved for every pixel of its tiles, and reads
+  // each pixel's normal and depth, every counted fetch (a pyramid texel at most, 8 B), and per ray
+  // a bilinear colour read (4 texels of 4 B) and the hit's normal.
+  ASSERT_TRUE(ctx->dispatch(full, s));
+  st = ctx->waitForStats();
+  ASSERT_TRUE(st.followedEmptyFrame);
+  EXPECT_EQ(st.pyramidTraffic.bytesRead, P * (4 + 2 * 8) + quads * 8)
+      << "levels 0 and 1 in a pass of their own (depth, curved normal gathers), then level 1 for the rest";
+  ASSERT_TRUE(ctx->dispatch(full, s));
+  st = ctx->waitForStats();
+  ASSERT_GT(st.tiles, 0u);
+  const std::uint64_t tilePixels = std::uint64_t(st.tiles) * 64;
+  EXPECT_EQ(st.traceTraffic.texelsWritten, 2 * tilePixels);
+  EXPECT_EQ(st.traceTraffic.bytesWritten, 16 * tilePixels);
+  EXPECT_EQ(st.traceTraffic.bytesRead,
+            tilePixels * (8 + 4) + std::uint64_t(st.fetches) * 8 + std::uint64_t(st.tracedPixels) * (4 * 4 + 8));
+  EXPECT_GT(st.pyramidTraffic.bytesWritten, 0u) << "levels 2 and up";
+  EXPECT_EQ(st.pyramidTraffic.bytesRead, quads * 8) << "level 1, once";
+  const PassTraffic total = st.totalTraffic();
+  EXPECT_EQ(total.bytesRead, st.classifyTraffic.bytesRead + st.pyramidTraffic.bytesRead + st.traceTraffic.bytesRead +
+                                 st.blurTraffic.bytesRead + st.temporalTraffic.bytesRead);
+
+  // The debug images add a hit record (RGBA32F) and an iteration count (R32F) per pixel.
+  Settings debug = s;
+  debug.debug.outputs = true;
+  ASSERT_TRUE(ctx->dispatch(full, debug));
+  const FrameStats withDebug = ctx->waitForStats();
+  ASSERT_EQ(withDebug.tiles, st.tiles);
+  EXPECT_EQ(withDebug.traceTraffic.bytesWritten, tilePixels * (16 + 16 + 4));
 }
 
 TEST_F(Api, StatsArriveLateWithoutStalling) {
@@ -480,7 +551,7 @@ TEST_F(Api, StatsArriveLateWithoutStalling) {
   empty.surface.reflectanceChannel = -1;
   empty.surface.constantReflectance = 0.0f;
   Settings s;
-  s.collectStats = true;
+  s.debug.collectStats = true;
   EXPECT_EQ(ctx->lastStats().frame, 0u);  // nothing dispatched yet
   // More frames than the ring holds, none read in between: the oldest slots are overwritten.
   for (int i = 1; i <= 7; ++i) ASSERT_TRUE(ctx->dispatch(i % 2 ? full : empty, s));
@@ -572,7 +643,7 @@ TEST_F(Api, WorldSpaceNormalsWithTheViewMatrixGiveTheSameHits) {
   Frame f;
   const FrameInputs viewIn = f.gbuffer->frameInputs();
   Settings s;
-  s.debugOutputs = true;
+  s.debug.outputs = true;
   ASSERT_TRUE(ctx->dispatch(viewIn, s));
   const Image hitView = readAll(ctx->hitTexture(), 4);
   // The same normals in world space, in a texture of the host's format (RGBA16 octahedral).
@@ -630,7 +701,7 @@ TEST_F(Api, SeparateMaterialTextureGivesThePackedResult) {
   Frame f;
   const FrameInputs packedIn = f.gbuffer->frameInputs();  // roughness in B, reflectance in A
   Settings s;
-  s.debugOutputs = true;
+  s.debug.outputs = true;
   ASSERT_TRUE(ctx->dispatch(packedIn, s));
   const Image hitPacked = readAll(ctx->hitTexture(), 4), resolvedPacked = readAll(ctx->resolvedTexture(), 4);
   // RG16 material texture: R = reflectance, G = roughness (the other order on purpose).
@@ -684,12 +755,12 @@ TEST_F(Api, PrepareCompilesEveryProgramFramesUse) {
     const FrameInputs in = f.gbuffer->frameInputs();
     Settings s;
     s.halfResolution = half;
-    s.collectStats = true;
+    s.debug.collectStats = true;
     ASSERT_TRUE(ctx.value()->prepare(in, s));
     const int prepared = compiled;
     EXPECT_GT(prepared, 5) << "half " << half;
     Settings empty = s;
-    empty.minReflectance = 1.0f;  // nothing reflects: no tile is listed
+    empty.selection.minReflectance = 1.0f;  // nothing reflects: no tile is listed
     GLuint target = makeTexture(GL_RGBA16F), fbo = 0;
     glCreateFramebuffers(1, &fbo);
     glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, target, 0);
@@ -698,7 +769,7 @@ TEST_F(Api, PrepareCompilesEveryProgramFramesUse) {
       ASSERT_TRUE(ctx.value()->dispatch(in, *frame));
       const FrameStats st = ctx.value()->waitForStats();
       if (st.hierarchicalPixels > 0) (st.traversalDeferred ? sawDeferred : sawInline) = true;
-      sawLevel1Pass = sawLevel1Pass || st.level1Pass;
+      sawLevel1Pass = sawLevel1Pass || st.followedEmptyFrame;
       ASSERT_TRUE(ctx.value()->composite(fbo));
       ASSERT_TRUE(ctx.value()->composite(fbo, {CompositeMode::BlendOverFallback, f.gbuffer->fallbackSpecularTexture()}));
     }
@@ -716,10 +787,10 @@ TEST_F(Api, PrepareRefusesWhatDispatchRefuses) {
   ASSERT_TRUE(ctx);
   Frame f;
   Settings bad;
-  bad.maxIterations = 0;
+  bad.adaptiveL.maxIterations = 0;
   const Status st = ctx->prepare(f.gbuffer->frameInputs(), bad);
   ASSERT_FALSE(st);
-  EXPECT_NE(st.message().find("maxIterations"), std::string::npos) << st.message();
+  EXPECT_NE(st.message().find("adaptiveL.maxIterations"), std::string::npos) << st.message();
   FrameInputs identity = f.gbuffer->frameInputs();
   identity.clipFromView = glm::dmat4(1.0);
   const Status proj = ctx->prepare(identity, Settings{});
@@ -790,8 +861,8 @@ TEST_F(Api, MaskTextureLimitsWhereRaysStart) {
   Frame f;
   FrameInputs in = f.gbuffer->frameInputs();
   Settings s;
-  s.debugOutputs = true;
-  s.collectStats = true;
+  s.debug.outputs = true;
+  s.debug.collectStats = true;
   ASSERT_TRUE(ctx->dispatch(in, s));
   const Image hitAll = readAll(ctx->hitTexture(), 4);
   const FrameStats statsAll = ctx->waitForStats();
@@ -849,9 +920,9 @@ TEST_F(Api, EveryOptionAtOnceLeavesNoGlError) {
   in.viewFromWorld = f.gbuffer->viewFromWorld();
   Settings s = Settings::preset(Preset::Ultra);
   s.halfResolution = true;
-  s.traversalPass = TraversalPass::Deferred;
-  s.debugOutputs = true;
-  s.collectStats = true;
+  s.traversal.pass = TraversalPass::Deferred;
+  s.debug.outputs = true;
+  s.debug.collectStats = true;
   ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
   ASSERT_TRUE(ctx->dispatch(in, s));
   EXPECT_GT(ctx->waitForStats().tracedPixels, 0u);
@@ -863,7 +934,7 @@ TEST_F(Api, EveryOptionAtOnceLeavesNoGlError) {
 TEST_F(Api, ArticleXyzNormalsGiveTheSameHitsAsOctahedral) {
   auto ctx = makeContext();
   Settings s;
-  s.debugOutputs = true;
+  s.debug.outputs = true;
   Frame oct(DepthMode::Reversed, NormalEncoding::Octahedral);
   ASSERT_TRUE(ctx->dispatch(oct.gbuffer->frameInputs(), s));
   const Image hitOct = readAll(ctx->hitTexture(), 4);
@@ -889,15 +960,15 @@ size_t pyramidCount() { return sslr::test::texturesLabelled("sslr.depthPyramid")
 
 // Memory only for what a frame uses: the depth pyramid (~10.7 B per pixel) is allocated by the
 // first dispatch that traces it (a host on adaptive L alone or on the tutorial's method never pays
-// for it), the hit record and iteration images (20 B per pixel) by the first with debugOutputs.
+// for it), the hit record and iteration images (20 B per pixel) by the first with debug.outputs.
 // After a resize, again on use.
 TEST_F(Api, MemoryIsAllocatedOnlyForWhatAFrameUses) {
   const size_t before = pyramidCount();
   auto ctx = makeContext();
   Frame f;
   Settings alone;
-  alone.hierarchicalFallback = false;
-  alone.hierarchicalVerify = false;
+  alone.traversal.fallback = false;
+  alone.traversal.verify = false;
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), alone));
   EXPECT_EQ(pyramidCount(), before) << "adaptive L alone traces no pyramid";
   EXPECT_EQ(ctx->hitTexture(), 0u);
@@ -906,7 +977,7 @@ TEST_F(Api, MemoryIsAllocatedOnlyForWhatAFrameUses) {
   EXPECT_EQ(pyramidCount(), before + 1);
   EXPECT_EQ(ctx->hitTexture(), 0u) << "no debug outputs asked for";
   Settings debug;
-  debug.debugOutputs = true;
+  debug.debug.outputs = true;
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), debug));
   EXPECT_NE(ctx->hitTexture(), 0u);
   EXPECT_NE(ctx->iterationsTexture(), 0u);
@@ -1067,7 +1138,7 @@ TEST_F(Api, ErrorsCarryTheirKind) {
   Frame f;
   const FrameInputs good = f.gbuffer->frameInputs();
   Settings bad;
-  bad.maxIterations = 0;
+  bad.adaptiveL.maxIterations = 0;
   EXPECT_EQ(ctx->dispatch(good, bad).code(), StatusCode::InvalidSettings);
   EXPECT_EQ(ctx->prepare(good, bad).code(), StatusCode::InvalidSettings);
   FrameInputs identity = good;
@@ -1098,7 +1169,7 @@ TEST_F(Api, PoisonedTexelsStayLocalAndLeaveNoTrace) {
   Frame f;
   const FrameInputs in = f.gbuffer->frameInputs();
   Settings s;
-  s.debugOutputs = true;
+  s.debug.outputs = true;
   ASSERT_TRUE(ctx->dispatch(in, s));
   const Image cleanResolved = readAll(ctx->resolvedTexture(), 4), cleanHit = readAll(ctx->hitTexture(), 4);
   const float nan = NAN;

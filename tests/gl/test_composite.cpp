@@ -128,7 +128,7 @@ struct BlurCase {
   int widestPx;  // the test requires a pixel with at least this radius
 };
 void PrintTo(const BlurCase& c, std::ostream* os) {
-  *os << "blurMaxRadiusPx " << c.maxRadiusPx << ", blurConeScale " << c.coneScale;
+  *os << "blur.maxRadiusPx " << c.maxRadiusPx << ", blur.coneScale " << c.coneScale;
 }
 class CompositeBlur : public sslr::test::GlTest, public ::testing::WithParamInterface<BlurCase> {};
 
@@ -141,12 +141,12 @@ class CompositeBlur : public sslr::test::GlTest, public ::testing::WithParamInte
 TEST_P(CompositeBlur, MatchesTheSharedHeadersFilterOnTheCpu) {
   Fixture f("glossy");
   Settings s;
-  s.blurMaxRadiusPx = GetParam().maxRadiusPx;
-  s.blurConeScale = GetParam().coneScale;
-  s.blur = false;
+  s.blur.maxRadiusPx = GetParam().maxRadiusPx;
+  s.blur.coneScale = GetParam().coneScale;
+  s.blur.enabled = false;
   ASSERT_TRUE(f.ctx->dispatch(f.gbuffer->frameInputs(), s));
   const Image unblurred = readTexture(f.ctx->resolvedTexture(), W, H, 4);
-  s.blur = true;
+  s.blur.enabled = true;
   ASSERT_TRUE(f.ctx->dispatch(f.gbuffer->frameInputs(), s));
   const Image gpu = readTexture(f.ctx->resolvedTexture(), W, H, 4);
   const Image reflection = readTexture(f.ctx->reflectionTexture(), W, H, 4);
@@ -159,8 +159,8 @@ TEST_P(CompositeBlur, MatchesTheSharedHeadersFilterOnTheCpu) {
   float widest = 0.0f;
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {
-      blurred += reflection.at(x, y, 3) * s.blurMaxRadiusPx >= 0.5f;
-      widest = std::max(widest, reflection.at(x, y, 3) * s.blurMaxRadiusPx);
+      blurred += reflection.at(x, y, 3) * s.blur.maxRadiusPx >= 0.5f;
+      widest = std::max(widest, reflection.at(x, y, 3) * s.blur.maxRadiusPx);
       float moved = 0.0f;
       for (int c = 0; c < 4; ++c) {
         const float want = cpu.at(x, y, c);
@@ -168,7 +168,7 @@ TEST_P(CompositeBlur, MatchesTheSharedHeadersFilterOnTheCpu) {
         // relative) apart where the GPU's exp and pow differ from the CPU's in the last bits.
         ASSERT_NEAR(gpu.at(x, y, c), want, 2.5e-3f * std::max(std::abs(want), 0.05f))
             << "pixel (" << x << ", " << y << ") channel " << c << ", radius "
-            << reflection.at(x, y, 3) * s.blurMaxRadiusPx << " px";
+            << reflection.at(x, y, 3) * s.blur.maxRadiusPx << " px";
         moved = std::max(moved, std::abs(want - unblurred.at(x, y, c)));
       }
       changed += moved > 0.02f;

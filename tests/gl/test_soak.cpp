@@ -127,20 +127,20 @@ TEST_F(Soak, ObjectsErrorsAndMemoryStayFlat) {
     Settings s = Settings::preset(static_cast<Preset>(pick(4)));
     s.method = static_cast<Method>(pick(4));
     s.fresnel = pick(2) ? FresnelMode::Classic : FresnelMode::Schlick;
-    s.hierarchicalFallback = pick(2) == 0;
-    s.hierarchicalVerify = s.hierarchicalFallback && pick(2) == 0;  // verify without fallback is refused
-    s.traversalPass = static_cast<TraversalPass>(pick(3));
-    s.outlineThinning = pick(2) == 0;
-    s.curvedSolids = pick(2) == 0;
-    s.hierarchicalMaxSteps = 1 + pick(200);
-    s.maxIterations = 1 + pick(40);
-    s.objectThickness = uniform(0.0f, 0.5f);
-    s.thicknessPixels = uniform(0.1f, 4.0f);
-    s.blur = pick(4) != 0;
-    s.blurMaxRadiusPx = uniform(0.0f, 16.0f);
-    s.roughnessCutoff = uniform(0.0f, 1.0f);
-    s.debugOutputs = pick(3) == 0;
-    s.collectStats = pick(3) == 0;
+    s.traversal.fallback = pick(2) == 0;
+    s.traversal.verify = s.traversal.fallback && pick(2) == 0;  // verify without fallback is refused
+    s.traversal.pass = static_cast<TraversalPass>(pick(3));
+    s.traversal.outlineThinning = pick(2) == 0;
+    s.traversal.curvedSolids = pick(2) == 0;
+    s.traversal.maxSteps = 1 + pick(200);
+    s.adaptiveL.maxIterations = 1 + pick(40);
+    s.traversal.objectDepthRelative = uniform(0.0f, 0.5f);
+    s.hitTolerance.pixels = uniform(0.1f, 4.0f);
+    s.blur.enabled = pick(4) != 0;
+    s.blur.maxRadiusPx = uniform(0.0f, 16.0f);
+    s.selection.roughnessCutoff = uniform(0.0f, 1.0f);
+    s.debug.outputs = pick(3) == 0;
+    s.debug.collectStats = pick(3) == 0;
     s.positionBuffer.resolution = uniform(0.05f, 1.0f);
     s.positionBuffer.steps = pick(16);
     s.dda.stride = uniform(1.0f, 16.0f);

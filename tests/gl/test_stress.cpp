@@ -37,7 +37,7 @@ TEST_F(Stress, DepthConventionsNearFarFovAndViewports) {
   const double fovs[] = {1.0, 10.0, 60.0, 120.0, 170.0};
   const std::pair<int, int> sizes[] = {{1, 1}, {1, 17}, {7, 3}, {40, 30}};
   Settings s;
-  s.debugOutputs = true;
+  s.debug.outputs = true;
   int cases = 0;
   for (auto [w, h] : sizes)
     for (DepthMode mode : modes) {
@@ -68,7 +68,7 @@ TEST_F(Stress, DepthConventionsNearFarFovAndViewports) {
                                        (method == Method::AdaptiveL ? " adaptive-l" : " hiz");
               ASSERT_EQ(nonFiniteOutputs(*r.value()), 0u) << what;
               // Adaptive L's cap plus the hierarchical traversal's: every loop is bounded.
-              ASSERT_LE(maxIterations(*r.value()), float(s.maxIterations + s.hierarchicalMaxSteps)) << what;
+              ASSERT_LE(maxIterations(*r.value()), float(s.adaptiveL.maxIterations + s.traversal.maxSteps)) << what;
               ++cases;
             }
           }
@@ -96,7 +96,7 @@ TEST_F(Stress, HitsDoNotDependOnTheDistanceFromTheWorldOrigin) {
   auto r = FrameRenderer::create(o);
   ASSERT_TRUE(r);
   Settings s;
-  s.debugOutputs = true;
+  s.debug.outputs = true;
   double recallAtOrigin = 0.0;
   for (double d : {0.0, 1e3, 1e5, 1e6}) {
     const Scene scene = transformedScene(base.value(), {d, 0.5 * d, -d});

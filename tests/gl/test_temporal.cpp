@@ -49,7 +49,7 @@ struct Sequence {
 double halfResolutionFlicker(bool temporal) {
   Sequence q;
   Settings s;
-  s.temporal = temporal;
+  s.temporal.enabled = temporal;
   s.halfResolution = true;
   double change = 0.0;
   Image previous;
@@ -79,7 +79,7 @@ TEST_F(Temporal, HistoryDampsHalfResolutionFlicker) {
 TEST_F(Temporal, StaticFramesStayPut) {
   Sequence q;
   Settings plain, temporal;
-  temporal.temporal = true;
+  temporal.temporal.enabled = true;
   ASSERT_TRUE(q.frame(plain, {0.0, 0.0}));
   const Image reference = q.resolved();
   for (int i = 0; i < 4; ++i) ASSERT_TRUE(q.frame(temporal, {0.0, 0.0}));
@@ -93,7 +93,7 @@ TEST_F(Temporal, StaticFramesStayPut) {
 TEST_F(Temporal, BrokenChainsUseNoHistory) {
   Sequence q;
   Settings plain, temporal;
-  temporal.temporal = true;
+  temporal.temporal.enabled = true;
   ASSERT_TRUE(q.frame(plain, {0.3, -0.2}));
   const Image reference = q.resolved();
   auto expectPlain = [&](const char* when) {
@@ -106,7 +106,7 @@ TEST_F(Temporal, BrokenChainsUseNoHistory) {
   expectPlain("after a frame without temporal reuse");
   ASSERT_TRUE(q.frame(temporal, {-0.3, 0.2}));
   Settings bad = temporal;
-  bad.maxIterations = -1;
+  bad.adaptiveL.maxIterations = -1;
   EXPECT_FALSE(q.frame(bad, {0.0, 0.0}));
   expectPlain("after a failed dispatch");
   ASSERT_TRUE(q.frame(temporal, {-0.3, 0.2}));
@@ -122,7 +122,7 @@ TEST_F(Temporal, MotionVectorsChooseWhereHistoryIsRead) {
   auto run = [](bool withMotion, glm::vec2 motion) {
     Sequence q;
     Settings s;
-    s.temporal = true;
+    s.temporal.enabled = true;
     s.halfResolution = true;  // a changing output, so that history shows
     GLuint tex = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &tex);
@@ -163,7 +163,7 @@ TEST_F(Temporal, MissingOrBadInputsAreRefused) {
   ASSERT_TRUE(q.gbuffer->render(*q.gpu, q.camera));
   FrameInputs in = q.gbuffer->frameInputs();
   Settings s;
-  s.temporal = true;
+  s.temporal.enabled = true;
   Status st = q.ctx->dispatch(in, s);
   ASSERT_FALSE(st);
   EXPECT_NE(st.message().find("previousClipFromView"), std::string::npos) << st.message();
@@ -173,11 +173,11 @@ TEST_F(Temporal, MissingOrBadInputsAreRefused) {
   ASSERT_FALSE(st);
   EXPECT_NE(st.message().find("not finite"), std::string::npos) << st.message();
   in.previousClipFromView = in.clipFromView;
-  s.temporalWeight = 1.0f;
+  s.temporal.historyWeight = 1.0f;
   st = q.ctx->dispatch(in, s);
   ASSERT_FALSE(st);
-  EXPECT_NE(st.message().find("temporalWeight"), std::string::npos) << st.message();
-  s.temporalWeight = 0.8f;
+  EXPECT_NE(st.message().find("temporal.historyWeight"), std::string::npos) << st.message();
+  s.temporal.historyWeight = 0.8f;
   GLuint oneChannel = 0;
   glCreateTextures(GL_TEXTURE_2D, 1, &oneChannel);
   glTextureStorage2D(oneChannel, 1, GL_R16F, W, H);

@@ -53,7 +53,7 @@ ScoredFrame renderScored(const Scene& scene, const Camera& camera, const GBuffer
   EXPECT_TRUE(r) << r.error();
   if (!r) return f;
   GpuScene gpu(scene);
-  settings.debugOutputs = true;
+  settings.debug.outputs = true;
   const Status st = r.value()->render(gpu, camera, &settings);
   EXPECT_TRUE(st) << st.message();
   auto gt = groundTruthFor(scene, r.value()->gbuffer(), settings);
@@ -203,7 +203,7 @@ TEST_P(CpuGpuAgreement, SameHitsOnTheSameGBuffer) {
   GpuScene gpu(scene.value());
   Settings s;
   s.method = GetParam();
-  s.debugOutputs = true;
+  s.debug.outputs = true;
   ASSERT_TRUE(r.value()->render(gpu, *scene.value().camera, &s));
   const Image gpuHit = r.value()->readHit();
   GBuffer& g = r.value()->gbuffer();
@@ -358,13 +358,13 @@ TEST_P(BackDepth, MeasuredThicknessFindsMoreAndFalseHitsNoMore) {
 INSTANTIATE_TEST_SUITE_P(Scenes, BackDepth, ::testing::Values("facing-mirror", "turned-mirror", "mirror-walls"),
                          sceneParamName);
 
-// Settings::hiddenPassageLimitPx refuses hits of rays that travelled far behind the depth buffer,
+// Settings::traversal.hiddenPassageLimitPx refuses hits of rays that travelled far behind the depth buffer,
 // where hidden geometry may have stopped them unseen: false hits fall, and recall with them (the
 // trade docs/results.md measures; off by default). turned-mirror at 192x108 with the back depth:
 // 8 px -> recall 0.9714 -> 0.8978, false hits 13.6% -> 0.93%.
 TEST_F(BackDepth, HiddenPassageLimitTradesRecallForFalseHits) {
   Settings limited;
-  limited.hiddenPassageLimitPx = 8.0f;
+  limited.traversal.hiddenPassageLimitPx = 8.0f;
   const GpuCpuScores open = scoreOnGpuAndCpu("turned-mirror", Settings{}, 192, 108, true);
   const GpuCpuScores closed = scoreOnGpuAndCpu("turned-mirror", limited, 192, 108, true);
   ASSERT_TRUE(open.ok && closed.ok);
@@ -409,7 +409,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, FfxSssr, ::testing::Values("mirror-room", "glos
 // Two options of the depth-only tracer, each judged against itself switched off on the scene that
 // needs it, on the GPU pass and the CPU run (relative floors: they hold on any rasterizer).
 // - Outline thinning: facing-mirror's rays pass just behind the boxes' edges, where a box is
-//   thinner than objectThickness. Measured at 480x270: recall 0.935 -> 0.943, false hits 0.0449
+//   thinner than traversal.objectDepthRelative. Measured at 480x270: recall 0.935 -> 0.943, false hits 0.0449
 //   -> 0.0461 (960x540: 0.943 -> 0.953, 0.0169 -> 0.0184).
 // - Hit verification: adaptive L steps over thin-objects' poles onto the wall behind. Measured at
 //   320x180: recall 0.918 -> 0.934, false hits 0.0184 both (960x540: 0.963 -> 0.978).
@@ -443,16 +443,16 @@ TEST_P(TracerOptions, EachOptionFindsMoreThanWithoutIt) {
 INSTANTIATE_TEST_SUITE_P(
     DepthOnly, TracerOptions,
     ::testing::Values(OptionCase{"outline_thinning", "facing-mirror", 480, 270,
-                                 [](Settings& s, bool on) { s.outlineThinning = on; }, 0.004, 0.003},
+                                 [](Settings& s, bool on) { s.traversal.outlineThinning = on; }, 0.004, 0.003},
                       OptionCase{"hit_verification", "thin-objects", 320, 180,
-                                 [](Settings& s, bool on) { s.hierarchicalVerify = on; }, 0.01, 0.0005},
+                                 [](Settings& s, bool on) { s.traversal.verify = on; }, 0.01, 0.0005},
                       // Fewer false hits, not more recall: rays into a sphere's hidden side no longer
                       // pass behind it (2.2% -> 0.85%; recall may lose one pixel in a thousand).
                       OptionCase{"curved_solids", "curved-mirror", 320, 180,
-                                 [](Settings& s, bool on) { s.curvedSolids = on; }, -0.002, -0.008}),
+                                 [](Settings& s, bool on) { s.traversal.curvedSolids = on; }, -0.002, -0.008}),
     [](const ::testing::TestParamInfo<OptionCase>& info) { return std::string(info.param.name); });
 
-// The traversal inline or in a pass of its own (Settings::traversalPass) runs the same functions on
+// The traversal inline or in a pass of its own (Settings::traversal.pass) runs the same functions on
 // the same pixels: the hit images must agree, and so must the reflections and the stats' count
 // of traversed pixels. Scenes: every ray to the traversal first (facing-mirror), most pixels
 // answered by adaptive L (mirror-room), hit verification on every hit (thin-objects, ultra);
@@ -499,11 +499,11 @@ TEST_P(TraversalPasses, DeferredAndInlineGiveTheSameHits) {
   o.height = 108;
   Settings inlined = std::string(c.scene) == "thin-objects" ? Settings::preset(Preset::Ultra) : Settings{};
   inlined.halfResolution = c.half;
-  inlined.debugOutputs = true;
-  inlined.collectStats = true;
-  inlined.traversalPass = TraversalPass::Inline;
+  inlined.debug.outputs = true;
+  inlined.debug.collectStats = true;
+  inlined.traversal.pass = TraversalPass::Inline;
   Settings deferred = inlined;
-  deferred.traversalPass = TraversalPass::Deferred;
+  deferred.traversal.pass = TraversalPass::Deferred;
   constexpr int kFrames = 3;
   Image hits[kFrames][2], reflections[kFrames][2];
   FrameStats stats[kFrames][2];
@@ -549,11 +549,11 @@ TEST_P(TraversalAuto, FollowsTheLastFramesShareOfTraversalPixels) {
   auto r = FrameRenderer::create(o);
   ASSERT_TRUE(r) << r.error();
   Settings s;
-  s.collectStats = true;
-  s.debugOutputs = true;
+  s.debug.collectStats = true;
+  s.debug.outputs = true;
   s.halfResolution = GetParam();
   // Verification sends every hit to the traversal: mirror-room's share would stay above half.
-  s.hierarchicalVerify = false;
+  s.traversal.verify = false;
   auto facing = makeBuiltinScene("facing-mirror");
   auto room = makeBuiltinScene("mirror-room");
   ASSERT_TRUE(facing && room);
@@ -598,16 +598,16 @@ TEST_F(Level1Pass, FollowsAnEmptyFrameWithTheSameHits) {
   ASSERT_TRUE(scene);
   GpuScene gpu(scene.value());
   Settings s;
-  s.collectStats = true;
-  s.debugOutputs = true;
-  ASSERT_TRUE(s.curvedSolids);
+  s.debug.collectStats = true;
+  s.debug.outputs = true;
+  ASSERT_TRUE(s.traversal.curvedSolids);
   Settings empty = s;
-  empty.minReflectance = 1.0f;  // no pixel reflects enough to be traced
+  empty.selection.minReflectance = 1.0f;  // no pixel reflects enough to be traced
   auto fresh = FrameRenderer::create(o);
   ASSERT_TRUE(fresh) << fresh.error();
   ASSERT_TRUE(fresh.value()->render(gpu, *scene.value().camera, &s));
   const Image reference = fresh.value()->readHit();
-  EXPECT_FALSE(fresh.value()->sslr().waitForStats().level1Pass) << "a context's first frame";
+  EXPECT_FALSE(fresh.value()->sslr().waitForStats().followedEmptyFrame) << "a context's first frame";
 
   auto r = FrameRenderer::create(o);
   ASSERT_TRUE(r) << r.error();
@@ -616,7 +616,7 @@ TEST_F(Level1Pass, FollowsAnEmptyFrameWithTheSameHits) {
   for (int k = 0; k < 4; ++k) {
     ASSERT_TRUE(r.value()->render(gpu, *scene.value().camera, frames[k]));
     const FrameStats st = r.value()->sslr().waitForStats();  // the frame is done: its counts are back
-    EXPECT_EQ(st.level1Pass, level1Pass[k]) << "frame " << k;
+    EXPECT_EQ(st.followedEmptyFrame, level1Pass[k]) << "frame " << k;
     EXPECT_EQ(st.tiles == 0, frames[k] == &empty) << "frame " << k;
     if (frames[k] != &s) continue;
     const Image hit = r.value()->readHit();
@@ -646,7 +646,7 @@ TEST_P(Level0UnderSky, StaleTexelsAreNeverRead) {
   ASSERT_TRUE(sky && room);
   GpuScene skyGpu(sky.value()), roomGpu(room.value());
   Settings s;
-  s.debugOutputs = true;
+  s.debug.outputs = true;
   auto fresh = FrameRenderer::create(o);
   ASSERT_TRUE(fresh) << fresh.error();
   ASSERT_TRUE(fresh.value()->render(skyGpu, *sky.value().camera, &s));
@@ -755,7 +755,7 @@ double reflectionRmse(const ScoredFrame& f, const Settings& settings) {
 
 TEST_P(HalfResolution, QuarterOfTheRaysSameHits) {
   Settings full;
-  full.collectStats = true;
+  full.debug.collectStats = true;
   Settings half = full;
   half.halfResolution = true;
   const auto [a, b] = renderFullAndHalf(GetParam(), 192, 108, full);
@@ -843,7 +843,7 @@ TEST_F(HalfResolutionBandsHistory, HitsDoNotDependOnTheFrameBefore) {
     o.height = kH;
     Settings half;
     half.halfResolution = true;
-    half.debugOutputs = true;
+    half.debug.outputs = true;
     Image hits[2];
     for (int k = 0; k < 2; ++k) {
       auto r = FrameRenderer::create(o);
@@ -881,7 +881,7 @@ INSTANTIATE_TEST_SUITE_P(
     // that mirror comes back towards the camera and takes the traversal), mirror-walls 0.950 /
     // 0.041 and 0.935 / 0.040, curved-mirror 0.993 / 0.0037 (both; 0.025 before curved solids),
     // glossy 0.987 / 0.003 and 0.986 / 0.003. The false hits left on facing-mirror are rays through
-    // the boxes' hidden backs (docs/algorithm.md, "What the traversal cannot know").
+    // the boxes' hidden backs (docs/design-notes.md, "What the traversal cannot know").
     ::testing::Values(RobustCase{"facing-mirror", Method::AdaptiveL, 0.87, 0.13},
                       RobustCase{"facing-mirror", Method::HierarchicalDepth, 0.87, 0.13},
                       // 0.965 and 0.954 measured; 0.950 and 0.935 without the traversal's hit on
@@ -950,10 +950,10 @@ TEST_F(ContactLine, ReflectionsWithinTwoPixelsAreFound) {
 
 namespace {
 
-// The depth pyramid classify.comp and hiz.comp build against the same reduction on the CPU from
+// The depth pyramid pass 2 builds against the same reduction on the CPU from
 // the depth buffer read back: every level, cell for cell, on sizes whose halvings leave odd
 // remainders (padded cells must be neutral), with both float depth conventions, and with 7 and 8
-// levels (hiz.comp's blocks several across; level 8 a dispatch of its own). Level 0
+// levels (2_pyramid_levels2to7.comp's blocks several across; level 8 a dispatch of its own). Level 0
 // holds each pixel's depth exactly. With Settings::curvedSolids, level 1 holds the backs of curved
 // surfaces' solids and level 0 the pixels' extra depths (sslrHiZLevel1Cell on the CPU, from the
 // depth and normals read back): the same function, within float rounding of its math; the levels
@@ -973,7 +973,7 @@ TEST_P(DepthPyramid, EveryLevelIsTheMinMaxOfItsChildren) {
   ASSERT_TRUE(r);
   GpuScene gpu(scene.value());
   Settings s;  // adaptive L with the traversal behind it: the pyramid is built
-  s.curvedSolids = curved;
+  s.traversal.curvedSolids = curved;
   ASSERT_TRUE(r.value()->render(gpu, *scene.value().camera, &s));
   const std::vector<GLuint> pyramids = sslr::test::texturesLabelled("sslr.depthPyramid");
   ASSERT_FALSE(pyramids.empty());
@@ -983,7 +983,7 @@ TEST_P(DepthPyramid, EveryLevelIsTheMinMaxOfItsChildren) {
   auto frame = frameConstants(r.value()->gbuffer().frameInputs(), s, width, height);
   ASSERT_TRUE(frame) << frame.error();
   const int levels = shared::sslrHiZLevelCount(width, height);
-  ASSERT_GE(levels, 2) << "hiz.comp builds levels 2 and up";
+  ASSERT_GE(levels, 2) << "2_pyramid_levels2to7.comp builds levels 2 and up";
   // Level 0 is the depth buffer as the pyramid sees it; each level reduces 2x2 of the one below,
   // cells outside it neutral.
   std::vector<glm::vec2> below(static_cast<size_t>(width) * height);
@@ -1072,7 +1072,7 @@ TEST_P(DepthPyramid, EveryLevelIsTheMinMaxOfItsChildren) {
         ASSERT_NEAR(g.y, m.y, tolerance) << "level " << level << " cell " << x << "," << y;
         ++cells;
       }
-    // The next level reduces what the GPU stored (exactly, as hiz.comp does).
+    // The next level reduces what the GPU stored (exactly, as pass 2 does).
     below = curved ? std::move(gpuLevel) : std::move(cpuLevel);
     belowW = w;
     belowH = h;

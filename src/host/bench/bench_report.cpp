@@ -25,27 +25,27 @@ json settingsJson(const BenchConfig& c) {
     return {{"maxDistance", s.positionBuffer.maxDistance},
             {"resolution", s.positionBuffer.resolution},
             {"steps", s.positionBuffer.steps},
-            {"thickness", s.positionBuffer.thickness}};
+            {"thickness", s.positionBuffer.hitTolerance}};
   if (c.method == "dda")
-    return {{"stride", s.dda.stride},     {"thickness", s.dda.thickness}, {"maxSteps", s.dda.maxSteps},
+    return {{"stride", s.dda.stride},     {"thickness", s.dda.objectDepth}, {"maxSteps", s.dda.maxSteps},
             {"maxDistance", s.dda.maxDistance}, {"jitter", s.dda.jitter},   {"refine", s.dda.refine}};
   if (c.method == "ffx-sssr")
     return {{"depthBufferThickness", s.ffx.depthBufferThickness},
             {"maxTraversalIntersections", s.ffx.maxTraversalIntersections}};
   if (c.method == "baseline") return json::object();
-  const char* traversalPass = s.traversalPass == TraversalPass::Auto     ? "auto"
-                              : s.traversalPass == TraversalPass::Inline ? "inline"
+  const char* traversalPass = s.traversal.pass == TraversalPass::Auto     ? "auto"
+                              : s.traversal.pass == TraversalPass::Inline ? "inline"
                                                                          : "deferred";
-  return {{"maxIterations", s.maxIterations},       {"hierarchicalFallback", s.hierarchicalFallback},
-          {"hierarchicalVerify", s.hierarchicalVerify}, {"hierarchicalMaxSteps", s.hierarchicalMaxSteps},
-          {"traversalPass", traversalPass},         {"objectThickness", s.objectThickness},
-          {"outlineThinning", s.outlineThinning},   {"curvedSolids", s.curvedSolids},
+  return {{"adaptiveL.maxIterations", s.adaptiveL.maxIterations},       {"traversal.fallback", s.traversal.fallback},
+          {"traversal.verify", s.traversal.verify}, {"traversal.maxSteps", s.traversal.maxSteps},
+          {"traversal.pass", traversalPass},         {"traversal.objectDepthRelative", s.traversal.objectDepthRelative},
+          {"traversal.outlineThinning", s.traversal.outlineThinning},   {"traversal.curvedSolids", s.traversal.curvedSolids},
           {"backDepth", c.backDepth},
-          {"hiddenPassageLimitPx", s.hiddenPassageLimitPx < 1e29f ? json(s.hiddenPassageLimitPx) : json("off")},
-          {"convergenceEps", s.convergenceEps},
-          {"initialLengthScreen", s.initialLengthScreen}, {"thicknessRelative", s.thicknessRelative},
-          {"thicknessPixels", s.thicknessPixels},   {"blurMaxRadiusPx", s.blurMaxRadiusPx},
-          {"roughnessCutoff", s.roughnessCutoff},   {"fresnel", s.fresnel == FresnelMode::Classic ? "classic" : "schlick"}};
+          {"traversal.hiddenPassageLimitPx", s.traversal.hiddenPassageLimitPx < 1e29f ? json(s.traversal.hiddenPassageLimitPx) : json("off")},
+          {"adaptiveL.convergenceEps", s.adaptiveL.convergenceEps},
+          {"adaptiveL.initialLengthScreen", s.adaptiveL.initialLengthScreen}, {"hitTolerance.relative", s.hitTolerance.relative},
+          {"hitTolerance.pixels", s.hitTolerance.pixels},   {"blur.maxRadiusPx", s.blur.maxRadiusPx},
+          {"selection.roughnessCutoff", s.selection.roughnessCutoff},   {"fresnel", s.fresnel == FresnelMode::Classic ? "classic" : "schlick"}};
 }
 
 // NaN/Inf are not JSON: write null for "not applicable".
@@ -87,6 +87,8 @@ json runJson(const RunRecord& r) {
           {"indirectDispatches", r.commands.indirectDispatches},
           {"barriers", r.commands.barriers},
           {"programs", r.commands.programs},
+          {"bytesRead", r.traffic.bytesRead},
+          {"bytesWritten", r.traffic.bytesWritten},
           {"gbufferBytesPerPixel", r.gbufferBytesPerPixel},
           {"extraBytesPerPixel", r.extraBytesPerPixel}};
 }
@@ -292,7 +294,7 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
     out << "scene,method,label,default,width,height,renderer,timingMethod,timeMedianMs,timeMinMs,timeMaxMs,frames,"
            "visible,occluded,offScreen,escaped,recall1px,recall2px,recall4px,medianErrorPx,p95ErrorPx,falseHitRate,"
            "reflectionRmse,reflectionPsnr,nonFiniteHitPixels,nonFiniteOutputPixels,tracedPixels,fetches,"
-           "fetchesPerTracedPixel,dispatches,indirectDispatches,barriers,programs,gbufferBytesPerPixel,extraBytesPerPixel,parameters\n";
+           "fetchesPerTracedPixel,dispatches,indirectDispatches,barriers,programs,bytesRead,bytesWritten,gbufferBytesPerPixel,extraBytesPerPixel,parameters\n";
     for (const RunRecord& r : result.runs) {
       const json rj = runJson(r);
       auto v = [&](const char* k) { return rj[k].is_null() ? std::string() : rj[k].dump(); };
@@ -308,7 +310,7 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
           << v("falseHitRate") << "," << v("reflectionRmse") << "," << v("reflectionPsnr") << "," << r.metrics.nonFinite
           << "," << r.nonFiniteOutputs << "," << r.tracedPixels << "," << r.fetches << "," << v("fetchesPerTracedPixel")
           << "," << r.commands.dispatches << "," << r.commands.indirectDispatches << "," << r.commands.barriers << ","
-          << r.commands.programs
+          << r.commands.programs << "," << r.traffic.bytesRead << "," << r.traffic.bytesWritten
           << "," << r.gbufferBytesPerPixel << "," << r.extraBytesPerPixel << "," << quoted << "\n";
     }
     if (Status s = writeTextFile((fs::path(outDir) / "results.csv").string(), out.str()); !s) return s;

@@ -39,17 +39,17 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
     configs.push_back(c);
     if (preset == Preset::High) {  // the article's tracer alone, without the hierarchical fallback
       BenchConfig alone{"adaptive-l", "high-no-fallback", Settings::preset(preset), false};
-      alone.settings.hierarchicalFallback = false;
-      alone.settings.hierarchicalVerify = false;
+      alone.settings.traversal.fallback = false;
+      alone.settings.traversal.verify = false;
       configs.push_back(alone);
       BenchConfig half{"adaptive-l", "high-half", Settings::preset(preset), false};  // one ray per quad
       half.settings.halfResolution = true;
       configs.push_back(half);
       if (full) {  // adaptive L's hits taken unchecked (medium's choice), alone
         BenchConfig unchecked{"adaptive-l", "high-no-verify", Settings::preset(preset), false};
-        unchecked.settings.hierarchicalVerify = false;
+        unchecked.settings.traversal.verify = false;
         configs.push_back(unchecked);
-        // Where the traversal runs (Settings::traversalPass; the default, Auto, is one of the two).
+        // Where the traversal runs (Settings::traversal.pass; the default, Auto, is one of the two).
         // Measured thickness (a back-face depth input), and the hidden-passage rule with and without it.
         BenchConfig measured{"adaptive-l", "high-back-depth", Settings::preset(preset), false, true};
         configs.push_back(measured);
@@ -58,14 +58,14 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
             BenchConfig hidden{"adaptive-l", std::string(back ? "high-back-depth" : "high") + "-hidden" +
                                                  std::to_string(static_cast<int>(limit)),
                                Settings::preset(preset), false, back};
-            hidden.settings.hiddenPassageLimitPx = limit;
+            hidden.settings.traversal.hiddenPassageLimitPx = limit;
             configs.push_back(hidden);
           }
         }
         for (auto [label, pass] : {std::pair{"high-inline", TraversalPass::Inline},
                                    std::pair{"high-deferred", TraversalPass::Deferred}}) {
           BenchConfig where{"adaptive-l", label, Settings::preset(preset), false};
-          where.settings.traversalPass = pass;
+          where.settings.traversal.pass = pass;
           configs.push_back(where);
         }
       }
@@ -73,13 +73,13 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
   }
   // The hierarchical traversal alone (Method::HierarchicalDepth) at the presets' step caps (medium,
   // high, ultra).
-  const int defaultSteps = Settings::preset(Preset::High).hierarchicalMaxSteps;
-  const std::vector<int> allSteps{Settings::preset(Preset::Medium).hierarchicalMaxSteps, defaultSteps,
-                                  Settings::preset(Preset::Ultra).hierarchicalMaxSteps};
+  const int defaultSteps = Settings::preset(Preset::High).traversal.maxSteps;
+  const std::vector<int> allSteps{Settings::preset(Preset::Medium).traversal.maxSteps, defaultSteps,
+                                  Settings::preset(Preset::Ultra).traversal.maxSteps};
   for (int steps : full ? allSteps : std::vector<int>{defaultSteps}) {
     BenchConfig c{"hiz", "steps" + std::to_string(steps), Settings::preset(Preset::High), steps == defaultSteps};
     c.settings.method = Method::HierarchicalDepth;
-    c.settings.hierarchicalMaxSteps = steps;
+    c.settings.traversal.maxSteps = steps;
     configs.push_back(c);
   }
   // McGuire & Mara's screen-space DDA: stride x thickness, each with steps enough to cross about
@@ -91,7 +91,7 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
       Settings s;
       s.method = Method::ScreenSpaceDDA;
       s.dda.stride = stride;
-      s.dda.thickness = thick;
+      s.dda.objectDepth = thick;
       s.dda.maxSteps = static_cast<int>(1024.0f / stride);
       std::ostringstream label;
       label << "stride" << stride << "-thick" << thick;
@@ -364,7 +364,7 @@ Status timeCurvePoint(const std::string& curve, const std::string& sceneName, in
     if (c.method == "baseline") configs.push_back(c);
   // What the frame reflects, from the default's own count.
   Settings counting = configs.front().settings;
-  counting.collectStats = true;
+  counting.debug.collectStats = true;
   if (Status st = f.renderer->sslr().dispatch(f.inputs, counting); !st) return st;
   const double traced = double(f.renderer->sslr().waitForStats().tracedPixels) / (double(width) * height);
   ConfigContexts contexts(width, height);
@@ -491,8 +491,8 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
       r.gbufferBytesPerPixel = gb.bytesPerPixel() + (c.method == "position-buffer" ? 16 : 0);
       if (c.method != "baseline") {
         Settings s = c.settings;
-        s.debugOutputs = true;
-        s.collectStats = true;
+        s.debug.outputs = true;
+        s.debug.collectStats = true;
         if (Status st = fr.sslr().dispatch(inputsFor(sf, c), s); !st) return Status::error(st.message());
         const Image hit = fr.readHit();
         r.metrics = compareHits(gt, hit, kReportedConfidence, &color);
@@ -500,6 +500,7 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
         r.tracedPixels = stats.tracedPixels;
         r.fetches = stats.fetches;
         r.commands = stats.totalCommands();
+        r.traffic = stats.totalTraffic();
         r.fetchesPerTracedPixel = stats.tracedPixels ? double(stats.fetches) / stats.tracedPixels : 0.0;
         r.nonFiniteOutputs = countNonFinite(fr.readReflection()) + countNonFinite(fr.readResolved());
         if (c.isDefault) {

@@ -84,7 +84,7 @@ Status runTemporalStudy(const std::string& sceneName, const BenchOptions& option
     FrameRenderer& fr = *renderer.value();
     Settings settings;
     settings.halfResolution = config.half;
-    settings.temporal = config.temporal;
+    settings.temporal.enabled = config.temporal;
     for (int frame = 0; frame < frames; ++frame) {
       const char* segment = "";
       const Camera camera = cameraAt(start, frame, &segment);

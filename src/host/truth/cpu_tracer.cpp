@@ -12,8 +12,8 @@ thread_local const sslr::host::CpuGBuffer* tG = nullptr;
 thread_local SslrProjection tProj{};
 thread_local SslrSurface tSurf{};
 thread_local bool tStored = false;
-// The min-max depth pyramid, built on the CPU with the same shared functions as classify.comp
-// and hiz.comp: tPyramid[l] is level l (level 0: sslrHiZLevel0Texel, with curved solids' extra
+// The min-max depth pyramid, built on the CPU with the same shared functions as the GPU's
+// pass 2 (passes/pyramid_levels01.glsl, 2_pyramid_*.comp): tPyramid[l] is level l (level 0: sslrHiZLevel0Texel, with curved solids' extra
 // depths), tPyramidWidth[l] its cells per row.
 thread_local std::vector<std::vector<vec2>> tPyramid;
 thread_local std::vector<int> tPyramidWidth, tPyramidHeight;
@@ -69,7 +69,7 @@ Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& set
   tProj = proj;
   tSurf = surf;
   tStored = source == SurfaceSource::StoredPositions;
-  // Pyramid levels as hiz.comp builds them (level l: ceil(size / 2^l) cells per axis), only when
+  // Pyramid levels as pass 2 builds them (level l: ceil(size / 2^l) cells per axis), only when
   // the trace uses them (as dispatch() builds them only then).
   tPyramid.clear();
   tPyramidWidth.clear();

@@ -80,8 +80,8 @@ Settings settingsFor(const Side& s) {
                : s.method == 2 ? Method::ScreenSpaceDDA
                : s.method == 3 ? Method::PositionBuffer
                                : Method::AdaptiveL;
-  out.debugOutputs = true;  // the debug views read hit and iterations
-  out.collectStats = true;
+  out.debug.outputs = true;  // the debug views read hit and iterations
+  out.debug.collectStats = true;
   return out;
 }
 
@@ -257,72 +257,72 @@ struct App {
       const Settings keep = s.settings;
       s.settings = Settings::preset(static_cast<Preset>(s.preset));
       s.settings.halfResolution = keep.halfResolution;
-      s.settings.temporal = keep.temporal;
+      s.settings.temporal.enabled = keep.temporal.enabled;
     }
     Settings& t = s.settings;
     if (s.method == 0) {
-      ImGui::Checkbox("hierarchical fallback", &t.hierarchicalFallback);
-      if (t.hierarchicalFallback) {
+      ImGui::Checkbox("hierarchical fallback", &t.traversal.fallback);
+      if (t.traversal.fallback) {
         ImGui::SameLine();
-        ImGui::Checkbox("verify hits", &t.hierarchicalVerify);
+        ImGui::Checkbox("verify hits", &t.traversal.verify);
       } else {
-        t.hierarchicalVerify = false;  // verification runs the fallback's traversal
+        t.traversal.verify = false;  // verification runs the fallback's traversal
       }
     }
     ImGui::Checkbox("half resolution", &t.halfResolution);
     ImGui::SameLine();
-    ImGui::Checkbox("temporal", &t.temporal);
+    ImGui::Checkbox("temporal", &t.temporal.enabled);
     ImGui::SameLine();
-    ImGui::Checkbox("blur", &t.blur);
+    ImGui::Checkbox("blur", &t.blur.enabled);
     int fresnel = t.fresnel == FresnelMode::Classic ? 0 : 1;
     const char* fresnels[] = {"classic", "schlick"};
     if (ImGui::Combo("fresnel", &fresnel, fresnels, 2)) t.fresnel = fresnel == 0 ? FresnelMode::Classic : FresnelMode::Schlick;
     if (ImGui::TreeNode("tracer")) {
-      ImGui::SliderInt("maxIterations", &t.maxIterations, 1, 64);
-      ImGui::SliderInt("hierarchicalMaxSteps", &t.hierarchicalMaxSteps, 1, 256);
-      ImGui::SliderFloat("objectThickness", &t.objectThickness, 0.0f, 0.5f);
-      ImGui::Checkbox("outline thinning", &t.outlineThinning);
-      ImGui::Checkbox("curved solids", &t.curvedSolids);
-      int pass = static_cast<int>(t.traversalPass);
+      ImGui::SliderInt("adaptiveL.maxIterations", &t.adaptiveL.maxIterations, 1, 64);
+      ImGui::SliderInt("traversal.maxSteps", &t.traversal.maxSteps, 1, 256);
+      ImGui::SliderFloat("traversal.objectDepthRelative", &t.traversal.objectDepthRelative, 0.0f, 0.5f);
+      ImGui::Checkbox("outline thinning", &t.traversal.outlineThinning);
+      ImGui::Checkbox("curved solids", &t.traversal.curvedSolids);
+      int pass = static_cast<int>(t.traversal.pass);
       const char* passes[] = {"auto", "inline", "deferred"};
-      if (ImGui::Combo("traversal pass", &pass, passes, 3)) t.traversalPass = static_cast<TraversalPass>(pass);
-      ImGui::SliderFloat("convergenceEps", &t.convergenceEps, 0.0001f, 0.05f, "%.4f");
-      ImGui::SliderFloat("initialLengthScreen", &t.initialLengthScreen, 0.005f, 0.2f);
-      ImGui::SliderFloat("thicknessRelative", &t.thicknessRelative, 0.0f, 0.02f, "%.4f");
-      ImGui::SliderFloat("thicknessPixels", &t.thicknessPixels, 0.0f, 8.0f);
-      ImGui::SliderFloat("errorK", &t.errorK, 0.0f, 1.0f);
-      ImGui::SliderFloat("maxDistance", &t.maxDistance, 0.1f, 1.0e30f, "%.3g", ImGuiSliderFlags_Logarithmic);
+      if (ImGui::Combo("traversal pass", &pass, passes, 3)) t.traversal.pass = static_cast<TraversalPass>(pass);
+      ImGui::SliderFloat("adaptiveL.convergenceEps", &t.adaptiveL.convergenceEps, 0.0001f, 0.05f, "%.4f");
+      ImGui::SliderFloat("adaptiveL.initialLengthScreen", &t.adaptiveL.initialLengthScreen, 0.005f, 0.2f);
+      ImGui::SliderFloat("hitTolerance.relative", &t.hitTolerance.relative, 0.0f, 0.02f, "%.4f");
+      ImGui::SliderFloat("hitTolerance.pixels", &t.hitTolerance.pixels, 0.0f, 8.0f);
+      ImGui::SliderFloat("fades.errorK", &t.fades.errorK, 0.0f, 1.0f);
+      ImGui::SliderFloat("fades.maxDistance", &t.fades.maxDistance, 0.1f, 1.0e30f, "%.3g", ImGuiSliderFlags_Logarithmic);
       ImGui::TreePop();
     }
     if (ImGui::TreeNode("fades and material")) {
-      ImGui::SliderFloat("edgeFade", &t.edgeFade, 0.0f, 0.5f);
-      ImGui::SliderFloat("cameraFadeStart", &t.cameraFadeStart, -1.0f, 1.0f);
-      ImGui::SliderFloat("cameraFadeEnd", &t.cameraFadeEnd, -1.0f, 1.0f);
-      ImGui::SliderFloat("roughnessCutoff", &t.roughnessCutoff, 0.0f, 1.0f);
-      ImGui::SliderFloat("minReflectance", &t.minReflectance, 0.0f, 0.5f);
+      ImGui::SliderFloat("fades.screenEdge", &t.fades.screenEdge, 0.0f, 0.5f);
+      ImGui::SliderFloat("fades.cameraStart", &t.fades.cameraStart, -1.0f, 1.0f);
+      ImGui::SliderFloat("fades.cameraEnd", &t.fades.cameraEnd, -1.0f, 1.0f);
+      ImGui::SliderFloat("selection.roughnessCutoff", &t.selection.roughnessCutoff, 0.0f, 1.0f);
+      ImGui::SliderFloat("selection.minReflectance", &t.selection.minReflectance, 0.0f, 0.5f);
       ImGui::TreePop();
     }
     if (ImGui::TreeNode("blur and temporal")) {
-      ImGui::SliderFloat("blurMaxRadiusPx", &t.blurMaxRadiusPx, 0.0f, 32.0f);
-      ImGui::SliderFloat("blurConeScale", &t.blurConeScale, 0.0f, 4.0f);
-      ImGui::SliderFloat("blurDepthSigma", &t.blurDepthSigma, 0.001f, 0.2f);
-      ImGui::SliderFloat("blurNormalPower", &t.blurNormalPower, 1.0f, 64.0f);
-      ImGui::SliderFloat("temporalWeight", &t.temporalWeight, 0.0f, 0.98f);
+      ImGui::SliderFloat("blur.maxRadiusPx", &t.blur.maxRadiusPx, 0.0f, 32.0f);
+      ImGui::SliderFloat("blur.coneScale", &t.blur.coneScale, 0.0f, 4.0f);
+      ImGui::SliderFloat("blur.depthSigma", &t.blur.depthSigma, 0.001f, 0.2f);
+      ImGui::SliderFloat("blur.normalPower", &t.blur.normalPower, 1.0f, 64.0f);
+      ImGui::SliderFloat("temporal.historyWeight", &t.temporal.historyWeight, 0.0f, 0.98f);
       ImGui::TreePop();
     }
     if (s.method == 2 && ImGui::TreeNode("dda (McGuire-Mara)")) {
-      ImGui::SliderFloat("stride", &t.dda.stride, 1.0f, 16.0f);
-      ImGui::SliderFloat("thickness", &t.dda.thickness, 0.0f, 2.0f);
-      ImGui::SliderInt("maxSteps", &t.dda.maxSteps, 1, 1024);
-      ImGui::Checkbox("jitter", &t.dda.jitter);
-      ImGui::Checkbox("refine", &t.dda.refine);
+      ImGui::SliderFloat("dda.stride", &t.dda.stride, 1.0f, 16.0f);
+      ImGui::SliderFloat("dda.objectDepth", &t.dda.objectDepth, 0.0f, 2.0f);
+      ImGui::SliderInt("dda.maxSteps", &t.dda.maxSteps, 1, 1024);
+      ImGui::Checkbox("dda.jitter", &t.dda.jitter);
+      ImGui::Checkbox("dda.refine", &t.dda.refine);
       ImGui::TreePop();
     }
     if (s.method == 3 && ImGui::TreeNode("position buffer (tutorial)")) {
-      ImGui::SliderFloat("maxDistance", &t.positionBuffer.maxDistance, 0.5f, 64.0f);
-      ImGui::SliderFloat("resolution", &t.positionBuffer.resolution, 0.05f, 1.0f);
-      ImGui::SliderInt("steps", &t.positionBuffer.steps, 0, 32);
-      ImGui::SliderFloat("thickness", &t.positionBuffer.thickness, 0.0f, 2.0f);
+      ImGui::SliderFloat("positionBuffer.maxDistance", &t.positionBuffer.maxDistance, 0.5f, 64.0f);
+      ImGui::SliderFloat("positionBuffer.resolution", &t.positionBuffer.resolution, 0.05f, 1.0f);
+      ImGui::SliderInt("positionBuffer.steps", &t.positionBuffer.steps, 0, 32);
+      ImGui::SliderFloat("positionBuffer.hitTolerance", &t.positionBuffer.hitTolerance, 0.0f, 2.0f);
       ImGui::TreePop();
     }
     if (!s.error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", s.error.c_str());

@@ -40,12 +40,12 @@ void Context::Impl::createTargets() {
   reflection = makeTexture(GL_RGBA16F, "sslr.reflection");
   blurTemp = makeTexture(GL_RGBA16F, "sslr.blurTemp");
   resolved = makeTexture(GL_RGBA16F, "sslr.resolved");
-  hit = iterations = 0;  // created by the first dispatch that writes them (debugOutputs, temporal)
-  hizLevels = shared::sslrHiZLevelCount(width, height);
-  const int top = 1 << hizLevels;
-  hizWidth = (width + top - 1) / top * (top / 2);
-  hizHeight = (height + top - 1) / top * (top / 2);
-  hiz = 0;  // created by the first dispatch that traces it (createPyramid)
+  hit = iterations = 0;  // created by the first dispatch that writes them (debug.outputs, temporal)
+  pyramid.levels = shared::sslrHiZLevelCount(width, height);
+  const int top = 1 << pyramid.levels;
+  pyramid.level1Width = (width + top - 1) / top * (top / 2);
+  pyramid.level1Height = (height + top - 1) / top * (top / 2);
+  pyramid.texture = 0;  // created by the first dispatch that traces it (createPyramid)
   const GLsizeiptr tiles = static_cast<GLsizeiptr>(tilesX()) * tilesY();
   gl.CreateBuffers(1, &tileBuffer);
   // Header (see common/tiles.glsl), traced tiles, tiles to blur, per-tile stamps (zero: frame
@@ -62,30 +62,30 @@ void Context::Impl::createTargets() {
 // The depth pyramid (~10.7 B per pixel), on first use: a host that never traces it (the tutorial's
 // method, adaptive L alone) never pays for it.
 void Context::Impl::createPyramid() {
-  gl.CreateTextures(GL_TEXTURE_2D, 1, &hiz);
-  gl.TextureStorage2D(hiz, hizLevels + 1, GL_RG32F, 2 * hizWidth, 2 * hizHeight);
-  label(GL_TEXTURE, hiz, "sslr.depthPyramid");
+  gl.CreateTextures(GL_TEXTURE_2D, 1, &pyramid.texture);
+  gl.TextureStorage2D(pyramid.texture, pyramid.levels + 1, GL_RG32F, 2 * pyramid.level1Width, 2 * pyramid.level1Height);
+  label(GL_TEXTURE, pyramid.texture, "sslr.depthPyramid");
   // Levels 0 and 1 past the screen (padding) are never written: neutral once and for all (level
   // 0's are never read either: the traversal stays on the screen).
   const float hizEmpty[4] = {2.0f, -1.0f, 0.0f, 0.0f};  // sslrHiZEmpty
-  for (int mip = 0; mip <= 1; ++mip) gl.ClearTexImage(hiz, mip, GL_RG, GL_FLOAT, hizEmpty);
+  for (int mip = 0; mip <= 1; ++mip) gl.ClearTexImage(pyramid.texture, mip, GL_RG, GL_FLOAT, hizEmpty);
 }
 
 void Context::Impl::destroyTargets() {
   GLuint textures[] = {reflection, blurTemp, resolved, hit,     iterations,
-                       hiz,        quadHit,  quadSurface, history, historyKey};
+                       pyramid.texture,        halfRes.quadHit,  halfRes.quadSurface, history.color, history.key};
   gl.DeleteTextures(10, textures);
   gl.DeleteBuffers(1, &retraceBuffer);
-  gl.DeleteBuffers(1, &feedbackBuffer);
-  gl.DeleteBuffers(1, &curvedQuads);
-  if (feedbackFence != nullptr) gl.DeleteSync(feedbackFence);
-  feedbackFence = nullptr;
-  traversalInline = feedbackHasTraversal = lastFrameListedNoTile = false;
-  quadHit = quadSurface = retraceBuffer = feedbackBuffer = history = historyKey = curvedQuads = 0;
-  historyValid = false;
+  gl.DeleteBuffers(1, &feedback.buffer);
+  gl.DeleteBuffers(1, &pyramid.curvedQuads);
+  if (feedback.fence != nullptr) gl.DeleteSync(feedback.fence);
+  feedback.fence = nullptr;
+  feedback.traversalInline = feedback.hasTraversal = feedback.lastFrameListedNoTile = false;
+  halfRes.quadHit = halfRes.quadSurface = retraceBuffer = feedback.buffer = history.color = history.key = pyramid.curvedQuads = 0;
+  history.valid = false;
   GLuint buffers[] = {tileBuffer};
   gl.DeleteBuffers(1, buffers);
-  reflection = blurTemp = resolved = hit = iterations = hiz = tileBuffer = 0;
+  reflection = blurTemp = resolved = hit = iterations = pyramid.texture = tileBuffer = 0;
 }
 
 void Context::Impl::destroy() {

@@ -28,12 +28,12 @@ constexpr GLintptr kCleanupDispatchOffset = offsetof(shared::SslrTileHeader, cle
 constexpr GLsizeiptr kHeaderUploadBytes = kCleanupDispatchOffset;
 constexpr GLsizeiptr kTileHeader = sizeof(shared::SslrTileHeader) / 4;  // uints before the tile lists
 constexpr GLsizeiptr kTileArrays = 6;                                   // per-tile arrays after it
-// hiz.comp's work group builds levels 2..kHizBlockTop of one kHizBlockTop cell (its shared arrays
+// 2_pyramid_levels2to7.comp's work group builds levels 2..kHizBlockTop of one kHizBlockTop cell (its shared arrays
 // are sized for 7: 64x64 level-1 cells); a level above it has a single-level dispatch of its own.
 constexpr int kHizBlockTop = 7;
 // TraversalPass::Auto on a software renderer runs the traversal inline above this share of the
-// traced tiles' pixels needing it (+-0.05 hysteresis). llvmpipe 960x540, deferred / inline time
-// in two runs: 0.59-0.95 at shares 0.001-0.26, 1.04-1.32 at 0.68-0.96 (docs/algorithm.md).
+// traced tiles' pixels needing it (+-0.05 hysteresis; docs/design-notes.md, "Where the
+// traversal runs").
 constexpr double kInlineTraversalShare = 0.5;
 
 // What sslr needs to know of a host texture's internal format.
@@ -41,7 +41,28 @@ struct FormatInfo {
   enum Kind { Unsupported, Color, Depth } kind = Unsupported;
   int channels = 0;
   const char* name = "unsupported";
+  int bytes = 0;  // per texel
 };
+
+// What FrameStats' traffic model needs to know of a frame (stats.cpp, estimateTraffic): the
+// screen, the bytes per texel of each input (0 where absent) and which passes and paths ran.
+struct TrafficModel {
+  int width = 0, height = 0;
+  int depthBytes = 0, normalBytes = 0, materialBytes = 0, maskBytes = 0, backDepthBytes = 0;
+  int colorBytes = 0, positionBytes = 0, motionBytes = 0;
+  int materialGathers = 0;      // material channels classification gathers from a texture (0..2)
+  int normalGathers = 0;        // curved solids: normal channels gathered per quad (0, 2 or 3)
+  bool classifyLevels01 = false;  // classification writes the pyramid's levels 0 and 1
+  bool levels01Pass = false;      // ... a pass of their own does (after an empty frame)
+  bool pyramid = false;           // the pyramid is built and traced
+  std::uint64_t level1Cells = 0;  // level-1 cells over the screen
+  std::uint64_t upperCells = 0;   // cells of levels 2 and up
+  int fetchBytes = 0;             // bytes of one counted fetch (depth, position, or pyramid texel)
+  bool halfResolution = false, hitRecord = false, iterations = false, temporal = false;
+  int blurTaps = 0;               // taps on each side at the blur's widest (0: no blur)
+};
+// FrameStats' PassTraffic from the model and the frame's counts (tiles, traced pixels, fetches).
+void estimateTraffic(const TrafficModel& model, FrameStats& stats);
 FormatInfo formatInfo(GLint internalFormat);
 
 struct Context::Impl {
@@ -50,34 +71,45 @@ struct Context::Impl {
   bool softwareRenderer = false;  // GL_RENDERER names a CPU rasterizer (TraversalPass::Auto)
   int width = 0, height = 0;
 
+  // The outputs (reflection, resolved), the blur's scratch and the debug images.
   GLuint reflection = 0, blurTemp = 0, resolved = 0, hit = 0, iterations = 0;
   // Min-max depth pyramid: mip m holds level m (sslr_shared.h; level 0 also holds the pixels'
   // curved extra depths). Its base is padded so that every mip halves exactly: mip m has at least
   // ceil(size / 2^m) cells per axis. Created by the first dispatch that traces it.
-  GLuint hiz = 0;
-  // Settings::curvedSolids: the list of quads whose normals turn, whose level-1 cells and level-0
-  // texels classify.comp's curved pass writes (created on first use).
-  GLuint curvedQuads = 0;
+  struct Pyramid {
+    GLuint texture = 0;
+    int levels = 0;                         // levels above level 0
+    int level1Width = 0, level1Height = 0;  // level 1's size (padded)
+    // Settings::traversal.curvedSolids: the list of quads whose normals turn, whose level-1 cells
+    // and level-0 texels the curved pass (2_pyramid_curved.comp) writes (created on first use).
+    GLuint curvedQuads = 0;
+  } pyramid;
   // Half resolution: per 2x2 quad, its ray's hit and surfaces (created on first use).
-  GLuint quadHit = 0, quadSurface = 0, retraceBuffer = 0;
-  // The last frame's counts, fed back without a stall: feedback holds (listed tiles, 0, 0, pixels
+  struct HalfResolution {
+    GLuint quadHit = 0, quadSurface = 0;
+  } halfRes;
+  // The retrace list (passes/retrace_list.glsl): half resolution and the deferred traversal.
+  GLuint retraceBuffer = 0;
+  // The last frame's counts, fed back without a stall: `buffer` holds (listed tiles, 0, 0, pixels
   // that needed the traversal), fenced, read without waiting at the next dispatch (readFeedback).
-  // lastFrameListedNoTile: classification leaves the pyramid's level 1 to a pass of its own (an
-  // empty frame after an empty one only reads the G-buffer). TraversalPass::Auto on a software
-  // renderer chooses per frame from the share of such pixels (at half resolution: quads) in the
-  // listed tiles (feedbackHasTraversal: the pending copy has it); traversalInline is the current
-  // choice.
-  GLuint feedbackBuffer = 0;
-  GLsync feedbackFence = nullptr;
-  bool feedbackHasTraversal = false;
-  int feedbackCellsPerTile = SSLR_TILE_SIZE * SSLR_TILE_SIZE;  // its count is of pixels, or quads
-  bool lastFrameListedNoTile = false;
-  bool traversalInline = false;
-  // Temporal reuse: the previous frame's output and its history keys (sslrHistoryKey; 0 = none),
-  // created on first use. historyValid: the last dispatch stored them.
-  GLuint history = 0, historyKey = 0;
-  bool historyValid = false;
-  int hizLevels = 0, hizWidth = 0, hizHeight = 0;  // levels above level 0; level 1's size
+  struct Feedback {
+    GLuint buffer = 0;
+    GLsync fence = nullptr;
+    bool hasTraversal = false;                           // the pending copy has the traversal's count
+    int cellsPerTile = SSLR_TILE_SIZE * SSLR_TILE_SIZE;  // that count is of pixels, or quads
+    // Classification then leaves the pyramid's levels 0 and 1 to a pass of their own (an empty
+    // frame after an empty one only reads the G-buffer).
+    bool lastFrameListedNoTile = false;
+    // TraversalPass::Auto on a software renderer: the current choice, from the share of pixels (at
+    // half resolution: quads) of the listed tiles that needed the traversal.
+    bool traversalInline = false;
+  } feedback;
+  // Temporal reuse: the previous frame's output and its keys (sslrHistoryKey; 0 = none), created
+  // on first use. valid: the last dispatch stored them.
+  struct TemporalHistory {
+    GLuint color = 0, key = 0;
+    bool valid = false;
+  } history;
   GLuint frameUbo = 0, tileBuffer = 0;
   // Stats without a stall: a ring of slots, each a counter buffer (traced pixels, fetches,
   // hierarchical pixels, pad, tiles, blur tiles), GL_TIMESTAMP queries (before classification,
@@ -115,7 +147,8 @@ struct Context::Impl {
     GLsync fence = nullptr;
     std::uint64_t frame = 0;
     bool traversalDeferred = false;
-    bool level1Pass = false;
+    bool followedEmptyFrame = false;
+    TrafficModel traffic;
   };
   static constexpr int kStatsRing = 4;
   mutable StatsSlot statsRing[kStatsRing];
@@ -156,7 +189,7 @@ struct Context::Impl {
   // inputs.cpp
   Status checkTexture(GLName tex, const char* what, FormatInfo::Kind kind, int minChannels,
                       FormatInfo* infoOut = nullptr) const;
-  Status checkInputs(const FrameInputs& in, Method method) const;
+  Status checkInputs(const FrameInputs& in, Method method, TrafficModel* formats = nullptr) const;
   // passes.cpp: a frame's plan (which passes run, their switches and programs), then one function
   // per pass, in the order they run.
   struct FramePlan {
@@ -173,7 +206,8 @@ struct Context::Impl {
     bool retracePass = false, quadRetracePass = false;
     bool blur = false;
     bool useHistory = false;       // temporal: the previous frame stored a history
-    StatsSlot* slot = nullptr;     // Settings::collectStats: this frame's ring slot
+    StatsSlot* slot = nullptr;     // Settings::debug.collectStats: this frame's ring slot
+    TrafficModel traffic;          // for FrameStats' traffic (checkInputs fills the formats)
     struct {
       GLuint classify = 0, level1 = 0, cleanup = 0, hizBuild = 0, hizSingle = 0, hizArgs = 0, curved = 0;
       GLuint trace = 0, quads = 0, quadRetrace = 0, retrace = 0, blurH = 0, blurV = 0;
@@ -190,6 +224,7 @@ struct Context::Impl {
   FramePlan planFrame(const Settings& settings, const shared::SslrFrame& constants,
                       bool hadHistory);
   Status buildPrograms(FramePlan& plan, const FrameInputs& in, const Settings& settings);
+  TrafficModel trafficModel(const FramePlan& plan, TrafficModel formats, const Settings& settings) const;
   Expected<GLuint> optionalProgram(bool wanted, const char* entry, const std::string& defines);
   void createFrameResources(const FramePlan& plan);
   void beginFrame(FramePlan& plan);

@@ -9,33 +9,33 @@ namespace sslr {
 
 FormatInfo formatInfo(GLint f) {
   switch (f) {
-    case GL_DEPTH_COMPONENT16: return {FormatInfo::Depth, 1, "DEPTH_COMPONENT16"};
-    case GL_DEPTH_COMPONENT24: return {FormatInfo::Depth, 1, "DEPTH_COMPONENT24"};
-    case GL_DEPTH_COMPONENT32: return {FormatInfo::Depth, 1, "DEPTH_COMPONENT32"};
-    case GL_DEPTH_COMPONENT32F: return {FormatInfo::Depth, 1, "DEPTH_COMPONENT32F"};
-    case GL_DEPTH24_STENCIL8: return {FormatInfo::Depth, 1, "DEPTH24_STENCIL8"};
-    case GL_DEPTH32F_STENCIL8: return {FormatInfo::Depth, 1, "DEPTH32F_STENCIL8"};
-    case GL_R8: return {FormatInfo::Color, 1, "R8"};
-    case GL_R16: return {FormatInfo::Color, 1, "R16"};
-    case GL_R16F: return {FormatInfo::Color, 1, "R16F"};
-    case GL_R32F: return {FormatInfo::Color, 1, "R32F"};
-    case GL_RG8: return {FormatInfo::Color, 2, "RG8"};
-    case GL_RG16: return {FormatInfo::Color, 2, "RG16"};
-    case GL_RG16F: return {FormatInfo::Color, 2, "RG16F"};
-    case GL_RG32F: return {FormatInfo::Color, 2, "RG32F"};
-    case GL_RGB8: return {FormatInfo::Color, 3, "RGB8"};
-    case GL_RGB16: return {FormatInfo::Color, 3, "RGB16"};
-    case GL_RGB16F: return {FormatInfo::Color, 3, "RGB16F"};
-    case GL_RGB32F: return {FormatInfo::Color, 3, "RGB32F"};
-    case GL_R11F_G11F_B10F: return {FormatInfo::Color, 3, "R11F_G11F_B10F"};
-    case GL_RGB9_E5: return {FormatInfo::Color, 3, "RGB9_E5"};
-    case GL_SRGB8: return {FormatInfo::Color, 3, "SRGB8"};
-    case GL_RGBA8: return {FormatInfo::Color, 4, "RGBA8"};
-    case GL_SRGB8_ALPHA8: return {FormatInfo::Color, 4, "SRGB8_ALPHA8"};
-    case GL_RGB10_A2: return {FormatInfo::Color, 4, "RGB10_A2"};
-    case GL_RGBA16: return {FormatInfo::Color, 4, "RGBA16"};
-    case GL_RGBA16F: return {FormatInfo::Color, 4, "RGBA16F"};
-    case GL_RGBA32F: return {FormatInfo::Color, 4, "RGBA32F"};
+    case GL_DEPTH_COMPONENT16: return {FormatInfo::Depth, 1, "DEPTH_COMPONENT16", 2};
+    case GL_DEPTH_COMPONENT24: return {FormatInfo::Depth, 1, "DEPTH_COMPONENT24", 4};
+    case GL_DEPTH_COMPONENT32: return {FormatInfo::Depth, 1, "DEPTH_COMPONENT32", 4};
+    case GL_DEPTH_COMPONENT32F: return {FormatInfo::Depth, 1, "DEPTH_COMPONENT32F", 4};
+    case GL_DEPTH24_STENCIL8: return {FormatInfo::Depth, 1, "DEPTH24_STENCIL8", 4};
+    case GL_DEPTH32F_STENCIL8: return {FormatInfo::Depth, 1, "DEPTH32F_STENCIL8", 8};
+    case GL_R8: return {FormatInfo::Color, 1, "R8", 1};
+    case GL_R16: return {FormatInfo::Color, 1, "R16", 2};
+    case GL_R16F: return {FormatInfo::Color, 1, "R16F", 2};
+    case GL_R32F: return {FormatInfo::Color, 1, "R32F", 4};
+    case GL_RG8: return {FormatInfo::Color, 2, "RG8", 2};
+    case GL_RG16: return {FormatInfo::Color, 2, "RG16", 4};
+    case GL_RG16F: return {FormatInfo::Color, 2, "RG16F", 4};
+    case GL_RG32F: return {FormatInfo::Color, 2, "RG32F", 8};
+    case GL_RGB8: return {FormatInfo::Color, 3, "RGB8", 3};
+    case GL_RGB16: return {FormatInfo::Color, 3, "RGB16", 6};
+    case GL_RGB16F: return {FormatInfo::Color, 3, "RGB16F", 6};
+    case GL_RGB32F: return {FormatInfo::Color, 3, "RGB32F", 12};
+    case GL_R11F_G11F_B10F: return {FormatInfo::Color, 3, "R11F_G11F_B10F", 4};
+    case GL_RGB9_E5: return {FormatInfo::Color, 3, "RGB9_E5", 4};
+    case GL_SRGB8: return {FormatInfo::Color, 3, "SRGB8", 3};
+    case GL_RGBA8: return {FormatInfo::Color, 4, "RGBA8", 4};
+    case GL_SRGB8_ALPHA8: return {FormatInfo::Color, 4, "SRGB8_ALPHA8", 4};
+    case GL_RGB10_A2: return {FormatInfo::Color, 4, "RGB10_A2", 4};
+    case GL_RGBA16: return {FormatInfo::Color, 4, "RGBA16", 8};
+    case GL_RGBA16F: return {FormatInfo::Color, 4, "RGBA16F", 8};
+    case GL_RGBA32F: return {FormatInfo::Color, 4, "RGBA32F", 16};
     default: return {};
   }
 }
@@ -111,13 +111,16 @@ Status Context::Impl::checkTexture(GLName tex, const char* what, FormatInfo::Kin
   return {};
 }
 
-Status Context::Impl::checkInputs(const FrameInputs& in, Method method) const {
-  if (Status s = checkTexture(in.depthTexture, "FrameInputs::depthTexture", FormatInfo::Depth, 1); !s) return s;
+Status Context::Impl::checkInputs(const FrameInputs& in, Method method, TrafficModel* formats) const {
+  FormatInfo depthInfo, positionInfo, colorInfo, maskInfo, backDepthInfo, motionInfo;
+  if (Status s = checkTexture(in.depthTexture, "FrameInputs::depthTexture", FormatInfo::Depth, 1, &depthInfo); !s)
+    return s;
   if (method == Method::PositionBuffer) {
-    if (Status s = checkTexture(in.positionTexture, "FrameInputs::positionTexture", FormatInfo::Color, 4); !s)
+    if (Status s = checkTexture(in.positionTexture, "FrameInputs::positionTexture", FormatInfo::Color, 4, &positionInfo); !s)
       return Status::error(s.code(), s.message() + " (Method::PositionBuffer needs a view-space position texture)");
   }
-  if (Status s = checkTexture(in.colorTexture, "FrameInputs::colorTexture", FormatInfo::Color, 3); !s) return s;
+  if (Status s = checkTexture(in.colorTexture, "FrameInputs::colorTexture", FormatInfo::Color, 3, &colorInfo); !s)
+    return s;
   const int normalChannels = in.surface.normals == NormalEncoding::Octahedral ? 2 : 3;
   FormatInfo normalInfo;
   if (Status s = checkTexture(in.normalTexture, "FrameInputs::normalTexture", FormatInfo::Color, normalChannels,
@@ -134,17 +137,17 @@ Status Context::Impl::checkInputs(const FrameInputs& in, Method method) const {
   }
   const char* materialName = separate ? "materialTexture" : "normalTexture";
   if (in.maskTexture != 0) {
-    if (Status s = checkTexture(in.maskTexture, "FrameInputs::maskTexture", FormatInfo::Color, 1); !s) return s;
+    if (Status s = checkTexture(in.maskTexture, "FrameInputs::maskTexture", FormatInfo::Color, 1, &maskInfo); !s) return s;
   }
   if (in.backDepthTexture != 0) {
-    if (Status s = checkTexture(in.backDepthTexture, "FrameInputs::backDepthTexture", FormatInfo::Depth, 1); !s)
+    if (Status s = checkTexture(in.backDepthTexture, "FrameInputs::backDepthTexture", FormatInfo::Depth, 1, &backDepthInfo); !s)
       return Status::error(s.code(), s.message() + " (the back-face depth: the host's depth pass with front faces culled)");
     if (in.backDepthTexture == in.depthTexture)
       return Status::error(StatusCode::InvalidInput, "sslr: FrameInputs::backDepthTexture is the depthTexture itself; it must be a depth pass "
                            "of its own with front faces culled");
   }
   if (in.motionTexture != 0) {
-    if (Status s = checkTexture(in.motionTexture, "FrameInputs::motionTexture", FormatInfo::Color, 2); !s) return s;
+    if (Status s = checkTexture(in.motionTexture, "FrameInputs::motionTexture", FormatInfo::Color, 2, &motionInfo); !s) return s;
   }
   auto checkChannel = [&](int channel, const char* name) -> Status {
     if (channel < -1 || channel > 3)
@@ -165,6 +168,17 @@ Status Context::Impl::checkInputs(const FrameInputs& in, Method method) const {
     return Status::error(StatusCode::InvalidInput, "sslr: SurfaceLayout::reflectanceChannel overlaps the normal's channels");
   if (!std::isfinite(sl.constantRoughness) || !std::isfinite(sl.constantReflectance))
     return Status::error(StatusCode::InvalidInput, "sslr: SurfaceLayout constant roughness/reflectance must be finite");
+  if (formats != nullptr) {
+    formats->depthBytes = depthInfo.bytes;
+    formats->normalBytes = normalInfo.bytes;
+    formats->materialBytes = separate ? materialInfo.bytes : 0;
+    formats->maskBytes = in.maskTexture != 0 ? maskInfo.bytes : 0;
+    formats->backDepthBytes = in.backDepthTexture != 0 ? backDepthInfo.bytes : 0;
+    formats->colorBytes = colorInfo.bytes;
+    formats->positionBytes = method == Method::PositionBuffer ? positionInfo.bytes : 0;
+    formats->motionBytes = in.motionTexture != 0 ? motionInfo.bytes : 0;
+    formats->materialGathers = (sl.roughnessChannel >= 0 ? 1 : 0) + (sl.reflectanceChannel >= 0 ? 1 : 0);
+  }
   return {};
 }
 

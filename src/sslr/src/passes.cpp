@@ -2,6 +2,9 @@
 // (when a mode traces it) -> trace (deferred traversal: first stage -> retrace of the listed
 // pixels; half resolution: quads [-> quad retrace] -> reuse -> retrace) -> blur H -> blur V.
 // Everything after classification runs over the listed tiles (or listed pixels) only.
+#include <algorithm>
+#include <cmath>
+
 #include "context_impl.hpp"
 #include "gl_state.hpp"
 #include "sslr/reference.hpp"
@@ -21,7 +24,7 @@ void Context::Impl::bindInputs(const FrameInputs& in) const {
   gl.BindSampler(SSLR_UNIT_MASK, nearestSampler);
   gl.bindTexture2D(SSLR_UNIT_BACK_DEPTH, in.backDepthTexture);  // 0 unless the host measures thickness
   gl.BindSampler(SSLR_UNIT_BACK_DEPTH, nearestSampler);
-  gl.bindTexture2D(SSLR_UNIT_PYRAMID, hiz);  // read by the depth-only trace (built when a mode needs it)
+  gl.bindTexture2D(SSLR_UNIT_PYRAMID, pyramid.texture);  // read by the depth-only trace (built when a mode needs it)
   gl.BindSampler(SSLR_UNIT_PYRAMID, nearestSampler);
   gl.BindBufferBase(GL_UNIFORM_BUFFER, SSLR_BINDING_FRAME_UBO, frameUbo);
   gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_TILE_SSBO, tileBuffer);
@@ -29,30 +32,30 @@ void Context::Impl::bindInputs(const FrameInputs& in) const {
 }
 
 // Levels 0 and 1 of the pyramid, as classification, the level-1 pass and the curved pass write
-// them (classify.comp): image units 1 and 0.
+// them (passes/pyramid_levels01.glsl): image units 1 and 0.
 void Context::Impl::bindPyramidLevels01() const {
-  gl.BindImageTexture(SSLR_IMAGE_PYRAMID_LEVEL1, hiz, 1, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-  gl.BindImageTexture(SSLR_IMAGE_PYRAMID_LEVEL0, hiz, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+  gl.BindImageTexture(SSLR_IMAGE_PYRAMID_LEVEL1, pyramid.texture, 1, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+  gl.BindImageTexture(SSLR_IMAGE_PYRAMID_LEVEL0, pyramid.texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
 }
 
 // The min-max depth pyramid above level 1, indirect: the group counts are zero unless
-// classification listed a tile (common/tiles.glsl). One dispatch builds levels 2..7 (hiz.comp, a
+// classification listed a tile (common/tiles.glsl). One dispatch builds levels 2..7 (2_pyramid_levels2to7.comp, a
 // work group per level-7 cell), a second level 8 where the screen has one.
 void Context::Impl::buildPyramid(GLuint blockProgram, GLuint singleProgram) const {
-  const int blockTop = std::min(hizLevels, kHizBlockTop);
+  const int blockTop = std::min(pyramid.levels, kHizBlockTop);
   useProgram(blockProgram);
-  gl.bindTexture2D(SSLR_UNIT_PYRAMID, hiz);
+  gl.bindTexture2D(SSLR_UNIT_PYRAMID, pyramid.texture);
   gl.BindSampler(SSLR_UNIT_PYRAMID, nearestSampler);
-  gl.ProgramUniform1i(blockProgram, 0, hizLevels);  // uTopLevel
+  gl.ProgramUniform1i(blockProgram, 0, pyramid.levels);  // uTopLevel
   for (int level = 2; level <= kHizBlockTop; ++level)  // above the top: the top's image, never stored to
-    gl.BindImageTexture(static_cast<GLuint>(SSLR_IMAGE_PYRAMID_BLOCK + level - 2), hiz, std::min(level, blockTop), GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+    gl.BindImageTexture(static_cast<GLuint>(SSLR_IMAGE_PYRAMID_BLOCK + level - 2), pyramid.texture, std::min(level, blockTop), GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
   dispatchComputeIndirect(kHizDispatchOffset + 3 * 4 * 1);  // level 2's arguments: the blocks
   memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   const int single = kHizBlockTop + 1;  // (SSLR_HIZ_MAX_LEVELS is 8: one level at most above the blocks)
-  if (hizLevels < single) return;
+  if (pyramid.levels < single) return;
   useProgram(singleProgram);
   gl.ProgramUniform1i(singleProgram, 0, single);
-  gl.BindImageTexture(SSLR_IMAGE_PYRAMID_BLOCK, hiz, single, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+  gl.BindImageTexture(SSLR_IMAGE_PYRAMID_BLOCK, pyramid.texture, single, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
   dispatchComputeIndirect(kHizDispatchOffset + 3 * 4 * (single - 1));  // its level's arguments
   memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
@@ -62,18 +65,18 @@ void Context::Impl::buildPyramid(GLuint blockProgram, GLuint singleProgram) cons
 // renderer. Hysteresis keeps a scene near the threshold from switching every frame; the answers
 // are the same either way.
 void Context::Impl::readFeedback() {
-  if (feedbackFence == nullptr) return;
-  const GLenum r = gl.ClientWaitSync(feedbackFence, 0, 0);
+  if (feedback.fence == nullptr) return;
+  const GLenum r = gl.ClientWaitSync(feedback.fence, 0, 0);
   if (r != GL_ALREADY_SIGNALED && r != GL_CONDITION_SATISFIED) return;
-  gl.DeleteSync(feedbackFence);
-  feedbackFence = nullptr;
+  gl.DeleteSync(feedback.fence);
+  feedback.fence = nullptr;
   GLuint counts[4] = {};
-  gl.GetNamedBufferSubData(feedbackBuffer, 0, sizeof(counts), counts);
-  lastFrameListedNoTile = counts[0] == 0;
-  if (!feedbackHasTraversal) return;
-  const double tileCells = double(counts[0]) * feedbackCellsPerTile;  // pixels, or quads
+  gl.GetNamedBufferSubData(feedback.buffer, 0, sizeof(counts), counts);
+  feedback.lastFrameListedNoTile = counts[0] == 0;
+  if (!feedback.hasTraversal) return;
+  const double tileCells = double(counts[0]) * feedback.cellsPerTile;  // pixels, or quads
   const double share = tileCells > 0.0 ? double(counts[3]) / tileCells : 0.0;
-  traversalInline = share > (traversalInline ? kInlineTraversalShare - 0.05 : kInlineTraversalShare + 0.05);
+  feedback.traversalInline = share > (feedback.traversalInline ? kInlineTraversalShare - 0.05 : kInlineTraversalShare + 0.05);
 }
 
 // A frame: validate, plan (which passes run and with which programs, before any GL state is
@@ -84,15 +87,17 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   // Temporal history is the previous dispatch's only if that one stored it: a failed or
   // non-temporal dispatch in between breaks the chain (the host's "previous" matrices would not
   // describe the stored frame).
-  const bool hadHistory = historyValid;
-  historyValid = false;
+  const bool hadHistory = history.valid;
+  history.valid = false;
   if (Status s = checkCurrentContext("dispatch()"); !s) return s;
   auto constants = frameConstants(in, settings, width, height);  // validates settings + projection
   if (!constants) return constants.status();
-  if (Status s = checkInputs(in, settings.method); !s) return s;
+  TrafficModel formats;
+  if (Status s = checkInputs(in, settings.method, &formats); !s) return s;
   recording = {};
   recordingPass = 0;
   FramePlan plan = planFrame(settings, constants.value(), hadHistory);
+  plan.traffic = trafficModel(plan, formats, settings);
   if (Status s = buildPrograms(plan, in, settings); !s) return s;
   createFrameResources(plan);
   detail::StateGuard guard(gl, false);
@@ -142,43 +147,71 @@ Context::Impl::FramePlan Context::Impl::planFrame(const Settings& settings,
   f.frame = constants;
   f.method = settings.method;
   f.halfResolution = settings.halfResolution;
-  f.temporal = settings.temporal;
-  f.debugOutputs = settings.debugOutputs;
-  f.collectStats = settings.collectStats;
+  f.temporal = settings.temporal.enabled;
+  f.debugOutputs = settings.debug.outputs;
+  f.collectStats = settings.debug.collectStats;
   // frameConstants decided whether the trace uses the traversal; the pyramid follows it, and so
   // do the curved solids (sslr_shared.h).
   f.pyramid = constants.trace.hizMode != SSLR_HIZ_OFF;
   f.curvedSolids = f.pyramid && constants.trace.curvedSolids != 0;
   // TraversalPass::Auto defers the traversal on software renderers, unless most pixels (at half
   // resolution: quads) needed it last frame (then it runs inline: the pass of its own costs more
-  // than it saves, measured at both resolutions). The share is fed back from each such frame.
+  // than it saves). The share is fed back from each such frame.
   const bool adaptiveWithTraversal = settings.method == Method::AdaptiveL && f.pyramid;
-  f.feedback = adaptiveWithTraversal && settings.traversalPass == TraversalPass::Auto && softwareRenderer;
+  f.feedback = adaptiveWithTraversal && settings.traversal.pass == TraversalPass::Auto && softwareRenderer;
   if (f.pyramid) readFeedback();
   // This frame's counts go to the feedback buffer unless an earlier frame's are still unread there.
-  f.feedbackWritten = f.pyramid && feedbackFence == nullptr;
+  f.feedbackWritten = f.pyramid && feedback.fence == nullptr;
   // After a frame that listed no tile, classification does not write level 1: a pass of its own
   // does, dispatched only if this frame lists one (an empty frame's classification then reads the
-  // G-buffer and nothing more; measured in docs/algorithm.md).
-  f.level1Pass = f.pyramid && lastFrameListedNoTile;
-  f.deferTraversal = adaptiveWithTraversal && (settings.traversalPass == TraversalPass::Deferred ||
-                                               (f.feedback && !traversalInline));
+  // G-buffer and nothing more).
+  f.level1Pass = f.pyramid && feedback.lastFrameListedNoTile;
+  f.deferTraversal = adaptiveWithTraversal && (settings.traversal.pass == TraversalPass::Deferred ||
+                                               (f.feedback && !feedback.traversalInline));
   // Inline under Auto: the trace (at half resolution the quad pass) counts the pixels (quads) that
   // needed the traversal, as deferred would have listed them.
   f.countTraversal = f.feedback && !f.deferTraversal;
   f.countQuads = f.feedback && settings.halfResolution;
   f.retracePass = settings.halfResolution || f.deferTraversal;
   f.quadRetracePass = settings.halfResolution && f.deferTraversal;
-  f.blur = settings.blur && settings.blurMaxRadiusPx > 0.0f;
+  f.blur = settings.blur.enabled && settings.blur.maxRadiusPx > 0.0f;
   // History of the previous frame only if it stored one (else its keys may be older: cleared).
-  f.useHistory = settings.temporal && hadHistory;
+  f.useHistory = settings.temporal.enabled && hadHistory;
   return f;
+}
+
+// What FrameStats' traffic model needs of this frame: the input formats, which passes and paths
+// the plan runs and the pyramid's cell counts.
+TrafficModel Context::Impl::trafficModel(const FramePlan& f, TrafficModel formats, const Settings& settings) const {
+  TrafficModel m = formats;
+  m.width = width;
+  m.height = height;
+  m.pyramid = f.pyramid;
+  m.classifyLevels01 = f.pyramid && !f.level1Pass;
+  m.levels01Pass = f.level1Pass;
+  if (f.curvedSolids) m.normalGathers = f.frame.surface.normalEncoding == SSLR_NORMALS_OCTAHEDRAL ? 2 : 3;
+  auto cells = [&](int level) {
+    const std::uint64_t side = std::uint64_t(1) << level;
+    return ((std::uint64_t(width) + side - 1) / side) * ((std::uint64_t(height) + side - 1) / side);
+  };
+  m.level1Cells = f.pyramid ? cells(1) : 0;
+  for (int level = 2; f.pyramid && level <= pyramid.levels; ++level) m.upperCells += cells(level);
+  // A counted fetch is a depth, position or pyramid texel; where both depth and pyramid texels are
+  // read the larger (the pyramid's RG32F) is the bound.
+  m.fetchBytes = f.method == Method::PositionBuffer ? m.positionBytes
+                 : f.pyramid                        ? std::max(m.depthBytes, 8)
+                                                    : m.depthBytes;
+  m.halfResolution = f.halfResolution;
+  m.hitRecord = f.debugOutputs || f.temporal;
+  m.iterations = f.debugOutputs;
+  m.temporal = f.temporal;
+  m.blurTaps = f.blur ? static_cast<int>(std::ceil(std::min(settings.blur.maxRadiusPx, 32.0f))) : 0;
+  return m;
 }
 
 // Every program the plan runs, built (or found in the cache) before any state is touched. The
 // optional inputs, the normal encoding, the material channels and the tracer's role are compiled
-// in or out rather than branched on: a CPU rasterizer runs an untaken branch under a lane mask
-// (llvmpipe 960x540: classification 9.1 -> 7.0 ms, glossy's blur 58.6 -> 52.2 ms without them).
+// in or out rather than branched on: a CPU rasterizer runs an untaken branch under a lane mask.
 Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const Settings& settings) {
   const shared::SslrSurface& surface = f.frame.surface;
   inputDefines = std::string(in.maskTexture != 0 ? "#define SSLR_HAS_MASK 1\n" : "") +
@@ -194,41 +227,39 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
   if (settings.method == Method::PositionBuffer) methodDefines += "#define SSLR_METHOD_POSITION_BUFFER 1\n";
   if (settings.method == Method::ScreenSpaceDDA) methodDefines += "#define SSLR_METHOD_DDA 1\n";
   if (settings.method == Method::FidelityFxSssr) methodDefines += "#define SSLR_METHOD_FFX 1\n";
-  const std::string statsDefine = settings.collectStats ? "#define SSLR_COLLECT_STATS 1\n" : "";
+  const std::string statsDefine = settings.debug.collectStats ? "#define SSLR_COLLECT_STATS 1\n" : "";
   std::string traceDefines = methodDefines + statsDefine;
-  if (settings.debugOutputs) traceDefines += "#define SSLR_DEBUG_OUTPUTS 1\n";
-  if (settings.temporal) traceDefines += "#define SSLR_TEMPORAL_HITS 1\n";
+  if (settings.debug.outputs) traceDefines += "#define SSLR_DEBUG_OUTPUTS 1\n";
+  if (settings.temporal.enabled) traceDefines += "#define SSLR_TEMPORAL_HITS 1\n";
   const std::string deferDefine = f.deferTraversal ? "#define SSLR_DEFER_TRAVERSAL 1\n" : "";
   const std::string countDefine = "#define SSLR_COUNT_TRAVERSAL 1\n";
-  // Half resolution: a quad pass (one ray per 2x2 quad; deferred: its first stage, and a quad
-  // retrace pass for the rest) before the full-resolution pass, which reuses those rays.
-  const std::string quadDefines = "#define SSLR_HALF_QUADS 1\n" + methodDefines + statsDefine;
-  const std::string retraceDefines = traceDefines + "#define SSLR_HALF_RETRACE 1\n";
-  if (settings.halfResolution) traceDefines += "#define SSLR_HALF_RES 1\n";
-  else traceDefines += deferDefine + (f.countTraversal ? countDefine : "");
-  // With the pyramid, classification (which reads every depth anyway) writes its level 1, unless
-  // the last frame listed no tile (then the level-1 pass does, if this frame lists one).
+  // The full-resolution trace; at half resolution the shading from the quads' rays instead.
+  const char* traceEntry = settings.halfResolution ? "3_shade_from_quads.comp" : "3_trace.comp";
+  const std::string retraceDefines = traceDefines;
+  if (!settings.halfResolution) traceDefines += deferDefine + (f.countTraversal ? countDefine : "");
+  const std::string quadDefines = methodDefines + statsDefine;
+  // With the pyramid, classification (which reads every depth anyway) writes its levels 0 and 1,
+  // unless the last frame listed no tile (then the levels-0-and-1 pass does, if this frame lists one).
   const std::pair<GLuint*, Expected<GLuint>> built[] = {
-      {&f.programs.classify, computeProgram("classify.comp", f.pyramid && !f.level1Pass
-                                                                 ? "#define SSLR_CLASSIFY_LEVEL1 1\n" + curvedDefine
-                                                                 : "")},
-      {&f.programs.level1, optionalProgram(f.level1Pass, "classify.comp", "#define SSLR_LEVEL1_PASS 1\n" + curvedDefine)},
-      {&f.programs.cleanup, computeProgram("classify.comp", "#define SSLR_CLEANUP 1\n")},
-      {&f.programs.hizBuild, optionalProgram(f.pyramid, "hiz.comp", "")},
-      {&f.programs.hizSingle, optionalProgram(f.pyramid && hizLevels > kHizBlockTop, "hiz.comp", "#define SSLR_HIZ_SINGLE 1\n")},
-      {&f.programs.hizArgs, optionalProgram(f.pyramid, "classify.comp", "#define SSLR_PYRAMID_ARGS 1\n" + curvedDefine)},
-      {&f.programs.curved, optionalProgram(f.curvedSolids, "classify.comp", "#define SSLR_CURVED_PASS 1\n" + curvedDefine)},
-      {&f.programs.trace, computeProgram("trace.comp", traceDefines)},
-      {&f.programs.quads, optionalProgram(settings.halfResolution, "trace.comp",
+      {&f.programs.classify, computeProgram("1_classify.comp", f.pyramid && !f.level1Pass
+                                                                   ? "#define SSLR_CLASSIFY_LEVEL1 1\n" + curvedDefine
+                                                                   : "")},
+      {&f.programs.cleanup, computeProgram("1_clear_untraced.comp", "")},
+      {&f.programs.hizArgs, optionalProgram(f.pyramid, "2_pyramid_arguments.comp", curvedDefine)},
+      {&f.programs.level1, optionalProgram(f.level1Pass, "2_pyramid_levels01.comp", curvedDefine)},
+      {&f.programs.curved, optionalProgram(f.curvedSolids, "2_pyramid_curved.comp", curvedDefine)},
+      {&f.programs.hizBuild, optionalProgram(f.pyramid, "2_pyramid_levels2to7.comp", "")},
+      {&f.programs.hizSingle, optionalProgram(f.pyramid && pyramid.levels > kHizBlockTop, "2_pyramid_top_level.comp", "")},
+      {&f.programs.trace, computeProgram(traceEntry, traceDefines)},
+      {&f.programs.quads, optionalProgram(settings.halfResolution, "3_trace_quads.comp",
                                           quadDefines + deferDefine + (f.countQuads ? countDefine : ""))},
-      {&f.programs.quadRetrace, optionalProgram(f.quadRetracePass, "trace.comp", quadDefines + "#define SSLR_HALF_QUAD_RETRACE 1\n")},
-      {&f.programs.retrace, optionalProgram(f.retracePass, "trace.comp", retraceDefines)},
-      {&f.programs.blurH, optionalProgram(f.blur, "blur.comp", "#define SSLR_BLUR_AXIS ivec2(1, 0)\n")},
-      {&f.programs.blurV, optionalProgram(f.blur, "blur.comp", "#define SSLR_BLUR_AXIS ivec2(0, 1)\n#define SSLR_BLUR_VERTICAL 1\n")},
-      {&f.programs.temporalBlend, optionalProgram(settings.temporal, "temporal.comp", "")},
-      {&f.programs.temporalStore, optionalProgram(settings.temporal, "temporal.comp", "#define SSLR_TEMPORAL_STORE 1\n")},
-      {&f.programs.historyCleanup, optionalProgram(settings.temporal, "classify.comp",
-                                                   "#define SSLR_CLEANUP 1\n#define SSLR_CLEANUP_HISTORY 1\n")}};
+      {&f.programs.quadRetrace, optionalProgram(f.quadRetracePass, "3_retrace_quads.comp", quadDefines)},
+      {&f.programs.retrace, optionalProgram(f.retracePass, "3_retrace.comp", retraceDefines)},
+      {&f.programs.blurH, optionalProgram(f.blur, "4_blur.comp", "#define SSLR_BLUR_AXIS ivec2(1, 0)\n")},
+      {&f.programs.blurV, optionalProgram(f.blur, "4_blur.comp", "#define SSLR_BLUR_AXIS ivec2(0, 1)\n#define SSLR_BLUR_VERTICAL 1\n")},
+      {&f.programs.temporalBlend, optionalProgram(settings.temporal.enabled, "5_temporal_blend.comp", "")},
+      {&f.programs.temporalStore, optionalProgram(settings.temporal.enabled, "5_temporal_store.comp", "")},
+      {&f.programs.historyCleanup, optionalProgram(settings.temporal.enabled, "5_clear_untraced_history.comp", "")}};
   for (const auto& [slot, program] : built) {
     if (!program) return program.status();
     *slot = program.value();
@@ -242,31 +273,31 @@ Expected<GLuint> Context::Impl::optionalProgram(bool wanted, const char* entry, 
 
 // The textures and buffers the plan needs that no earlier frame created.
 void Context::Impl::createFrameResources(const FramePlan& f) {
-  if (f.halfResolution && quadHit == 0) {
+  if (f.halfResolution && halfRes.quadHit == 0) {
     const int qw = (width + 1) / 2, qh = (height + 1) / 2;
-    gl.CreateTextures(GL_TEXTURE_2D, 1, &quadHit);
-    gl.TextureStorage2D(quadHit, 1, GL_RGBA32F, qw, qh);
-    label(GL_TEXTURE, quadHit, "sslr.quadHit");
-    gl.CreateTextures(GL_TEXTURE_2D, 1, &quadSurface);
-    gl.TextureStorage2D(quadSurface, 1, GL_RGBA16F, qw, qh);
-    label(GL_TEXTURE, quadSurface, "sslr.quadSurface");
+    gl.CreateTextures(GL_TEXTURE_2D, 1, &halfRes.quadHit);
+    gl.TextureStorage2D(halfRes.quadHit, 1, GL_RGBA32F, qw, qh);
+    label(GL_TEXTURE, halfRes.quadHit, "sslr.quadHit");
+    gl.CreateTextures(GL_TEXTURE_2D, 1, &halfRes.quadSurface);
+    gl.TextureStorage2D(halfRes.quadSurface, 1, GL_RGBA16F, qw, qh);
+    label(GL_TEXTURE, halfRes.quadSurface, "sslr.quadSurface");
   }
-  if (f.curvedSolids && curvedQuads == 0) {
-    gl.CreateBuffers(1, &curvedQuads);  // header (classify.comp) + one entry per quad
-    gl.NamedBufferStorage(curvedQuads, static_cast<GLsizeiptr>((8 + static_cast<size_t>(hizWidth) * hizHeight) * sizeof(GLuint)),
+  if (f.curvedSolids && pyramid.curvedQuads == 0) {
+    gl.CreateBuffers(1, &pyramid.curvedQuads);  // header (passes/curved_quads.glsl) + one entry per quad
+    gl.NamedBufferStorage(pyramid.curvedQuads, static_cast<GLsizeiptr>((8 + static_cast<size_t>(pyramid.level1Width) * pyramid.level1Height) * sizeof(GLuint)),
                           nullptr, GL_DYNAMIC_STORAGE_BIT);
-    label(GL_BUFFER, curvedQuads, "sslr.curvedQuads");
+    label(GL_BUFFER, pyramid.curvedQuads, "sslr.curvedQuads");
   }
-  if (f.pyramid && hiz == 0) createPyramid();
-  if (f.pyramid && feedbackBuffer == 0) {
-    gl.CreateBuffers(1, &feedbackBuffer);
-    gl.NamedBufferStorage(feedbackBuffer, 4 * sizeof(GLuint), nullptr, 0);
-    label(GL_BUFFER, feedbackBuffer, "sslr.feedback");
+  if (f.pyramid && pyramid.texture == 0) createPyramid();
+  if (f.pyramid && feedback.buffer == 0) {
+    gl.CreateBuffers(1, &feedback.buffer);
+    gl.NamedBufferStorage(feedback.buffer, 4 * sizeof(GLuint), nullptr, 0);
+    label(GL_BUFFER, feedback.buffer, "sslr.feedback");
   }
   if ((f.retracePass || f.countTraversal) && retraceBuffer == 0) {
     gl.CreateBuffers(1, &retraceBuffer);
     // Header, then a pixel list (at most every pixel of the traced tiles) or the quad list (a slot
-    // and a tile's quads per tile; trace.comp).
+    // and a tile's quads per tile; passes/retrace_list.glsl).
     const size_t tileCount = static_cast<size_t>(tilesX()) * tilesY();
     gl.NamedBufferStorage(retraceBuffer,
                           static_cast<GLsizeiptr>((4 + tileCount * SSLR_TILE_SIZE * SSLR_TILE_SIZE) * sizeof(GLuint)),
@@ -276,22 +307,22 @@ void Context::Impl::createFrameResources(const FramePlan& f) {
   // The hit record and iteration images only for the frames that write them (20 B per pixel).
   if ((f.debugOutputs || f.temporal) && hit == 0) hit = makeTexture(GL_RGBA32F, "sslr.hit");
   if (f.debugOutputs && iterations == 0) iterations = makeTexture(GL_R32F, "sslr.iterations");
-  if (f.temporal && history == 0) {
-    history = makeTexture(GL_RGBA16F, "sslr.history");
-    historyKey = makeTexture(GL_R32F, "sslr.historyKey");
+  if (f.temporal && history.color == 0) {
+    history.color = makeTexture(GL_RGBA16F, "sslr.history");
+    history.key = makeTexture(GL_R32F, "sslr.historyKey");
   }
 }
 
 // The frame's constants, the tile list's header, the debug images and the stats slot.
 void Context::Impl::beginFrame(FramePlan& f) {
   const float zero[4] = {0, 0, 0, 0};
-  if (f.temporal && !f.useHistory) clearTexImage(historyKey, GL_RED, GL_FLOAT, zero);
+  if (f.temporal && !f.useHistory) clearTexImage(history.key, GL_RED, GL_FLOAT, zero);
   f.frame.temporal.history = f.useHistory ? 1 : 0;
   frameIndex = frameIndex == 0x7fffffff ? 1 : frameIndex + 1;
   f.frame.trace.frameIndex = frameIndex;
   bufferSubData(frameUbo, 0, sizeof(f.frame), &f.frame);
   writeTileHeader();
-  // reflection and resolved are not cleared: the clean-up pass (classify.comp, SSLR_CLEANUP)
+  // reflection and resolved are not cleared: the clean-up pass (1_clear_untraced.comp)
   // zeroes the tiles the previous frame traced and this one does not. The debug images are
   // cleared whole (debug only).
   if (f.debugOutputs) {
@@ -313,7 +344,7 @@ void Context::Impl::beginFrame(FramePlan& f) {
 }
 
 // Tile list header: trace dispatch (0, 1, 1), draw (6 vertices, 0 instances), blur dispatch,
-// pyramid dispatches (0, 1, 1) per level and their real group counts (classify.comp copies them
+// pyramid dispatches (0, 1, 1) per level and their real group counts (2_pyramid_arguments.comp copies them
 // over when it lists a tile). The previous frame's trace dispatch and tile list become the
 // clean-up pass's.
 void Context::Impl::writeTileHeader() const {
@@ -325,18 +356,18 @@ void Context::Impl::writeTileHeader() const {
   header.dispatchY = header.dispatchZ = 1;  // the trace: no tile yet
   header.drawCount = 6;                     // the composite: 6 vertices per tile, no instance yet
   header.blurDispatchY = header.blurDispatchZ = 1;
-  // Used: level 1's (the level-1 pass: 8x8 level-1 cells a group), level 2's (hiz.comp's blocks:
+  // Used: level 1's (the level-1 pass: 8x8 level-1 cells a group), level 2's (2_pyramid_levels2to7.comp's blocks:
   // one kHizBlockTop cell a group) and the level above the blocks' (8x8 of its cells a group).
   for (int level = 1; level <= SSLR_HIZ_MAX_LEVELS; ++level) {
     GLuint* live = &header.hizDispatch[3 * (level - 1)];
     GLuint* real = &header.hizGroups[3 * (level - 1)];
     live[0] = 0, live[1] = 1, live[2] = 1;
     // Pixels a group spans: 8 cells of its level (the blocks: one kHizBlockTop cell); the padded
-    // screen is 2 hizWidth x 2 hizHeight pixels.
+    // screen is 2 level1Width x 2 level1Height pixels.
     const int groupPx = level == 2 ? 1 << kHizBlockTop : 8 << level;
-    const bool used = level <= hizLevels && (level <= 2 || level == kHizBlockTop + 1);
-    real[0] = used ? static_cast<GLuint>((2 * hizWidth + groupPx - 1) / groupPx) : 0u;
-    real[1] = used ? static_cast<GLuint>((2 * hizHeight + groupPx - 1) / groupPx) : 1u;
+    const bool used = level <= pyramid.levels && (level <= 2 || level == kHizBlockTop + 1);
+    real[0] = used ? static_cast<GLuint>((2 * pyramid.level1Width + groupPx - 1) / groupPx) : 0u;
+    real[1] = used ? static_cast<GLuint>((2 * pyramid.level1Height + groupPx - 1) / groupPx) : 1u;
     real[2] = 1;
   }
   bufferSubData(tileBuffer, 0, kHeaderUploadBytes, &header);
@@ -362,8 +393,8 @@ void Context::Impl::runClassify(const FramePlan& f, const FrameInputs& in) const
   if (f.curvedSolids) {
     // The curved pass's dispatch (0, 1, 1) until the pyramid-args pass sets it; no quad listed.
     const GLuint curvedHeader[8] = {0, 1, 1, 0, 0, 0, 0, 0};
-    bufferSubData(curvedQuads, 0, sizeof(curvedHeader), curvedHeader);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_CURVED_SSBO, curvedQuads);
+    bufferSubData(pyramid.curvedQuads, 0, sizeof(curvedHeader), curvedHeader);
+    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_CURVED_SSBO, pyramid.curvedQuads);
   }
   dispatchCompute(static_cast<GLuint>(tilesX()), static_cast<GLuint>(tilesY()), 1);
   memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
@@ -383,17 +414,17 @@ void Context::Impl::runPyramid(const FramePlan& f) const {
   useProgram(f.programs.hizArgs);
   dispatchCompute(1, 1, 1);
   memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-  if (f.level1Pass) {  // level 1 (classify.comp, SSLR_LEVEL1_PASS) through level 1's pyramid arguments
+  if (f.level1Pass) {  // level 1 (2_pyramid_levels01.comp) through level 1's pyramid arguments
     useProgram(f.programs.level1);
     bindPyramidLevels01();  // (the clean-up pass took image unit 0)
     dispatchComputeIndirect(kHizDispatchOffset);
     memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                   GL_COMMAND_BARRIER_BIT);
   }
-  if (f.curvedSolids) {  // the listed quads' cells with their solids (classify.comp, SSLR_CURVED_PASS)
+  if (f.curvedSolids) {  // the listed quads' cells with their solids (2_pyramid_curved.comp)
     useProgram(f.programs.curved);
     bindPyramidLevels01();
-    gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, curvedQuads);
+    gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, pyramid.curvedQuads);
     dispatchComputeIndirect(0);
     gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
     memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -433,8 +464,8 @@ void Context::Impl::runTrace(const FramePlan& f) const {
 void Context::Impl::runQuads(const FramePlan& f) const {
   const GLuint retraceHeader[4] = {0, 1, 1, 0};
   useProgram(f.programs.quads);
-  gl.BindImageTexture(SSLR_IMAGE_QUAD_HIT, quadHit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  gl.BindImageTexture(SSLR_IMAGE_QUAD_SURFACE, quadSurface, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  gl.BindImageTexture(SSLR_IMAGE_QUAD_HIT, halfRes.quadHit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  gl.BindImageTexture(SSLR_IMAGE_QUAD_SURFACE, halfRes.quadSurface, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   dispatchComputeIndirect(0);  // one group per listed tile
   if (f.quadRetracePass) {  // the quads whose ray needs the traversal
     memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
@@ -447,13 +478,13 @@ void Context::Impl::runQuads(const FramePlan& f) const {
     // The quads that needed the traversal (Auto's feedback), then the list is the pixels'.
     memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     if (f.countQuads && f.feedbackWritten)
-      copyBufferSubData(retraceBuffer, feedbackBuffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
+      copyBufferSubData(retraceBuffer, feedback.buffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
     bufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
   }
   memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-  gl.bindTexture2D(SSLR_UNIT_QUAD_HIT, quadHit);
+  gl.bindTexture2D(SSLR_UNIT_QUAD_HIT, halfRes.quadHit);
   gl.BindSampler(SSLR_UNIT_QUAD_HIT, nearestSampler);
-  gl.bindTexture2D(SSLR_UNIT_QUAD_SURFACE, quadSurface);
+  gl.bindTexture2D(SSLR_UNIT_QUAD_SURFACE, halfRes.quadSurface);
   gl.BindSampler(SSLR_UNIT_QUAD_SURFACE, nearestSampler);
 }
 
@@ -472,7 +503,7 @@ void Context::Impl::runBlur(const FramePlan& f) const {
   memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   useProgram(f.programs.blurV);
   gl.bindTexture2D(SSLR_UNIT_BLUR_INPUT, blurTemp);
-  gl.bindTexture2D(SSLR_UNIT_BLUR_UNBLURRED, resolved);  // read where blurTemp is not written (see blur.comp)
+  gl.bindTexture2D(SSLR_UNIT_BLUR_UNBLURRED, resolved);  // read where blurTemp is not written (see 4_blur.comp)
   gl.BindImageTexture(SSLR_IMAGE_BLUR_OUTPUT, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   dispatchComputeIndirect(kBlurDispatchOffset);
 }
@@ -491,8 +522,8 @@ void Context::Impl::runTemporal(const FramePlan& f, const FrameInputs& in) {
   gl.bindTexture2D(SSLR_UNIT_HIT_RECORD, hit);  // written by the trace on the listed tiles (SSLR_TEMPORAL_HITS)
   gl.BindSampler(SSLR_UNIT_HIT_RECORD, nearestSampler);
   gl.bindTexture2D(SSLR_UNIT_TEMPORAL_CURRENT, resolved);
-  gl.bindTexture2D(SSLR_UNIT_HISTORY, history);
-  gl.bindTexture2D(SSLR_UNIT_HISTORY_KEY, historyKey);
+  gl.bindTexture2D(SSLR_UNIT_HISTORY, history.color);
+  gl.bindTexture2D(SSLR_UNIT_HISTORY_KEY, history.key);
   gl.BindImageTexture(SSLR_IMAGE_TEMPORAL_OUTPUT, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   dispatchComputeIndirect(0);
   memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -501,13 +532,13 @@ void Context::Impl::runTemporal(const FramePlan& f, const FrameInputs& in) {
   gl.bindTexture2D(SSLR_UNIT_HISTORY, 0);
   gl.bindTexture2D(SSLR_UNIT_HISTORY_KEY, 0);
   gl.BindImageTexture(SSLR_IMAGE_TEMPORAL_OUTPUT, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  gl.BindImageTexture(SSLR_IMAGE_HISTORY, history, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  gl.BindImageTexture(SSLR_IMAGE_HISTORY_KEY, historyKey, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  gl.BindImageTexture(SSLR_IMAGE_HISTORY, history.color, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  gl.BindImageTexture(SSLR_IMAGE_HISTORY_KEY, history.key, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
   dispatchComputeIndirect(0);
   memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   useProgram(f.programs.historyCleanup);
   dispatchComputeIndirect(kCleanupDispatchOffset);
-  historyValid = true;
+  history.valid = true;
 }
 
 // The end of a frame: every write made visible to the host, the feedback and the stats copied on
@@ -516,16 +547,17 @@ void Context::Impl::finishFrame(const FramePlan& f) {
   beginPass(f, 5);
   memoryBarrier(GL_ALL_BARRIER_BITS);
   if (f.feedbackWritten) {  // (listed tiles, -, -, pixels or quads that needed the traversal)
-    copyBufferSubData(tileBuffer, feedbackBuffer, 0, 0, sizeof(GLuint));
+    copyBufferSubData(tileBuffer, feedback.buffer, 0, 0, sizeof(GLuint));
     if (f.feedback && !f.halfResolution)  // (half resolution copied its quads' count in runQuads)
-      copyBufferSubData(retraceBuffer, feedbackBuffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
-    feedbackHasTraversal = f.feedback;
-    feedbackCellsPerTile = f.halfResolution ? SSLR_TILE_QUADS : SSLR_TILE_SIZE * SSLR_TILE_SIZE;
-    feedbackFence = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+      copyBufferSubData(retraceBuffer, feedback.buffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
+    feedback.hasTraversal = f.feedback;
+    feedback.cellsPerTile = f.halfResolution ? SSLR_TILE_QUADS : SSLR_TILE_SIZE * SSLR_TILE_SIZE;
+    feedback.fence = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
   }
   if (f.slot != nullptr) {
     f.slot->traversalDeferred = f.deferTraversal;
-    f.slot->level1Pass = f.level1Pass;
+    f.slot->followedEmptyFrame = f.level1Pass;
+    f.slot->traffic = f.traffic;
     copyBufferSubData(tileBuffer, f.slot->buffer, 0, 4 * sizeof(GLuint), sizeof(GLuint));
     copyBufferSubData(tileBuffer, f.slot->buffer, kBlurDispatchOffset, 5 * sizeof(GLuint), sizeof(GLuint));
     f.slot->fence = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);

@@ -50,45 +50,45 @@ Status surfaceConstants(const FrameInputs& in, int width, int height, shared::Ss
 void traceConstants(const FrameInputs& in, const Settings& s, int width, int height, shared::SslrFrame& f) {
   shared::SslrTraceParams& t = f.trace;
   // At least 4 pixels: a shorter first step leaves the probe in or next to its own pixel, whose
-  // depth says nothing about the ray (measured: 64x48 frames lose a third of their hits).
-  t.initialLengthPixels = std::max(s.initialLengthScreen * static_cast<float>(height), 4.0f);
-  t.convergenceEps = s.convergenceEps;
-  t.errorK = s.errorK;
-  t.maxDistance = s.maxDistance;
-  t.thicknessRelative = s.thicknessRelative;
-  t.thicknessPixels = s.thicknessPixels;
-  t.edgeFade = s.edgeFade;
-  t.cameraFadeStart = s.cameraFadeStart;
-  t.cameraFadeEnd = s.cameraFadeEnd;
-  t.roughnessCutoff = s.roughnessCutoff;
-  t.minReflectance = s.minReflectance;
-  t.blurMaxRadiusPx = s.blurMaxRadiusPx;
-  t.blurConeScale = s.blurConeScale;
-  t.blurDepthSigma = s.blurDepthSigma;
-  t.blurNormalPower = s.blurNormalPower;
-  t.maxIterations = s.maxIterations;
+  // depth says nothing about the ray.
+  t.initialLengthPixels = std::max(s.adaptiveL.initialLengthScreen * static_cast<float>(height), 4.0f);
+  t.convergenceEps = s.adaptiveL.convergenceEps;
+  t.errorK = s.fades.errorK;
+  t.maxDistance = s.fades.maxDistance;
+  t.hitToleranceRelative = s.hitTolerance.relative;
+  t.hitTolerancePixels = s.hitTolerance.pixels;
+  t.edgeFade = s.fades.screenEdge;
+  t.cameraFadeStart = s.fades.cameraStart;
+  t.cameraFadeEnd = s.fades.cameraEnd;
+  t.roughnessCutoff = s.selection.roughnessCutoff;
+  t.minReflectance = s.selection.minReflectance;
+  t.blurMaxRadiusPx = s.blur.maxRadiusPx;
+  t.blurConeScale = s.blur.coneScale;
+  t.blurDepthSigma = s.blur.depthSigma;
+  t.blurNormalPower = s.blur.normalPower;
+  t.maxIterations = s.adaptiveL.maxIterations;
   t.fresnelMode = s.fresnel == FresnelMode::Classic ? SSLR_FRESNEL_CLASSIC : SSLR_FRESNEL_SCHLICK;
-  t.outlineThinning = s.outlineThinning ? 1 : 0;
+  t.outlineThinning = s.traversal.outlineThinning ? 1 : 0;
   // A measured thickness (back-face depth) replaces the curved solids' estimate.
-  t.curvedSolids = s.curvedSolids && in.backDepthTexture == 0 && s.method != Method::FidelityFxSssr ? 1 : 0;
+  t.curvedSolids = s.traversal.curvedSolids && in.backDepthTexture == 0 && s.method != Method::FidelityFxSssr ? 1 : 0;
   // FidelityFX SSSR's raymarch reads the pyramid too (its nearest depths).
   t.hizMode = s.method == Method::HierarchicalDepth || s.method == Method::FidelityFxSssr
                   ? SSLR_HIZ_ONLY
-                  : (s.method == Method::AdaptiveL && s.hierarchicalFallback
-                         ? (s.hierarchicalVerify ? SSLR_HIZ_VERIFY : SSLR_HIZ_FALLBACK)
+                  : (s.method == Method::AdaptiveL && s.traversal.fallback
+                         ? (s.traversal.verify ? SSLR_HIZ_VERIFY : SSLR_HIZ_FALLBACK)
                          : SSLR_HIZ_OFF);
-  t.hizMaxSteps = s.hierarchicalMaxSteps;
-  t.objectThickness = s.objectThickness;
-  t.hiddenPassageLimitPx = s.hiddenPassageLimitPx;
+  t.hizMaxSteps = s.traversal.maxSteps;
+  t.objectDepthRelative = s.traversal.objectDepthRelative;
+  t.hiddenPassageLimitPx = s.traversal.hiddenPassageLimitPx;
   t.ffxDepthBufferThickness = s.ffx.depthBufferThickness;
   t.ffxMaxIntersections = s.ffx.maxTraversalIntersections;
   t.hizLevels = shared::sslrHiZLevelCount(width, height);
   f.positionBuffer.maxDistance = s.positionBuffer.maxDistance;
   f.positionBuffer.resolution = s.positionBuffer.resolution;
-  f.positionBuffer.thickness = s.positionBuffer.thickness;
+  f.positionBuffer.hitTolerance = s.positionBuffer.hitTolerance;
   f.positionBuffer.steps = s.positionBuffer.steps;
   f.dda.stride = s.dda.stride;
-  f.dda.thickness = s.dda.thickness;
+  f.dda.objectDepth = s.dda.objectDepth;
   f.dda.maxDistance = s.dda.maxDistance;
   f.dda.maxSteps = s.dda.maxSteps;
   f.dda.jitter = s.dda.jitter ? 1 : 0;
@@ -97,7 +97,7 @@ void traceConstants(const FrameInputs& in, const Settings& s, int width, int hei
 
 // Temporal reuse's reprojection (Settings::temporal only).
 Status temporalConstants(const FrameInputs& in, const Settings& s, shared::SslrFrame& f) {
-  if (s.temporal) {
+  if (s.temporal.enabled) {
     bool finite = true, zero = true;
     for (int c = 0; c < 4; ++c)
       for (int r = 0; r < 4; ++r) {
@@ -109,7 +109,7 @@ Status temporalConstants(const FrameInputs& in, const Settings& s, shared::SslrF
                            "frame's clipFromView x viewFromWorld x this frame's worldFromView); it is all zeros");
     if (!finite) return Status::error(StatusCode::InvalidInput, "sslr: FrameInputs::previousClipFromView is not finite");
     f.temporal.previousClipFromView = glm::mat4(in.previousClipFromView);
-    f.temporal.historyWeight = s.temporalWeight;
+    f.temporal.historyWeight = s.temporal.historyWeight;
     // 2% of the depth: a surface seen again, within a pixel's slope at grazing angles; the
     // four history texels around the reprojected point are tried, so a slope costs nothing.
     f.temporal.keyTolerance = 0.02f;

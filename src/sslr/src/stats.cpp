@@ -27,6 +27,128 @@ PassCommands FrameStats::totalCommands() const {
   return total;
 }
 
+PassTraffic FrameStats::totalTraffic() const {
+  PassTraffic total;
+  for (const PassTraffic* t : {&classifyTraffic, &pyramidTraffic, &traceTraffic, &blurTraffic, &temporalTraffic}) {
+    total.texelsRead += t->texelsRead;
+    total.texelsWritten += t->texelsWritten;
+    total.bytesRead += t->bytesRead;
+    total.bytesWritten += t->bytesWritten;
+  }
+  return total;
+}
+
+namespace {
+using U64 = std::uint64_t;
+void read(PassTraffic& t, U64 texels, int bytes) {
+  t.texelsRead += texels;
+  t.bytesRead += texels * U64(bytes);
+}
+void write(PassTraffic& t, U64 texels, int bytes) {
+  t.texelsWritten += texels;
+  t.bytesWritten += texels * U64(bytes);
+}
+constexpr int kRgba16f = 8, kRg32f = 8, kRgba32f = 16, kR32f = 4;
+
+// Pyramid levels 0 and 1 from the depths (classification, or its pass of their own): every depth
+// gathered, the back depth and the curved solids' normal channels with them; level 1 whole and
+// level 0 at most whole (quads of background alone write none).
+void levels01(PassTraffic& t, const TrafficModel& m, U64 pixels) {
+  read(t, pixels, m.depthBytes);
+  if (m.backDepthBytes > 0) read(t, pixels, m.backDepthBytes);
+  read(t, pixels * U64(m.normalGathers), m.normalBytes);
+  write(t, m.level1Cells, kRg32f);
+  write(t, pixels, kRg32f);
+}
+
+// The G-buffer reads of one trace-pass pixel: normal, depth, the separate material texel.
+void pixelSetup(PassTraffic& t, const TrafficModel& m, U64 pixels) {
+  read(t, pixels, m.normalBytes);
+  read(t, pixels, m.depthBytes);
+  if (m.materialBytes > 0) read(t, pixels, m.materialBytes);
+  if (m.positionBytes > 0) read(t, pixels, m.positionBytes);
+}
+}  // namespace
+
+// The model: P screen pixels, T listed tiles (64 pixels each, counted whole at the screen's
+// edge), R rays traced, F counted fetches, B blurred tiles. Bounds where the CPU cannot know the
+// count: level 0 written for every quad, a colour and a hit normal read for every ray, every
+// blurred tile staged at the widest apron, history looked up twice per pixel. Not counted: the
+// clean-up passes' zeros and the curved pass (their counts stay on the GPU).
+void estimateTraffic(const TrafficModel& m, FrameStats& f) {
+  const U64 pixels = U64(m.width) * U64(m.height);
+  const U64 tilePixels = U64(f.tiles) * (SSLR_TILE_SIZE * SSLR_TILE_SIZE);
+  const U64 rays = f.tracedPixels;
+  f.classifyTraffic = {};
+  read(f.classifyTraffic, pixels, m.depthBytes);
+  read(f.classifyTraffic, pixels * U64(m.materialGathers), m.materialBytes > 0 ? m.materialBytes : m.normalBytes);
+  if (m.maskBytes > 0) read(f.classifyTraffic, pixels, m.maskBytes);
+  if (m.classifyLevels01) {
+    PassTraffic levels;
+    levels01(levels, m, pixels);
+    levels.texelsRead -= pixels;  // classification's own depth read serves the levels too
+    levels.bytesRead -= pixels * U64(m.depthBytes);
+    for (auto [to, from] : {std::pair{&f.classifyTraffic.texelsRead, levels.texelsRead},
+                            {&f.classifyTraffic.texelsWritten, levels.texelsWritten},
+                            {&f.classifyTraffic.bytesRead, levels.bytesRead},
+                            {&f.classifyTraffic.bytesWritten, levels.bytesWritten}})
+      *to += from;
+  }
+  const bool traced = f.tiles > 0;
+  f.pyramidTraffic = {};
+  if (m.pyramid && traced) {
+    if (m.levels01Pass) levels01(f.pyramidTraffic, m, pixels);
+    read(f.pyramidTraffic, m.level1Cells, kRg32f);
+    write(f.pyramidTraffic, m.upperCells, kRg32f);
+  }
+  f.traceTraffic = {};
+  if (traced) {
+    PassTraffic& t = f.traceTraffic;
+    pixelSetup(t, m, tilePixels);
+    if (m.halfResolution) {  // the quads' rays pick among their four pixels, then every pixel reads two records
+      pixelSetup(t, m, tilePixels);
+      write(t, tilePixels / 4, kRgba32f);  // the quads' hit records
+      write(t, tilePixels / 4, kRgba16f);  // ... and surfaces
+      read(t, tilePixels, kRgba32f);
+      read(t, tilePixels, kRgba16f);
+    }
+    read(t, f.fetches, m.fetchBytes);
+    read(t, rays * 4, m.colorBytes);  // the bilinear colour read of a hit
+    read(t, rays, m.normalBytes);     // the hit's normal
+    write(t, tilePixels * 2, kRgba16f);  // reflection, resolved
+    if (m.hitRecord) write(t, tilePixels, kRgba32f);
+    if (m.iterations) write(t, tilePixels, kR32f);
+  }
+  f.blurTraffic = {};
+  if (m.blurTaps > 0 && f.blurTiles > 0) {
+    const U64 staged = U64(f.blurTiles) * U64(SSLR_TILE_SIZE * (SSLR_TILE_SIZE + 2 * m.blurTaps));
+    const U64 blurred = U64(f.blurTiles) * (SSLR_TILE_SIZE * SSLR_TILE_SIZE);
+    for (int pass = 0; pass < 2; ++pass) {  // H, then V
+      pixelSetup(f.blurTraffic, m, staged);
+      read(f.blurTraffic, staged * (pass == 0 ? 1 : 2), kRgba16f);  // values (V: its radius too)
+      read(f.blurTraffic, blurred * 2, kRgba16f);                   // radius and centre value
+      write(f.blurTraffic, blurred, kRgba16f);
+    }
+  }
+  f.temporalTraffic = {};
+  if (m.temporal && traced) {
+    PassTraffic& t = f.temporalTraffic;
+    read(t, tilePixels * 9, kRgba16f);      // blend: this frame's 3x3
+    read(t, tilePixels * 8, kRgba16f);      // history, at most two lookups of four texels
+    read(t, tilePixels * 8, kR32f);         // their keys
+    read(t, tilePixels, kRgba32f);          // the hit record
+    read(t, tilePixels * 3, m.normalBytes);  // the normal and two neighbours'
+    read(t, tilePixels, m.depthBytes);
+    if (m.motionBytes > 0) read(t, tilePixels, m.motionBytes);
+    write(t, tilePixels, kRgba16f);
+    read(t, tilePixels, kRgba16f);          // store: the blend, depth, normal
+    read(t, tilePixels, m.depthBytes);
+    read(t, tilePixels, m.normalBytes);
+    write(t, tilePixels * 2, kRgba16f);     // resolved and history
+    write(t, tilePixels, kR32f);            // keys
+  }
+}
+
 void Context::Impl::harvestStats(bool waitNewest) const {
   if (waitNewest) {
     const StatsSlot* newest = nullptr;
@@ -56,7 +178,8 @@ void Context::Impl::harvestStats(bool waitNewest) const {
     f.tiles = counters[4];
     f.blurTiles = counters[5];
     f.traversalDeferred = oldest->traversalDeferred;
-    f.level1Pass = oldest->level1Pass;
+    f.followedEmptyFrame = oldest->followedEmptyFrame;
+    estimateTraffic(oldest->traffic, f);
     const auto commands = passCommandsOf(f);
     static_assert(commands.size() == kPasses);
     for (int i = 0; i < kPasses; ++i) *commands[i] = oldest->commands[i];

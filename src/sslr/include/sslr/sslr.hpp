@@ -150,7 +150,7 @@ struct FrameInputs {
                                // pass again with front faces culled; a depth format, the same size
                                // and convention as depthTexture). The depth-only tracers then take
                                // what each pixel shows to be as deep as measured instead of
-                               // Settings::objectThickness x its distance (where a back face lies
+                               // Settings::traversal.objectDepthRelative x its distance (where a back face lies
                                // behind it): rays pass behind thin legs and stop inside boxes
   GLName motionTexture = 0;    // optional, Settings::temporal: RG = this pixel's uv minus the uv the
                                // same surface point had in the previous frame (the host's motion
@@ -177,7 +177,7 @@ enum class Preset { Low, Medium, High, Ultra };
 
 enum class Method {
   AdaptiveL,           // depth-only: the SSLR article's adaptive-L iteration (sslr's method), with
-                       // the hierarchical traversal where it finds nothing (hierarchicalFallback)
+                       // the hierarchical traversal where it finds nothing (traversal.fallback)
   HierarchicalDepth,   // depth-only: the min-max depth pyramid traversal alone (for comparison)
   PositionBuffer,      // comparison: "3D Game Shaders For Beginners" march on a position texture
   ScreenSpaceDDA,      // comparison, depth-only: McGuire & Mara 2014's perspective-correct DDA
@@ -201,13 +201,13 @@ struct PositionBufferSettings {
   float maxDistance = 8.0f;  // ray length, view units
   float resolution = 0.3f;   // fraction of pixels the coarse march visits (0..1]
   int steps = 5;             // binary refinement steps
-  float thickness = 0.5f;    // hit tolerance, view units
+  float hitTolerance = 0.5f; // view units: a ray point this close behind the stored position hits
 };
 
 // Parameters of Method::ScreenSpaceDDA (McGuire & Mara 2014, JCGT 3(4)).
 struct DdaSettings {
   float stride = 2.0f;           // pixels per step (>= 1)
-  float thickness = 0.5f;        // depth assumed behind every visible surface, view units
+  float objectDepth = 0.5f;      // view units: depth assumed behind every visible surface (the paper's zThickness)
   float maxDistance = 1.0e30f;   // ray length, view units (capped at 1e4 x the origin's distance)
   int maxSteps = 256;            // depth fetches per ray at most, refinement not counted
   bool jitter = true;            // checkerboard offset of half a stride (stride > 1)
@@ -220,59 +220,94 @@ struct FfxSssrSettings {
   int maxTraversalIntersections = 128;  // steps of the hierarchical raymarch at most
 };
 
+// Every setting with its unit and valid range; validate() enforces each range. Grouped by the
+// stage it steers; Settings::preset gives the tuned combinations.
 struct Settings {
   Method method = Method::AdaptiveL;
-  PositionBufferSettings positionBuffer;  // used by Method::PositionBuffer only
-  DdaSettings dda;                        // used by Method::ScreenSpaceDDA only
-  FfxSssrSettings ffx;                    // used by Method::FidelityFxSssr only
   FresnelMode fresnel = FresnelMode::Classic;
-  int maxIterations = 16;            // adaptive-L iterations (each one depth fetch); article: 10
-  bool hierarchicalFallback = true;  // AdaptiveL: trace the pyramid where adaptive L finds no hit
-  bool hierarchicalVerify = true;    // ... and over every adaptive-L hit, keeping an earlier crossing
-                                     // it finds (a ray adaptive L carried behind something): the
-                                     // default then never finds less than the traversal alone. Off
-                                     // in Preset::Low/Medium; needs hierarchicalFallback
-  int hierarchicalMaxSteps = 128;    // pyramid cells visited per ray at most (each one fetch)
-  TraversalPass traversalPass = TraversalPass::Auto;  // inline or in a pass of its own (same hits)
-  float objectThickness = 0.075f;    // depth of what the screen shows, fraction of its view depth:
-                                     // a ray less deep behind it ran into it (hidden: no hit), a
-                                     // deeper one passes behind (hierarchical traversal)
-  bool outlineThinning = true;       // ... and less deep near the outline of what a pixel shows
-                                     // (a box is no deeper at its edge than its faces' corner
-                                     // allows: rays pass behind edges; docs/algorithm.md)
-  float hiddenPassageLimitPx = 1.0e30f;  // a ray that travels more than this many pixels behind
-                                     // what the screen shows (where hidden geometry may stop it,
-                                     // unseen) reports no hit; off by default (docs/results.md,
-                                     // "Rays through hidden space": the recall/false-hit trade)
-  bool curvedSolids = true;          // ... and deeper behind convex curved surfaces: a sphere of
-                                     // the surface's own curvature (curved-mirror false hits 2.2% ->
-                                     // 0.85% at 320x180; docs/algorithm.md)
-  float convergenceEps = 0.002f;     // stop when |L_new - L| <= eps * L
-  float initialLengthScreen = 0.03f; // first L moves the probe this fraction of the height (>= 4 px)
-  float errorK = 0.15f;              // the article's LDelmiter (Classic only): fade ~ L / distance * k
-  float maxDistance = 1.0e30f;       // longer reflections are dropped (view units)
-  float thicknessRelative = 0.002f;  // hit tolerance: fraction of the hit's view distance ...
-  float thicknessPixels = 1.5f;      // ... plus pixel footprints, stretched by surface slope
-  float edgeFade = 0.03f;            // fade width at the screen border (fraction of screen)
-  float cameraFadeStart = 0.6f;      // dot(R, to-camera) where camera-facing rays begin to fade
-  float cameraFadeEnd = 0.9f;        // ... and where they are gone (weight only, never the hit)
-  float roughnessCutoff = 0.5f;      // rougher pixels are not traced
-  float minReflectance = 0.01f;      // pixels with reflectance <= this are not traced
-  bool halfResolution = false;       // one ray per 2x2 quad (the traced pixel rotates per frame);
-                                     // the quad's pixels on the same surface reuse its hit, the
-                                     // others trace their own ray (depth-only methods)
-  bool temporal = false;             // blend with the previous frame's output, reprojected through
-                                     // FrameInputs::previousClipFromView (converges half
-                                     // resolution and jittered projections; see integration.md)
-  float temporalWeight = 0.8f;       // share of the history in the output, [0, 0.98]
-  bool blur = true;                  // run the roughness blur (else resolved = raw reflection)
-  float blurMaxRadiusPx = 8.0f;      // blur radius that alpha = 1 stands for
-  float blurConeScale = 1.0f;        // cone tan(half angle) = roughness^2 * scale
-  float blurDepthSigma = 0.02f;      // bilateral depth weight exp(-|dz| / (sigma z))
-  float blurNormalPower = 16.0f;     // bilateral normal weight max(0, n0.n1)^power
-  bool debugOutputs = false;         // also write hitTexture() and iterationsTexture()
-  bool collectStats = false;         // count tiles, traced pixels and fetches, time the passes
-                                     // (read a few frames late: no stall; see lastStats)
+  bool halfResolution = false;  // one ray per 2x2 quad (the traced pixel rotates per frame); the
+                                // quad's pixels on the same surface reuse its hit, the others trace
+                                // their own ray. Depth-only methods only
+
+  // Which pixels get a ray.
+  struct Selection {
+    float roughnessCutoff = 0.5f;  // roughness, 0..1: rougher pixels are not traced
+    float minReflectance = 0.01f;  // finite: pixels with reflectance <= this are not traced
+  } selection;
+
+  // Method::AdaptiveL's iteration (the article's), docs/algorithm.md, "Adaptive L".
+  struct AdaptiveL {
+    int maxIterations = 16;             // 1..256 iterations, each one depth fetch (the article: 10)
+    float convergenceEps = 0.002f;      // >= 0: stop once |L_new - L| <= eps * L
+    float initialLengthScreen = 0.03f;  // (0, 1]: the first L moves the probe this fraction of
+                                        // the screen height (at least 4 px)
+  } adaptiveL;
+
+  // The min-max depth pyramid traversal: AdaptiveL's fallback and check, HierarchicalDepth's
+  // tracer (docs/algorithm.md, "The hierarchical traversal").
+  struct Traversal {
+    bool fallback = true;  // AdaptiveL: trace the pyramid where adaptive L finds no hit
+    bool verify = true;    // AdaptiveL: also over every adaptive-L hit, keeping an earlier crossing
+                           // it finds (a ray adaptive L carried behind something): the default
+                           // then never finds less than the traversal alone. Needs fallback; off
+                           // in Preset::Low/Medium
+    int maxSteps = 128;    // 1..1024 pyramid cells visited per ray, each one fetch
+    TraversalPass pass = TraversalPass::Auto;  // inline or in a pass of its own (same hits)
+    float objectDepthRelative = 0.075f;  // >= 0, fraction of the view depth: how deep what a
+                                         // pixel shows is assumed to be (without a back-face
+                                         // depth). A ray less deep behind it ran into it (no
+                                         // hit), a deeper one passes behind
+    bool outlineThinning = true;  // ... less deep near the outline of what a pixel shows (a box
+                                  // is no deeper at its edge than its faces' corner allows)
+    bool curvedSolids = true;     // ... deeper behind convex curved surfaces: a sphere of the
+                                  // surface's own curvature
+    float hiddenPassageLimitPx = 1.0e30f;  // >= 0 pixels: a ray that travels further behind what
+                                           // the screen shows (where hidden geometry may stop it,
+                                           // unseen) reports no hit; 1e30 = off (the default)
+  } traversal;
+
+  // When a crossing counts as a hit (all depth-only tracers): the ray point Q and the surface
+  // point P' it meets lie within relative * distance + pixels * footprint * (1 + tan(slope)).
+  struct HitTolerance {
+    float relative = 0.002f;  // >= 0: fraction of the hit's view distance
+    float pixels = 1.5f;      // >= 0: pixel footprints at the hit (not both 0)
+  } hitTolerance;
+
+  // What weighs a hit's reflection down (never the hit itself).
+  struct Fades {
+    float errorK = 0.15f;         // >= 0, FresnelMode::Classic: the article's error term, weight
+                                  // 1 - saturate(L / distance * errorK) (its "LDelmiter")
+    float maxDistance = 1.0e30f;  // > 0 view units: longer reflections get no weight at all
+    float screenEdge = 0.03f;     // 0..0.5 of the screen: fade width at the screen border
+    float cameraStart = 0.6f;     // dot(R, to-camera) where camera-facing rays begin to fade
+    float cameraEnd = 0.9f;       // >= cameraStart: ... and where they are gone
+  } fades;
+
+  // The roughness blur (pass 4): a bilateral blur whose radius is the reflection's alpha.
+  struct Blur {
+    bool enabled = true;        // false: resolved = the raw reflection
+    float maxRadiusPx = 8.0f;   // 0..32 pixels: the radius that alpha = 1 stands for
+    float coneScale = 1.0f;     // >= 0: cone tan(half angle) = roughness^2 * coneScale
+    float depthSigma = 0.02f;   // > 0: neighbour weight exp(-|dz| / (depthSigma * z))
+    float normalPower = 16.0f;  // >= 0: neighbour weight max(0, n0.n1)^normalPower
+  } blur;
+
+  // Temporal reuse (pass 5): blends with the previous frame's output, reprojected through
+  // FrameInputs::previousClipFromView (converges half resolution and jittered projections).
+  struct Temporal {
+    bool enabled = false;
+    float historyWeight = 0.8f;  // 0..0.98: the history's share of the output
+  } temporal;
+
+  struct Debug {
+    bool outputs = false;       // also write hitTexture() and iterationsTexture()
+    bool collectStats = false;  // count tiles, traced pixels and fetches, time the passes (read a
+                                // few frames late: no stall; see lastStats)
+  } debug;
+
+  PositionBufferSettings positionBuffer;  // Method::PositionBuffer only
+  DdaSettings dda;                        // Method::ScreenSpaceDDA only
+  FfxSssrSettings ffx;                    // Method::FidelityFxSssr only
 
   static Settings preset(Preset preset);
 };
@@ -292,7 +327,7 @@ struct ContextDesc {
 };
 
 // The commands one pass of a frame recorded for the GPU, counted as dispatch() records them: the
-// same on every device for the same inputs and settings (Settings::traversalPass's Auto choice
+// same on every device for the same inputs and settings (Settings::traversal.pass's Auto choice
 // aside). A GPU pays for each dispatch and barrier even when its group counts are zero, so these
 // are a frame's fixed costs, where the times below are its variable ones.
 struct PassCommands {
@@ -303,16 +338,27 @@ struct PassCommands {
   std::uint32_t uploads = 0;             // buffer writes and copies and texture clears
 };
 
-struct FrameStats {  // filled when Settings::collectStats is set
+// The texture memory one pass touched, from the frame's counts and the textures' formats: a model
+// of what its shaders fetch and store, the same on every device (caches and compression aside).
+// Texels: one per fetch or store (a gather counts its four texels, a bilinear read its four).
+// Bytes: texels x their format's size. Where a count is not known on the CPU the model takes its
+// bound (integration.md, "Cost" lists them). Buffers (tile lists, counters) are not counted.
+struct PassTraffic {
+  std::uint64_t texelsRead = 0, texelsWritten = 0;
+  std::uint64_t bytesRead = 0, bytesWritten = 0;
+};
+
+struct FrameStats {  // filled when Settings::debug.collectStats is set
   std::uint64_t frame = 0;          // the dispatch these are of (1 = the context's first; 0 = none yet)
   std::uint32_t tiles = 0;          // classified tiles that were traced
   std::uint32_t blurTiles = 0;      // tiles the roughness blur ran over
   std::uint32_t tracedPixels = 0;   // pixels that ran the tracer
   std::uint32_t fetches = 0;        // depth (or position) texels read by the trace pass
   std::uint32_t hierarchicalPixels = 0;  // traced pixels that ran the hierarchical traversal
-  bool traversalDeferred = false;   // the traversal ran in a pass of its own (Settings::traversalPass)
-  bool level1Pass = false;          // the pyramid's level 1 came from a pass of its own, not from
-                                    // classification (the frame before listed no tile)
+  bool traversalDeferred = false;   // the traversal ran in a pass of its own (Settings::traversal.pass)
+  bool followedEmptyFrame = false;  // the frame before listed no tile, so classification skipped
+                                    // the pyramid's levels 0 and 1 and a pass of their own re-read
+                                    // depth for them (only if this frame lists a tile)
   // GPU time between the passes from GL_TIMESTAMP queries (-1 where the GL has no timestamps).
   // On software renderers (llvmpipe) these measure the CPU doing the work, not a GPU.
   double classifyMs = -1.0;         // classification and clean-up
@@ -323,6 +369,9 @@ struct FrameStats {  // filled when Settings::collectStats is set
   // The commands of the same passes; `finishCommands`: the frame's closing barrier and copies.
   PassCommands classifyCommands, pyramidCommands, traceCommands, blurCommands, temporalCommands, finishCommands;
   PassCommands totalCommands() const;  // the frame's: every pass's summed
+  // The texture memory of the same passes (the finish pass touches none).
+  PassTraffic classifyTraffic, pyramidTraffic, traceTraffic, blurTraffic, temporalTraffic;
+  PassTraffic totalTraffic() const;  // the frame's: every pass's summed
 };
 
 // How composite() puts the resolved reflection into the host's framebuffer.
@@ -375,12 +424,12 @@ class Context {
   // blur (which blurs both alike). Valid on the tiles a dispatch traced, 0 elsewhere.
   GLName resolvedTexture() const;    // RGBA16F
   GLName reflectionTexture() const;  // RGBA16F, before the blur: rgb as above, a = blur weight
-  GLName hitTexture() const;         // RGBA32F (debugOutputs): uvHit, confidence, L (temporal reuse
+  GLName hitTexture() const;         // RGBA32F (debug.outputs): uvHit, confidence, L (temporal reuse
                                      // also writes it on the traced tiles, for its own use); 0
-                                     // until a dispatch with debugOutputs or temporal created it
-  GLName iterationsTexture() const;  // R32F (debugOutputs): adaptive-L iterations run; 0 until a
-                                     // dispatch with debugOutputs created it
-  // Stats never stall the pipeline: each dispatch with collectStats records into a ring of 4
+                                     // until a dispatch with debug.outputs or temporal created it
+  GLName iterationsTexture() const;  // R32F (debug.outputs): adaptive-L iterations run; 0 until a
+                                     // dispatch with debug.outputs created it
+  // Stats never stall the pipeline: each dispatch with debug.collectStats records into a ring of 4
   // slots, and lastStats() returns the newest whose GPU work has finished (FrameStats::frame says
   // which dispatch; typically 1-3 frames back on a GPU). waitForStats() waits for the newest
   // dispatch's (a stall: for tools and tests). Both read GL objects: call them with the

@@ -33,8 +33,8 @@ class FrameRenderer {
   Image readFinal() const;                  // RGB, linear
   Image readReflection() const;             // RGBA16F as RGBA float
   Image readResolved() const;
-  Image readHit() const;                    // needs Settings::debugOutputs
-  Image readIterations() const;             // needs Settings::debugOutputs
+  Image readHit() const;                    // needs Settings::debug.outputs
+  Image readIterations() const;             // needs Settings::debug.outputs
 
  private:
   FrameRenderer() = default;

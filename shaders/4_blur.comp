@@ -1,4 +1,4 @@
-// Pass 4 (blur; passes.cpp runBlur; run twice: SSLR_BLUR_AXIS = ivec2(1,0) then ivec2(0,1)): separable bilateral blur of
+// Pass 4, blur (passes.cpp runBlur; run twice: SSLR_BLUR_AXIS = ivec2(1,0) then ivec2(0,1)): separable bilateral blur of
 // the resolved output (rgb = reflection, a = coverage: both blurred with the same weights, so the
 // reflection stays premultiplied by its coverage) over the tiles the trace listed for blurring
 // (tiles with a pixel whose radius is at least half a pixel). The radius comes from the reflection's
@@ -17,7 +17,7 @@
 // whether the pixel was traced, read and decoded once per pixel. Every tap then reads shared
 // memory. Reading the G-buffer per tap instead (up to five fetches, a depth reconstruction and a
 // normal decode for each of up to 65 taps) made this pass most of a frame with rough surfaces on
-// llvmpipe (docs/algorithm.md, "Blur (roughness) and composite").
+// llvmpipe (docs/design-notes.md, "Blur (roughness) and composite").
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
 
@@ -30,7 +30,7 @@ layout(binding = SSLR_UNIT_BLUR_UNBLURRED) uniform sampler2D uUnblurred;     // 
 #endif
 layout(binding = SSLR_IMAGE_BLUR_OUTPUT, rgba16f) uniform writeonly image2D uBlurOutput;
 
-// Settings cap blurMaxRadiusPx at 32 (sslr::validate): taps reach ceil(radius) <= 32 pixels out.
+// Settings cap blur.maxRadiusPx at 32 (sslr::validate): taps reach ceil(radius) <= 32 pixels out.
 #define SSLR_BLUR_MAX_TAPS 32
 #define SSLR_BLUR_SPAN (SSLR_TILE_SIZE + 2 * SSLR_BLUR_MAX_TAPS)
 // Staged pixels: [line across the axis][position along it, offset by the apron]. 2 x 8 x 72 x 16

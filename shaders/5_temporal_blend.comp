@@ -1,8 +1,7 @@
-// Pass 5 (temporal reuse; passes.cpp runTemporal; Settings::temporal), over the listed tiles: blends this frame's resolved output with the
-// previous frame's, reprojected through FrameInputs::previousClipFromView.
-//   default:              resolved (+ history, history keys) -> blurTemp
-//   SSLR_TEMPORAL_STORE:  blurTemp -> resolved and history; this frame's keys -> history keys
-// (two passes: the blend reads history and resolved around each pixel, so it cannot write them).
+// Pass 5, temporal blend (passes.cpp runTemporal; Settings::temporal), over the listed tiles:
+// blends this frame's resolved output with the previous frame's, reprojected through
+// FrameInputs::previousClipFromView, into blurTemp (5_temporal_store.comp copies it back: this
+// pass reads history and resolved around each pixel, so it cannot write them).
 // History is used where the reprojected point lands on the same surface (its key, the view depth,
 // within keyTolerance on one of the four texels around it; only those texels are interpolated),
 // clipped to this frame's 3x3 neighbourhood (mean +- one standard deviation: what moved or
@@ -15,26 +14,6 @@
 
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 
-#ifdef SSLR_TEMPORAL_STORE
-layout(binding = SSLR_UNIT_TEMPORAL_CURRENT) uniform sampler2D uBlended;
-layout(binding = SSLR_IMAGE_TEMPORAL_OUTPUT, rgba16f) uniform writeonly image2D uResolved;
-layout(binding = SSLR_IMAGE_HISTORY, rgba16f) uniform writeonly image2D uHistory;
-layout(binding = SSLR_IMAGE_HISTORY_KEY, r32f) uniform writeonly image2D uHistoryKey;
-
-void main() {
-  ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
-  if (!sslrInside(px)) return;
-  vec4 value = texelFetch(uBlended, px, 0);
-  imageStore(uResolved, px, value);
-  imageStore(uHistory, px, value);
-  float depth = texelFetch(uDepth, px, 0).r;
-  vec4 packedNormal = texelFetch(uNormal, px, 0);
-  float key = 0.0f;
-  if (sslrShouldTracePixel(px, depth, packedNormal, sslrMaterialAt(px, packedNormal)))
-    key = sslrHistoryKey(frame.proj, sslrViewAtPixel(px, depth));
-  imageStore(uHistoryKey, px, vec4(key));
-}
-#else
 layout(binding = SSLR_UNIT_TEMPORAL_CURRENT) uniform sampler2D uCurrent;     // resolved: this frame, blurred
 layout(binding = SSLR_UNIT_HISTORY) uniform sampler2D uHistory;     // the previous frame's output
 layout(binding = SSLR_UNIT_HISTORY_KEY) uniform sampler2D uHistoryKey;  // its keys
@@ -92,7 +71,7 @@ void main() {
     // 1. A reflection in a static plane moves with its virtual point (behind the mirror), not with
     //    the mirror: look where the previous camera saw that point through the mirror plane. Only
     //    on planes (the normal one pixel right and up agrees): on a curved mirror the tangent
-    //    plane sends the lookup astray (measured: curved-mirror's error rose by a quarter).
+    //    plane sends the lookup astray.
     vec3 vsN;
     if (sslrDecodeNormal(frame.surface, packedNormal, vsN)) {
       ivec2 maxPx = ivec2(sslrSizePx()) - 1;
@@ -130,10 +109,8 @@ void main() {
     vec4 sigma = sqrt(max(m2 / 9.0f - mean * mean, vec4(0.0f)));
     vec4 lo = min(mean - sigma, current), hi = max(mean + sigma, current);
     // A curved mirror's reflection changes within a pixel, and resampled history blurs it: there
-    // history gets a quarter of the weight (curved-mirror under jitter: error 2.0x without
-    // temporal reuse at full weight, 1.2x at half, 1.04x at a quarter).
+    // history gets a quarter of the weight (docs/design-notes.md, "Temporal reuse").
     blended = mix(current, clamp(history, lo, hi), frame.temporal.historyWeight * (planar ? 1.0f : 0.25f));
   }
   imageStore(uBlended, px, blended);
 }
-#endif

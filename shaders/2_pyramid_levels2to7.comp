@@ -1,15 +1,10 @@
-// Pass 2 (pyramid; passes.cpp runPyramid): builds the min-max depth pyramid's levels 2 and up (sslr_shared.h, "Min-max depth pyramid"):
-// each cell is the (min, max) raw depth of its 2x2 children. Levels 0 and 1 are classification's
-// (classify.comp reads every depth anyway).
-//
-// One dispatch builds levels 2 to 7: each work group takes one level-7 cell, a 64x64 block of
-// level-1 cells (128x128 pixels). Each of its 8x8 invocations reduces an 8x8 block
-// of level 1 into its level-4 cell, writing the 16 level-2 and 4 level-3 cells on the way; the
-// level-4 cells then meet in shared memory for levels 5, 6 and 7. Only a screen 2048 pixels wide
-// or high or more has a level 8: a second dispatch (SSLR_HIZ_SINGLE) reduces level 7 into it.
-// Before, one dispatch built two levels, each reading the one below from memory: three dispatches
-// at 960x540 or 1920x1080, each with its barrier (on an H100 a dispatch with its barrier costs
-// ~3.5 us whatever it does; on llvmpipe the three cost ~0.5 ms with a shader that returned at once).
+// Pass 2, the pyramid's levels 2 to 7 (passes.cpp runPyramid; sslr_shared.h, "Min-max depth
+// pyramid"): each cell is the (min, max) raw depth of its 2x2 children. One dispatch: each work
+// group takes one level-7 cell, a 64x64 block of level-1 cells (128x128 pixels). Each of its 8x8
+// invocations reduces an 8x8 block of level 1 into its level-4 cell, writing the 16 level-2 and
+// 4 level-3 cells on the way; the level-4 cells then meet in shared memory for levels 5, 6 and 7.
+// Levels 0 and 1 are classification's; a level 8 (a screen 2048 pixels or more across) is
+// 2_pyramid_top_level.comp's.
 #include "common/gbuffer.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -17,20 +12,6 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = SSLR_UNIT_PYRAMID) uniform sampler2D uHiZ;  // the pyramid: the level(s) read
 layout(location = 0) uniform int uTopLevel;   // the pyramid's top level (sslrHiZLevelCount)
 
-#ifdef SSLR_HIZ_SINGLE
-layout(binding = SSLR_IMAGE_PYRAMID_BLOCK, rg32f) uniform writeonly image2D uLevel;  // level uTopLevel, from the one below
-
-void main() {
-  ivec2 cell = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 below = textureSize(uHiZ, uTopLevel - 1);
-  vec2 m = sslrHiZEmpty();
-  for (int k = 0; k < 4; ++k) {
-    ivec2 c = cell * 2 + ivec2(k & 1, k >> 1);
-    if (all(lessThan(c, below))) m = sslrHiZReduce(m, texelFetch(uHiZ, c, uTopLevel - 1).rg);
-  }
-  imageStore(uLevel, cell, vec4(m, 0.0f, 0.0f));  // (a store outside the level does nothing)
-}
-#else
 // Levels 2..7 (a level above the top is bound to the top's image and never stored to). Stores
 // outside a level's image do nothing: a group's block may reach past the (padded) screen.
 layout(binding = SSLR_IMAGE_PYRAMID_BLOCK + 0, rg32f) uniform writeonly image2D uLevel2;
@@ -94,4 +75,3 @@ void main() {
     imageStore(uLevel7, ivec2(gl_WorkGroupID.xy), vec4(m7, 0.0f, 0.0f));
   }
 }
-#endif

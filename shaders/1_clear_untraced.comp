@@ -1,0 +1,15 @@
+// Pass 1, clean-up (passes.cpp runClassify, after classification): zeroes the reflection and the
+// resolved output in the tiles traced last frame and not listed in this one.
+#include "common/gbuffer.glsl"
+#include "common/tiles.glsl"
+#include "passes/untraced_tiles.glsl"
+
+layout(binding = SSLR_IMAGE_REFLECTION, rgba16f) uniform writeonly image2D uReflection;
+layout(binding = SSLR_IMAGE_RESOLVED, rgba16f) uniform writeonly image2D uResolved;
+
+void main() {
+  ivec2 px;
+  if (!sslrUntracedPixel(px)) return;
+  imageStore(uReflection, px, vec4(0.0f));
+  imageStore(uResolved, px, vec4(0.0f));
+}

@@ -1,0 +1,14 @@
+// Pass 3, the quad retrace (passes.cpp runQuads; a deferred traversal at half resolution): one
+// group per tile with a quad listed by 3_trace_quads.comp traces those quads with the whole
+// tracer, before the shading pass reads the quads.
+#include "passes/trace_common.glsl"
+#include "passes/retrace_list.glsl"
+#include "passes/trace_quad.glsl"
+
+layout(local_size_x = SSLR_TILE_QUADS) in;
+
+void main() {
+  uint slot = retrace.entries[gl_WorkGroupID.x];
+  if (gl_LocalInvocationIndex >= tiles.tileCoords[sslrQuadRetraceCountIndex(slot)]) return;
+  sslrTraceQuad(sslrUnpackCoord(retrace.entries[sslrQuadRetraceRegion(slot) + gl_LocalInvocationIndex]));
+}

@@ -1,0 +1,14 @@
+// Pass 5, history clean-up (passes.cpp runTemporal, after the history is stored): the tiles traced
+// last frame and not in this one lose their history keys, so the next frame finds history only
+// where this frame stored it.
+#include "common/gbuffer.glsl"
+#include "common/tiles.glsl"
+#include "passes/untraced_tiles.glsl"
+
+layout(binding = SSLR_IMAGE_HISTORY_KEY, r32f) uniform writeonly image2D uHistoryKey;
+
+void main() {
+  ivec2 px;
+  if (!sslrUntracedPixel(px)) return;
+  imageStore(uHistoryKey, px, vec4(0.0f));
+}

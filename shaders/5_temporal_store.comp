@@ -1,0 +1,26 @@
+// Pass 5, temporal store (passes.cpp runTemporal; Settings::temporal), over the listed tiles: the
+// blended value (5_temporal_blend.comp) becomes the resolved output and the next frame's history,
+// and this frame's keys (view depth where the pixel is traced) its history keys.
+#include "common/gbuffer.glsl"
+#include "common/tiles.glsl"
+
+layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
+
+layout(binding = SSLR_UNIT_TEMPORAL_CURRENT) uniform sampler2D uBlended;
+layout(binding = SSLR_IMAGE_TEMPORAL_OUTPUT, rgba16f) uniform writeonly image2D uResolved;
+layout(binding = SSLR_IMAGE_HISTORY, rgba16f) uniform writeonly image2D uHistory;
+layout(binding = SSLR_IMAGE_HISTORY_KEY, r32f) uniform writeonly image2D uHistoryKey;
+
+void main() {
+  ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
+  if (!sslrInside(px)) return;
+  vec4 value = texelFetch(uBlended, px, 0);
+  imageStore(uResolved, px, value);
+  imageStore(uHistory, px, value);
+  float depth = texelFetch(uDepth, px, 0).r;
+  vec4 packedNormal = texelFetch(uNormal, px, 0);
+  float key = 0.0f;
+  if (sslrShouldTracePixel(px, depth, packedNormal, sslrMaterialAt(px, packedNormal)))
+    key = sslrHistoryKey(frame.proj, sslrViewAtPixel(px, depth));
+  imageStore(uHistoryKey, px, vec4(key));
+}

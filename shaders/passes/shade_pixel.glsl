@@ -1,0 +1,53 @@
+// Shading one pixel of a trace pass: its hit (from the entry file's sslrPixelHit), weighted
+// (sslrReflectionWeights) and written to the reflection, the resolved output, the debug images
+// and the stats; a tile with a pixel to blur is listed for the blur.
+
+// The entry file's: the hit of pixel px (traced, reused or first-stage), false when the pixel was
+// handed to a later pass, which writes its outputs. `ranTracer`: whether a ray was traced here.
+bool sslrPixelHit(ivec2 px, SslrPixel q, out SslrHit hit, out bool ranTracer);
+
+void sslrShadePixel(ivec2 px) {
+  SslrHit hit = sslrNoHit(SSLR_STATUS_NOT_TRACED);
+  vec4 reflection = vec4(0.0f);
+  float coverage = 0.0f;
+  bool ranTracer = false;  // stats: half resolution answers most pixels from their quad's ray
+
+  SslrPixel q;
+  if (sslrPixelToTrace(px, q)) {
+    if (!sslrPixelHit(px, q, hit, ranTracer)) {
+#ifdef SSLR_COLLECT_STATS
+      atomicAdd(stats.fetches, gFetches);
+#endif
+      return;
+    }
+    if (hit.status == SSLR_STATUS_HIT) {
+      SslrWeights w = sslrReflectionWeights(frame.proj, frame.surface, frame.trace, hit, q.vsP, q.vsV, q.vsR,
+                                            q.cosVN, sslrReflectance(frame.surface, q.material),
+                                            sslrRoughness(frame.surface, q.material));
+      vec3 color = textureLod(uColor, hit.uvHit, 0.0f).rgb;
+      // Poisoned colour must not spread through the blur: NaN/Inf become 0, and the value is
+      // kept inside RGBA16F's range.
+      if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0f);
+      color = clamp(color, vec3(0.0f), vec3(60000.0f));
+      reflection = vec4(color * w.reflection, w.blurAlpha);
+      coverage = w.coverage;
+    }
+  }
+  imageStore(uReflection, px, reflection);
+  // Resolved before the blur: the same rgb with the coverage in alpha (the blur reads it from here).
+  imageStore(uResolved, px, vec4(reflection.rgb, coverage));
+#if defined(SSLR_DEBUG_OUTPUTS) || defined(SSLR_TEMPORAL_HITS)
+  imageStore(uHit, px, vec4(hit.uvHit, hit.confidence, hit.L));
+#endif
+#ifdef SSLR_DEBUG_OUTPUTS
+  imageStore(uIterations, px, vec4(float(hit.iterations)));
+#endif
+#ifdef SSLR_COLLECT_STATS
+  if (ranTracer) atomicAdd(stats.tracedPixels, 1u);
+  atomicAdd(stats.fetches, gFetches);
+  if (hit.hierarchical != 0) atomicAdd(stats.hierarchicalPixels, 1u);
+#endif
+  // The first pixel of a tile that needs blurring lists the tile (no group barrier: on CPU
+  // rasterizers barriers split the shader and cost more than this atomic).
+  if (reflection.a * frame.trace.blurMaxRadiusPx >= 0.5f) sslrListTileForBlur(px);
+}
