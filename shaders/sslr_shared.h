@@ -179,6 +179,10 @@ struct SslrSurface {
   int hasMask;               // 1: rays start only where the mask texture's first channel > 0.5
   int hasBackDepth;          // 1: FrameInputs::backDepthTexture measures what a pixel shows is deep
   int surfacePad2;
+  float normalScale;         // a stored normal channel unpacks to value * normalScale + normalBias
+  float normalBias;          // in [-1, 1] (2, -1: unsigned formats; 1, 0: signed ones; 0, 0: unset = 2, -1)
+  int surfacePad3;
+  int surfacePad4;
 };
 
 struct SslrTraceParams {
@@ -327,17 +331,17 @@ inline SslrProjection sslrProjectionFromMatrix(const glm::dmat4& clipFromView, b
   return p;
 }
 static_assert(sizeof(SslrProjection) == 48, "std140 mirror");
-static_assert(sizeof(SslrSurface) == 96, "std140 mirror");
+static_assert(sizeof(SslrSurface) == 112, "std140 mirror");
 static_assert(sizeof(SslrTraceParams) == 112, "std140 mirror");
 static_assert(offsetof(SslrFrame, surface) == 48, "std140 mirror");
-static_assert(offsetof(SslrFrame, trace) == 144, "std140 mirror");
+static_assert(offsetof(SslrFrame, trace) == 160, "std140 mirror");
 static_assert(sizeof(SslrPositionParams) == 16, "std140 mirror");
-static_assert(offsetof(SslrFrame, positionBuffer) == 256, "std140 mirror");
+static_assert(offsetof(SslrFrame, positionBuffer) == 272, "std140 mirror");
 static_assert(sizeof(SslrDdaParams) == 32, "std140 mirror");
-static_assert(offsetof(SslrFrame, dda) == 272, "std140 mirror");
+static_assert(offsetof(SslrFrame, dda) == 288, "std140 mirror");
 static_assert(sizeof(SslrTemporalParams) == 96, "std140 mirror");
-static_assert(offsetof(SslrFrame, temporal) == 304, "std140 mirror");
-static_assert(sizeof(SslrFrame) == 400, "std140 mirror");
+static_assert(offsetof(SslrFrame, temporal) == 320, "std140 mirror");
+static_assert(sizeof(SslrFrame) == 416, "std140 mirror");
 #endif
 
 // ---- Pure math ----------------------------------------------------------------------------
@@ -432,6 +436,14 @@ SSLR_FN float sslrPixelFootprint(SslrProjection p, float heightPx, float dist) {
 }
 
 // ---- Normals ------------------------------------------------------------------------------
+// Whether stored normal channels hold 0..1 (the default unpack, value * 2 - 1): the decode keeps
+// that exact formula then; other scale/bias pairs (signed formats: 1, 0) go through the general one.
+// (0, 0) is a surface whose unpack was never set (a zero-initialized one): the default too, since
+// a zero scale is refused as input.
+SSLR_FN bool sslrUnsignedNormalUnpack(SslrSurface s) {
+  return (s.normalScale == 2.0f && s.normalBias == -1.0f) || (s.normalScale == 0.0f && s.normalBias == 0.0f);
+}
+
 // Octahedral mapping (Meyer et al. 2010 / Cigolle et al. 2014) into [0,1]^2.
 SSLR_FN vec2 sslrOctWrap(vec2 v) {
   return (1.0f - abs(vec2(v.y, v.x))) * vec2(v.x >= 0.0f ? 1.0f : -1.0f, v.y >= 0.0f ? 1.0f : -1.0f);
@@ -460,16 +472,22 @@ SSLR_FN bool sslrDecodeNormal(SslrSurface s, vec4 texel, SSLR_OUT(vec3) vsNormal
 #ifdef SSLR_NORMAL_ENCODING
   const bool octahedral = SSLR_NORMAL_ENCODING == SSLR_NORMALS_OCTAHEDRAL;
   const bool worldNormals = SSLR_WORLD_NORMALS != 0;
+  const bool unsignedUnpack = SSLR_NORMAL_UNSIGNED != 0;
 #else
   bool octahedral = s.normalEncoding == SSLR_NORMALS_OCTAHEDRAL;
   bool worldNormals = s.normalFromStored0.w != 0.0f;
+  bool unsignedUnpack = sslrUnsignedNormalUnpack(s);
 #endif
   vec3 n;
   if (octahedral) {
-    vec2 e = clamp(vec2(texel.x, texel.y), vec2(0.0f), vec2(1.0f));
+    // The octahedral coordinates in [0, 1]: stored so by unsigned formats, else unpacked first.
+    vec2 e = vec2(texel.x, texel.y);
+    if (!unsignedUnpack) e = (e * s.normalScale + s.normalBias) * 0.5f + 0.5f;
+    e = clamp(e, vec2(0.0f), vec2(1.0f));
     n = sslrOctDecode(e);
   } else {
-    n = vec3(texel.x, texel.y, texel.z) * 2.0f - 1.0f;
+    n = unsignedUnpack ? vec3(texel.x, texel.y, texel.z) * 2.0f - 1.0f
+                       : vec3(texel.x, texel.y, texel.z) * s.normalScale + s.normalBias;
     float len2 = dot(n, n);
     // 8-bit packing of a unit vector keeps |n| within ~1.5%; zero or garbage fails this.
     if (!(len2 > 0.8f && len2 < 1.2f)) {

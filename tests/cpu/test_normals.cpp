@@ -93,6 +93,37 @@ TEST(Normals, PoisonedNormalsAreRejected) {
   EXPECT_FALSE(sslrDecodeNormal(oct, vec4(NAN, 0.5f, 0, 0), n));
 }
 
+// The signed unpack (SurfaceLayout::normalScale 1, normalBias 0) decodes a signed value to the
+// normal the unsigned default decodes from (value + 1) / 2, for both encodings; an unset surface
+// (zero-initialized) unpacks as unsigned.
+TEST(Normals, SignedUnpackMatchesTheUnsignedOne) {
+  for (int encoding : {SSLR_NORMALS_OCTAHEDRAL, SSLR_NORMALS_XYZ_UNORM}) {
+    SslrSurface unsignedSurface{}, signedSurface{}, unset{};
+    unsignedSurface.normalEncoding = signedSurface.normalEncoding = unset.normalEncoding = encoding;
+    unsignedSurface.normalScale = 2.0f;
+    unsignedSurface.normalBias = -1.0f;
+    signedSurface.normalScale = 1.0f;
+    signedSurface.normalBias = 0.0f;
+    for (glm::vec3 v : {glm::vec3(0, 0, 1), glm::vec3(0, -1, 0), glm::normalize(glm::vec3(1, -2, -3)),
+                        glm::normalize(glm::vec3(-0.3f, 0.7f, 0.2f))}) {
+      const vec4 stored = encoding == SSLR_NORMALS_OCTAHEDRAL ? vec4(sslrOctEncode(v), 0.0f, 0.0f)
+                                                              : vec4(v * 0.5f + 0.5f, 0.0f);
+      const vec4 signedStored = vec4(vec3(stored) * 2.0f - 1.0f, 0.0f);
+      vec3 a, b, c;
+      ASSERT_TRUE(sslrDecodeNormal(unsignedSurface, stored, a));
+      ASSERT_TRUE(sslrDecodeNormal(signedSurface, signedStored, b));
+      ASSERT_TRUE(sslrDecodeNormal(unset, stored, c));
+      EXPECT_LT(angleDeg(a, v), 1e-3);
+      EXPECT_LT(angleDeg(b, v), 1e-3);
+      EXPECT_EQ(a, c) << "unset is the unsigned default, bit for bit";
+    }
+    vec3 n;
+    EXPECT_FALSE(signedSurface.normalEncoding == SSLR_NORMALS_XYZ_UNORM &&
+                 sslrDecodeNormal(signedSurface, vec4(0.0f, 0.0f, 0.0f, 0.0f), n))
+        << "a zero signed vector is no normal";
+  }
+}
+
 // Classification lists tiles by sslrTraceCandidate (no normal decode); the trace asks
 // sslrShouldTrace of each pixel. No pixel the trace would trace may be missed by classification,
 // and the two agree wherever the normal decodes: over every depth, material and normal class,

@@ -694,6 +694,65 @@ TEST_F(Api, WorldSpaceNormalsWithTheViewMatrixGiveTheSameHits) {
   glDeleteTextures(1, &worldTex);
 }
 
+// Normals in signed normalized formats (RG16_SNORM octahedral, RGBA16_SNORM xyz) with the signed
+// unpack (SurfaceLayout::normalScale 1, normalBias 0) give the hits of the unsigned G-buffer; read
+// with the unsigned unpack they trace other reflections; a zero scale is refused, named.
+TEST_F(Api, SignedNormalFormatsGiveTheSameHits) {
+  for (NormalEncoding encoding : {NormalEncoding::Octahedral, NormalEncoding::XyzUnorm}) {
+    SCOPED_TRACE(encoding == NormalEncoding::Octahedral ? "octahedral, RG16_SNORM" : "xyz, RGBA16_SNORM");
+    auto ctx = makeContext();
+    Frame f(DepthMode::Reversed, encoding);
+    const FrameInputs unsignedIn = f.gbuffer->frameInputs();
+    Settings s;
+    s.debug.outputs = true;
+    ASSERT_TRUE(ctx->dispatch(unsignedIn, s));
+    const Image hitUnsigned = readAll(ctx->hitTexture(), 4);
+    // The same normals, signed, in a texture of their own; the material stays in the old one.
+    const bool octahedral = encoding == NormalEncoding::Octahedral;
+    const int channels = octahedral ? 2 : 4;
+    const Image packed = readAll(unsignedIn.normalTexture, 4);
+    std::vector<float> signedValues(static_cast<size_t>(W) * H * channels, 0.0f);
+    for (int p = 0; p < W * H; ++p)
+      for (int c = 0; c < (octahedral ? 2 : 3); ++c)
+        signedValues[static_cast<size_t>(p) * channels + c] = packed.pixels[static_cast<size_t>(p) * 4 + c] * 2.0f - 1.0f;
+    const GLuint signedTex = makeTexture(octahedral ? GL_RG16_SNORM : GL_RGBA16_SNORM);
+    glTextureSubImage2D(signedTex, 0, 0, 0, W, H, octahedral ? GL_RG : GL_RGBA, GL_FLOAT, signedValues.data());
+    FrameInputs signedIn = unsignedIn;
+    signedIn.normalTexture = signedTex;
+    signedIn.materialTexture = unsignedIn.normalTexture;  // roughness in B, reflectance in A
+    signedIn.surface.normalScale = 1.0f;
+    signedIn.surface.normalBias = 0.0f;
+    ASSERT_TRUE(ctx->dispatch(signedIn, s));
+    const Image hitSigned = readAll(ctx->hitTexture(), 4);
+    signedIn.surface.normalScale = 2.0f;  // the mistake: signed values unpacked as unsigned ones
+    signedIn.surface.normalBias = -1.0f;
+    ASSERT_TRUE(ctx->dispatch(signedIn, s));
+    const Image hitWrong = readAll(ctx->hitTexture(), 4);
+    size_t traced = 0, same = 0, sameWrong = 0;
+    for (int p = 0; p < W * H; ++p) {
+      const float* a = &hitUnsigned.pixels[static_cast<size_t>(p) * 4];
+      if (!(a[2] > 0.5f)) continue;
+      ++traced;
+      auto close = [&](const Image& other) {
+        const float* b = &other.pixels[static_cast<size_t>(p) * 4];
+        return b[2] > 0.5f && std::hypot((a[0] - b[0]) * W, (a[1] - b[1]) * H) <= 0.5f;
+      };
+      same += close(hitSigned);
+      sameWrong += close(hitWrong);
+    }
+    ASSERT_GT(traced, 500u);
+    // Requantized once, to 16 bits: a few hits may move by a fraction of a pixel.
+    EXPECT_GE(double(same) / traced, 0.98) << same << " of " << traced;
+    EXPECT_LT(double(sameWrong) / traced, 0.5) << "signed normals unpacked as unsigned must differ";
+    signedIn.surface.normalScale = 0.0f;
+    const Status st = ctx->dispatch(signedIn, s);
+    ASSERT_FALSE(st);
+    EXPECT_EQ(st.code(), StatusCode::InvalidInput);
+    EXPECT_NE(st.message().find("normalScale"), std::string::npos) << st.message();
+    glDeleteTextures(1, &signedTex);
+  }
+}
+
 // Roughness and reflectance in a texture of their own (as many engines keep them) give the
 // frame of the packed layout; a channel the material texture lacks is refused, naming it.
 TEST_F(Api, SeparateMaterialTextureGivesThePackedResult) {

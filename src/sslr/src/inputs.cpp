@@ -36,6 +36,13 @@ FormatInfo formatInfo(GLint f) {
     case GL_RGBA16: return {FormatInfo::Color, 4, "RGBA16", 8};
     case GL_RGBA16F: return {FormatInfo::Color, 4, "RGBA16F", 8};
     case GL_RGBA32F: return {FormatInfo::Color, 4, "RGBA32F", 16};
+    // Signed normalized: normals with SurfaceLayout::normalScale 1, normalBias 0.
+    case GL_R8_SNORM: return {FormatInfo::Color, 1, "R8_SNORM", 1};
+    case GL_RG8_SNORM: return {FormatInfo::Color, 2, "RG8_SNORM", 2};
+    case GL_RGBA8_SNORM: return {FormatInfo::Color, 4, "RGBA8_SNORM", 4};
+    case GL_R16_SNORM: return {FormatInfo::Color, 1, "R16_SNORM", 2};
+    case GL_RG16_SNORM: return {FormatInfo::Color, 2, "RG16_SNORM", 4};
+    case GL_RGBA16_SNORM: return {FormatInfo::Color, 4, "RGBA16_SNORM", 8};
     default: return {};
   }
 }

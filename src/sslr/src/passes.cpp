@@ -219,6 +219,7 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
                  (in.materialTexture != 0 ? "#define SSLR_SEPARATE_MATERIAL 1\n" : "") +
                  "#define SSLR_NORMAL_ENCODING " + std::to_string(surface.normalEncoding) + "\n" +
                  "#define SSLR_WORLD_NORMALS " + (surface.normalFromStored0.w != 0.0f ? "1" : "0") + "\n" +
+                 "#define SSLR_NORMAL_UNSIGNED " + (shared::sslrUnsignedNormalUnpack(surface) ? "1" : "0") + "\n" +
                  "#define SSLR_ROUGHNESS_CHANNEL " + std::to_string(surface.roughnessChannel) + "\n" +
                  "#define SSLR_REFLECTANCE_CHANNEL " + std::to_string(surface.reflectanceChannel) + "\n";
   std::string methodDefines = "#define SSLR_HIZ_MODE " + std::to_string(f.frame.trace.hizMode) + "\n";

@@ -25,6 +25,13 @@ Status surfaceConstants(const FrameInputs& in, int width, int height, shared::Ss
   f.surface.hasBackDepth = in.backDepthTexture != 0 ? 1 : 0;
   f.surface.width = static_cast<float>(width);
   f.surface.height = static_cast<float>(height);
+  const float scale = in.surface.normalScale, bias = in.surface.normalBias;
+  if (!std::isfinite(scale) || !std::isfinite(bias) || scale == 0.0f)
+    return Status::error(StatusCode::InvalidInput, "sslr: SurfaceLayout::normalScale/normalBias = " + std::to_string(scale) +
+                         "/" + std::to_string(bias) + " (must be finite, the scale not 0: 2/-1 for unsigned formats, "
+                         "1/0 for signed ones)");
+  f.surface.normalScale = scale;
+  f.surface.normalBias = bias;
   if (in.surface.space == NormalSpace::World) {
     // Normals transform by the inverse transpose (right for any affine view, scaled ones too).
     if (in.viewFromWorld == glm::dmat4(0.0))

@@ -135,6 +135,12 @@ struct SurfaceLayout {
   float constantRoughness = 0.0f;
   float constantReflectance = 1.0f;
   NormalSpace space = NormalSpace::View;  // last, so existing aggregate initializers still compile
+  // How a stored normal channel unpacks to [-1, 1]: value * normalScale + normalBias (finite, scale
+  // not 0). The default suits unsigned formats (RGBA8, RGBA16, RG16, float textures holding 0..1);
+  // signed normalized formats (RG16_SNORM, RGBA16_SNORM, RGBA8_SNORM) and float textures holding
+  // -1..1 take scale 1, bias 0. Octahedral: the two coordinates; xyz: the three components.
+  float normalScale = 2.0f;
+  float normalBias = -1.0f;
 };
 
 struct FrameInputs {
