@@ -214,7 +214,7 @@ struct SslrTraceParams {
   float hiddenPassageLimitPx; // hierarchical: pixels a ray may travel behind the depth buffer
   float ffxDepthBufferThickness;  // Method::FidelityFxSssr (sslr_trace_ffx.h)
   int ffxMaxIntersections;
-  int tracePad2;
+  int outputRadiance;         // 1: Settings::output is Radiance (no Fresnel term in the reflection)
 };
 
 // The position-buffer comparison method ("3D Game Shaders For Beginners", SSR chapter).

@@ -349,7 +349,8 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
 //              own fade x screen-edge fade x camera-facing fade (x the article's error term in
 //              Classic mode). A host blends its fallback specular (probes, sky) by 1 - coverage.
 //   reflection the weight applied to the hit's colour: Fresnel term x coverage, with the Fresnel
-//              term reflectance x the article's Fresnel (Classic) or Schlick with F0 = reflectance.
+//              term reflectance x the article's Fresnel (Classic) or Schlick with F0 = reflectance;
+//              coverage alone for OutputMode::Radiance (the host applies its own specular term).
 //   blurAlpha  the roughness blur's radius / blur.maxRadiusPx (stored in the reflection's alpha).
 struct SslrWeights {
   float reflection;
@@ -368,7 +369,7 @@ SSLR_FN SslrWeights sslrReflectionWeights(SslrProjection p, SslrSurface s, SslrT
   SslrWeights w;
   w.coverage = sslrSaturate(hit.confidence * hit.fade * errorWeight * sslrEdgeFade(hit.uvHit, t.edgeFade) *
                             sslrCameraFacingFade(vsR, vsV, t.cameraFadeStart, t.cameraFadeEnd));
-  w.reflection = fresnel * w.coverage;
+  w.reflection = (t.outputRadiance != 0 ? 1.0f : fresnel) * w.coverage;
   w.blurAlpha = t.blurMaxRadiusPx > 0.0f ? sslrSaturate(radius / t.blurMaxRadiusPx) : 0.0f;
   return w;
 }

@@ -54,6 +54,7 @@ TEST(Settings, EveryInvalidFieldIsNamed) {
       {"ffx.maxTraversalIntersections", [](Settings& s) { s.ffx.maxTraversalIntersections = 0; }},
       {"traversal.hiddenPassageLimitPx", [](Settings& s) { s.traversal.hiddenPassageLimitPx = NAN; }},
       {"traversal.pass", [](Settings& s) { s.traversal.pass = static_cast<TraversalPass>(7); }},
+      {"output", [](Settings& s) { s.output = static_cast<OutputMode>(7); }},
       {"adaptiveL.convergenceEps", [](Settings& s) { s.adaptiveL.convergenceEps = -1.0f; }},
       {"adaptiveL.initialLengthScreen", [](Settings& s) { s.adaptiveL.initialLengthScreen = 0.0f; }},
       {"adaptiveL.initialLengthScreen", [](Settings& s) { s.adaptiveL.initialLengthScreen = 2.0f; }},

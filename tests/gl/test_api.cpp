@@ -753,6 +753,66 @@ TEST_F(Api, SignedNormalFormatsGiveTheSameHits) {
   }
 }
 
+// OutputMode::Radiance leaves the Fresnel term to the host: the reflection is the hit colour x
+// coverage whatever the surface's reflectance, the weighted output bit for bit where the Fresnel
+// term is 1 (Schlick with F0 = 1), with the weighted output's coverage; composite() refuses it.
+TEST_F(Api, RadianceOutputLeavesTheFresnelTermToTheHost) {
+  auto ctx = makeContext();
+  Frame f;
+  FrameInputs mirror = f.gbuffer->frameInputs();
+  mirror.surface.reflectanceChannel = -1;
+  mirror.surface.constantReflectance = 1.0f;
+  FrameInputs dielectric = mirror;
+  dielectric.surface.constantReflectance = 0.5f;
+  Settings weighted;
+  weighted.fresnel = FresnelMode::Schlick;
+  weighted.blur.enabled = false;
+  Settings radiance = weighted;
+  radiance.output = OutputMode::Radiance;
+  auto run = [&](const FrameInputs& in, const Settings& s) {
+    EXPECT_TRUE(ctx->dispatch(in, s));
+    return std::pair{readAll(ctx->reflectionTexture(), 4), readAll(ctx->resolvedTexture(), 4)};
+  };
+  const auto mirrorWeighted = run(mirror, weighted);
+  const auto dielectricWeighted = run(dielectric, weighted);
+  const auto dielectricRadiance = run(dielectric, radiance);
+  const Status refused = ctx->composite(0);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.code(), StatusCode::InvalidSettings);
+  EXPECT_NE(refused.message().find("Radiance"), std::string::npos) << refused.message();
+  const auto mirrorRadiance = run(mirror, radiance);
+  // A weighted frame composites again (into a framebuffer of the context's size).
+  const GLuint target = makeTexture(GL_RGBA16F);
+  GLuint fbo = 0;
+  glCreateFramebuffers(1, &fbo);
+  glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, target, 0);
+  EXPECT_FALSE(ctx->composite(fbo)) << "still the radiance frame";
+  ASSERT_TRUE(ctx->dispatch(mirror, weighted));
+  EXPECT_TRUE(ctx->composite(fbo));
+  glDeleteFramebuffers(1, &fbo);
+  glDeleteTextures(1, &target);
+
+  EXPECT_EQ(mirrorRadiance.first.pixels, mirrorWeighted.first.pixels) << "F = 1: radiance is the weighted output";
+  EXPECT_EQ(dielectricRadiance.first.pixels, mirrorRadiance.first.pixels) << "radiance does not depend on F0";
+  double sumWeighted = 0.0, sumRadiance = 0.0;
+  size_t covered = 0;
+  for (int p = 0; p < W * H; ++p) {
+    const float* w = &dielectricWeighted.second.pixels[static_cast<size_t>(p) * 4];
+    const float* r = &dielectricRadiance.second.pixels[static_cast<size_t>(p) * 4];
+    EXPECT_EQ(w[3], r[3]) << "the same coverage, pixel " << p;
+    covered += r[3] > 0.0f;
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_LE(w[c], r[c] * 1.001f + 1e-6f) << "F <= 1, pixel " << p;
+      sumWeighted += w[c];
+      sumRadiance += r[c];
+    }
+  }
+  ASSERT_GT(covered, 500u);
+  // Schlick with F0 = 0.5 lies in [0.5, 1]: most of the picture is the surfaces seen head-on.
+  EXPECT_LT(sumWeighted, 0.9 * sumRadiance);
+  EXPECT_GE(sumWeighted, 0.49 * sumRadiance);
+}
+
 // Roughness and reflectance in a texture of their own (as many engines keep them) give the
 // frame of the packed layout; a channel the material texture lacks is refused, naming it.
 TEST_F(Api, SeparateMaterialTextureGivesThePackedResult) {

@@ -48,6 +48,10 @@ Status Context::Impl::composite(GLName framebuffer, const CompositeOptions& opti
   if (Status s = checkCurrentContext("composite()"); !s) return s;
   if (!haveFrame)
     return Status::error(StatusCode::NoFrame, "sslr: composite() needs a successful dispatch() first");
+  if (frameIsRadiance)
+    return Status::error(StatusCode::InvalidSettings, "sslr: composite(): the last dispatch traced with "
+                         "Settings::output = OutputMode::Radiance, which holds no Fresnel term: apply your own "
+                         "specular term to resolvedTexture(), or dispatch with OutputMode::Weighted");
   if (framebuffer != 0 && !gl.IsFramebuffer(framebuffer))
     return Status::error(StatusCode::InvalidInput, "sslr: composite(): " + std::to_string(framebuffer) +
                          " is not a framebuffer name");

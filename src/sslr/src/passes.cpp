@@ -111,6 +111,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   finishFrame(plan);
   gl.PopDebugGroup();
   haveFrame = true;
+  frameIsRadiance = settings.output == OutputMode::Radiance;
   return {};
 }
 

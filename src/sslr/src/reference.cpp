@@ -75,6 +75,7 @@ void traceConstants(const FrameInputs& in, const Settings& s, int width, int hei
   t.blurNormalPower = s.blur.normalPower;
   t.maxIterations = s.adaptiveL.maxIterations;
   t.fresnelMode = s.fresnel == FresnelMode::Classic ? SSLR_FRESNEL_CLASSIC : SSLR_FRESNEL_SCHLICK;
+  t.outputRadiance = s.output == OutputMode::Radiance ? 1 : 0;
   t.outlineThinning = s.traversal.outlineThinning ? 1 : 0;
   // A measured thickness (back-face depth) replaces the curved solids' estimate.
   t.curvedSolids = s.traversal.curvedSolids && in.backDepthTexture == 0 && s.method != Method::FidelityFxSssr ? 1 : 0;

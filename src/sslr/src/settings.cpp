@@ -108,6 +108,8 @@ std::string validate(const Settings& s) {
     why << "method = " << static_cast<int>(s.method) << " (not a sslr::Method); ";
   if (!finite(s.temporal.historyWeight) || s.temporal.historyWeight < 0.0f || s.temporal.historyWeight > 0.98f)
     why << "temporal.historyWeight = " << s.temporal.historyWeight << " (must be 0..0.98); ";
+  if (s.output != OutputMode::Weighted && s.output != OutputMode::Radiance)
+    why << "output = " << static_cast<int>(s.output) << " (not a sslr::OutputMode); ";
   if (s.halfResolution && s.method == Method::PositionBuffer)
     why << "halfResolution works with the depth-only methods, not Method::PositionBuffer; ";
   std::string text = why.str();

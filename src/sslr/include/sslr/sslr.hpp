@@ -179,6 +179,17 @@ enum class FresnelMode {
   Schlick,  // F0 + (1 - F0)(1 - cos)^5 with F0 = the pixel's reflectance
 };
 
+// What the reflection and resolved outputs hold (alpha: the blur weight and the coverage alike).
+enum class OutputMode {
+  // rgb = hit colour x Fresnel term (FresnelMode, from the surface's reflectance) x coverage: ready
+  // to add (composite()).
+  Weighted,
+  // rgb = hit colour x coverage: the reflected radiance, for an engine that applies its own
+  // specular term (split-sum DFG, coloured F0, clear coat): specular = resolved.rgb x its term +
+  // (1 - resolved.a) x its fallback's. composite() refuses a frame traced so.
+  Radiance,
+};
+
 enum class Preset { Low, Medium, High, Ultra };
 
 enum class Method {
@@ -231,6 +242,7 @@ struct FfxSssrSettings {
 struct Settings {
   Method method = Method::AdaptiveL;
   FresnelMode fresnel = FresnelMode::Classic;
+  OutputMode output = OutputMode::Weighted;
   bool halfResolution = false;  // one ray per 2x2 quad (the traced pixel rotates per frame); the
                                 // quad's pixels on the same surface reuse its hit, the others trace
                                 // their own ray. Depth-only methods only
