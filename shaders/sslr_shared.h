@@ -153,7 +153,7 @@ struct SslrProjection {
   // Perspective only: the window depth of the point at infinity, d_inf = hi + lo, split in double
   // on the CPU (hi = 0 or 1). Reconstruction divides by (depth - hi) - lo instead of
   // ndcZ + zScale: for a standard (non-reversed) depth buffer, depth - 1 is exact and the
-  // cancellation near the far plane no longer loses the bits float rounding of zScale costs.
+  // cancellation near the far plane does not lose the bits float rounding of zScale costs.
   float infDepthHi;
   float infDepthLo;
   float pad0;

@@ -84,8 +84,7 @@ SSLR_FN vec3 sslrPlaneAtWindow(SslrProjection p, SslrSurface s, vec2 w, vec3 vsO
 // than the slab behind the edge, and the hit projects between the outline and the outer pixel's
 // centre (had the side reached that centre, the outer pixel would show it). A side within ~6
 // degrees of edge-on (cos <= 0.1) is not trusted: rays from many pixels converge on such a
-// sliver, and on mirror-walls at 960x540 they were most of what the rule got wrong (false hits
-// 0.93% -> 1.06% at 0; 0.93% at 0.1; docs/design-notes.md). wEntry: where the ray entered the pixel
+// sliver, and most of them would be wrong (docs/design-notes.md). wEntry: where the ray entered the pixel
 // (window space, just past the boundary), d: the ray's window-space direction.
 SSLR_FN bool sslrCornerHit(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 wEntry, vec3 d, vec3 vsP,
                            vec3 vsR, SSLR_OUT(float) L) {
@@ -368,7 +367,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
 
 // Rays that come back towards the camera, or run within ~17 degrees of the image plane, are where
 // adaptive L jumps over what stands between (its probes see the front of the occluders, not the
-// ray): they go to the traversal at once (mirror-walls false hits 3.0% -> 0.9%, 960x540).
+// ray): they go to the traversal at once.
 SSLR_FN bool sslrTraversalFirst(SslrProjection p, SslrTraceParams t, vec3 vsP, vec3 vsR) {
   return sslrHiZMode(t) == SSLR_HIZ_ONLY ||
          (sslrHasHiZFallback(t) && dot(vsR, -sslrViewDirection(p, vsP)) > -0.3f);
