@@ -43,8 +43,8 @@ TEST_F(Bench, QuickGridWritesCompleteResultsAndReport) {
                              "timingMethod", "timeMedianMs", "timeMinMs", "timeMaxMs", "frames", "classes",
                              "recall1px", "recall2px", "recall4px", "medianErrorPx", "p95ErrorPx", "falseHitRate",
                              "reflectionRmse", "reflectionPsnr", "nonFiniteHitPixels", "nonFiniteOutputPixels",
-                             "tracedPixels", "fetches", "fetchesPerTracedPixel", "gbufferBytesPerPixel",
-                             "extraBytesPerPixel"};
+                             "tracedPixels", "fetches", "fetchesPerTracedPixel", "dispatches", "barriers",
+                             "bytesRead", "bytesWritten", "passes", "gbufferBytesPerPixel", "extraBytesPerPixel"};
   std::set<std::string> scenes, methods;
   for (const auto& r : j["runs"]) {
     for (const char* f : runFields) ASSERT_TRUE(r.contains(f)) << f << " missing in " << r.dump();
@@ -58,6 +58,12 @@ TEST_F(Bench, QuickGridWritesCompleteResultsAndReport) {
       for (const char* f : {"recall1px", "falseHitRate", "reflectionRmse", "fetchesPerTracedPixel"})
         EXPECT_TRUE(r[f].is_number()) << f << " in " << r.dump();
       EXPECT_LE(r["recall1px"].get<double>(), r["recall4px"].get<double>());
+      // Pass by pass, classify to finish; their bytes sum to the run's.
+      ASSERT_EQ(r["passes"].size(), 6u) << r.dump();
+      std::uint64_t read = 0;
+      for (const auto& p : r["passes"]) read += p["bytesRead"].get<std::uint64_t>();
+      EXPECT_EQ(read, r["bytesRead"].get<std::uint64_t>());
+      EXPECT_GT(r["passes"][0]["bytesRead"].get<std::uint64_t>(), 0u) << "classification reads the screen";
     }
   }
   EXPECT_EQ(methods, (std::set<std::string>{"adaptive-l", "hiz", "dda", "ffx-sssr", "position-buffer", "baseline"}));

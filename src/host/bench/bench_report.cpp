@@ -8,6 +8,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 #include "sslr_host/benchmark.hpp"
 #include "sslr_host/image_io.hpp"
@@ -51,6 +52,29 @@ json settingsJson(const BenchConfig& c) {
 // NaN/Inf are not JSON: write null for "not applicable".
 json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
+// Each pass's commands and texture traffic (FrameStats' per-pass fields) of the scored frame.
+json passesJson(const FrameStats& st) {
+  const std::tuple<const char*, const PassCommands*, const PassTraffic*> passes[] = {
+      {"classify", &st.classifyCommands, &st.classifyTraffic}, {"pyramid", &st.pyramidCommands, &st.pyramidTraffic},
+      {"trace", &st.traceCommands, &st.traceTraffic},          {"blur", &st.blurCommands, &st.blurTraffic},
+      {"temporal", &st.temporalCommands, &st.temporalTraffic}, {"finish", &st.finishCommands, nullptr}};
+  json out = json::array();
+  for (const auto& [name, c, t] : passes) {
+    const PassTraffic traffic = t != nullptr ? *t : PassTraffic{};
+    out.push_back({{"pass", name},
+                   {"dispatches", c->dispatches},
+                   {"indirectDispatches", c->indirectDispatches},
+                   {"barriers", c->barriers},
+                   {"programs", c->programs},
+                   {"uploads", c->uploads},
+                   {"texelsRead", traffic.texelsRead},
+                   {"texelsWritten", traffic.texelsWritten},
+                   {"bytesRead", traffic.bytesRead},
+                   {"bytesWritten", traffic.bytesWritten}});
+  }
+  return out;
+}
+
 json runJson(const RunRecord& r) {
   const HitMetrics& m = r.metrics;
   const bool traced = r.method != "baseline";
@@ -89,6 +113,7 @@ json runJson(const RunRecord& r) {
           {"programs", r.commands.programs},
           {"bytesRead", r.traffic.bytesRead},
           {"bytesWritten", r.traffic.bytesWritten},
+          {"passes", passesJson(r.frameStats)},
           {"gbufferBytesPerPixel", r.gbufferBytesPerPixel},
           {"extraBytesPerPixel", r.extraBytesPerPixel}};
 }

@@ -501,6 +501,7 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
         r.fetches = stats.fetches;
         r.commands = stats.totalCommands();
         r.traffic = stats.totalTraffic();
+        r.frameStats = stats;
         r.fetchesPerTracedPixel = stats.tracedPixels ? double(stats.fetches) / stats.tracedPixels : 0.0;
         r.nonFiniteOutputs = countNonFinite(fr.readReflection()) + countNonFinite(fr.readResolved());
         if (c.isDefault) {

@@ -52,6 +52,7 @@ struct RunRecord {
   std::uint32_t tracedPixels = 0, fetches = 0;
   PassCommands commands;  // recorded by one frame (FrameStats::totalCommands; with debug outputs on)
   PassTraffic traffic;    // that frame's texture memory (FrameStats::totalTraffic; debug images included)
+  FrameStats frameStats;  // that frame's stats, pass by pass
   double fetchesPerTracedPixel = 0;
   int gbufferBytesPerPixel = 0;  // colour + normal + depth (+ position for the tutorial's method)
   int extraBytesPerPixel = 0;    // sslr's own textures (reflection, blur temp, resolved)
