@@ -113,7 +113,8 @@ using glm::sqrt;
 #define SSLR_UNIT_MASK 8
 #define SSLR_UNIT_HIT_RECORD 9        // temporal reuse: this frame's hits
 #define SSLR_UNIT_BACK_DEPTH 10
-#define SSLR_UNIT_COUNT 11
+#define SSLR_UNIT_BASE_COLOR 11       // coloured F0: the host's base colour (metalness workflow)
+#define SSLR_UNIT_COUNT 12
 // Image units, likewise per pass.
 #define SSLR_IMAGE_REFLECTION 0       // trace, clean-up
 #define SSLR_IMAGE_HIT 1              // trace (debug outputs, temporal reuse)
@@ -178,7 +179,7 @@ struct SslrSurface {
   int separateMaterial;      // 1: roughness/reflectance channels are of the material texture
   int hasMask;               // 1: rays start only where the mask texture's first channel > 0.5
   int hasBackDepth;          // 1: FrameInputs::backDepthTexture measures what a pixel shows is deep
-  int surfacePad2;
+  int metalnessChannel;      // channel of the material texel holding metalness; -1: grey F0
   float normalScale;         // a stored normal channel unpacks to value * normalScale + normalBias
   float normalBias;          // in [-1, 1] (2, -1: unsigned formats; 1, 0: signed ones; 0, 0: unset = 2, -1)
   int surfacePad3;
@@ -514,6 +515,16 @@ SSLR_FN float sslrRoughness(SslrSurface s, vec4 texel) {
 }
 SSLR_FN float sslrReflectance(SslrSurface s, vec4 texel) {
   return s.reflectanceChannel < 0 ? s.constantReflectance : sslrChannel(texel, s.reflectanceChannel);
+}
+
+// Coloured F0 (metalness workflow, SurfaceLayout::metalnessChannel): the reflectance for
+// dielectrics, the base colour for metals, mixed by metalness. Metalness and base colour are
+// clamped to [0, 1] (NaN reads as 0), so a poisoned input cannot leave the Fresnel range.
+SSLR_FN vec3 sslrF0FromMetalness(float reflectance, vec3 baseColor, float metalness) {
+  float m = metalness > 0.0f ? min(metalness, 1.0f) : 0.0f;
+  vec3 base = vec3(baseColor.x > 0.0f ? min(baseColor.x, 1.0f) : 0.0f, baseColor.y > 0.0f ? min(baseColor.y, 1.0f) : 0.0f,
+                   baseColor.z > 0.0f ? min(baseColor.z, 1.0f) : 0.0f);
+  return vec3(reflectance) * (1.0f - m) + base * m;
 }
 
 // Whether a pixel's material is worth a ray: reflective enough and smooth enough. Written so that

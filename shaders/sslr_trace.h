@@ -374,6 +374,15 @@ SSLR_FN SslrWeights sslrReflectionWeights(SslrProjection p, SslrSurface s, SslrT
   return w;
 }
 
+// The Fresnel term of a coloured F0, channel by channel (what sslrReflectionWeights' `reflection`
+// is for a grey one, before the coverage): F0 x the article's term (Classic) or Schlick's; 1 for
+// OutputMode::Radiance.
+SSLR_FN vec3 sslrFresnelColored(SslrTraceParams t, vec3 f0, float cosVN) {
+  if (t.outputRadiance != 0) return vec3(1.0f);
+  if (t.fresnelMode == SSLR_FRESNEL_CLASSIC) return f0 * sslrFresnelClassic(cosVN);
+  return vec3(sslrFresnelSchlick(f0.x, cosVN), sslrFresnelSchlick(f0.y, cosVN), sslrFresnelSchlick(f0.z, cosVN));
+}
+
 #ifdef __cplusplus
 }  // namespace sslr::shared
 #endif

@@ -11,6 +11,9 @@ layout(binding = SSLR_UNIT_MASK) uniform sampler2D uMask;      // optional: wher
 #if defined(SSLR_BACK_DEPTH) && SSLR_BACK_DEPTH
 layout(binding = SSLR_UNIT_BACK_DEPTH) uniform sampler2D uBackDepth;  // optional: the nearest back face's depth (nearest)
 #endif
+#ifdef SSLR_COLORED_F0
+layout(binding = SSLR_UNIT_BASE_COLOR) uniform sampler2D uBaseColor;  // optional: base colour, metals' F0 (nearest)
+#endif
 
 // The texel holding pixel px's material channels: the host's material texture if it gave one,
 // else the normal texel itself (read already).
@@ -21,6 +24,14 @@ vec4 sslrMaterialAt(ivec2 px, vec4 normalTexel) {
   return normalTexel;
 #endif
 }
+
+#ifdef SSLR_COLORED_F0
+// Pixel px's coloured F0 (SurfaceLayout::metalnessChannel, FrameInputs::baseColorTexture).
+vec3 sslrColoredF0At(ivec2 px, vec4 material, float reflectance) {
+  return sslrF0FromMetalness(reflectance, texelFetch(uBaseColor, px, 0).rgb,
+                             sslrChannel(material, frame.surface.metalnessChannel));
+}
+#endif
 
 // sslrShouldTrace for pixel px of the G-buffer, with the host's mask (FrameInputs::maskTexture):
 // the trace, the blur's neighbour test and temporal reuse all ask this one question

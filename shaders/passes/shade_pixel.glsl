@@ -29,7 +29,12 @@ void sslrShadePixel(ivec2 px) {
       // kept inside RGBA16F's range.
       if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0f);
       color = clamp(color, vec3(0.0f), vec3(60000.0f));
+#ifdef SSLR_COLORED_F0
+      vec3 f0 = sslrColoredF0At(px, q.material, sslrReflectance(frame.surface, q.material));
+      reflection = vec4(color * (sslrFresnelColored(frame.trace, f0, q.cosVN) * w.coverage), w.blurAlpha);
+#else
       reflection = vec4(color * w.reflection, w.blurAlpha);
+#endif
       coverage = w.coverage;
     }
   }

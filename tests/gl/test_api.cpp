@@ -813,6 +813,90 @@ TEST_F(Api, RadianceOutputLeavesTheFresnelTermToTheHost) {
   EXPECT_GE(sumWeighted, 0.49 * sumRadiance);
 }
 
+// Coloured F0 (metalness x base colour): a metal's reflection takes its base colour through the
+// Fresnel term channel by channel (Schlick with F0 = (1, 0.5, 0.25): red whole, green and blue at
+// least half and a quarter, and green at least blue's share); metalness 0 gives the grey F0's
+// output; a metalness channel without a base colour, or the reverse, is refused, named.
+TEST_F(Api, ColoredF0TintsMetalsReflections) {
+  auto ctx = makeContext();
+  Frame f;
+  const FrameInputs packedIn = f.gbuffer->frameInputs();  // roughness in B, reflectance in A
+  Settings s;
+  s.fresnel = FresnelMode::Schlick;
+  s.blur.enabled = false;
+  ASSERT_TRUE(ctx->dispatch(packedIn, s));
+  const Image grey = readAll(ctx->reflectionTexture(), 4);
+  Settings radianceSettings = s;
+  radianceSettings.output = OutputMode::Radiance;
+  // Material RGBA16: R = reflectance, G = roughness, B = metalness.
+  const Image packed = readAll(packedIn.normalTexture, 4);
+  auto materialTexture = [&](float metalness) {
+    std::vector<std::uint16_t> m(static_cast<size_t>(W) * H * 4);
+    for (int p = 0; p < W * H; ++p) {
+      const float* t = &packed.pixels[static_cast<size_t>(p) * 4];
+      const float v[4] = {t[3], t[2], metalness, 1.0f};
+      for (int c = 0; c < 4; ++c) m[static_cast<size_t>(p) * 4 + c] = static_cast<std::uint16_t>(std::lround(v[c] * 65535.0f));
+    }
+    const GLuint tex = makeTexture(GL_RGBA16);
+    glTextureSubImage2D(tex, 0, 0, 0, W, H, GL_RGBA, GL_UNSIGNED_SHORT, m.data());
+    return tex;
+  };
+  const GLuint metal = materialTexture(1.0f), dielectric = materialTexture(0.0f);
+  const GLuint baseColor = makeTexture(GL_RGBA16F);
+  const std::vector<float> tint(static_cast<size_t>(W) * H * 4, 0.0f);
+  std::vector<float> colour = tint;
+  for (int p = 0; p < W * H; ++p) {
+    colour[static_cast<size_t>(p) * 4] = 1.0f;
+    colour[static_cast<size_t>(p) * 4 + 1] = 0.5f;
+    colour[static_cast<size_t>(p) * 4 + 2] = 0.25f;
+  }
+  glTextureSubImage2D(baseColor, 0, 0, 0, W, H, GL_RGBA, GL_FLOAT, colour.data());
+  FrameInputs in = packedIn;
+  in.materialTexture = metal;
+  in.baseColorTexture = baseColor;
+  in.surface.reflectanceChannel = 0;
+  in.surface.roughnessChannel = 1;
+  in.surface.metalnessChannel = 2;
+  ASSERT_TRUE(ctx->dispatch(in, radianceSettings));
+  const Image radiance = readAll(ctx->reflectionTexture(), 4);
+  ASSERT_TRUE(ctx->dispatch(in, s));
+  const Image metallic = readAll(ctx->reflectionTexture(), 4);
+  size_t lit = 0;
+  for (int p = 0; p < W * H; ++p) {
+    const float* r = &radiance.pixels[static_cast<size_t>(p) * 4];
+    const float* m = &metallic.pixels[static_cast<size_t>(p) * 4];
+    if (!(r[0] > 1e-3f && r[1] > 1e-3f && r[2] > 1e-3f)) continue;
+    ++lit;
+    EXPECT_EQ(m[0], r[0]) << "F0 = 1: the red channel is the radiance, pixel " << p;
+    EXPECT_GE(m[1], 0.5f * r[1] * 0.999f) << p;
+    EXPECT_LE(m[1], r[1] * 1.001f) << p;
+    EXPECT_GE(m[2], 0.25f * r[2] * 0.999f) << p;
+    EXPECT_GE(m[1] / r[1], m[2] / r[2] * 0.999f) << "F(0.5) >= F(0.25), pixel " << p;
+  }
+  ASSERT_GT(lit, 500u);
+  // Metalness 0: the reflectance, grey, as without the base colour (to rounding).
+  in.materialTexture = dielectric;
+  ASSERT_TRUE(ctx->dispatch(in, s));
+  const Image dielectricOut = readAll(ctx->reflectionTexture(), 4);
+  ASSERT_EQ(dielectricOut.pixels.size(), grey.pixels.size());
+  for (size_t i = 0; i < grey.pixels.size(); ++i)
+    ASSERT_NEAR(dielectricOut.pixels[i], grey.pixels[i], 1e-3f * std::max(1.0f, std::abs(grey.pixels[i]))) << i;
+  // Either input alone is refused, with the missing one named.
+  FrameInputs noColour = in;
+  noColour.baseColorTexture = 0;
+  Status st = ctx->dispatch(noColour, s);
+  ASSERT_FALSE(st);
+  EXPECT_EQ(st.code(), StatusCode::InvalidInput);
+  EXPECT_NE(st.message().find("baseColorTexture"), std::string::npos) << st.message();
+  FrameInputs noMetalness = in;
+  noMetalness.surface.metalnessChannel = -1;
+  st = ctx->dispatch(noMetalness, s);
+  ASSERT_FALSE(st);
+  EXPECT_NE(st.message().find("metalnessChannel"), std::string::npos) << st.message();
+  GLuint textures[] = {metal, dielectric, baseColor};
+  glDeleteTextures(3, textures);
+}
+
 // Roughness and reflectance in a texture of their own (as many engines keep them) give the
 // frame of the packed layout; a channel the material texture lacks is refused, naming it.
 TEST_F(Api, SeparateMaterialTextureGivesThePackedResult) {

@@ -49,7 +49,7 @@ struct FormatInfo {
 struct TrafficModel {
   int width = 0, height = 0;
   int depthBytes = 0, normalBytes = 0, materialBytes = 0, maskBytes = 0, backDepthBytes = 0;
-  int colorBytes = 0, positionBytes = 0, motionBytes = 0;
+  int colorBytes = 0, positionBytes = 0, motionBytes = 0, baseColorBytes = 0;
   int materialGathers = 0;      // material channels classification gathers from a texture (0..2)
   int normalGathers = 0;        // curved solids: normal channels gathered per quad (0, 2 or 3)
   bool classifyLevels01 = false;  // classification writes the pyramid's levels 0 and 1
@@ -191,6 +191,7 @@ struct Context::Impl {
   Status checkTexture(GLName tex, const char* what, FormatInfo::Kind kind, int minChannels,
                       FormatInfo* infoOut = nullptr) const;
   Status checkInputs(const FrameInputs& in, Method method, TrafficModel* formats = nullptr) const;
+  Status checkSurfaceLayout(const FrameInputs& in, const FormatInfo& materialInfo, FormatInfo* baseColorInfo) const;
   // passes.cpp: a frame's plan (which passes run, their switches and programs), then one function
   // per pass, in the order they run.
   struct FramePlan {

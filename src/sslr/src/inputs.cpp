@@ -118,6 +118,48 @@ Status Context::Impl::checkTexture(GLName tex, const char* what, FormatInfo::Kin
   return {};
 }
 
+// SurfaceLayout's channels against the texture holding them (`materialInfo`: the material
+// texture's format, else the normal texture's), its constants, and the coloured F0's inputs.
+Status Context::Impl::checkSurfaceLayout(const FrameInputs& in, const FormatInfo& materialInfo,
+                                         FormatInfo* baseColorInfo) const {
+  const SurfaceLayout& sl = in.surface;
+  const bool separate = in.materialTexture != 0;
+  const char* materialName = separate ? "materialTexture" : "normalTexture";
+  auto checkChannel = [&](int channel, const char* name) -> Status {
+    if (channel < -1 || channel > 3)
+      return Status::error(StatusCode::InvalidInput, std::string("sslr: SurfaceLayout::") + name + " = " +
+                           std::to_string(channel) + " (must be -1..3)");
+    if (channel >= materialInfo.channels)
+      return Status::error(StatusCode::InvalidInput, std::string("sslr: SurfaceLayout::") + name + " = " +
+                           std::to_string(channel) + " but " + materialName + " (" + materialInfo.name +
+                           ") has only " + std::to_string(materialInfo.channels) + " channel(s)");
+    return {};
+  };
+  if (Status s = checkChannel(sl.roughnessChannel, "roughnessChannel"); !s) return s;
+  if (Status s = checkChannel(sl.reflectanceChannel, "reflectanceChannel"); !s) return s;
+  if (Status s = checkChannel(sl.metalnessChannel, "metalnessChannel"); !s) return s;
+  if (sl.metalnessChannel >= 0 && in.baseColorTexture == 0)
+    return Status::error(StatusCode::InvalidInput, "sslr: SurfaceLayout::metalnessChannel = " +
+                         std::to_string(sl.metalnessChannel) + " needs FrameInputs::baseColorTexture (metals' F0)");
+  if (in.baseColorTexture != 0) {
+    if (sl.metalnessChannel < 0)
+      return Status::error(StatusCode::InvalidInput, "sslr: FrameInputs::baseColorTexture is set but SurfaceLayout::metalnessChannel "
+                           "is -1: name the channel holding metalness");
+    if (Status s = checkTexture(in.baseColorTexture, "FrameInputs::baseColorTexture", FormatInfo::Color, 3, baseColorInfo); !s)
+      return s;
+  }
+  const int normalUses = separate ? 0 : (sl.normals == NormalEncoding::Octahedral ? 2 : 3);
+  if (sl.roughnessChannel >= 0 && sl.roughnessChannel < normalUses)
+    return Status::error(StatusCode::InvalidInput, "sslr: SurfaceLayout::roughnessChannel overlaps the normal's channels");
+  if (sl.reflectanceChannel >= 0 && sl.reflectanceChannel < normalUses)
+    return Status::error(StatusCode::InvalidInput, "sslr: SurfaceLayout::reflectanceChannel overlaps the normal's channels");
+  if (sl.metalnessChannel >= 0 && sl.metalnessChannel < normalUses)
+    return Status::error(StatusCode::InvalidInput, "sslr: SurfaceLayout::metalnessChannel overlaps the normal's channels");
+  if (!std::isfinite(sl.constantRoughness) || !std::isfinite(sl.constantReflectance))
+    return Status::error(StatusCode::InvalidInput, "sslr: SurfaceLayout constant roughness/reflectance must be finite");
+  return {};
+}
+
 Status Context::Impl::checkInputs(const FrameInputs& in, Method method, TrafficModel* formats) const {
   FormatInfo depthInfo, positionInfo, colorInfo, maskInfo, backDepthInfo, motionInfo;
   if (Status s = checkTexture(in.depthTexture, "FrameInputs::depthTexture", FormatInfo::Depth, 1, &depthInfo); !s)
@@ -142,7 +184,6 @@ Status Context::Impl::checkInputs(const FrameInputs& in, Method method, TrafficM
     if (Status s = checkTexture(in.materialTexture, "FrameInputs::materialTexture", FormatInfo::Color, 1, &materialInfo); !s)
       return s;
   }
-  const char* materialName = separate ? "materialTexture" : "normalTexture";
   if (in.maskTexture != 0) {
     if (Status s = checkTexture(in.maskTexture, "FrameInputs::maskTexture", FormatInfo::Color, 1, &maskInfo); !s) return s;
   }
@@ -156,25 +197,8 @@ Status Context::Impl::checkInputs(const FrameInputs& in, Method method, TrafficM
   if (in.motionTexture != 0) {
     if (Status s = checkTexture(in.motionTexture, "FrameInputs::motionTexture", FormatInfo::Color, 2, &motionInfo); !s) return s;
   }
-  auto checkChannel = [&](int channel, const char* name) -> Status {
-    if (channel < -1 || channel > 3)
-      return Status::error(StatusCode::InvalidInput, std::string("sslr: SurfaceLayout::") + name + " = " +
-                           std::to_string(channel) + " (must be -1..3)");
-    if (channel >= materialInfo.channels)
-      return Status::error(StatusCode::InvalidInput, std::string("sslr: SurfaceLayout::") + name + " = " +
-                           std::to_string(channel) + " but " + materialName + " (" + materialInfo.name +
-                           ") has only " + std::to_string(materialInfo.channels) + " channel(s)");
-    return {};
-  };
-  if (Status s = checkChannel(sl.roughnessChannel, "roughnessChannel"); !s) return s;
-  if (Status s = checkChannel(sl.reflectanceChannel, "reflectanceChannel"); !s) return s;
-  const int normalUses = separate ? 0 : (sl.normals == NormalEncoding::Octahedral ? 2 : 3);
-  if (sl.roughnessChannel >= 0 && sl.roughnessChannel < normalUses)
-    return Status::error(StatusCode::InvalidInput, "sslr: SurfaceLayout::roughnessChannel overlaps the normal's channels");
-  if (sl.reflectanceChannel >= 0 && sl.reflectanceChannel < normalUses)
-    return Status::error(StatusCode::InvalidInput, "sslr: SurfaceLayout::reflectanceChannel overlaps the normal's channels");
-  if (!std::isfinite(sl.constantRoughness) || !std::isfinite(sl.constantReflectance))
-    return Status::error(StatusCode::InvalidInput, "sslr: SurfaceLayout constant roughness/reflectance must be finite");
+  FormatInfo baseColorInfo;
+  if (Status s = checkSurfaceLayout(in, materialInfo, &baseColorInfo); !s) return s;
   if (formats != nullptr) {
     formats->depthBytes = depthInfo.bytes;
     formats->normalBytes = normalInfo.bytes;
@@ -184,6 +208,7 @@ Status Context::Impl::checkInputs(const FrameInputs& in, Method method, TrafficM
     formats->colorBytes = colorInfo.bytes;
     formats->positionBytes = method == Method::PositionBuffer ? positionInfo.bytes : 0;
     formats->motionBytes = in.motionTexture != 0 ? motionInfo.bytes : 0;
+    formats->baseColorBytes = in.baseColorTexture != 0 ? baseColorInfo.bytes : 0;
     formats->materialGathers = (sl.roughnessChannel >= 0 ? 1 : 0) + (sl.reflectanceChannel >= 0 ? 1 : 0);
   }
   return {};

@@ -24,6 +24,8 @@ void Context::Impl::bindInputs(const FrameInputs& in) const {
   gl.BindSampler(SSLR_UNIT_MASK, nearestSampler);
   gl.bindTexture2D(SSLR_UNIT_BACK_DEPTH, in.backDepthTexture);  // 0 unless the host measures thickness
   gl.BindSampler(SSLR_UNIT_BACK_DEPTH, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_BASE_COLOR, in.baseColorTexture);  // 0 unless the host gives coloured F0
+  gl.BindSampler(SSLR_UNIT_BASE_COLOR, nearestSampler);
   gl.bindTexture2D(SSLR_UNIT_PYRAMID, pyramid.texture);  // read by the depth-only trace (built when a mode needs it)
   gl.BindSampler(SSLR_UNIT_PYRAMID, nearestSampler);
   gl.BindBufferBase(GL_UNIFORM_BUFFER, SSLR_BINDING_FRAME_UBO, frameUbo);
@@ -218,6 +220,7 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
   inputDefines = std::string(in.maskTexture != 0 ? "#define SSLR_HAS_MASK 1\n" : "") +
                  "#define SSLR_BACK_DEPTH " + (in.backDepthTexture != 0 ? "1\n" : "0\n") +
                  (in.materialTexture != 0 ? "#define SSLR_SEPARATE_MATERIAL 1\n" : "") +
+                 (in.baseColorTexture != 0 ? "#define SSLR_COLORED_F0 1\n" : "") +
                  "#define SSLR_NORMAL_ENCODING " + std::to_string(surface.normalEncoding) + "\n" +
                  "#define SSLR_WORLD_NORMALS " + (surface.normalFromStored0.w != 0.0f ? "1" : "0") + "\n" +
                  "#define SSLR_NORMAL_UNSIGNED " + (shared::sslrUnsignedNormalUnpack(surface) ? "1" : "0") + "\n" +

@@ -30,6 +30,7 @@ Status surfaceConstants(const FrameInputs& in, int width, int height, shared::Ss
     return Status::error(StatusCode::InvalidInput, "sslr: SurfaceLayout::normalScale/normalBias = " + std::to_string(scale) +
                          "/" + std::to_string(bias) + " (must be finite, the scale not 0: 2/-1 for unsigned formats, "
                          "1/0 for signed ones)");
+  f.surface.metalnessChannel = in.surface.metalnessChannel;
   f.surface.normalScale = scale;
   f.surface.normalBias = bias;
   if (in.surface.space == NormalSpace::World) {

@@ -115,6 +115,7 @@ void estimateTraffic(const TrafficModel& m, FrameStats& f) {
     read(t, f.fetches, m.fetchBytes);
     read(t, rays * 4, m.colorBytes);  // the bilinear colour read of a hit
     read(t, rays, m.normalBytes);     // the hit's normal
+    if (m.baseColorBytes > 0) read(t, rays, m.baseColorBytes);  // coloured F0, per hit
     write(t, tilePixels * 2, kRgba16f);  // reflection, resolved
     if (m.hitRecord) write(t, tilePixels, kRgba32f);
     if (m.iterations) write(t, tilePixels, kR32f);

@@ -141,6 +141,11 @@ struct SurfaceLayout {
   // -1..1 take scale 1, bias 0. Octahedral: the two coordinates; xyz: the three components.
   float normalScale = 2.0f;
   float normalBias = -1.0f;
+  // Coloured F0 (metalness workflow): the channel of the material texture (else of the normal
+  // texture) holding metalness 0..1, with FrameInputs::baseColorTexture. The Fresnel term's F0 is
+  // then mix(reflectance, base colour, metalness) per channel (a metal's reflection takes its
+  // tint); -1 (the default): F0 = the reflectance, grey.
+  int metalnessChannel = -1;
 };
 
 struct FrameInputs {
@@ -158,6 +163,8 @@ struct FrameInputs {
                                // what each pixel shows to be as deep as measured instead of
                                // Settings::traversal.objectDepthRelative x its distance (where a back face lies
                                // behind it): rays pass behind thin legs and stop inside boxes
+  GLName baseColorTexture = 0; // with SurfaceLayout::metalnessChannel: the surface's base colour
+                               // (linear RGB, >= 3 channels), metals' F0
   GLName motionTexture = 0;    // optional, Settings::temporal: RG = this pixel's uv minus the uv the
                                // same surface point had in the previous frame (the host's motion
                                // vectors, uv units); where history is looked up instead of the
