@@ -339,6 +339,24 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
 
 Image readAll(GLuint tex, int channels) { return readTexture(tex, W, H, channels); }
 
+// Of the pixels with a confident hit in hit record `reference`: how many, and how many of them
+// `other` also hits within half a pixel.
+struct SameHits {
+  size_t traced = 0, same = 0;
+  double share() const { return traced ? double(same) / double(traced) : 0.0; }
+};
+SameHits sameHits(const Image& reference, const Image& other) {
+  SameHits r;
+  for (int p = 0; p < W * H; ++p) {
+    const float* a = &reference.pixels[static_cast<size_t>(p) * 4];
+    const float* b = &other.pixels[static_cast<size_t>(p) * 4];
+    if (!(a[2] > 0.5f)) continue;
+    ++r.traced;
+    r.same += b[2] > 0.5f && std::hypot((a[0] - b[0]) * W, (a[1] - b[1]) * H) <= 0.5f;
+  }
+  return r;
+}
+
 TEST_F(Api, PoisonedGBufferNeverProducesNanOrInf) {
   auto ctx = makeContext();
   // Host-made textures filled with garbage: NaN/Inf colour, zero, non-unit and NaN normals,
@@ -669,22 +687,11 @@ TEST_F(Api, WorldSpaceNormalsWithTheViewMatrixGiveTheSameHits) {
   worldIn.surface.space = NormalSpace::View;  // the mistake: world normals declared as view space
   ASSERT_TRUE(ctx->dispatch(worldIn, s));
   const Image hitWrong = readAll(ctx->hitTexture(), 4);
-  size_t traced = 0, same = 0, sameWrong = 0;
-  for (int p = 0; p < W * H; ++p) {
-    const float* a = &hitView.pixels[static_cast<size_t>(p) * 4];
-    if (!(a[2] > 0.5f)) continue;
-    ++traced;
-    auto close = [&](const Image& other) {
-      const float* b = &other.pixels[static_cast<size_t>(p) * 4];
-      return b[2] > 0.5f && std::hypot((a[0] - b[0]) * W, (a[1] - b[1]) * H) <= 0.5f;
-    };
-    same += close(hitWorld);
-    sameWrong += close(hitWrong);
-  }
-  ASSERT_GT(traced, 500u);
+  const SameHits same = sameHits(hitView, hitWorld);
+  ASSERT_GT(same.traced, 500u);
   // 16-bit octahedral normals re-encoded once: a few hits may move by a fraction of a pixel.
-  EXPECT_GE(double(same) / traced, 0.98) << same << " of " << traced;
-  EXPECT_LT(double(sameWrong) / traced, 0.5) << "world normals read as view space must differ";
+  EXPECT_GE(same.share(), 0.98) << same.same << " of " << same.traced;
+  EXPECT_LT(sameHits(hitView, hitWrong).share(), 0.5) << "world normals read as view space must differ";
   // A singular view matrix is refused with the field named.
   worldIn.surface.space = NormalSpace::World;
   worldIn.viewFromWorld = glm::dmat4(0.0);
@@ -728,22 +735,11 @@ TEST_F(Api, SignedNormalFormatsGiveTheSameHits) {
     signedIn.surface.normalBias = -1.0f;
     ASSERT_TRUE(ctx->dispatch(signedIn, s));
     const Image hitWrong = readAll(ctx->hitTexture(), 4);
-    size_t traced = 0, same = 0, sameWrong = 0;
-    for (int p = 0; p < W * H; ++p) {
-      const float* a = &hitUnsigned.pixels[static_cast<size_t>(p) * 4];
-      if (!(a[2] > 0.5f)) continue;
-      ++traced;
-      auto close = [&](const Image& other) {
-        const float* b = &other.pixels[static_cast<size_t>(p) * 4];
-        return b[2] > 0.5f && std::hypot((a[0] - b[0]) * W, (a[1] - b[1]) * H) <= 0.5f;
-      };
-      same += close(hitSigned);
-      sameWrong += close(hitWrong);
-    }
-    ASSERT_GT(traced, 500u);
+    const SameHits same = sameHits(hitUnsigned, hitSigned);
+    ASSERT_GT(same.traced, 500u);
     // Requantized once, to 16 bits: a few hits may move by a fraction of a pixel.
-    EXPECT_GE(double(same) / traced, 0.98) << same << " of " << traced;
-    EXPECT_LT(double(sameWrong) / traced, 0.5) << "signed normals unpacked as unsigned must differ";
+    EXPECT_GE(same.share(), 0.98) << same.same << " of " << same.traced;
+    EXPECT_LT(sameHits(hitUnsigned, hitWrong).share(), 0.5) << "signed normals unpacked as unsigned must differ";
     signedIn.surface.normalScale = 0.0f;
     const Status st = ctx->dispatch(signedIn, s);
     ASSERT_FALSE(st);
