@@ -4,6 +4,8 @@
 #include "common/tiles.glsl"
 #include "passes/untraced_tiles.glsl"
 
+layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
+
 layout(binding = SSLR_IMAGE_REFLECTION, rgba16f) uniform writeonly image2D uReflection;
 layout(binding = SSLR_IMAGE_RESOLVED, rgba16f) uniform writeonly image2D uResolved;
 

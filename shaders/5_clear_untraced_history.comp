@@ -5,6 +5,8 @@
 #include "common/tiles.glsl"
 #include "passes/untraced_tiles.glsl"
 
+layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
+
 layout(binding = SSLR_IMAGE_HISTORY_KEY, r32f) uniform writeonly image2D uHistoryKey;
 
 void main() {

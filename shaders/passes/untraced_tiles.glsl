@@ -1,8 +1,7 @@
 // The clean-up passes run one group per tile traced in the previous frame (its list, kept after
 // this frame's): a tile this frame did not list again gets its pixels cleared, so that after a
-// frame only its listed tiles can hold non-zero values and no output is ever cleared whole.
-layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
-
+// frame only its listed tiles can hold non-zero values and no output is ever cleared whole. One
+// invocation per pixel of the tile (SSLR_TILE_SIZE x SSLR_TILE_SIZE groups).
 // This invocation's pixel, when its tile was traced last frame and not in this one.
 bool sslrUntracedPixel(out ivec2 px) {
   uint entry = tiles.tileCoords[4u * sslrTileCapacity() + gl_WorkGroupID.x];
