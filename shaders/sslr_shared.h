@@ -50,10 +50,12 @@ using glm::sqrt;
 #define SSLR_FN inline
 #define SSLR_INOUT(T) T&
 #define SSLR_OUT(T) T&
+#define SSLR_DEFAULT(v) = v  // a member's default in C++ (a GLSL block member has none)
 #else
 #define SSLR_FN
 #define SSLR_INOUT(T) inout T
 #define SSLR_OUT(T) out T
+#define SSLR_DEFAULT(v)
 #endif
 
 // ---- Enumerations (plain #defines so both languages and #if can use them) -------------------
@@ -180,8 +182,8 @@ struct SslrSurface {
   int hasMask;               // 1: rays start only where the mask texture's first channel > 0.5
   int hasBackDepth;          // 1: FrameInputs::backDepthTexture measures what a pixel shows is deep
   int metalnessChannel;      // channel of the material texel holding metalness; -1: grey F0
-  float normalScale;         // a stored normal channel unpacks to value * normalScale + normalBias
-  float normalBias;          // in [-1, 1] (2, -1: unsigned formats; 1, 0: signed ones; 0, 0: unset = 2, -1)
+  float normalScale SSLR_DEFAULT(2.0f);  // a stored normal channel unpacks to value * normalScale +
+  float normalBias SSLR_DEFAULT(-1.0f);  // normalBias in [-1, 1] (2, -1: unsigned formats; 1, 0: signed)
   int surfacePad3;
   int surfacePad4;
 };
@@ -439,11 +441,7 @@ SSLR_FN float sslrPixelFootprint(SslrProjection p, float heightPx, float dist) {
 // ---- Normals ------------------------------------------------------------------------------
 // Whether stored normal channels hold 0..1 (the default unpack, value * 2 - 1): the decode keeps
 // that exact formula then; other scale/bias pairs (signed formats: 1, 0) go through the general one.
-// (0, 0) is a surface whose unpack was never set (a zero-initialized one): the default too, since
-// a zero scale is refused as input.
-SSLR_FN bool sslrUnsignedNormalUnpack(SslrSurface s) {
-  return (s.normalScale == 2.0f && s.normalBias == -1.0f) || (s.normalScale == 0.0f && s.normalBias == 0.0f);
-}
+SSLR_FN bool sslrUnsignedNormalUnpack(SslrSurface s) { return s.normalScale == 2.0f && s.normalBias == -1.0f; }
 
 // Octahedral mapping (Meyer et al. 2010 / Cigolle et al. 2014) into [0,1]^2.
 SSLR_FN vec2 sslrOctWrap(vec2 v) {
@@ -520,10 +518,10 @@ SSLR_FN float sslrReflectance(SslrSurface s, vec4 texel) {
 // Coloured F0 (metalness workflow, SurfaceLayout::metalnessChannel): the reflectance for
 // dielectrics, the base colour for metals, mixed by metalness. Metalness and base colour are
 // clamped to [0, 1] (NaN reads as 0), so a poisoned input cannot leave the Fresnel range.
+SSLR_FN float sslrUnitOrZero(float x) { return x > 0.0f ? min(x, 1.0f) : 0.0f; }  // [0, 1], NaN -> 0
 SSLR_FN vec3 sslrF0FromMetalness(float reflectance, vec3 baseColor, float metalness) {
-  float m = metalness > 0.0f ? min(metalness, 1.0f) : 0.0f;
-  vec3 base = vec3(baseColor.x > 0.0f ? min(baseColor.x, 1.0f) : 0.0f, baseColor.y > 0.0f ? min(baseColor.y, 1.0f) : 0.0f,
-                   baseColor.z > 0.0f ? min(baseColor.z, 1.0f) : 0.0f);
+  float m = sslrUnitOrZero(metalness);
+  vec3 base = vec3(sslrUnitOrZero(baseColor.x), sslrUnitOrZero(baseColor.y), sslrUnitOrZero(baseColor.z));
   return vec3(reflectance) * (1.0f - m) + base * m;
 }
 

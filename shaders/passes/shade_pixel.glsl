@@ -21,16 +21,16 @@ void sslrShadePixel(ivec2 px) {
       return;
     }
     if (hit.status == SSLR_STATUS_HIT) {
+      float reflectance = sslrReflectance(frame.surface, q.material);
       SslrWeights w = sslrReflectionWeights(frame.proj, frame.surface, frame.trace, hit, q.vsP, q.vsV, q.vsR,
-                                            q.cosVN, sslrReflectance(frame.surface, q.material),
-                                            sslrRoughness(frame.surface, q.material));
+                                            q.cosVN, reflectance, sslrRoughness(frame.surface, q.material));
       vec3 color = textureLod(uColor, hit.uvHit, 0.0f).rgb;
       // Poisoned colour must not spread through the blur: NaN/Inf become 0, and the value is
       // kept inside RGBA16F's range.
       if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0f);
       color = clamp(color, vec3(0.0f), vec3(60000.0f));
 #ifdef SSLR_COLORED_F0
-      vec3 f0 = sslrColoredF0At(px, q.material, sslrReflectance(frame.surface, q.material));
+      vec3 f0 = sslrColoredF0At(px, q.material, reflectance);
       reflection = vec4(color * (sslrFresnelColored(frame.trace, f0, q.cosVN) * w.coverage), w.blurAlpha);
 #else
       reflection = vec4(color * w.reflection, w.blurAlpha);

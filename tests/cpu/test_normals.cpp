@@ -94,8 +94,8 @@ TEST(Normals, PoisonedNormalsAreRejected) {
 }
 
 // The signed unpack (SurfaceLayout::normalScale 1, normalBias 0) decodes a signed value to the
-// normal the unsigned default decodes from (value + 1) / 2, for both encodings; an unset surface
-// (zero-initialized) unpacks as unsigned.
+// normal the unsigned default decodes from (value + 1) / 2, for both encodings; a surface whose
+// unpack is not set unpacks as unsigned.
 TEST(Normals, SignedUnpackMatchesTheUnsignedOne) {
   for (int encoding : {SSLR_NORMALS_OCTAHEDRAL, SSLR_NORMALS_XYZ_UNORM}) {
     SslrSurface unsignedSurface{}, signedSurface{}, unset{};

@@ -99,7 +99,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   recording = {};
   recordingPass = 0;
   FramePlan plan = planFrame(settings, constants.value(), hadHistory);
-  plan.traffic = trafficModel(plan, formats, settings);
+  if (plan.collectStats) plan.traffic = trafficModel(plan, formats, settings);
   if (Status s = buildPrograms(plan, in, settings); !s) return s;
   createFrameResources(plan);
   detail::StateGuard guard(gl, false);

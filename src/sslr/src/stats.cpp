@@ -50,11 +50,10 @@ void write(PassTraffic& t, U64 texels, int bytes) {
 }
 constexpr int kRgba16f = 8, kRg32f = 8, kRgba32f = 16, kR32f = 4;
 
-// Pyramid levels 0 and 1 from the depths (classification, or its pass of their own): every depth
-// gathered, the back depth and the curved solids' normal channels with them; level 1 whole and
-// level 0 at most whole (quads of background alone write none).
+// Pyramid levels 0 and 1 from the depths (classification, or its pass of their own, which read
+// the depths themselves): the back depth and the curved solids' normal channels gathered with
+// them; level 1 whole and level 0 at most whole (quads of background alone write none).
 void levels01(PassTraffic& t, const TrafficModel& m, U64 pixels) {
-  read(t, pixels, m.depthBytes);
   if (m.backDepthBytes > 0) read(t, pixels, m.backDepthBytes);
   read(t, pixels * U64(m.normalGathers), m.normalBytes);
   write(t, m.level1Cells, kRg32f);
@@ -83,21 +82,14 @@ void estimateTraffic(const TrafficModel& m, FrameStats& f) {
   read(f.classifyTraffic, pixels, m.depthBytes);
   read(f.classifyTraffic, pixels * U64(m.materialGathers), m.materialBytes > 0 ? m.materialBytes : m.normalBytes);
   if (m.maskBytes > 0) read(f.classifyTraffic, pixels, m.maskBytes);
-  if (m.classifyLevels01) {
-    PassTraffic levels;
-    levels01(levels, m, pixels);
-    levels.texelsRead -= pixels;  // classification's own depth read serves the levels too
-    levels.bytesRead -= pixels * U64(m.depthBytes);
-    for (auto [to, from] : {std::pair{&f.classifyTraffic.texelsRead, levels.texelsRead},
-                            {&f.classifyTraffic.texelsWritten, levels.texelsWritten},
-                            {&f.classifyTraffic.bytesRead, levels.bytesRead},
-                            {&f.classifyTraffic.bytesWritten, levels.bytesWritten}})
-      *to += from;
-  }
+  if (m.classifyLevels01) levels01(f.classifyTraffic, m, pixels);
   const bool traced = f.tiles > 0;
   f.pyramidTraffic = {};
   if (m.pyramid && traced) {
-    if (m.levels01Pass) levels01(f.pyramidTraffic, m, pixels);
+    if (m.levels01Pass) {
+      read(f.pyramidTraffic, pixels, m.depthBytes);
+      levels01(f.pyramidTraffic, m, pixels);
+    }
     read(f.pyramidTraffic, m.level1Cells, kRg32f);
     write(f.pyramidTraffic, m.upperCells, kRg32f);
   }
