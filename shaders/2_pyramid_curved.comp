@@ -33,7 +33,9 @@ SslrQuad sslrLoadQuad(ivec2 cell) {
 }
 
 void main() {
-  if (gl_GlobalInvocationID.x >= curved.count) return;
+  // (Under DeviceProfile::Gpu classification sizes this dispatch before it knows whether the
+  // frame lists a tile; a frame that lists none needs no pyramid.)
+  if (gl_GlobalInvocationID.x >= curved.count || tiles.dispatchX == 0u) return;
   ivec2 cell = sslrUnpackCoord(curved.quads[gl_GlobalInvocationID.x]);
   SslrQuad q = sslrLoadQuad(cell);
   vec4 extra;

@@ -126,6 +126,8 @@ using glm::sqrt;
 #define SSLR_IMAGE_QUAD_SURFACE 2
 #define SSLR_IMAGE_PYRAMID_LEVEL1 0   // classification, level-1 and curved passes
 #define SSLR_IMAGE_PYRAMID_LEVEL0 1
+#define SSLR_IMAGE_CLASSIFY_REFLECTION 2  // classification (DeviceProfile::Gpu): last frame's untraced tiles
+#define SSLR_IMAGE_CLASSIFY_RESOLVED 3
 #define SSLR_IMAGE_PYRAMID_BLOCK 0    // 2_pyramid_levels2to7.comp: levels 2..7 on units 0..5; 2_pyramid_top_level.comp: 0
 #define SSLR_IMAGE_BLUR_OUTPUT 0
 #define SSLR_IMAGE_TEMPORAL_OUTPUT 0  // temporal reuse: the blend (store: resolved)

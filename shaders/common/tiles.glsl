@@ -13,10 +13,8 @@ layout(std430, binding = SSLR_BINDING_TILE_SSBO) buffer SslrTiles {
 } tiles;
 
 uint sslrTilesX() { return (uint(frame.surface.width) + uint(SSLR_TILE_SIZE) - 1u) / uint(SSLR_TILE_SIZE); }
-uint sslrTileCapacity() {
-  uint tilesY = (uint(frame.surface.height) + uint(SSLR_TILE_SIZE) - 1u) / uint(SSLR_TILE_SIZE);
-  return sslrTilesX() * tilesY;
-}
+uint sslrTilesY() { return (uint(frame.surface.height) + uint(SSLR_TILE_SIZE) - 1u) / uint(SSLR_TILE_SIZE); }
+uint sslrTileCapacity() { return sslrTilesX() * sslrTilesY(); }
 
 // The lists' entries: a tile's, quad's or pixel's coordinates as x | y << 16.
 uint sslrPackCoord(ivec2 c) { return uint(c.x) | (uint(c.y) << 16); }

@@ -188,6 +188,8 @@ cxxopts::Options renderOptions() {
       ("traversal-pass", "where the hierarchical traversal runs: auto (deferred on a software renderer), inline "
                          "or deferred (a pass of its own); the hits are the same",
        cxxopts::value<std::string>())
+      ("device-profile", "sslr's pass shapes: auto (software on a CPU rasterizer, else gpu), gpu or software; the "
+                         "outputs are the same", cxxopts::value<std::string>())
       ("no-outline-thinning", "keep the assumed object thickness constant up to objects' outlines (hierarchical "
                               "traversal)")
       ("no-curved-solids", "keep the assumed object thickness behind convex curved surfaces too, instead of "
@@ -240,7 +242,8 @@ struct RenderJob {
   fs::path outDir;
   bool dump = false, score = false;
   int frames = 1;
-  std::string device;
+  std::string device;                               // EGL device (--device)
+  DeviceProfile profile = DeviceProfile::Auto;      // sslr's pass shapes (--device-profile)
 };
 
 // The G-buffer layout, the tracer and its settings (throws UsageError).
@@ -257,6 +260,13 @@ void parseTracing(const cxxopts::ParseResult& args, RenderJob& job) {
   job.gopt.withBackDepth = args.count("back-depth") > 0;
   Settings& settings = job.settings;
   settings = parseSettings(args);
+  if (args.count("device-profile")) {
+    const std::string profile = args["device-profile"].as<std::string>();
+    if (profile == "auto") job.profile = DeviceProfile::Auto;
+    else if (profile == "gpu") job.profile = DeviceProfile::Gpu;
+    else if (profile == "software") job.profile = DeviceProfile::Software;
+    else throw UsageError{"--device-profile must be auto, gpu or software (got '" + profile + "')"};
+  }
   const std::string method = args["method"].as<std::string>();
   if (method == "none") {
     job.reflections = false;
@@ -384,7 +394,8 @@ Status writeImages(const NamedImages& files, const fs::path& outDir) {
 }
 
 // --stats: tiles, traced pixels, fetches, the commands per pass, and the pass times.
-void printStats(const FrameStats& st, const std::vector<FrameStats>& laterStats, int frames, bool software) {
+void printStats(const FrameStats& st, const std::vector<FrameStats>& laterStats, int frames, bool software,
+                DeviceProfile profile) {
   std::cout << "  tiles " << st.tiles << " (blurred " << st.blurTiles << "), traced pixels " << st.tracedPixels << ", fetches "
             << st.fetches << " (" << (st.tracedPixels ? double(st.fetches) / st.tracedPixels : 0.0)
             << " per traced pixel), hierarchical traversal on " << st.hierarchicalPixels << " ("
@@ -392,8 +403,10 @@ void printStats(const FrameStats& st, const std::vector<FrameStats>& laterStats,
             << (st.hierarchicalPixels ? (st.traversalDeferred ? ", in a pass of its own" : ", inline") : "") << ")"
             << (st.followedEmptyFrame ? "; the pyramid's level 1 in a pass of its own (the frame before listed no tile)" : "")
             << "\n";
-  // The commands each pass recorded (the same on every device: what a GPU pays for per frame).
-  std::printf("  commands (dispatches + indirect / barriers / programs / uploads):");
+  // The commands each pass recorded (the same on every device of a profile: what a GPU pays for
+  // per frame).
+  std::printf("  commands (%s profile; dispatches + indirect / barriers / programs / uploads):",
+              profile == DeviceProfile::Gpu ? "gpu" : "software");
   printPassCommands(st);
   const PassCommands total = st.totalCommands();
   std::printf("; frame %u + %u / %u / %u / %u\n", total.dispatches, total.indirectDispatches, total.barriers,
@@ -441,7 +454,7 @@ int render(const RenderJob& job) {
     std::cerr << "sslr-render: cannot create a headless OpenGL 4.5 context: " << gl.error() << "\n";
     return kExitFailure;
   }
-  auto renderer = FrameRenderer::create(job.gopt);
+  auto renderer = FrameRenderer::create(job.gopt, nullptr, job.profile);
   if (!renderer) {
     std::cerr << "sslr-render: " << renderer.error() << "\n";
     return kExitFailure;
@@ -483,7 +496,7 @@ int render(const RenderJob& job) {
   std::cout << "sslr-render: " << job.scene.name << " " << job.gopt.width << "x" << job.gopt.height << " ("
             << toString(job.gopt.depth) << " depth, " << job.scene.triangleCount() << " triangles) -> "
             << (job.outDir / "final.png").string() << (job.dump ? " + buffers" : "") << "\n";
-  if (stats) printStats(r.sslr().waitForStats(), laterStats, job.frames, gl.value()->isSoftware());
+  if (stats) printStats(r.sslr().waitForStats(), laterStats, job.frames, gl.value()->isSoftware(), r.sslr().device());
   if (score) printScore(*score);
   return 0;
 }

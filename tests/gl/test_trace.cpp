@@ -629,6 +629,99 @@ TEST_F(Level1Pass, FollowsAnEmptyFrameWithTheSameHits) {
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
+// DeviceProfile::Gpu classifies 2x2 tiles a group and does the clean-up (zeroing the tiles traced
+// last frame and not in this one) and the pyramid's arguments inside classification; Software runs
+// them as passes of their own. Both profiles must write the same outputs bit for bit, frame after
+// frame: through a camera move (tiles drop out), empty frames (every tile drops out; then the
+// level-1 pass), another scene, on a tile grid of odd size (25 x 13 tiles: the Gpu profile's last
+// row and column of groups are half outside), with each tracer and output path.
+struct ProfileCase {
+  const char* name;
+  Method method;
+  bool half, temporal;
+};
+class DeviceProfiles : public sslr::test::GlTest, public ::testing::WithParamInterface<ProfileCase> {};
+
+TEST_P(DeviceProfiles, SameOutputsFrameAfterFrame) {
+  const ProfileCase c = GetParam();
+  GBufferOptions o;
+  o.width = 196;
+  o.height = 100;
+  o.withPosition = c.method == Method::PositionBuffer;
+  auto room = makeBuiltinScene("mirror-room");
+  auto curved = makeBuiltinScene("curved-mirror");
+  ASSERT_TRUE(room && curved);
+  GpuScene roomGpu(room.value()), curvedGpu(curved.value());
+  Settings s;
+  s.method = c.method;
+  s.halfResolution = c.half;
+  s.temporal.enabled = c.temporal;
+  s.debug.outputs = true;
+  s.debug.collectStats = true;
+  Settings empty = s;
+  empty.selection.minReflectance = 1.0f;  // no pixel reflects enough to be traced
+  Camera moved = *room.value().camera;
+  moved.eye += glm::dvec3(0.6, 0.3, 0.0);
+  struct Frame {
+    const GpuScene* scene;
+    const Camera* camera;
+    const Settings* settings;
+  };
+  const Frame frames[] = {{&roomGpu, &*room.value().camera, &s}, {&roomGpu, &moved, &s},
+                          {&roomGpu, &moved, &empty},           {&roomGpu, &moved, &empty},
+                          {&roomGpu, &*room.value().camera, &s}, {&curvedGpu, &*curved.value().camera, &s}};
+  constexpr int kFrames = sizeof(frames) / sizeof(frames[0]);
+  Image images[2][kFrames][3];
+  FrameStats stats[2][kFrames];
+  const DeviceProfile profiles[2] = {DeviceProfile::Software, DeviceProfile::Gpu};
+  for (int p = 0; p < 2; ++p) {
+    auto r = FrameRenderer::create(o, nullptr, profiles[p]);
+    ASSERT_TRUE(r) << r.error();
+    ASSERT_EQ(r.value()->sslr().device(), profiles[p]);
+    for (int k = 0; k < kFrames; ++k) {
+      ASSERT_TRUE(r.value()->render(*frames[k].scene, *frames[k].camera, frames[k].settings));
+      images[p][k][0] = r.value()->readReflection();
+      images[p][k][1] = r.value()->readResolved();
+      images[p][k][2] = r.value()->readHit();
+      stats[p][k] = r.value()->sslr().waitForStats();
+    }
+  }
+  const char* names[3] = {"reflection", "resolved", "hit"};
+  for (int k = 0; k < kFrames; ++k) {
+    SCOPED_TRACE("frame " + std::to_string(k));
+    for (int i = 0; i < 3; ++i) {
+      size_t differing = 0, nonZero = 0;
+      for (size_t j = 0; j < images[0][k][i].pixels.size(); ++j) {
+        differing += images[0][k][i].pixels[j] != images[1][k][i].pixels[j];
+        nonZero += images[1][k][i].pixels[j] != 0.0f;
+      }
+      EXPECT_EQ(differing, 0u) << names[i];
+      // Empty frames: the clean-up zeroed every tile the frame before traced.
+      if (frames[k].settings == &empty) EXPECT_EQ(nonZero, 0u) << names[i];
+      else EXPECT_GT(nonZero, 1000u) << names[i];
+    }
+    EXPECT_EQ(stats[0][k].tiles, stats[1][k].tiles);
+    // The structure: Gpu runs classification alone (no clean-up dispatch) and no pyramid-arguments
+    // pass. (Later passes differ by TraversalPass::Auto's choice: inline under Gpu.)
+    EXPECT_EQ(stats[1][k].classifyCommands.dispatches, 1u);
+    EXPECT_EQ(stats[1][k].classifyCommands.indirectDispatches, 0u);
+    EXPECT_EQ(stats[0][k].classifyCommands.indirectDispatches, 1u);
+    const bool pyramid = c.method == Method::AdaptiveL;
+    EXPECT_EQ(stats[0][k].pyramidCommands.dispatches, pyramid ? 1u : 0u);
+    EXPECT_EQ(stats[1][k].pyramidCommands.dispatches, 0u);
+    auto barriers = [](const FrameStats& st) { return st.classifyCommands.barriers + st.pyramidCommands.barriers; };
+    EXPECT_EQ(barriers(stats[0][k]) - barriers(stats[1][k]), pyramid ? 2u : 1u);
+  }
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+INSTANTIATE_TEST_SUITE_P(Paths, DeviceProfiles,
+                         ::testing::Values(ProfileCase{"adaptive_l", Method::AdaptiveL, false, false},
+                                           ProfileCase{"half_resolution", Method::AdaptiveL, true, false},
+                                           ProfileCase{"temporal", Method::AdaptiveL, false, true},
+                                           ProfileCase{"position_buffer", Method::PositionBuffer, false, false}),
+                         [](const ::testing::TestParamInfo<ProfileCase>& info) { return std::string(info.param.name); });
+
 // Classification writes no level-0 texels under a 2x2 quad of background alone (sky), so those
 // texels keep whatever an earlier frame wrote; the traversal must never read them (it skips a
 // level-1 cell of background alone and enters each new quad at level 1). A frame of a scene with

@@ -62,6 +62,13 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
             configs.push_back(hidden);
           }
         }
+        // The pass shapes of each device profile (the Auto profile's is one of the two).
+        for (auto [label, device] : {std::pair{"high-gpu-profile", DeviceProfile::Gpu},
+                                     std::pair{"high-software-profile", DeviceProfile::Software}}) {
+          BenchConfig shaped{"adaptive-l", label, Settings::preset(preset), false};
+          shaped.device = device;
+          configs.push_back(shaped);
+        }
         for (auto [label, pass] : {std::pair{"high-inline", TraversalPass::Inline},
                                    std::pair{"high-deferred", TraversalPass::Deferred}}) {
           BenchConfig where{"adaptive-l", label, Settings::preset(preset), false};
@@ -293,13 +300,14 @@ FrameInputs inputsFor(const SceneFrame& f, const BenchConfig& c) {
 class ConfigContexts {
  public:
   ConfigContexts(int width, int height) : width_(width), height_(height) {}
-  Expected<Context*> get(size_t config) {
+  Expected<Context*> get(size_t config, DeviceProfile device) {
     if (contexts_.size() <= config) contexts_.resize(config + 1);
     if (!contexts_[config]) {
       ContextDesc d;
       d.width = width_;
       d.height = height_;
       d.getProcAddress = HeadlessContext::getProcAddress();
+      d.device = device;
       auto c = Context::create(d);
       if (!c) return Status::error(c.error());
       contexts_[config] = std::move(c.value());
@@ -325,7 +333,7 @@ Expected<std::vector<std::vector<double>>> timeInterleaved(const std::vector<Ben
   // this scene's.
   for (size_t i = 0; i < configs.size(); ++i) {
     if (configs[i].method == "baseline") continue;
-    auto ctx = contexts.get(i);
+    auto ctx = contexts.get(i, configs[i].device);
     if (!ctx) return Status::error(ctx.error());
     if (Status st = ctx.value()->dispatch(inputsFor(f, configs[i]), configs[i].settings); !st)
       return Status::error(st.message());
@@ -338,7 +346,7 @@ Expected<std::vector<std::vector<double>>> timeInterleaved(const std::vector<Ben
       if (configs[i].method == "baseline") {
         ms = timer.timeMs([&] { baseline.run(f.inputs); }, timer.repeats(options.batch));
       } else {
-        auto ctx = contexts.get(i);
+        auto ctx = contexts.get(i, configs[i].device);
         if (!ctx) return Status::error(ctx.error());
         const FrameInputs in = inputsFor(f, configs[i]);
         ms = timer.timeMs([&] { if (st) st = ctx.value()->dispatch(in, configs[i].settings); },

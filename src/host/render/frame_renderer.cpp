@@ -5,7 +5,7 @@
 namespace sslr::host {
 
 Expected<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const GBufferOptions& options,
-                                                              GetProcAddress getProcAddress) {
+                                                              GetProcAddress getProcAddress, DeviceProfile device) {
   auto gbuffer = GBuffer::create(options);
   if (!gbuffer) return Status::error(gbuffer.error());
   auto r = std::unique_ptr<FrameRenderer>(new FrameRenderer());
@@ -14,6 +14,7 @@ Expected<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const GBufferOpti
   desc.width = options.width;
   desc.height = options.height;
   desc.getProcAddress = getProcAddress != nullptr ? getProcAddress : HeadlessContext::getProcAddress();
+  desc.device = device;
   auto ctx = Context::create(desc);
   if (!ctx) return Status::error(ctx.error());
   r->sslr_ = std::move(ctx.value());

@@ -115,6 +115,9 @@ Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
   if (desc.width <= 0 || desc.height <= 0 || desc.width > 16384 || desc.height > 16384)
     return Status::error(StatusCode::InvalidSize, "sslr: ContextDesc size " + std::to_string(desc.width) + "x" +
                          std::to_string(desc.height) + " is invalid (must be 1..16384 each)");
+  if (desc.device != DeviceProfile::Auto && desc.device != DeviceProfile::Gpu && desc.device != DeviceProfile::Software)
+    return Status::error(StatusCode::InvalidSettings, "sslr: ContextDesc device = " +
+                         std::to_string(static_cast<int>(desc.device)) + " is not a DeviceProfile");
   auto impl = std::make_unique<Impl>();
   impl->log = desc.log;
   if (Status s = impl->gl.load(desc.getProcAddress); !s) {
@@ -130,10 +133,14 @@ Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
     return Status::error(StatusCode::GlUnavailable, "sslr: needs OpenGL 4.5, the current context is " + std::to_string(major) +
                          "." + std::to_string(minor));
   }
-  if (const GLubyte* renderer = gl.GetString(GL_RENDERER)) {
-    const std::string name(reinterpret_cast<const char*>(renderer));
-    for (const char* cpu : {"llvmpipe", "softpipe", "SwiftShader"})
-      if (name.find(cpu) != std::string::npos) impl->softwareRenderer = true;
+  if (desc.device == DeviceProfile::Auto) {
+    if (const GLubyte* renderer = gl.GetString(GL_RENDERER)) {
+      const std::string name(reinterpret_cast<const char*>(renderer));
+      for (const char* cpu : {"llvmpipe", "softpipe", "SwiftShader"})
+        if (name.find(cpu) != std::string::npos) impl->softwareRenderer = true;
+    }
+  } else {
+    impl->softwareRenderer = desc.device == DeviceProfile::Software;
   }
   GLint vertexSsbos = 0;
   gl.GetIntegerv(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS, &vertexSsbos);
@@ -192,6 +199,9 @@ Status Context::resize(int width, int height) {
 
 int Context::width() const { return impl_->width; }
 int Context::height() const { return impl_->height; }
+DeviceProfile Context::device() const {
+  return impl_->softwareRenderer ? DeviceProfile::Software : DeviceProfile::Gpu;
+}
 Status Context::dispatch(const FrameInputs& inputs, const Settings& settings) {
   return impl_->dispatch(inputs, settings);
 }

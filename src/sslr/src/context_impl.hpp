@@ -68,7 +68,7 @@ FormatInfo formatInfo(GLint internalFormat);
 struct Context::Impl {
   detail::Gl gl;
   LogCallback log;
-  bool softwareRenderer = false;  // GL_RENDERER names a CPU rasterizer (TraversalPass::Auto)
+  bool softwareRenderer = false;  // DeviceProfile::Software (ContextDesc::device, or Auto on a CPU rasterizer)
   int width = 0, height = 0;
 
   // The outputs (reflection, resolved), the blur's scratch and the debug images.
@@ -207,6 +207,7 @@ struct Context::Impl {
     bool countTraversal = false, countQuads = false;  // Auto inline: count what needed it
     bool retracePass = false, quadRetracePass = false;
     bool blur = false;
+    bool wideClassify = false;     // DeviceProfile::Gpu: 2x2 tiles a group, clean-up and pyramid arguments inside
     bool useHistory = false;       // temporal: the previous frame stored a history
     StatsSlot* slot = nullptr;     // Settings::debug.collectStats: this frame's ring slot
     TrafficModel traffic;          // for FrameStats' traffic (checkInputs fills the formats)

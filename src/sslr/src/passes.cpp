@@ -178,6 +178,7 @@ Context::Impl::FramePlan Context::Impl::planFrame(const Settings& settings,
   f.retracePass = settings.halfResolution || f.deferTraversal;
   f.quadRetracePass = settings.halfResolution && f.deferTraversal;
   f.blur = settings.blur.enabled && settings.blur.maxRadiusPx > 0.0f;
+  f.wideClassify = !softwareRenderer;
   // History of the previous frame only if it stored one (else its keys may be older: cleared).
   f.useHistory = settings.temporal.enabled && hadHistory;
   return f;
@@ -244,13 +245,15 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
   if (!settings.halfResolution) traceDefines += deferDefine + (f.countTraversal ? countDefine : "");
   const std::string quadDefines = methodDefines + statsDefine;
   // With the pyramid, classification (which reads every depth anyway) writes its levels 0 and 1,
-  // unless the last frame listed no tile (then the levels-0-and-1 pass does, if this frame lists one).
+  // unless the last frame listed no tile (then the levels-0-and-1 pass does, if this frame lists
+  // one). Under DeviceProfile::Gpu it also does the clean-up's and the pyramid arguments' work.
+  std::string classifyDefines = f.pyramid && !f.level1Pass ? "#define SSLR_CLASSIFY_LEVEL1 1\n" + curvedDefine : "";
+  if (f.wideClassify) classifyDefines += f.pyramid ? "#define SSLR_CLASSIFY_WIDE 1\n#define SSLR_CLASSIFY_ARGS 1\n"
+                                                   : "#define SSLR_CLASSIFY_WIDE 1\n";
   const std::pair<GLuint*, Expected<GLuint>> built[] = {
-      {&f.programs.classify, computeProgram("1_classify.comp", f.pyramid && !f.level1Pass
-                                                                   ? "#define SSLR_CLASSIFY_LEVEL1 1\n" + curvedDefine
-                                                                   : "")},
-      {&f.programs.cleanup, computeProgram("1_clear_untraced.comp", "")},
-      {&f.programs.hizArgs, optionalProgram(f.pyramid, "2_pyramid_arguments.comp", curvedDefine)},
+      {&f.programs.classify, computeProgram("1_classify.comp", classifyDefines)},
+      {&f.programs.cleanup, optionalProgram(!f.wideClassify, "1_clear_untraced.comp", "")},
+      {&f.programs.hizArgs, optionalProgram(f.pyramid && !f.wideClassify, "2_pyramid_arguments.comp", curvedDefine)},
       {&f.programs.level1, optionalProgram(f.level1Pass, "2_pyramid_levels01.comp", curvedDefine)},
       {&f.programs.curved, optionalProgram(f.curvedSolids, "2_pyramid_curved.comp", curvedDefine)},
       {&f.programs.hizBuild, optionalProgram(f.pyramid, "2_pyramid_levels2to7.comp", "")},
@@ -385,7 +388,8 @@ void Context::Impl::beginPass(const FramePlan& f, int pass) const {
 }
 
 // Pass 1: classification over the screen (the tile list; with the pyramid, its levels 0 and 1),
-// then the clean-up of the tiles the previous frame traced and this one does not.
+// then the clean-up of the tiles the previous frame traced and this one does not (DeviceProfile::Gpu:
+// inside classification).
 void Context::Impl::runClassify(const FramePlan& f, const FrameInputs& in) const {
   beginPass(f, 0);
   bindInputs(in);
@@ -401,9 +405,16 @@ void Context::Impl::runClassify(const FramePlan& f, const FrameInputs& in) const
     bufferSubData(pyramid.curvedQuads, 0, sizeof(curvedHeader), curvedHeader);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_CURVED_SSBO, pyramid.curvedQuads);
   }
-  dispatchCompute(static_cast<GLuint>(tilesX()), static_cast<GLuint>(tilesY()), 1);
+  if (f.wideClassify) {  // 2x2 tiles a group, the clean-up inside
+    gl.BindImageTexture(SSLR_IMAGE_CLASSIFY_REFLECTION, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    gl.BindImageTexture(SSLR_IMAGE_CLASSIFY_RESOLVED, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    dispatchCompute(static_cast<GLuint>((tilesX() + 1) / 2), static_cast<GLuint>((tilesY() + 1) / 2), 1);
+  } else {
+    dispatchCompute(static_cast<GLuint>(tilesX()), static_cast<GLuint>(tilesY()), 1);
+  }
   memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
                 GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  if (f.wideClassify) return;
   useProgram(f.programs.cleanup);
   gl.BindImageTexture(SSLR_IMAGE_REFLECTION, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   gl.BindImageTexture(SSLR_IMAGE_RESOLVED, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -416,9 +427,11 @@ void Context::Impl::runClassify(const FramePlan& f, const FrameInputs& in) const
 void Context::Impl::runPyramid(const FramePlan& f) const {
   beginPass(f, 1);
   if (!f.pyramid) return;
-  useProgram(f.programs.hizArgs);
-  dispatchCompute(1, 1, 1);
-  memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+  if (!f.wideClassify) {  // (Gpu: classification set the arguments)
+    useProgram(f.programs.hizArgs);
+    dispatchCompute(1, 1, 1);
+    memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+  }
   if (f.level1Pass) {  // level 1 (2_pyramid_levels01.comp) through level 1's pyramid arguments
     useProgram(f.programs.level1);
     bindPyramidLevels01();  // (the clean-up pass took image unit 0)

@@ -211,7 +211,7 @@ enum class Method {
 
 // Where the hierarchical traversal of Method::AdaptiveL runs (the answers are the same).
 enum class TraversalPass {
-  Auto,      // Inline on GPUs. On a software rasterizer (llvmpipe, softpipe, SwiftShader) Deferred,
+  Auto,      // Inline under DeviceProfile::Gpu. Under DeviceProfile::Software Deferred,
              // but Inline while more than about half the pixels (half resolution: quads) of the
              // traced tiles needed the traversal in the previous frame (deferring then costs more
              // than it saves)
@@ -344,16 +344,31 @@ std::string validate(const Settings& settings);
 enum class LogLevel { Info, Warning, Error };
 using LogCallback = std::function<void(LogLevel, const std::string&)>;
 
+// Which device the pass shapes are chosen for (the outputs are the same bit for bit). A GPU pays
+// for each dispatch, barrier and half-empty warp; a CPU rasterizer (llvmpipe) runs a shader's
+// every instruction under lane masks and pays for a group barrier with a split shader.
+enum class DeviceProfile {
+  Auto,      // Software where GL_RENDERER names a CPU rasterizer (llvmpipe, softpipe, SwiftShader),
+             // else Gpu
+  Gpu,       // classification in groups of 64 (2x2 tiles) that also clear last frame's untraced
+             // tiles and set the pyramid's dispatches: one pass where Software runs three.
+             // TraversalPass::Auto runs the traversal inline
+  Software,  // classification in groups of 16 (one tile, no barrier), the clean-up and the
+             // pyramid's arguments as passes of their own; TraversalPass::Auto chooses inline or
+             // deferred from the previous frame's counts
+};
+
 struct ContextDesc {
   int width = 0;
   int height = 0;
   GetProcAddress getProcAddress = nullptr;
   LogCallback log;  // optional: shader compile logs, warnings
+  DeviceProfile device = DeviceProfile::Auto;
 };
 
 // The commands one pass of a frame recorded for the GPU, counted as dispatch() records them: the
-// same on every device for the same inputs and settings (Settings::traversal.pass's Auto choice
-// aside). A GPU pays for each dispatch and barrier even when its group counts are zero, so these
+// same on every device for the same inputs, settings and DeviceProfile (Settings::traversal.pass's
+// Auto choice aside). A GPU pays for each dispatch and barrier even when its group counts are zero, so these
 // are a frame's fixed costs, where the times below are its variable ones.
 struct PassCommands {
   std::uint32_t dispatches = 0;          // glDispatchCompute
@@ -426,6 +441,7 @@ class Context {
 
   Status resize(int width, int height);
   int width() const;
+  DeviceProfile device() const;  // the profile in use (Auto resolved at create())
   int height() const;
 
   // Traces, blurs and resolves one frame. The inputs stay the host's; sizes must match.

@@ -39,6 +39,7 @@ struct BenchConfig {
   Settings settings;
   bool isDefault = false;  // the method's default configuration (image strips, summary)
   bool backDepth = false;  // hand sslr the back-face depth (FrameInputs::backDepthTexture)
+  DeviceProfile device = DeviceProfile::Auto;  // the context's pass shapes (ContextDesc::device)
 };
 
 struct RunRecord {

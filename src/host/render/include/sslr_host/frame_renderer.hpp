@@ -11,9 +11,11 @@ namespace sslr::host {
 
 class FrameRenderer {
  public:
-  // `getProcAddress`: the current context's (default: the headless EGL context's).
+  // `getProcAddress`: the current context's (default: the headless EGL context's); `device`:
+  // sslr's pass shapes (ContextDesc::device).
   static Expected<std::unique_ptr<FrameRenderer>> create(const GBufferOptions& options,
-                                                         GetProcAddress getProcAddress = nullptr);
+                                                         GetProcAddress getProcAddress = nullptr,
+                                                         DeviceProfile device = DeviceProfile::Auto);
   ~FrameRenderer();
 
   // Rasterizes the G-buffer; with `settings` also traces and composites (else final = colour).
