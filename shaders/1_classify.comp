@@ -79,8 +79,8 @@ void clearIfUntraced(uvec2 tile, ivec2 cell, bool listed) {
   for (int i = 0; i < 4; ++i) {
     ivec2 px = cell * 2 + ivec2(i & 1, i >> 1);
     if (!sslrInside(px)) continue;
-    imageStore(uReflection, px, vec4(0.0f));
-    imageStore(uResolved, px, vec4(0.0f));
+    imageStore(uReflection, sslrTexel(px), vec4(0.0f));
+    imageStore(uResolved, sslrTexel(px), vec4(0.0f));
   }
 }
 #endif
@@ -101,7 +101,8 @@ void main() {
   bool trace = false;
   if (onGrid) {
     vec4 depths = SSLR_GATHER_QUAD(uDepth, cell, 0);
-    trace = quadHasCandidate(cell, depths);
+    // (A quad wholly past the frame's edge holds no pixel of it.)
+    trace = all(lessThan(cell * 2, ivec2(frame.surface.width, frame.surface.height))) && quadHasCandidate(cell, depths);
 #ifdef SSLR_CLASSIFY_LEVEL1
     // (Gpu: the pass counts the curved pass's groups itself; the curved pass exits at once in a
     // frame that lists no tile.)

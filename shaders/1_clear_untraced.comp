@@ -12,6 +12,6 @@ layout(binding = SSLR_IMAGE_RESOLVED, rgba16f) uniform writeonly image2D uResolv
 void main() {
   ivec2 px;
   if (!sslrUntracedPixel(px)) return;
-  imageStore(uReflection, px, vec4(0.0f));
-  imageStore(uResolved, px, vec4(0.0f));
+  imageStore(uReflection, sslrTexel(px), vec4(0.0f));
+  imageStore(uResolved, sslrTexel(px), vec4(0.0f));
 }

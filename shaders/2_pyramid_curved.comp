@@ -23,12 +23,12 @@ SslrQuad sslrLoadQuad(ivec2 cell) {
   q.p1 = sslrQuadPixel(cell, 1, last);
   q.p2 = sslrQuadPixel(cell, 2, last);
   q.p3 = sslrQuadPixel(cell, 3, last);
-  q.depths = vec4(texelFetch(uDepth, q.p0, 0).r, texelFetch(uDepth, q.p1, 0).r, texelFetch(uDepth, q.p2, 0).r,
-                  texelFetch(uDepth, q.p3, 0).r);
-  q.n0 = texelFetch(uNormal, q.p0, 0);
-  q.n1 = texelFetch(uNormal, q.p1, 0);
-  q.n2 = texelFetch(uNormal, q.p2, 0);
-  q.n3 = texelFetch(uNormal, q.p3, 0);
+  q.depths = vec4(texelFetch(uDepth, sslrTexel(q.p0), 0).r, texelFetch(uDepth, sslrTexel(q.p1), 0).r,
+                  texelFetch(uDepth, sslrTexel(q.p2), 0).r, texelFetch(uDepth, sslrTexel(q.p3), 0).r);
+  q.n0 = texelFetch(uNormal, sslrTexel(q.p0), 0);
+  q.n1 = texelFetch(uNormal, sslrTexel(q.p1), 0);
+  q.n2 = texelFetch(uNormal, sslrTexel(q.p2), 0);
+  q.n3 = texelFetch(uNormal, sslrTexel(q.p3), 0);
   return q;
 }
 

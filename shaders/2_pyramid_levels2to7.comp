@@ -25,7 +25,8 @@ shared vec2 sLevel4[8][8];
 shared vec2 sLevel5[4][4];
 shared vec2 sLevel6[2][2];
 
-// A level-1 cell; outside the level (past its padding, `size`) neutral. The size is passed, not
+// A level-1 cell; past the frame's cells (`size`) neutral: the texture's padding, and under a
+// FrameInputs::viewport smaller than the textures whatever a larger frame left there. The size is passed, not
 // kept in a global set by main(): Mesa's compiler warns of a global read before it is set (a
 // KHR_debug message of high severity on a fresh compile).
 vec2 level1(ivec2 c, ivec2 size) {
@@ -34,7 +35,7 @@ vec2 level1(ivec2 c, ivec2 size) {
 vec2 reduce4(vec2 a, vec2 b, vec2 c, vec2 d) { return sslrHiZReduce(sslrHiZReduce(a, b), sslrHiZReduce(c, d)); }
 
 void main() {
-  ivec2 level1Size = textureSize(uHiZ, 1);
+  ivec2 level1Size = (ivec2(frame.surface.width, frame.surface.height) + 1) / 2;
   ivec2 local = ivec2(gl_LocalInvocationID.xy);
   ivec2 cell4 = ivec2(gl_WorkGroupID.xy) * 8 + local;
   vec2 m4 = sslrHiZEmpty();

@@ -11,7 +11,9 @@ layout(binding = SSLR_IMAGE_PYRAMID_BLOCK, rg32f) uniform writeonly image2D uLev
 
 void main() {
   ivec2 cell = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 below = textureSize(uHiZ, uTopLevel - 1);
+  // The frame's cells of the level below (past them: neutral, as in 2_pyramid_levels2to7.comp).
+  int side = 1 << (uTopLevel - 1);
+  ivec2 below = (ivec2(frame.surface.width, frame.surface.height) + side - 1) / side;
   vec2 m = sslrHiZEmpty();
   for (int k = 0; k < 4; ++k) {
     ivec2 c = cell * 2 + ivec2(k & 1, k >> 1);

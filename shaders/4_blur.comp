@@ -39,7 +39,7 @@ shared vec4 sValue[SSLR_TILE_SIZE][SSLR_BLUR_SPAN];
 shared vec4 sGuide[SSLR_TILE_SIZE][SSLR_BLUR_SPAN];  // xyz = view-space normal, w = view distance (< 0: not a neighbour)
 shared uint sTaps;
 
-float sslrBlurRadiusAt(ivec2 px) { return texelFetch(uReflectionIn, px, 0).a * frame.trace.blurMaxRadiusPx; }
+float sslrBlurRadiusAt(ivec2 px) { return texelFetch(uReflectionIn, sslrTexel(px), 0).a * frame.trace.blurMaxRadiusPx; }
 
 void main() {
   ivec2 local = ivec2(gl_LocalInvocationID.xy);
@@ -68,16 +68,16 @@ void main() {
     vec4 guide = vec4(0.0f, 0.0f, 0.0f, -1.0f);
     vec4 value = vec4(0.0f);
     if (sslrInside(q)) {
-      float depth = texelFetch(uDepth, q, 0).r;
-      vec4 normalTexel = texelFetch(uNormal, q, 0);
+      float depth = texelFetch(uDepth, sslrTexel(q), 0).r;
+      vec4 normalTexel = texelFetch(uNormal, sslrTexel(q), 0);
       if (sslrShouldTracePixel(q, depth, normalTexel, sslrMaterialAt(q, normalTexel))) {
         sslrDecodeNormal(frame.surface, normalTexel, guide.xyz);
         guide.w = abs(sslrViewAtPixel(q, depth).z);
 #ifdef SSLR_BLUR_VERTICAL
         // blurTemp exists only in blur tiles; a pixel with a sub-half-pixel radius is its own value.
-        value = sslrBlurRadiusAt(q) >= 0.5f ? texelFetch(uBlurInput, q, 0) : texelFetch(uUnblurred, q, 0);
+        value = sslrBlurRadiusAt(q) >= 0.5f ? texelFetch(uBlurInput, sslrTexel(q), 0) : texelFetch(uUnblurred, sslrTexel(q), 0);
 #else
-        value = texelFetch(uBlurInput, q, 0);
+        value = texelFetch(uBlurInput, sslrTexel(q), 0);
 #endif
       }
     }
@@ -87,9 +87,9 @@ void main() {
   barrier();
   if (!inside) return;
 
-  vec4 center = texelFetch(uBlurInput, px, 0);
+  vec4 center = texelFetch(uBlurInput, sslrTexel(px), 0);
   if (!blurred) {
-    imageStore(uBlurOutput, px, center);
+    imageStore(uBlurOutput, sslrTexel(px), center);
     return;
   }
   // This pixel in the staged lines: line = its offset across the axis, at = along it.
@@ -107,5 +107,5 @@ void main() {
     sum += sValue[line][at + i] * w;
     weightSum += w;
   }
-  imageStore(uBlurOutput, px, sum / weightSum);
+  imageStore(uBlurOutput, sslrTexel(px), sum / weightSum);
 }

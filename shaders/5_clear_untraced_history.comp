@@ -12,5 +12,5 @@ layout(binding = SSLR_IMAGE_HISTORY_KEY, r32f) uniform writeonly image2D uHistor
 void main() {
   ivec2 px;
   if (!sslrUntracedPixel(px)) return;
-  imageStore(uHistoryKey, px, vec4(0.0f));
+  imageStore(uHistoryKey, sslrTexel(px), vec4(0.0f));
 }

@@ -34,8 +34,8 @@ bool sslrHistoryAt(vec2 uvPrevious, float keyPrevious, out vec4 history) {
     ivec2 o = ivec2(i & 1, i >> 1);
     ivec2 q = clamp(base + o, ivec2(0), ivec2(sizePx) - 1);
     float w = (o.x == 1 ? t.x : 1.0f - t.x) * (o.y == 1 ? t.y : 1.0f - t.y);
-    if (w > 0.0f && sslrHistoryKeyMatches(texelFetch(uHistoryKey, q, 0).r, keyPrevious, frame.temporal.keyTolerance)) {
-      sum += texelFetch(uHistory, q, 0) * w;
+    if (w > 0.0f && sslrHistoryKeyMatches(texelFetch(uHistoryKey, sslrTexel(q), 0).r, keyPrevious, frame.temporal.keyTolerance)) {
+      sum += texelFetch(uHistory, sslrTexel(q), 0) * w;
       weightSum += w;
     }
   }
@@ -46,10 +46,10 @@ bool sslrHistoryAt(vec2 uvPrevious, float keyPrevious, out vec4 history) {
 void main() {
   ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
   if (!sslrInside(px)) return;
-  vec4 current = texelFetch(uCurrent, px, 0);
+  vec4 current = texelFetch(uCurrent, sslrTexel(px), 0);
   vec4 blended = current;
-  float depth = texelFetch(uDepth, px, 0).r;
-  vec4 packedNormal = texelFetch(uNormal, px, 0);
+  float depth = texelFetch(uDepth, sslrTexel(px), 0).r;
+  vec4 packedNormal = texelFetch(uNormal, sslrTexel(px), 0);
   vec4 history = vec4(0.0f);
   bool found = false;
   bool planar = false;  // the surface is flat here (see below); else it is curved
@@ -63,7 +63,7 @@ void main() {
     bool surfaceOnScreen = sslrReproject(frame.proj, frame.temporal.previousClipFromView, vsP, uvSurface, keySurface);
     bool staticSurface = true;
     if (frame.temporal.hasMotion != 0) {
-      vec2 uvMoved = sslrUvFromPixel(px, sslrSizePx()) - texelFetch(uMotion, px, 0).xy;
+      vec2 uvMoved = sslrUvFromPixel(px, sslrSizePx()) - texelFetch(uMotion, sslrTexel(px), 0).xy;
       staticSurface = length((uvMoved - uvSurface) * sslrSizePx()) < 0.5f;
       uvSurface = uvMoved;
       surfaceOnScreen = keySurface > 0.0f && sslrInsideUv(uvSurface);
@@ -76,15 +76,15 @@ void main() {
     if (sslrDecodeNormal(frame.surface, packedNormal, vsN)) {
       ivec2 maxPx = ivec2(sslrSizePx()) - 1;
       vec3 nRight, nUp;
-      planar = sslrDecodeNormal(frame.surface, texelFetch(uNormal, min(px + ivec2(1, 0), maxPx), 0), nRight) &&
-               sslrDecodeNormal(frame.surface, texelFetch(uNormal, min(px + ivec2(0, 1), maxPx), 0), nUp) &&
+      planar = sslrDecodeNormal(frame.surface, texelFetch(uNormal, sslrTexel(min(px + ivec2(1, 0), maxPx)), 0), nRight) &&
+               sslrDecodeNormal(frame.surface, texelFetch(uNormal, sslrTexel(min(px + ivec2(0, 1), maxPx)), 0), nUp) &&
                dot(nRight, vsN) > 0.9999f && dot(nUp, vsN) > 0.9999f;
     }
     vec3 vsX;
     vec2 uvVirtual;
     float keyVirtual;
     if (current.a > 0.0f && staticSurface && planar &&
-        sslrVirtualPointOnMirror(frame.temporal.previousEye, vsP, vsN, texelFetch(uHitRecord, px, 0).a, vsX) &&
+        sslrVirtualPointOnMirror(frame.temporal.previousEye, vsP, vsN, texelFetch(uHitRecord, sslrTexel(px), 0).a, vsX) &&
         sslrReproject(frame.proj, frame.temporal.previousClipFromView, vsX, uvVirtual, keyVirtual))
       found = sslrHistoryAt(uvVirtual, keyVirtual, history);
     // 2. Else the surface point itself. On a curved mirror only where this frame found a hit (a
@@ -101,7 +101,7 @@ void main() {
     vec4 m1 = vec4(0.0f), m2 = vec4(0.0f);
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx) {
-        vec4 v = texelFetch(uCurrent, clamp(px + ivec2(dx, dy), ivec2(0), maxPx), 0);
+        vec4 v = texelFetch(uCurrent, sslrTexel(clamp(px + ivec2(dx, dy), ivec2(0), maxPx)), 0);
         m1 += v;
         m2 += v * v;
       }
@@ -112,5 +112,5 @@ void main() {
     // history gets a quarter of the weight (docs/design-notes.md, "Temporal reuse").
     blended = mix(current, clamp(history, lo, hi), frame.temporal.historyWeight * (planar ? 1.0f : 0.25f));
   }
-  imageStore(uBlended, px, blended);
+  imageStore(uBlended, sslrTexel(px), blended);
 }

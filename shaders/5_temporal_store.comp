@@ -14,13 +14,13 @@ layout(binding = SSLR_IMAGE_HISTORY_KEY, r32f) uniform writeonly image2D uHistor
 void main() {
   ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
   if (!sslrInside(px)) return;
-  vec4 value = texelFetch(uBlended, px, 0);
-  imageStore(uResolved, px, value);
-  imageStore(uHistory, px, value);
-  float depth = texelFetch(uDepth, px, 0).r;
-  vec4 packedNormal = texelFetch(uNormal, px, 0);
+  vec4 value = texelFetch(uBlended, sslrTexel(px), 0);
+  imageStore(uResolved, sslrTexel(px), value);
+  imageStore(uHistory, sslrTexel(px), value);
+  float depth = texelFetch(uDepth, sslrTexel(px), 0).r;
+  vec4 packedNormal = texelFetch(uNormal, sslrTexel(px), 0);
   float key = 0.0f;
   if (sslrShouldTracePixel(px, depth, packedNormal, sslrMaterialAt(px, packedNormal)))
     key = sslrHistoryKey(frame.proj, sslrViewAtPixel(px, depth));
-  imageStore(uHistoryKey, px, vec4(key));
+  imageStore(uHistoryKey, sslrTexel(px), vec4(key));
 }

@@ -172,7 +172,7 @@ struct SslrSurface {
   int reversedZ;             // 1: near = 1, background = 0; 0: near = 0, background = 1
   float constantRoughness;   // used when roughnessChannel = -1
   float constantReflectance; // used when reflectanceChannel = -1
-  float width;               // viewport size in pixels
+  float width;               // the frame's size in pixels (FrameInputs::viewport's, else the context's)
   float height;
   // Normals stored in world space (SurfaceLayout::space): the columns of the matrix that turns
   // them into view space (inverse-transpose of viewFromWorld's 3x3); w of the first is 1 then,
@@ -186,8 +186,12 @@ struct SslrSurface {
   int metalnessChannel;      // channel of the material texel holding metalness; -1: grey F0
   float normalScale SSLR_DEFAULT(2.0f);  // a stored normal channel unpacks to value * normalScale +
   float normalBias SSLR_DEFAULT(-1.0f);  // normalBias in [-1, 1] (2, -1: unsigned formats; 1, 0: signed)
-  int surfacePad3;
-  int surfacePad4;
+  int originX;               // the frame's pixel (0, 0) is texel (originX, originY) of the host's
+  int originY;               // textures and of the outputs (FrameInputs::viewport)
+  int textureWidth;          // the size of those textures (the context's)
+  int textureHeight;
+  int viewportInside;        // 1: the frame is a part of the textures (their edge is not its edge)
+  int surfacePad0;
 };
 
 struct SslrTraceParams {
@@ -336,17 +340,17 @@ inline SslrProjection sslrProjectionFromMatrix(const glm::dmat4& clipFromView, b
   return p;
 }
 static_assert(sizeof(SslrProjection) == 48, "std140 mirror");
-static_assert(sizeof(SslrSurface) == 112, "std140 mirror");
+static_assert(sizeof(SslrSurface) == 128, "std140 mirror");
 static_assert(sizeof(SslrTraceParams) == 112, "std140 mirror");
 static_assert(offsetof(SslrFrame, surface) == 48, "std140 mirror");
-static_assert(offsetof(SslrFrame, trace) == 160, "std140 mirror");
+static_assert(offsetof(SslrFrame, trace) == 176, "std140 mirror");
 static_assert(sizeof(SslrPositionParams) == 16, "std140 mirror");
-static_assert(offsetof(SslrFrame, positionBuffer) == 272, "std140 mirror");
+static_assert(offsetof(SslrFrame, positionBuffer) == 288, "std140 mirror");
 static_assert(sizeof(SslrDdaParams) == 32, "std140 mirror");
-static_assert(offsetof(SslrFrame, dda) == 288, "std140 mirror");
+static_assert(offsetof(SslrFrame, dda) == 304, "std140 mirror");
 static_assert(sizeof(SslrTemporalParams) == 96, "std140 mirror");
-static_assert(offsetof(SslrFrame, temporal) == 320, "std140 mirror");
-static_assert(sizeof(SslrFrame) == 416, "std140 mirror");
+static_assert(offsetof(SslrFrame, temporal) == 336, "std140 mirror");
+static_assert(sizeof(SslrFrame) == 432, "std140 mirror");
 #endif
 
 // ---- Pure math ----------------------------------------------------------------------------

@@ -15,11 +15,25 @@ layout(binding = SSLR_UNIT_BACK_DEPTH) uniform sampler2D uBackDepth;  // optiona
 layout(binding = SSLR_UNIT_BASE_COLOR) uniform sampler2D uBaseColor;  // optional: base colour, metals' F0 (nearest)
 #endif
 
+// Pixel px of the frame as a texel of the host's textures and of the outputs (the frame is
+// FrameInputs::viewport's rectangle of them). sslr's own pyramid and quad images are the frame's
+// and read at px itself.
+ivec2 sslrTexel(ivec2 px) { return px + ivec2(frame.surface.originX, frame.surface.originY); }
+
+// A uv of the frame as a uv of the textures, for a bilinear read: clamped to the frame's edge
+// texels' centres, as the sampler's clamp to edge does at the textures' own edge.
+vec2 sslrTextureUv(vec2 uv) {
+  if (frame.surface.viewportInside == 0) return uv;  // (uniform: the same branch for every pixel)
+  vec2 size = vec2(frame.surface.width, frame.surface.height);
+  vec2 texel = clamp(uv * size, vec2(0.5f), size - 0.5f) + vec2(frame.surface.originX, frame.surface.originY);
+  return texel / vec2(frame.surface.textureWidth, frame.surface.textureHeight);
+}
+
 // The texel holding pixel px's material channels: the host's material texture if it gave one,
 // else the normal texel itself (read already).
 vec4 sslrMaterialAt(ivec2 px, vec4 normalTexel) {
 #ifdef SSLR_SEPARATE_MATERIAL  // FrameInputs::materialTexture given (frame.surface.separateMaterial)
-  return texelFetch(uMaterial, px, 0);
+  return texelFetch(uMaterial, sslrTexel(px), 0);
 #else
   return normalTexel;
 #endif
@@ -28,7 +42,7 @@ vec4 sslrMaterialAt(ivec2 px, vec4 normalTexel) {
 #ifdef SSLR_COLORED_F0
 // Pixel px's coloured F0 (SurfaceLayout::metalnessChannel, FrameInputs::baseColorTexture).
 vec3 sslrColoredF0At(ivec2 px, vec4 material, float reflectance) {
-  return sslrF0FromMetalness(reflectance, texelFetch(uBaseColor, px, 0).rgb,
+  return sslrF0FromMetalness(reflectance, texelFetch(uBaseColor, sslrTexel(px), 0).rgb,
                              sslrChannel(material, frame.surface.metalnessChannel));
 }
 #endif
@@ -39,7 +53,7 @@ vec3 sslrColoredF0At(ivec2 px, vec4 material, float reflectance) {
 // sslrMaterialAt(px, normalTexel), read by the caller (the trace needs it again).
 bool sslrShouldTracePixel(ivec2 px, float depth, vec4 normalTexel, vec4 material) {
 #ifdef SSLR_HAS_MASK  // FrameInputs::maskTexture given (frame.surface.hasMask)
-  if (!(texelFetch(uMask, px, 0).r > 0.5f)) return false;
+  if (!(texelFetch(uMask, sslrTexel(px), 0).r > 0.5f)) return false;
 #endif
   return sslrShouldTrace(frame.surface, frame.trace, depth, normalTexel, material);
 }
@@ -48,14 +62,25 @@ vec2 sslrSizePx() { return vec2(frame.surface.width, frame.surface.height); }
 
 // ---- A 2x2 quad's texels, one channel per textureGather --------------------------------------
 // Level 1's cell `cell` covers pixels 2 cell + (0..1, 0..1); a gather at their shared corner
-// returns one channel of all four (the sampler's clamp-to-edge repeats the last column or row
-// where the quad straddles the screen's edge, as sslrQuadPixel does). Classification reads the
+// returns one channel of all four. Where the quad straddles the frame's edge the last column or
+// row is repeated, as sslrQuadPixel does (the sampler's clamp to edge does so at the textures'
+// edge; sslrQuadInFrame at a viewport's). A quad wholly past the edge reads nothing of use: its
+// callers leave it out. Classification reads the
 // channels it needs this way: three gathers per quad in place of eight fetches and four normal
 // decodes.
 // Components in pixel order p0 = (0, 0), p1 = (1, 0), p2 = (0, 1), p3 = (1, 1): a gather returns
 // (0, 1), (1, 1), (1, 0), (0, 0).
-vec2 sslrQuadCornerUv(ivec2 cell) { return (vec2(cell * 2) + 1.0f) / sslrSizePx(); }
-#define SSLR_GATHER_QUAD(tex, cell, channel) (textureGather(tex, sslrQuadCornerUv(cell), channel).wzxy)
+vec2 sslrQuadCornerUv(ivec2 cell) {
+  return (vec2(sslrTexel(cell * 2)) + 1.0f) / vec2(frame.surface.textureWidth, frame.surface.textureHeight);
+}
+vec4 sslrQuadInFrame(vec4 v, ivec2 cell) {
+  bvec2 past = greaterThanEqual(cell * 2 + 1, ivec2(frame.surface.width, frame.surface.height));
+  if (past.x) v.yw = v.xz;
+  if (past.y) v.zw = v.xy;
+  return v;
+}
+#define SSLR_GATHER_QUAD(tex, cell, channel) \
+  (sslrQuadInFrame(textureGather(tex, sslrQuadCornerUv(cell), channel).wzxy, cell))
 
 // The material channels of a quad (sslrRoughness, sslrReflectance): the channel is compiled in
 // (SSLR_ROUGHNESS_CHANNEL, SSLR_REFLECTANCE_CHANNEL), as a gather needs; -1 is the layout's

@@ -24,7 +24,7 @@ void sslrShadePixel(ivec2 px) {
       float reflectance = sslrReflectance(frame.surface, q.material);
       SslrWeights w = sslrReflectionWeights(frame.proj, frame.surface, frame.trace, hit, q.vsP, q.vsV, q.vsR,
                                             q.cosVN, reflectance, sslrRoughness(frame.surface, q.material));
-      vec3 color = textureLod(uColor, hit.uvHit, 0.0f).rgb;
+      vec3 color = textureLod(uColor, sslrTextureUv(hit.uvHit), 0.0f).rgb;
       // Poisoned colour must not spread through the blur: NaN/Inf become 0, and the value is
       // kept inside RGBA16F's range.
       if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0f);
@@ -38,14 +38,14 @@ void sslrShadePixel(ivec2 px) {
       coverage = w.coverage;
     }
   }
-  imageStore(uReflection, px, reflection);
+  imageStore(uReflection, sslrTexel(px), reflection);
   // Resolved before the blur: the same rgb with the coverage in alpha (the blur reads it from here).
-  imageStore(uResolved, px, vec4(reflection.rgb, coverage));
+  imageStore(uResolved, sslrTexel(px), vec4(reflection.rgb, coverage));
 #if defined(SSLR_DEBUG_OUTPUTS) || defined(SSLR_TEMPORAL_HITS)
-  imageStore(uHit, px, vec4(hit.uvHit, hit.confidence, hit.L));
+  imageStore(uHit, sslrTexel(px), vec4(hit.uvHit, hit.confidence, hit.L));
 #endif
 #ifdef SSLR_DEBUG_OUTPUTS
-  imageStore(uIterations, px, vec4(float(hit.iterations)));
+  imageStore(uIterations, sslrTexel(px), vec4(float(hit.iterations)));
 #endif
 #ifdef SSLR_COLLECT_STATS
   if (ranTracer) atomicAdd(stats.tracedPixels, 1u);

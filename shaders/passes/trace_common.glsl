@@ -30,18 +30,18 @@ layout(std430, binding = SSLR_BINDING_STATS_SSBO) buffer SslrStats {
 uint gFetches = 0u;  // depth (or position) texels read by this invocation (stats)
 float sslrLoadDepth(ivec2 px) {
   gFetches += 1u;
-  return texelFetch(uDepth, px, 0).r;
+  return texelFetch(uDepth, sslrTexel(px), 0).r;
 }
 bool sslrLoadSurface(ivec2 px, out vec3 vsPos) {
   return sslrSurfaceFromDepth(frame.proj, frame.surface, px, sslrLoadDepth(px), vsPos);
 }
-vec4 sslrLoadNormal(ivec2 px) { return texelFetch(uNormal, px, 0); }
+vec4 sslrLoadNormal(ivec2 px) { return texelFetch(uNormal, sslrTexel(px), 0); }
 
 #ifdef SSLR_METHOD_POSITION_BUFFER
 layout(binding = SSLR_UNIT_POSITION) uniform sampler2D uPosition;  // view-space position, w = 1 on geometry
 bool sslrLoadPosition(ivec2 px, out vec4 vsPosition) {
   gFetches += 1u;
-  vsPosition = texelFetch(uPosition, px, 0);
+  vsPosition = texelFetch(uPosition, sslrTexel(px), 0);
   return vsPosition.w > 0.0f;
 }
 #include "sslr_trace_position.h"

@@ -485,7 +485,8 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
 
     // Quality pass per config (debug outputs + stats, untimed).
     std::vector<RunRecord> runs;
-    for (const BenchConfig& c : grid) {
+    for (size_t i = 0; i < grid.size(); ++i) {
+      const BenchConfig& c = grid[i];
       RunRecord r;
       r.scene = sceneName;
       r.method = c.method;
@@ -501,17 +502,26 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
         Settings s = c.settings;
         s.debug.outputs = true;
         s.debug.collectStats = true;
-        if (Status st = fr.sslr().dispatch(inputsFor(sf, c), s); !st) return Status::error(st.message());
-        const Image hit = fr.readHit();
+        // The scene's renderer's context, unless the config asks for a device profile of its own
+        // (then its timing context: the commands counted are that profile's).
+        Context* ctx = &fr.sslr();
+        if (c.device != DeviceProfile::Auto) {
+          auto own = contexts.get(i, c.device);
+          if (!own) return Status::error(own.error());
+          ctx = own.value();
+        }
+        if (Status st = ctx->dispatch(inputsFor(sf, c), s); !st) return Status::error(st.message());
+        const Image hit = readTexture(ctx->hitTexture(), options.width, options.height, 4);
         r.metrics = compareHits(gt, hit, kReportedConfidence, &color);
-        const FrameStats stats = fr.sslr().waitForStats();
+        const FrameStats stats = ctx->waitForStats();
         r.tracedPixels = stats.tracedPixels;
         r.fetches = stats.fetches;
         r.commands = stats.totalCommands();
         r.traffic = stats.totalTraffic();
         r.frameStats = stats;
         r.fetchesPerTracedPixel = stats.tracedPixels ? double(stats.fetches) / stats.tracedPixels : 0.0;
-        r.nonFiniteOutputs = countNonFinite(fr.readReflection()) + countNonFinite(fr.readResolved());
+        r.nonFiniteOutputs = countNonFinite(readTexture(ctx->reflectionTexture(), options.width, options.height, 4)) +
+                             countNonFinite(readTexture(ctx->resolvedTexture(), options.width, options.height, 4));
         if (c.isDefault) {
           const std::string m = prefix + "-" + slug(c.method);
           if (Status st = writeImage((fs::path(reportDir) / (m + ".png")).string(), methodImage(gt, hit, color)); !st)

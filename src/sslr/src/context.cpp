@@ -41,10 +41,12 @@ void Context::Impl::createTargets() {
   blurTemp = makeTexture(GL_RGBA16F, "sslr.blurTemp");
   resolved = makeTexture(GL_RGBA16F, "sslr.resolved");
   hit = iterations = 0;  // created by the first dispatch that writes them (debug.outputs, temporal)
-  pyramid.levels = shared::sslrHiZLevelCount(width, height);
-  const int top = 1 << pyramid.levels;
-  pyramid.level1Width = (width + top - 1) / top * (top / 2);
-  pyramid.level1Height = (height + top - 1) / top * (top / 2);
+  const FrameArea whole = areaOf(Viewport{0, 0, width, height});  // the largest frame's pyramid
+  pyramid.levels = whole.levels;
+  pyramid.level1Width = whole.level1Width;
+  pyramid.level1Height = whole.level1Height;
+  area = whole;
+  lastRect = whole.rect;
   pyramid.texture = 0;  // created by the first dispatch that traces it (createPyramid)
   const GLsizeiptr tiles = static_cast<GLsizeiptr>(tilesX()) * tilesY();
   gl.CreateBuffers(1, &tileBuffer);
@@ -57,6 +59,18 @@ void Context::Impl::createTargets() {
   label(GL_BUFFER, tileBuffer, "sslr.tiles");
   const float zero[4] = {0, 0, 0, 0};
   for (GLuint t : {reflection, resolved}) gl.ClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
+}
+
+Context::Impl::FrameArea Context::Impl::areaOf(const Viewport& rect) {
+  FrameArea a;
+  a.rect = rect;
+  a.tilesX = (rect.width + SSLR_TILE_SIZE - 1) / SSLR_TILE_SIZE;
+  a.tilesY = (rect.height + SSLR_TILE_SIZE - 1) / SSLR_TILE_SIZE;
+  a.levels = shared::sslrHiZLevelCount(rect.width, rect.height);
+  const int top = 1 << a.levels;
+  a.level1Width = (rect.width + top - 1) / top * (top / 2);
+  a.level1Height = (rect.height + top - 1) / top * (top / 2);
+  return a;
 }
 
 // The depth pyramid (~10.7 B per pixel), on first use: a host that never traces it (the tutorial's

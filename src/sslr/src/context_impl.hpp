@@ -69,7 +69,20 @@ struct Context::Impl {
   detail::Gl gl;
   LogCallback log;
   bool softwareRenderer = false;  // DeviceProfile::Software (ContextDesc::device, or Auto on a CPU rasterizer)
-  int width = 0, height = 0;
+  int width = 0, height = 0;  // the textures' (inputs and outputs)
+
+  // This frame's rectangle of the textures (FrameInputs::viewport) and what follows from its
+  // size: the tile grid and the pyramid's shape (allocations are the context's: the largest).
+  // Set by dispatch(); `changed`: it differs from the last dispatch's.
+  struct FrameArea {
+    Viewport rect;
+    int tilesX = 0, tilesY = 0;
+    int levels = 0;                         // the pyramid's levels above level 0 (sslrHiZLevelCount)
+    int level1Width = 0, level1Height = 0;  // level 1's cells, padded so that every level halves exactly
+    bool changed = false;
+  } area;
+  Viewport lastRect;  // the rectangle the last frame run wrote (its outputs and tile arrays)
+  static FrameArea areaOf(const Viewport& rect);
 
   // The outputs (reflection, resolved), the blur's scratch and the debug images.
   GLuint reflection = 0, blurTemp = 0, resolved = 0, hit = 0, iterations = 0;
@@ -230,8 +243,10 @@ struct Context::Impl {
   TrafficModel trafficModel(const FramePlan& plan, TrafficModel formats, const Settings& settings) const;
   Expected<GLuint> optionalProgram(bool wanted, const char* entry, const std::string& defines);
   void createFrameResources(const FramePlan& plan);
+  void setArea(const FrameInputs& in);
   void beginFrame(FramePlan& plan);
   void writeTileHeader() const;
+  void startNewArea();
   void beginPass(const FramePlan& plan, int pass) const;
   void runClassify(const FramePlan& plan, const FrameInputs& in) const;
   void runPyramid(const FramePlan& plan) const;

@@ -44,6 +44,8 @@ namespace sslr::detail {
   X(PFNGLGETTEXTUREPARAMETERIVPROC, GetTextureParameteriv)                       \
   X(PFNGLGETTEXTURELEVELPARAMETERIVPROC, GetTextureLevelParameteriv)             \
   X(PFNGLCLEARTEXIMAGEPROC, ClearTexImage)                                       \
+  X(PFNGLCLEARTEXSUBIMAGEPROC, ClearTexSubImage)                                 \
+  X(PFNGLCLEARNAMEDBUFFERSUBDATAPROC, ClearNamedBufferSubData)                   \
   X(PFNGLCOPYIMAGESUBDATAPROC, CopyImageSubData)                                 \
   X(PFNGLCOPYNAMEDBUFFERSUBDATAPROC, CopyNamedBufferSubData)                     \
   X(PFNGLBINDTEXTUREUNITPROC, BindTextureUnit)                                   \

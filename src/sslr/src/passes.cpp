@@ -44,17 +44,17 @@ void Context::Impl::bindPyramidLevels01() const {
 // classification listed a tile (common/tiles.glsl). One dispatch builds levels 2..7 (2_pyramid_levels2to7.comp, a
 // work group per level-7 cell), a second level 8 where the screen has one.
 void Context::Impl::buildPyramid(GLuint blockProgram, GLuint singleProgram) const {
-  const int blockTop = std::min(pyramid.levels, kHizBlockTop);
+  const int blockTop = std::min(area.levels, kHizBlockTop);
   useProgram(blockProgram);
   gl.bindTexture2D(SSLR_UNIT_PYRAMID, pyramid.texture);
   gl.BindSampler(SSLR_UNIT_PYRAMID, nearestSampler);
-  gl.ProgramUniform1i(blockProgram, 0, pyramid.levels);  // uTopLevel
+  gl.ProgramUniform1i(blockProgram, 0, area.levels);  // uTopLevel
   for (int level = 2; level <= kHizBlockTop; ++level)  // above the top: the top's image, never stored to
     gl.BindImageTexture(static_cast<GLuint>(SSLR_IMAGE_PYRAMID_BLOCK + level - 2), pyramid.texture, std::min(level, blockTop), GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
   dispatchComputeIndirect(kHizDispatchOffset + 3 * 4 * 1);  // level 2's arguments: the blocks
   memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   const int single = kHizBlockTop + 1;  // (SSLR_HIZ_MAX_LEVELS is 8: one level at most above the blocks)
-  if (pyramid.levels < single) return;
+  if (area.levels < single) return;
   useProgram(singleProgram);
   gl.ProgramUniform1i(singleProgram, 0, single);
   gl.BindImageTexture(SSLR_IMAGE_PYRAMID_BLOCK, pyramid.texture, single, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
@@ -89,15 +89,18 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   // Temporal history is the previous dispatch's only if that one stored it: a failed or
   // non-temporal dispatch in between breaks the chain (the host's "previous" matrices would not
   // describe the stored frame).
-  const bool hadHistory = history.valid;
+  bool hadHistory = history.valid;
   history.valid = false;
   if (Status s = checkCurrentContext("dispatch()"); !s) return s;
   auto constants = frameConstants(in, settings, width, height);  // validates settings + projection
   if (!constants) return constants.status();
   TrafficModel formats;
   if (Status s = checkInputs(in, settings.method, &formats); !s) return s;
+  setArea(in);
   recording = {};
   recordingPass = 0;
+  // History is of the last frame's rectangle; another one starts afresh (as after a resize).
+  hadHistory = hadHistory && !area.changed;
   FramePlan plan = planFrame(settings, constants.value(), hadHistory);
   if (plan.collectStats) plan.traffic = trafficModel(plan, formats, settings);
   if (Status s = buildPrograms(plan, in, settings); !s) return s;
@@ -117,6 +120,14 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   return {};
 }
 
+// This frame's rectangle (FrameInputs::viewport, validated by frameConstants) and its shapes.
+void Context::Impl::setArea(const FrameInputs& in) {
+  const Viewport rect = frameViewport(in, width, height).value();
+  area = areaOf(rect);
+  area.changed = rect.x != lastRect.x || rect.y != lastRect.y || rect.width != lastRect.width ||
+                 rect.height != lastRect.height;
+}
+
 // Every program variant a dispatch with these inputs and settings can choose: with and without
 // the level-1 pass (a frame after an empty one), and, under TraversalPass::Auto on a software
 // renderer, with the traversal inline and deferred. And both composite programs.
@@ -124,6 +135,7 @@ Status Context::Impl::prepare(const FrameInputs& in, const Settings& settings) {
   if (Status s = checkCurrentContext("prepare()"); !s) return s;
   auto constants = frameConstants(in, settings, width, height);  // validates settings + projection
   if (!constants) return constants.status();
+  setArea(in);
   const FramePlan base = planFrame(settings, constants.value(), false);
   for (bool level1Pass : {false, true}) {
     for (bool defer : {false, true}) {
@@ -188,18 +200,18 @@ Context::Impl::FramePlan Context::Impl::planFrame(const Settings& settings,
 // the plan runs and the pyramid's cell counts.
 TrafficModel Context::Impl::trafficModel(const FramePlan& f, TrafficModel formats, const Settings& settings) const {
   TrafficModel m = formats;
-  m.width = width;
-  m.height = height;
+  m.width = area.rect.width;
+  m.height = area.rect.height;
   m.pyramid = f.pyramid;
   m.classifyLevels01 = f.pyramid && !f.level1Pass;
   m.levels01Pass = f.level1Pass;
   if (f.curvedSolids) m.normalGathers = f.frame.surface.normalEncoding == SSLR_NORMALS_OCTAHEDRAL ? 2 : 3;
   auto cells = [&](int level) {
     const std::uint64_t side = std::uint64_t(1) << level;
-    return ((std::uint64_t(width) + side - 1) / side) * ((std::uint64_t(height) + side - 1) / side);
+    return ((std::uint64_t(area.rect.width) + side - 1) / side) * ((std::uint64_t(area.rect.height) + side - 1) / side);
   };
   m.level1Cells = f.pyramid ? cells(1) : 0;
-  for (int level = 2; f.pyramid && level <= pyramid.levels; ++level) m.upperCells += cells(level);
+  for (int level = 2; f.pyramid && level <= area.levels; ++level) m.upperCells += cells(level);
   // A counted fetch is a depth, position or pyramid texel; where both depth and pyramid texels are
   // read the larger (the pyramid's RG32F) is the bound.
   m.fetchBytes = f.method == Method::PositionBuffer ? m.positionBytes
@@ -257,7 +269,7 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
       {&f.programs.level1, optionalProgram(f.level1Pass, "2_pyramid_levels01.comp", curvedDefine)},
       {&f.programs.curved, optionalProgram(f.curvedSolids, "2_pyramid_curved.comp", curvedDefine)},
       {&f.programs.hizBuild, optionalProgram(f.pyramid, "2_pyramid_levels2to7.comp", "")},
-      {&f.programs.hizSingle, optionalProgram(f.pyramid && pyramid.levels > kHizBlockTop, "2_pyramid_top_level.comp", "")},
+      {&f.programs.hizSingle, optionalProgram(f.pyramid && area.levels > kHizBlockTop, "2_pyramid_top_level.comp", "")},
       {&f.programs.trace, computeProgram(traceEntry, traceDefines)},
       {&f.programs.quads, optionalProgram(settings.halfResolution, "3_trace_quads.comp",
                                           quadDefines + deferDefine + (f.countQuads ? countDefine : ""))},
@@ -330,6 +342,7 @@ void Context::Impl::beginFrame(FramePlan& f) {
   f.frame.trace.frameIndex = frameIndex;
   bufferSubData(frameUbo, 0, sizeof(f.frame), &f.frame);
   writeTileHeader();
+  if (area.changed) startNewArea();
   // reflection and resolved are not cleared: the clean-up pass (1_clear_untraced.comp)
   // zeroes the tiles the previous frame traced and this one does not. The debug images are
   // cleared whole (debug only).
@@ -356,7 +369,8 @@ void Context::Impl::beginFrame(FramePlan& f) {
 // over when it lists a tile). The previous frame's trace dispatch and tile list become the
 // clean-up pass's.
 void Context::Impl::writeTileHeader() const {
-  const GLsizeiptr capacity = static_cast<GLsizeiptr>(tilesX()) * tilesY();
+  // (The tile arrays are laid out for this frame's tile grid, common/tiles.glsl.)
+  const GLsizeiptr capacity = static_cast<GLsizeiptr>(area.tilesX) * area.tilesY;
   copyBufferSubData(tileBuffer, tileBuffer, 0, kCleanupDispatchOffset, 3 * sizeof(GLuint));
   copyBufferSubData(tileBuffer, tileBuffer, kTileHeader * sizeof(GLuint),
                     (kTileHeader + 4 * capacity) * sizeof(GLuint), capacity * sizeof(GLuint));
@@ -371,14 +385,34 @@ void Context::Impl::writeTileHeader() const {
     GLuint* real = &header.hizGroups[3 * (level - 1)];
     live[0] = 0, live[1] = 1, live[2] = 1;
     // Pixels a group spans: 8 cells of its level (the blocks: one kHizBlockTop cell); the padded
-    // screen is 2 level1Width x 2 level1Height pixels.
+    // frame is 2 level1Width x 2 level1Height pixels.
     const int groupPx = level == 2 ? 1 << kHizBlockTop : 8 << level;
-    const bool used = level <= pyramid.levels && (level <= 2 || level == kHizBlockTop + 1);
-    real[0] = used ? static_cast<GLuint>((2 * pyramid.level1Width + groupPx - 1) / groupPx) : 0u;
-    real[1] = used ? static_cast<GLuint>((2 * pyramid.level1Height + groupPx - 1) / groupPx) : 1u;
+    const bool used = level <= area.levels && (level <= 2 || level == kHizBlockTop + 1);
+    real[0] = used ? static_cast<GLuint>((2 * area.level1Width + groupPx - 1) / groupPx) : 0u;
+    real[1] = used ? static_cast<GLuint>((2 * area.level1Height + groupPx - 1) / groupPx) : 1u;
     real[2] = 1;
   }
   bufferSubData(tileBuffer, 0, kHeaderUploadBytes, &header);
+}
+
+// A frame in another rectangle of the textures than the last frame run (FrameInputs::viewport):
+// the clean-up passes know only the tiles of the current rectangle's grid, so the last rectangle
+// of the outputs is cleared here, and the tile arrays (laid out for the grid) zeroed, with no
+// clean-up of the last frame's list. Nothing is reallocated.
+void Context::Impl::startNewArea() {
+  const float zero[4] = {0, 0, 0, 0};
+  for (GLuint t : {reflection, resolved}) {
+    gl.ClearTexSubImage(t, 0, lastRect.x, lastRect.y, 0, lastRect.width, lastRect.height, 1, GL_RGBA, GL_FLOAT, zero);
+    ++recording[recordingPass].uploads;
+  }
+  const GLuint zeroWord = 0;
+  const GLsizeiptr arrays = static_cast<GLsizeiptr>(kTileArrays) * tilesX() * tilesY();  // (allocated for the context)
+  gl.ClearNamedBufferSubData(tileBuffer, GL_R32UI, kTileHeader * sizeof(GLuint), arrays * sizeof(GLuint), GL_RED_INTEGER,
+                             GL_UNSIGNED_INT, &zeroWord);
+  ++recording[recordingPass].uploads;
+  const GLuint noCleanup[3] = {0, 1, 1};
+  bufferSubData(tileBuffer, kCleanupDispatchOffset, sizeof(noCleanup), noCleanup);
+  lastRect = area.rect;
 }
 
 // Pass `pass` starts here: its timestamp, and its commands counted from here on.
@@ -408,9 +442,9 @@ void Context::Impl::runClassify(const FramePlan& f, const FrameInputs& in) const
   if (f.wideClassify) {  // 2x2 tiles a group, the clean-up inside
     gl.BindImageTexture(SSLR_IMAGE_CLASSIFY_REFLECTION, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     gl.BindImageTexture(SSLR_IMAGE_CLASSIFY_RESOLVED, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    dispatchCompute(static_cast<GLuint>((tilesX() + 1) / 2), static_cast<GLuint>((tilesY() + 1) / 2), 1);
+    dispatchCompute(static_cast<GLuint>((area.tilesX + 1) / 2), static_cast<GLuint>((area.tilesY + 1) / 2), 1);
   } else {
-    dispatchCompute(static_cast<GLuint>(tilesX()), static_cast<GLuint>(tilesY()), 1);
+    dispatchCompute(static_cast<GLuint>(area.tilesX), static_cast<GLuint>(area.tilesY), 1);
   }
   memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
                 GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "projection.hpp"
@@ -137,14 +138,35 @@ Status temporalConstants(const FrameInputs& in, const Settings& s, shared::SslrF
 
 }  // namespace
 
+Expected<Viewport> frameViewport(const FrameInputs& in, int textureWidth, int textureHeight) {
+  const Viewport& v = in.viewport;
+  if (v.x == 0 && v.y == 0 && v.width == 0 && v.height == 0) return Viewport{0, 0, textureWidth, textureHeight};
+  // (64-bit sums: no overflow on hostile values)
+  if (v.x < 0 || v.y < 0 || v.width < 1 || v.height < 1 || std::int64_t(v.x) + v.width > textureWidth ||
+      std::int64_t(v.y) + v.height > textureHeight)
+    return Status::error(StatusCode::InvalidInput, "sslr: FrameInputs::viewport (x " + std::to_string(v.x) + ", y " +
+                         std::to_string(v.y) + ", " + std::to_string(v.width) + "x" + std::to_string(v.height) +
+                         ") does not lie inside the " + std::to_string(textureWidth) + "x" +
+                         std::to_string(textureHeight) + " textures (all zeros: the whole of them)");
+  return v;
+}
+
 Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings& s, int width, int height) {
   if (std::string why = validate(s); !why.empty()) return Status::error(StatusCode::InvalidSettings, why);
   auto proj = detail::reduceProjection(in.clipFromView, in.depth);
   if (!proj) return proj.status();
+  auto viewport = frameViewport(in, width, height);
+  if (!viewport) return viewport.status();
+  const Viewport v = viewport.value();
   shared::SslrFrame f{};
   f.proj = proj.value();
-  if (Status st = surfaceConstants(in, width, height, f); !st) return st;
-  traceConstants(in, s, width, height, f);
+  if (Status st = surfaceConstants(in, v.width, v.height, f); !st) return st;
+  f.surface.originX = v.x;
+  f.surface.originY = v.y;
+  f.surface.textureWidth = width;
+  f.surface.textureHeight = height;
+  f.surface.viewportInside = v.width != width || v.height != height ? 1 : 0;
+  traceConstants(in, s, v.width, v.height, f);
   if (Status st = temporalConstants(in, s, f); !st) return st;
   return f;
 }

@@ -7,9 +7,12 @@
 
 namespace sslr {
 
-// Validates the projection/convention and the settings as dispatch() does (textures are not
-// looked at) and returns the SslrFrame block for a width x height target.
+// Validates the projection/convention, the viewport and the settings as dispatch() does (textures
+// are not looked at) and returns the SslrFrame block for width x height textures (the frame:
+// FrameInputs::viewport inside them, else all of them).
 Expected<shared::SslrFrame> frameConstants(const FrameInputs& inputs, const Settings& settings, int width,
                                            int height);
+// FrameInputs::viewport resolved (all zeros: the whole width x height), or why it does not fit.
+Expected<Viewport> frameViewport(const FrameInputs& inputs, int width, int height);
 
 }  // namespace sslr

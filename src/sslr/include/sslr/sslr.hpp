@@ -148,6 +148,14 @@ struct SurfaceLayout {
   int metalnessChannel = -1;
 };
 
+// The rectangle of the host's textures that holds this frame, in texels from their (0, 0) corner
+// (GL's: bottom left): dynamic resolution renders into a part of textures sized for the largest
+// frame. width = height = 0: the whole of them (the context's size).
+struct Viewport {
+  int x = 0, y = 0;
+  int width = 0, height = 0;
+};
+
 struct FrameInputs {
   GLName colorTexture = 0;   // lit colour (any float/unorm colour format), sampled bilinearly
   GLName normalTexture = 0;  // packed view-space normal + material, see SurfaceLayout
@@ -177,6 +185,12 @@ struct FrameInputs {
   glm::dmat4 previousClipFromView{0.0};
   DepthConvention depth{};
   SurfaceLayout surface{};
+  // Where the frame lies in the textures (all of them, inputs and outputs, the context's size):
+  // clipFromView maps onto this rectangle, motion vectors are in its uv units, and sslr writes its
+  // outputs to the same rectangle (zeros elsewhere). Changing it from frame to frame reallocates
+  // nothing; a frame whose rectangle differs from the previous one's starts without temporal
+  // history.
+  Viewport viewport{};
 };
 
 // ---- Settings --------------------------------------------------------------------------------
