@@ -99,5 +99,11 @@ bool sslrPixelToTrace(ivec2 px, out SslrPixel q) {
   q.cosVN = dot(-q.vsV, q.vsN);
   if (!(q.cosVN > 0.0f)) return false;  // a normal facing away from the camera has nothing to reflect
   q.vsR = reflect(q.vsV, q.vsN);
+#ifdef SSLR_STOCHASTIC  // GlossyMode::Stochastic: a rough pixel's ray from its lobe, another each frame
+  float roughness = sslrRoughness(frame.surface, q.material);
+  if (roughness >= frame.trace.stochasticFrom)
+    q.vsR = sslrGgxReflectionSample(q.vsV, q.vsN, max(roughness * roughness, 1e-4f),
+                                    sslrPixelRandom(px, frame.trace.frameIndex));
+#endif
   return true;
 }

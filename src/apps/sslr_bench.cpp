@@ -75,6 +75,13 @@ cxxopts::Options benchOptions() {
       ("temporal-scenes", "scenes of the temporal study, comma-separated (implies --temporal)", cxxopts::value<std::string>())
       ("temporal-size", "size of the temporal study's frames, WxH", cxxopts::value<std::string>()->default_value("480x270"))
       ("no-temporal", "skip the temporal study")
+      ("glossy", "also run the glossy study (the full grid always does): the roughness blur against a GGX reference "
+                 "traced by Embree, on glossy and rough variants of mirror scenes")
+      ("glossy-scenes", "scenes of the glossy study, comma-separated, each a scene or NAME@roughR (its mirrors made R "
+                        "rough; implies --glossy)", cxxopts::value<std::string>())
+      ("glossy-size", "size of the glossy study's frames, WxH", cxxopts::value<std::string>()->default_value("480x270"))
+      ("glossy-samples", "reference rays per glossy pixel (2..65536)", cxxopts::value<std::string>()->default_value("256"))
+      ("no-glossy", "skip the glossy study")
       ("curve-sizes", "resolutions of the resolution curve, WxH,WxH,... (implies --curves)", cxxopts::value<std::string>())
       ("curve-fractions", "reflective percentages of the fraction curve, N,N,... (implies --curves)", cxxopts::value<std::string>())
       ("out", "output directory", cxxopts::value<std::string>()->default_value("bench-out"))
@@ -157,6 +164,19 @@ void parseStudies(const cxxopts::ParseResult& args, BenchOptions& bo) {
         bo.curveFractions.push_back(n);
       }
     }
+  }
+  bool glossy = bo.grid == "full" || args.count("glossy") || args.count("glossy-scenes");
+  if (args.count("no-glossy")) glossy = false;
+  if (glossy) {
+    std::tie(bo.glossyWidth, bo.glossyHeight) = parseSizeOption(args["glossy-size"].as<std::string>(), "glossy-size", 8, 4096);
+    const std::string samples = args["glossy-samples"].as<std::string>();
+    std::istringstream in(samples);
+    if (!(in >> bo.glossySamples) || !in.eof() || bo.glossySamples < 2 || bo.glossySamples > 65536)
+      throw std::runtime_error("--glossy-samples expects an integer 2..65536 (got '" + samples + "')");
+    bo.glossyScenes = {"glossy", "mirror-room@rough0.25", "curved-mirror@rough0.3", "facing-mirror@rough0.3"};
+    if (args.count("glossy-scenes")) bo.glossyScenes = listItems(args["glossy-scenes"].as<std::string>());
+    for (const std::string& s : bo.glossyScenes)
+      if (auto check = loadGlossyScene(s); !check) throw std::runtime_error("--glossy-scenes: " + check.error());
   }
   bool temporal = bo.grid == "full" || args.count("temporal") || args.count("temporal-scenes");
   if (args.count("no-temporal")) temporal = false;
@@ -245,6 +265,15 @@ void printStudies(const BenchResult& result, const BenchOptions& bo) {
       std::printf("  %-16s %-15s traced %6.4f %9.2f ms  %6.2fx baseline\n", p.method.c_str(), point.c_str(),
                   p.tracedFraction, p.timeMedianMs, base > 0 ? p.timeMedianMs / base : 0.0);
     }
+  }
+  if (!result.glossy.empty()) {
+    std::printf("\nglossy study (%dx%d, %d reference rays a pixel; Radiance output against the GGX lobe's radiance):\n",
+                bo.glossyWidth, bo.glossyHeight, bo.glossySamples);
+    std::printf("  %-24s %-20s %8s %8s %9s %9s %10s %8s %9s\n", "scene", "configuration", "ms", "rmse", "> noise",
+                "relative", "no estim.", "scored", "ref noise");
+    for (const GlossyPoint& p : result.glossy)
+      std::printf("  %-24s %-20s %8.2f %8.4f %9.4f %9.3f %10.3f %8zu %9.4f\n", p.scene.c_str(), p.config.c_str(),
+                  p.timeMedianMs, p.rmse, p.rmseAboveNoise, p.relativeRmse, p.uncovered, p.scored, p.referenceNoise);
   }
   if (result.temporal.empty()) return;
   std::printf("\ntemporal study (%dx%d; RMSE against the ideal reflection; still = its last 4 frames):\n",

@@ -146,6 +146,12 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
   else if (fresnel == "schlick") s.fresnel = FresnelMode::Schlick;
   else throw UsageError{"--fresnel must be classic or schlick (got '" + fresnel + "')"};
   if (args.count("no-blur")) s.blur.enabled = false;
+  if (args.count("glossy")) {
+    const std::string glossy = args["glossy"].as<std::string>();
+    if (glossy == "cone") s.glossy.mode = GlossyMode::ConeBlur;
+    else if (glossy == "stochastic") s.glossy.mode = GlossyMode::Stochastic;
+    else throw UsageError{"--glossy must be cone or stochastic (got '" + glossy + "')"};
+  }
   numberOption(args, "object-thickness", "a number", s.traversal.objectDepthRelative);
   numberOption(args, "hidden-passage", "a number", s.traversal.hiddenPassageLimitPx);
   numberOption(args, "ffx-thickness", "a number", s.ffx.depthBufferThickness);
@@ -195,6 +201,9 @@ cxxopts::Options renderOptions() {
       ("no-curved-solids", "keep the assumed object thickness behind convex curved surfaces too, instead of "
                            "the depth of a sphere of their curvature (hierarchical traversal)")
       ("no-blur", "skip the roughness blur")
+      ("glossy", "rough surfaces: cone (the mirror reflection blurred over the roughness cone, the default) or "
+                 "stochastic (rays drawn from the GGX lobe, resolved by the blur and --temporal)",
+       cxxopts::value<std::string>())
       ("composite", "how the reflection enters final.png: blend (over the fallback specular, a sky/ground environment, by coverage) or add (on top of it)",
        cxxopts::value<std::string>()->default_value("blend"))
       ("half-res", "one ray per 2x2 quad, reused by the quad's pixels on the same surface")

@@ -451,44 +451,60 @@ TEST_F(Api, EmptyFrameTracesNothing) {
 // device (the traversal kept inline, as a GPU runs it). A change to a pass's dispatches or
 // barriers shows here first, on purpose: they are what a GPU pays for with nothing to do.
 TEST_F(Api, FrameStatsCountEachPassCommands) {
-  auto ctx = makeContext();
-  Frame f;
-  Settings s;
-  s.debug.collectStats = true;
-  s.traversal.pass = TraversalPass::Inline;
-  auto expect = [](const PassCommands& c, std::uint32_t direct, std::uint32_t indirect, std::uint32_t barriers,
-                   std::uint32_t programs, const char* what) {
-    EXPECT_EQ(c.dispatches, direct) << what;
-    EXPECT_EQ(c.indirectDispatches, indirect) << what;
-    EXPECT_EQ(c.barriers, barriers) << what;
-    EXPECT_EQ(c.programs, programs) << what;
-  };
-  ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), s));
-  FrameStats st = ctx->waitForStats();
-  ASSERT_GT(st.tracedPixels, 0u);
-  expect(st.classifyCommands, 1, 1, 2, 2, "classify: the screen's tiles, then the clean-up of the last frame's");
-  expect(st.pyramidCommands, 1, 2, 3, 3, "pyramid: its arguments, the curved quads, levels 2-7");
-  expect(st.traceCommands, 0, 1, 1, 1, "trace: one indirect pass over the listed tiles");
-  expect(st.blurCommands, 0, 2, 1, 2, "blur: horizontal and vertical over the listed tiles");
-  expect(st.temporalCommands, 0, 0, 0, 0, "temporal: off");
-  expect(st.finishCommands, 0, 0, 1, 0, "finish: one barrier for the host");
-  EXPECT_GT(st.classifyCommands.uploads, 0u) << "the frame constants at least";
+  for (DeviceProfile profile : {DeviceProfile::Software, DeviceProfile::Gpu}) {
+    const bool gpu = profile == DeviceProfile::Gpu;
+    SCOPED_TRACE(gpu ? "Gpu profile" : "Software profile");
+    ContextDesc d;
+    d.width = W;
+    d.height = H;
+    d.getProcAddress = HeadlessContext::getProcAddress();
+    d.device = profile;
+    auto created = Context::create(d);
+    ASSERT_TRUE(created) << created.error();
+    Context* ctx = created.value().get();
+    Frame f;
+    Settings s;
+    s.debug.collectStats = true;
+    s.traversal.pass = TraversalPass::Inline;
+    auto expect = [](const PassCommands& c, std::uint32_t direct, std::uint32_t indirect, std::uint32_t barriers,
+                     std::uint32_t programs, const char* what) {
+      EXPECT_EQ(c.dispatches, direct) << what;
+      EXPECT_EQ(c.indirectDispatches, indirect) << what;
+      EXPECT_EQ(c.barriers, barriers) << what;
+      EXPECT_EQ(c.programs, programs) << what;
+    };
+    ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), s));
+    FrameStats st = ctx->waitForStats();
+    ASSERT_GT(st.tracedPixels, 0u);
+    if (gpu) {
+      expect(st.classifyCommands, 1, 0, 1, 1, "classify: the screen's tiles, the clean-up inside");
+      expect(st.pyramidCommands, 0, 2, 2, 2, "pyramid: the curved quads, levels 2-7 (arguments set by classification)");
+    } else {
+      expect(st.classifyCommands, 1, 1, 2, 2, "classify: the screen's tiles, then the clean-up of the last frame's");
+      expect(st.pyramidCommands, 1, 2, 3, 3, "pyramid: its arguments, the curved quads, levels 2-7");
+    }
+    expect(st.traceCommands, 0, 1, 1, 1, "trace: one indirect pass over the listed tiles");
+    expect(st.blurCommands, 0, 2, 1, 2, "blur: horizontal and vertical over the listed tiles");
+    expect(st.temporalCommands, 0, 0, 0, 0, "temporal: off");
+    expect(st.finishCommands, 0, 0, 1, 0, "finish: one barrier for the host");
+    EXPECT_GT(st.classifyCommands.uploads, 0u) << "the frame constants at least";
 
-  Settings alone = s;
-  alone.traversal.fallback = false;  // adaptive L alone needs no pyramid
-  alone.traversal.verify = false;
-  ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), alone));
-  st = ctx->waitForStats();
-  expect(st.pyramidCommands, 0, 0, 0, 0, "no pyramid for adaptive L alone");
-  expect(st.traceCommands, 0, 1, 1, 1, "trace");
+    Settings alone = s;
+    alone.traversal.fallback = false;  // adaptive L alone needs no pyramid
+    alone.traversal.verify = false;
+    ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), alone));
+    st = ctx->waitForStats();
+    expect(st.pyramidCommands, 0, 0, 0, 0, "no pyramid for adaptive L alone");
+    expect(st.traceCommands, 0, 1, 1, 1, "trace");
 
-  Settings temporal = s;
-  temporal.temporal.enabled = true;
-  FrameInputs in = f.gbuffer->frameInputs();
-  in.previousClipFromView = in.clipFromView;
-  for (int i = 0; i < 2; ++i) ASSERT_TRUE(ctx->dispatch(in, temporal));
-  st = ctx->waitForStats();
-  expect(st.temporalCommands, 0, 3, 3, 3, "temporal: blend, store, history clean-up");
+    Settings temporal = s;
+    temporal.temporal.enabled = true;
+    FrameInputs in = f.gbuffer->frameInputs();
+    in.previousClipFromView = in.clipFromView;
+    for (int i = 0; i < 2; ++i) ASSERT_TRUE(ctx->dispatch(in, temporal));
+    st = ctx->waitForStats();
+    expect(st.temporalCommands, 0, 3, 3, 3, "temporal: blend, store, history clean-up");
+  }
 }
 
 // FrameStats' texture traffic follows from the frame's counts and the G-buffer's formats (here

@@ -267,6 +267,43 @@ std::string curveSvg(const std::vector<CurvePoint>& points, const std::string& c
   return s.str();
 }
 
+// The glossy study on one scene: relative RMSE against time, a point per configuration.
+std::string glossySvg(const std::vector<const GlossyPoint*>& points) {
+  const double W = 640, H = 300, L = 60, R = 170, T = 20, B = 50;
+  double maxT = 0, maxE = 0;
+  for (const GlossyPoint* p : points) {
+    maxT = std::max(maxT, p->timeMedianMs);
+    maxE = std::max(maxE, p->relativeRmse);
+  }
+  maxT = maxT > 0 ? maxT * 1.15 : 1.0;
+  maxE = maxE > 0 ? maxE * 1.15 : 1.0;
+  auto X = [&](double t) { return L + (W - L - R) * t / maxT; };
+  auto Y = [&](double e) { return H - B - (H - T - B) * e / maxE; };
+  static const char* colors[] = {"#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#d62728", "#8c564b"};
+  std::ostringstream s;
+  s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << W << "' height='" << H
+    << "' font-family='sans-serif' font-size='11'><rect width='100%' height='100%' fill='white'/>"
+    << "<line x1='" << L << "' y1='" << H - B << "' x2='" << W - R << "' y2='" << H - B << "' stroke='black'/>"
+    << "<line x1='" << L << "' y1='" << T << "' x2='" << L << "' y2='" << H - B << "' stroke='black'/>";
+  for (int i = 0; i <= 4; ++i)
+    s << "<text x='" << X(maxT * i / 4) << "' y='" << H - B + 15 << "' text-anchor='middle'>" << fmt(maxT * i / 4, 1)
+      << "</text><text x='" << L - 5 << "' y='" << Y(maxE * i / 4) + 4 << "' text-anchor='end'>" << fmt(maxE * i / 4, 2)
+      << "</text>";
+  s << "<text x='" << (L + W - R) / 2 << "' y='" << H - 12 << "' text-anchor='middle'>median dispatch time (ms)</text>"
+    << "<text transform='rotate(-90)' x='" << -(T + H - B) / 2
+    << "' y='14' text-anchor='middle'>relative RMSE against the GGX reference</text>";
+  for (size_t i = 0; i < points.size(); ++i) {
+    const char* color = colors[i % std::size(colors)];
+    s << "<circle cx='" << X(points[i]->timeMedianMs) << "' cy='" << Y(points[i]->relativeRmse) << "' r='5' fill='"
+      << color << "'><title>" << esc(points[i]->config) << ": " << fmt(points[i]->timeMedianMs, 2) << " ms, "
+      << fmt(points[i]->relativeRmse, 3) << "</title></circle><circle cx='" << W - R + 15 << "' cy='" << T + 10 + 16 * i
+      << "' r='5' fill='" << color << "'/><text x='" << W - R + 25 << "' y='" << T + 14 + 16 * i << "'>"
+      << esc(points[i]->config) << "</text>";
+  }
+  s << "</svg>";
+  return s.str();
+}
+
 }  // namespace
 
 Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
@@ -314,6 +351,17 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
                              {"rmseVisible", num(p.rmseVisible)},
                              {"rmseHidden", num(p.rmseHidden)},
                              {"dispatchMs", num(p.dispatchMs)}});
+  j["glossy"] = json::array();
+  for (const GlossyPoint& p : result.glossy)
+    j["glossy"].push_back({{"scene", p.scene},
+                           {"config", p.config},
+                           {"rmse", num(p.rmse)},
+                           {"relativeRmse", num(p.relativeRmse)},
+                           {"uncovered", num(p.uncovered)},
+                           {"referenceNoise", num(p.referenceNoise)},
+                           {"rmseAboveNoise", num(p.rmseAboveNoise)},
+                           {"scored", p.scored},
+                           {"timeMedianMs", num(p.timeMedianMs)}});
   if (Status s = writeTextFile((fs::path(outDir) / "results.json").string(), j.dump(2) + "\n"); !s) return s;
   {
     std::ostringstream out;
@@ -443,6 +491,39 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
         << fmt(t.rmse, 4) << "</td><td>" << fmt(t.rmseVisible, 4) << "</td><td>" << fmt(t.rmseHidden, 4)
         << "</td><td>" << fmt(t.dispatchMs, 2) << "</td></tr>";
     h << "</table>";
+  }
+  // Glossy reflections against the GGX reference.
+  if (!result.glossy.empty()) {
+    h << "<h2>Glossy reflections against a GGX reference</h2><p>Radiance output (no Fresnel term): rgb / a against "
+         "the GGX lobe's mean radiance gathered by Embree from what the screen shows ("
+      << result.options.glossySamples << " rays a pixel, " << result.options.glossyWidth << "x"
+      << result.options.glossyHeight
+      << "), over the pixels of roughness &ge; 0.1 whose lobe lies at least 90% on visible geometry. Reference noise: "
+         "the reference's own RMS noise (half the difference of its two halves).</p>";
+    std::vector<std::string> scenes;
+    for (const GlossyPoint& p : result.glossy)
+      if (std::find(scenes.begin(), scenes.end(), p.scene) == scenes.end()) scenes.push_back(p.scene);
+    for (const std::string& scene : scenes) {
+      std::vector<const GlossyPoint*> points;
+      for (const GlossyPoint& p : result.glossy)
+        if (p.scene == scene) points.push_back(&p);
+      const std::string svg = glossySvg(points);
+      if (Status st = writeTextFile((fs::path(outDir) / "report" / ("glossy-" + fileSlug(scene) + ".svg")).string(), svg + "\n"); !st)
+        return st;
+      h << "<h3>" << esc(scene) << "</h3>" << svg
+        << "<table><tr><th>configuration</th><th>ms</th><th>RMSE</th><th>above the reference's noise</th>"
+           "<th>relative RMSE</th><th>no estimate</th><th>scored px</th><th>reference noise</th></tr>";
+      for (const GlossyPoint* p : points)
+        h << "<tr><td>" << esc(p->config) << "</td><td>" << fmt(p->timeMedianMs, 2) << "</td><td>" << fmt(p->rmse, 4)
+          << "</td><td>" << fmt(p->rmseAboveNoise, 4) << "</td><td>" << fmt(p->relativeRmse, 3) << "</td><td>"
+          << fmt(p->uncovered, 3) << "</td><td>" << p->scored << "</td><td>" << fmt(p->referenceNoise, 4) << "</td></tr>";
+      h << "</table><div class='strip'><figure><img src='" << fileSlug(scene) << "-glossy-truth.png'><figcaption>reference"
+           "</figcaption></figure>";
+      for (const GlossyPoint* p : points)
+        h << "<figure><img src='" << fileSlug(scene) << "-glossy-" << fileSlug(p->config)
+          << "-error.png'><figcaption>" << esc(p->config) << ": |error| x4 (blue: no estimate)</figcaption></figure>";
+      h << "</div>";
+    }
   }
   for (const SceneRecord& sc : result.scenes) {
     std::vector<const RunRecord*> runs;

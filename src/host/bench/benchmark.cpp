@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "bench_timer.hpp"
+#include "glossy_study.hpp"
 #include "temporal_study.hpp"
 #include "sslr_host/embedded_shaders.hpp"
 #include "sslr_host/cpu_tracer.hpp"
@@ -18,6 +19,12 @@
 namespace sslr::host {
 
 namespace fs = std::filesystem;
+
+std::string fileSlug(std::string name) {
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '-';
+  return name;
+}
 
 std::vector<std::string> defaultBenchScenes() {
   // The scenes built to break the tracer first (those nobody tuned for leading), then the rest;
@@ -184,12 +191,6 @@ class BaselinePass {
   int w_, h_;
   GLuint program_ = 0, out_ = 0, sampler_ = 0;
 };
-
-std::string slug(std::string s) {
-  for (char& c : s)
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '-';
-  return s;
-}
 
 // Image strips: the truth (colour at the true hit, classes tinted), each default method's
 // reflection (colour at its reported hit) and its error heatmap; `colorOf` paints one pixel.
@@ -478,7 +479,7 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
       sr.recallDepth = compareHits(gt, hitDepth).recall1px;
       sr.recallStored = compareHits(gt, hitStored).recall1px;
     }
-    const std::string prefix = slug(sceneName);
+    const std::string prefix = fileSlug(sceneName);
     if (Status s = writeImage((fs::path(reportDir) / (prefix + "-truth.png")).string(), truthImage(gt, color)); !s)
       return Status::error(s.message());
     sr.images.push_back(prefix + "-truth.png");
@@ -523,7 +524,7 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
         r.nonFiniteOutputs = countNonFinite(readTexture(ctx->reflectionTexture(), options.width, options.height, 4)) +
                              countNonFinite(readTexture(ctx->resolvedTexture(), options.width, options.height, 4));
         if (c.isDefault) {
-          const std::string m = prefix + "-" + slug(c.method);
+          const std::string m = prefix + "-" + fileSlug(c.method);
           if (Status st = writeImage((fs::path(reportDir) / (m + ".png")).string(), methodImage(gt, hit, color)); !st)
             return Status::error(st.message());
           if (Status st = writeImage((fs::path(reportDir) / (m + "-error.png")).string(), hitErrorImage(gt, hit)); !st)
@@ -567,6 +568,11 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
     progress(done, total, "temporal study: " + sceneName);
     if (Status s = runTemporalStudy(sceneName, options, timer, result.temporal); !s)
       return Status::error("temporal study on " + sceneName + ": " + s.message());
+  }
+  for (const std::string& sceneSpec : options.glossyScenes) {
+    progress(done, total, "glossy study: " + sceneSpec);
+    if (Status s = runGlossyStudy(sceneSpec, options, timer, reportDir, result.glossy); !s)
+      return Status::error("glossy study on " + sceneSpec + ": " + s.message());
   }
   return result;
 }

@@ -249,6 +249,7 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
   std::string traceDefines = methodDefines + statsDefine;
   if (settings.debug.outputs) traceDefines += "#define SSLR_DEBUG_OUTPUTS 1\n";
   if (settings.temporal.enabled) traceDefines += "#define SSLR_TEMPORAL_HITS 1\n";
+  if (settings.glossy.mode == GlossyMode::Stochastic) traceDefines += "#define SSLR_STOCHASTIC 1\n";
   const std::string deferDefine = f.deferTraversal ? "#define SSLR_DEFER_TRAVERSAL 1\n" : "";
   const std::string countDefine = "#define SSLR_COUNT_TRAVERSAL 1\n";
   // The full-resolution trace; at half resolution the shading from the quads' rays instead.

@@ -78,6 +78,7 @@ void traceConstants(const FrameInputs& in, const Settings& s, int width, int hei
   t.maxIterations = s.adaptiveL.maxIterations;
   t.fresnelMode = s.fresnel == FresnelMode::Classic ? SSLR_FRESNEL_CLASSIC : SSLR_FRESNEL_SCHLICK;
   t.outputRadiance = s.output == OutputMode::Radiance ? 1 : 0;
+  t.stochasticFrom = s.glossy.mode == GlossyMode::Stochastic ? s.glossy.stochasticFrom : 2.0f;
   t.outlineThinning = s.traversal.outlineThinning ? 1 : 0;
   // A measured thickness (back-face depth) replaces the curved solids' estimate.
   t.curvedSolids = s.traversal.curvedSolids && in.backDepthTexture == 0 && s.method != Method::FidelityFxSssr ? 1 : 0;

@@ -112,6 +112,12 @@ std::string validate(const Settings& s) {
     why << "output = " << static_cast<int>(s.output) << " (not a sslr::OutputMode); ";
   if (s.halfResolution && s.method == Method::PositionBuffer)
     why << "halfResolution works with the depth-only methods, not Method::PositionBuffer; ";
+  if (s.glossy.mode != GlossyMode::ConeBlur && s.glossy.mode != GlossyMode::Stochastic)
+    why << "glossy.mode = " << static_cast<int>(s.glossy.mode) << " (not a sslr::GlossyMode); ";
+  if (!(s.glossy.stochasticFrom >= 0.0f && s.glossy.stochasticFrom <= 1.0f))
+    why << "glossy.stochasticFrom = " << s.glossy.stochasticFrom << " (must be 0..1, a roughness); ";
+  if (s.glossy.mode == GlossyMode::Stochastic && s.halfResolution)
+    why << "glossy.mode Stochastic does not work with halfResolution (a quad's pixels reuse its mirror ray); ";
   std::string text = why.str();
   if (!text.empty()) text = "sslr: invalid Settings: " + text.substr(0, text.size() - 2);
   return text;

@@ -211,6 +211,18 @@ enum class OutputMode {
   Radiance,
 };
 
+// How rough surfaces reflect.
+enum class GlossyMode {
+  // The SSLR article's: the mirror ray, its reflection blurred over the cone of the surface's
+  // roughness (Settings::blur). Deterministic; biased where the lobe sees more than the mirror
+  // image's neighbourhood.
+  ConeBlur,
+  // Pixels at least Settings::glossy.stochasticFrom rough trace one ray a frame drawn from their
+  // GGX lobe (visible normals, Heitz 2018); the blur over the same cone resolves them in space and
+  // temporal reuse (Settings::temporal) over frames. Not with halfResolution.
+  Stochastic,
+};
+
 enum class Preset { Low, Medium, High, Ultra };
 
 enum class Method {
@@ -330,6 +342,12 @@ struct Settings {
     float depthSigma = 0.02f;   // > 0: neighbour weight exp(-|dz| / (depthSigma * z))
     float normalPower = 16.0f;  // >= 0: neighbour weight max(0, n0.n1)^normalPower
   } blur;
+
+  // Rough surfaces (GlossyMode).
+  struct Glossy {
+    GlossyMode mode = GlossyMode::ConeBlur;
+    float stochasticFrom = 0.1f;  // 0..1 roughness: Stochastic draws rays from this roughness up
+  } glossy;
 
   // Temporal reuse (pass 5): blends with the previous frame's output, reprojected through
   // FrameInputs::previousClipFromView (converges half resolution and jittered projections).

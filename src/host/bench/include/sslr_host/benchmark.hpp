@@ -31,6 +31,12 @@ struct BenchOptions {
   // Temporal reuse over a camera path (empty: not run), at temporalWidth x temporalHeight.
   std::vector<std::string> temporalScenes;
   int temporalWidth = 480, temporalHeight = 270;
+  // Glossy reflections against a GGX reference (empty: not run): scenes, each a scene name or
+  // "name@roughR" (its mirrors, materials of roughness below 0.1, made R rough), at glossyWidth x
+  // glossyHeight with glossySamples reference rays per pixel.
+  std::vector<std::string> glossyScenes;
+  int glossyWidth = 480, glossyHeight = 270;
+  int glossySamples = 256;
 };
 
 struct BenchConfig {
@@ -95,6 +101,20 @@ struct TemporalPoint {
   double dispatchMs = 0;   // that frame's dispatch (noisy: one sample)
 };
 
+// One configuration of the glossy study on one scene: its Radiance-mode output (rgb / a) against
+// the GGX reference (glossy_truth.hpp) over the glossy pixels whose lobe the screen shows.
+struct GlossyPoint {
+  std::string scene;         // "glossy", "mirror-room@rough0.3", ...
+  std::string config;        // "cone blur" (the default), "cone blur x0.5", "cone blur x2", "no blur"
+  double rmse = 0;           // linear colour, per channel
+  double relativeRmse = 0;   // rmse / the reference's RMS
+  double uncovered = 0;      // share of the scored pixels with no estimate
+  double referenceNoise = 0; // the reference's own noise (RMS), the floor of any rmse
+  double rmseAboveNoise = 0; // sqrt(rmse^2 - referenceNoise^2)
+  size_t scored = 0;
+  double timeMedianMs = 0;   // dispatch, configurations interleaved
+};
+
 struct BenchResult {
   BenchOptions options;
   std::string renderer, timingMethod;
@@ -102,6 +122,7 @@ struct BenchResult {
   std::vector<SceneRecord> scenes;
   std::vector<CurvePoint> curves;
   std::vector<TemporalPoint> temporal;
+  std::vector<GlossyPoint> glossy;
 };
 
 // The temporal study per scene, configuration and segment: mean errors over the segment's frames
@@ -111,6 +132,13 @@ struct TemporalSummary {
   double rmse = 0, rmseVisible = 0, rmseHidden = 0, dispatchMs = 0;
 };
 std::vector<TemporalSummary> summarizeTemporal(const std::vector<TemporalPoint>& points);
+
+// A glossy study's scene: "name@roughR" -> the scene with its mirrors (materials of roughness
+// below 0.1) made R rough; "name" as loadScene gives it.
+Expected<Scene> loadGlossyScene(const std::string& sceneSpec);
+
+// A name made safe for a file name: every character but letters and digits a '-'.
+std::string fileSlug(std::string name);
 
 std::vector<BenchConfig> benchGrid(const std::string& grid);
 // The scenes a run without --scenes measures, the hardest first.

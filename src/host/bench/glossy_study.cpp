@@ -1,0 +1,122 @@
+// The glossy study of sslr-bench: how far the roughness blur of the mirror reflection (the SSLR
+// article's method, sslr's default) is from a physically based glossy reflection. Each scene's
+// G-buffer is rendered once; Embree gathers the GGX lobe of every glossy pixel from what the
+// screen shows (glossy_truth.hpp); each configuration runs in Radiance mode (no Fresnel term)
+// and its rgb / a is scored against it.
+#include "glossy_study.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+
+#include "sslr_host/egl_context.hpp"
+#include "sslr_host/frame_renderer.hpp"
+#include "sslr_host/glossy_truth.hpp"
+
+namespace sslr::host {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct GlossyConfig {
+  const char* name;
+  bool blur;
+  float coneScale;  // x Settings' default
+  GlossyMode mode;
+  bool temporal;    // temporal reuse over the still frames the timing runs (the last one scored)
+};
+constexpr GlossyConfig kConfigs[] = {{"cone blur", true, 1.0f, GlossyMode::ConeBlur, false},
+                                     {"cone blur x0.5", true, 0.5f, GlossyMode::ConeBlur, false},
+                                     {"cone blur x2", true, 2.0f, GlossyMode::ConeBlur, false},
+                                     {"no blur", false, 1.0f, GlossyMode::ConeBlur, false},
+                                     {"stochastic", true, 1.0f, GlossyMode::Stochastic, false},
+                                     {"stochastic+temporal", true, 1.0f, GlossyMode::Stochastic, true}};
+
+}  // namespace
+
+Expected<Scene> loadGlossyScene(const std::string& sceneSpec) {
+  const size_t at = sceneSpec.find("@rough");
+  auto scene = loadScene(sceneSpec.substr(0, at));
+  if (!scene || at == std::string::npos) return scene;
+  const std::string value = sceneSpec.substr(at + 6);
+  char* end = nullptr;
+  const float roughness = std::strtof(value.c_str(), &end);
+  if (value.empty() || end != value.c_str() + value.size() || !(roughness > 0.0f && roughness <= 1.0f))
+    return Status::error("glossy scene '" + sceneSpec + "': the roughness after @rough must be in (0, 1]");
+  Scene s = std::move(scene.value());
+  int changed = 0;
+  for (Material& m : s.materials)
+    if (m.roughness < 0.1f) {
+      m.roughness = roughness;
+      ++changed;
+    }
+  if (changed == 0) return Status::error("glossy scene '" + sceneSpec + "': it has no mirror (roughness below 0.1) to roughen");
+  s.name = sceneSpec;
+  return s;
+}
+
+Status runGlossyStudy(const std::string& sceneSpec, const BenchOptions& options, Timer& timer,
+                      const std::string& reportDir, std::vector<GlossyPoint>& out) {
+  auto scene = loadGlossyScene(sceneSpec);
+  if (!scene) return Status::error(scene.error());
+  const Camera camera = scene.value().camera ? *scene.value().camera : scene.value().defaultCamera();
+  GpuScene gpu(scene.value());
+  GBufferOptions g;
+  g.width = options.glossyWidth;
+  g.height = options.glossyHeight;
+  auto renderer = FrameRenderer::create(g);
+  if (!renderer) return Status::error(renderer.error());
+  FrameRenderer& fr = *renderer.value();
+  if (Status st = fr.render(gpu, camera, nullptr); !st) return st;  // the G-buffer and its matrices
+  auto truth = glossyTruthFor(scene.value(), fr.gbuffer(), Settings{}, options.glossySamples);
+  if (!truth) return Status::error(truth.error());
+  const std::string prefix = fileSlug(sceneSpec) + "-glossy";
+  if (Status s = writeImage((fs::path(reportDir) / (prefix + "-truth.png")).string(), glossyTruthImage(truth.value())); !s)
+    return s;
+  // Each configuration its own context, timed in interleaved rounds after one untimed frame. The
+  // camera stands still (temporal reuse accumulates over the rounds).
+  FrameInputs inputs = fr.inputs();
+  inputs.previousClipFromView = inputs.clipFromView;
+  const size_t n = std::size(kConfigs);
+  std::vector<std::unique_ptr<Context>> contexts;
+  std::vector<Settings> settings;
+  for (const GlossyConfig& c : kConfigs) {
+    ContextDesc d;
+    d.width = g.width;
+    d.height = g.height;
+    d.getProcAddress = HeadlessContext::getProcAddress();
+    auto ctx = Context::create(d);
+    if (!ctx) return Status::error(ctx.error());
+    Settings s;
+    s.output = OutputMode::Radiance;
+    s.blur.enabled = c.blur;
+    s.blur.coneScale *= c.coneScale;
+    s.glossy.mode = c.mode;
+    s.temporal.enabled = c.temporal;
+    if (Status st = ctx.value()->dispatch(inputs, s); !st) return st;
+    contexts.push_back(std::move(ctx.value()));
+    settings.push_back(s);
+  }
+  std::vector<std::vector<double>> times(n);
+  for (int round = 0; round < options.warmup + options.frames; ++round)
+    for (size_t i = 0; i < n; ++i) {
+      Status st;
+      const double ms = timer.timeMs([&] { st = contexts[i]->dispatch(inputs, settings[i]); },
+                                     timer.repeats(options.batch));
+      if (!st) return st;
+      if (round >= options.warmup) times[i].push_back(ms);
+    }
+  for (size_t i = 0; i < n; ++i) {
+    const Image resolved = readTexture(contexts[i]->resolvedTexture(), g.width, g.height, 4);
+    const GlossyMetrics m = compareGlossy(truth.value(), resolved);
+    out.push_back({sceneSpec, kConfigs[i].name, m.rmse, m.relativeRmse, m.uncovered, m.referenceNoise,
+                   m.rmseAboveNoise, m.scored, median(times[i])});
+    const std::string file = prefix + "-" + fileSlug(kConfigs[i].name) + "-error.png";
+    if (Status s = writeImage((fs::path(reportDir) / file).string(), glossyErrorImage(truth.value(), resolved)); !s)
+      return s;
+  }
+  return {};
+}
+
+}  // namespace sslr::host

@@ -1,0 +1,214 @@
+#include "sslr_host/glossy_truth.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+#include "sslr/reference.hpp"
+#include "sslr_shared.h"
+
+namespace sslr::host {
+
+namespace {
+
+// A pixel's rotation of the stratified pattern (a hash of its index): neighbours' patterns differ.
+glm::vec2 pixelRotation(std::uint32_t p) {
+  const std::uint32_t h = shared::sslrHash(p);
+  return glm::vec2(float(h >> 8), float(shared::sslrHash(h ^ 0x9e3779b9u) >> 8)) / 16777216.0f;
+}
+
+// Sample k of n: a Hammersley point, rotated (Cranley-Patterson) and wrapped into [0, 1).
+glm::vec2 samplePoint(int k, int n, glm::vec2 rotation) {
+  std::uint32_t bits = static_cast<std::uint32_t>(k);
+  bits = (bits << 16u) | (bits >> 16u);
+  bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
+  bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
+  bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
+  bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
+  glm::vec2 u((float(k) + 0.5f) / float(n), float(bits) * 2.3283064365386963e-10f);
+  u += rotation;
+  return u - glm::floor(u);
+}
+
+// An orthonormal frame around n (Duff et al. 2017).
+void tangentFrame(glm::vec3 n, glm::vec3& t, glm::vec3& b) {
+  const float sign = std::copysign(1.0f, n.z);
+  const float a = -1.0f / (sign + n.z);
+  const float c = n.x * n.y * a;
+  t = glm::vec3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+  b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
+}
+
+}  // namespace
+
+GlossyTruth computeGlossyTruth(const RayTracer& tracer, const glm::dmat4& clipFromView, const Image& color,
+                               const Image& roughness, const std::vector<std::uint8_t>& mask, int samples) {
+  GlossyTruth g;
+  g.width = color.width;
+  g.height = color.height;
+  g.samples = samples;
+  const size_t count = static_cast<size_t>(g.width) * g.height;
+  g.radiance.assign(count, glm::vec3(0.0f));
+  g.halfSpread.assign(count, glm::vec3(0.0f));
+  g.visibleShare.assign(count, -1.0f);
+  g.roughness.assign(count, 0.0f);
+  const bool ortho = clipFromView[3][3] == 1.0;
+  const glm::dmat4 viewFromClip = glm::inverse(clipFromView);
+  auto row = [&](int y) {
+    for (int x = 0; x < g.width; ++x) {
+      const size_t p = static_cast<size_t>(y) * g.width + x;
+      g.roughness[p] = roughness.pixels[p * roughness.channels];
+      if (!mask[p]) continue;
+      // The primary ray through the pixel centre (as the mirror truth's).
+      const glm::dvec2 ndc((x + 0.5) / g.width * 2.0 - 1.0, (y + 0.5) / g.height * 2.0 - 1.0);
+      glm::dvec4 nearPt = viewFromClip * glm::dvec4(ndc, -1.0, 1.0), farPt = viewFromClip * glm::dvec4(ndc, 0.5, 1.0);
+      nearPt /= nearPt.w;
+      farPt /= farPt.w;
+      const glm::vec3 origin = ortho ? glm::vec3(nearPt.x, nearPt.y, 0.0) : glm::vec3(0.0f);
+      const glm::vec3 dir = ortho ? glm::vec3(0, 0, -1) : glm::vec3(glm::normalize(glm::dvec3(farPt)));
+      const RayTracer::Hit primary = tracer.intersect(origin, dir);
+      g.visibleShare[p] = 0.0f;
+      if (!primary.hit) continue;
+      const glm::vec3 n = primary.vsNormal;
+      glm::vec3 t, b;
+      tangentFrame(n, t, b);
+      const glm::vec3 toEye = -dir;
+      const glm::vec3 ve(glm::dot(toEye, t), glm::dot(toEye, b), glm::dot(toEye, n));
+      if (!(ve.z > 0.0f)) continue;
+      const float alpha = std::max(g.roughness[p] * g.roughness[p], 1e-4f);
+      const glm::vec3 start = primary.vsPosition + n * (1e-5f * std::max(1.0f, glm::length(primary.vsPosition)));
+      const glm::vec2 rotation = pixelRotation(static_cast<std::uint32_t>(p));
+      glm::vec3 sum[2] = {glm::vec3(0.0f), glm::vec3(0.0f)};
+      double weight[2] = {0.0, 0.0}, known[2] = {0.0, 0.0};
+      for (int k = 0; k < samples; ++k) {
+        const glm::vec3 h = shared::sslrSampleGgxVndf(ve, alpha, samplePoint(k, samples, rotation));
+        const glm::vec3 l = glm::reflect(-ve, h);
+        const float w = shared::sslrSmithG1(l.z, alpha);
+        if (!(w > 0.0f)) continue;  // below the surface: the lobe's masked part
+        const int half = k & 1;
+        weight[half] += w;
+        const glm::vec3 vsL = glm::normalize(t * l.x + b * l.y + n * l.z);
+        const RayTracer::Hit hit = tracer.intersect(start, vsL);
+        if (!hit.hit) continue;
+        const glm::dvec4 clip = clipFromView * glm::dvec4(glm::dvec3(hit.vsPosition), 1.0);
+        if (!(clip.w > 0.0)) continue;
+        const glm::dvec3 ndcHit = glm::dvec3(clip) / clip.w;
+        const glm::vec2 uv = glm::vec2(glm::dvec2(ndcHit) * 0.5 + 0.5);
+        if (uv.x < 0.0f || uv.x > 1.0f || uv.y < 0.0f || uv.y > 1.0f || ndcHit.z < -1.0 - 1e-9 || ndcHit.z > 1.0 + 1e-9)
+          continue;
+        const glm::vec3 camera = ortho ? glm::vec3(hit.vsPosition.x, hit.vsPosition.y, 0.0f) : glm::vec3(0.0f);
+        const glm::vec3 toHit = hit.vsPosition - camera;
+        const float dist = glm::length(toHit);
+        if (tracer.occluded(camera, toHit / dist, dist * (1.0f - 1e-4f))) continue;
+        sum[half] += sampleBilinear(color, uv) * w;
+        known[half] += w;
+      }
+      const double totalWeight = weight[0] + weight[1], totalKnown = known[0] + known[1];
+      if (!(totalWeight > 0.0)) continue;
+      g.visibleShare[p] = float(totalKnown / totalWeight);
+      if (!(totalKnown > 0.0)) continue;
+      g.radiance[p] = (sum[0] + sum[1]) / float(totalKnown);
+      if (known[0] > 0.0 && known[1] > 0.0)
+        g.halfSpread[p] = glm::abs(sum[0] / float(known[0]) - sum[1] / float(known[1])) * 0.5f;
+    }
+  };
+  const int threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 16u));
+  std::vector<std::thread> pool;
+  for (int i = 0; i < threads; ++i)
+    pool.emplace_back([&, i] {
+      for (int y = i; y < g.height; y += threads) row(y);
+    });
+  for (std::thread& th : pool) th.join();
+  return g;
+}
+
+Expected<GlossyTruth> glossyTruthFor(const Scene& scene, const GBuffer& gbuffer, const Settings& settings,
+                                     int samples) {
+  if (samples < 2 || samples > 65536)
+    return Status::error("glossy truth: " + std::to_string(samples) + " samples per pixel (must be 2..65536)");
+  auto tracer = RayTracer::create(scene, gbuffer.viewFromWorld());
+  if (!tracer) return Status::error(tracer.error());
+  const Image depth = gbuffer.readDepth(), packed = gbuffer.readNormalPacked();
+  const FrameInputs in = gbuffer.frameInputs();
+  auto frame = frameConstants(in, settings, gbuffer.width(), gbuffer.height());
+  if (!frame) return Status::error(frame.status().message());
+  Image rough;
+  rough.width = packed.width;
+  rough.height = packed.height;
+  rough.channels = 1;
+  rough.pixels.resize(static_cast<size_t>(packed.width) * packed.height);
+  for (size_t p = 0; p < rough.pixels.size(); ++p) {
+    const float* n = &packed.pixels[p * packed.channels];
+    rough.pixels[p] = shared::sslrRoughness(frame.value().surface, glm::vec4(n[0], n[1], n[2], n[3]));
+  }
+  const auto mask = reflectiveMask(depth, packed, in, settings);
+  return computeGlossyTruth(*tracer.value(), gbuffer.clipFromView(), gbuffer.readColor(), rough, mask, samples);
+}
+
+namespace {
+bool scoredPixel(const GlossyTruth& t, size_t p, float minRoughness, float minVisibleShare) {
+  return t.visibleShare[p] >= minVisibleShare && t.roughness[p] >= minRoughness;
+}
+glm::vec3 estimateAt(const Image& resolved, size_t p, bool* covered) {
+  const float* r = &resolved.pixels[p * resolved.channels];
+  *covered = std::isfinite(r[3]) && r[3] >= 1e-3f;
+  return *covered ? glm::vec3(r[0], r[1], r[2]) / r[3] : glm::vec3(0.0f);
+}
+}  // namespace
+
+GlossyMetrics compareGlossy(const GlossyTruth& truth, const Image& resolved, float minRoughness, float minVisibleShare) {
+  GlossyMetrics m;
+  double sq = 0.0, ref = 0.0, noise = 0.0;
+  size_t uncovered = 0;
+  for (size_t p = 0; p < truth.radiance.size(); ++p) {
+    if (!scoredPixel(truth, p, minRoughness, minVisibleShare)) continue;
+    bool covered = false;
+    const glm::vec3 d = estimateAt(resolved, p, &covered) - truth.radiance[p];
+    uncovered += covered ? 0 : 1;
+    sq += (std::isfinite(glm::dot(d, d)) ? glm::dot(d, d) : 1e6) / 3.0;
+    ref += glm::dot(truth.radiance[p], truth.radiance[p]) / 3.0;
+    noise += glm::dot(truth.halfSpread[p], truth.halfSpread[p]) / 3.0;
+    ++m.scored;
+  }
+  if (m.scored == 0) return m;
+  m.rmse = std::sqrt(sq / m.scored);
+  m.relativeRmse = ref > 0.0 ? m.rmse / std::sqrt(ref / m.scored) : 0.0;
+  m.referenceNoise = std::sqrt(noise / m.scored);
+  m.rmseAboveNoise = std::sqrt(std::max(0.0, m.rmse * m.rmse - m.referenceNoise * m.referenceNoise));
+  m.uncovered = double(uncovered) / m.scored;
+  return m;
+}
+
+Image glossyErrorImage(const GlossyTruth& truth, const Image& resolved, float gain, float minRoughness,
+                       float minVisibleShare) {
+  Image img;
+  img.width = truth.width;
+  img.height = truth.height;
+  img.channels = 3;
+  img.pixels.assign(truth.radiance.size() * 3, 0.08f);
+  for (size_t p = 0; p < truth.radiance.size(); ++p) {
+    if (!scoredPixel(truth, p, minRoughness, minVisibleShare)) continue;
+    bool covered = false;
+    const glm::vec3 e = estimateAt(resolved, p, &covered);
+    const glm::vec3 v = covered ? glm::min(glm::abs(e - truth.radiance[p]) * gain, glm::vec3(1.0f)) : glm::vec3(0, 0, 1);
+    img.pixels[p * 3] = v.x;
+    img.pixels[p * 3 + 1] = v.y;
+    img.pixels[p * 3 + 2] = v.z;
+  }
+  return img;
+}
+
+Image glossyTruthImage(const GlossyTruth& truth, float minRoughness, float minVisibleShare) {
+  Image img;
+  img.width = truth.width;
+  img.height = truth.height;
+  img.channels = 3;
+  img.pixels.assign(truth.radiance.size() * 3, 0.08f);
+  for (size_t p = 0; p < truth.radiance.size(); ++p) {
+    if (!scoredPixel(truth, p, minRoughness, minVisibleShare)) continue;
+    for (int c = 0; c < 3; ++c) img.pixels[p * 3 + c] = truth.radiance[p][c];
+  }
+  return img;
+}
+
+}  // namespace sslr::host
