@@ -45,9 +45,9 @@ bench() {  # NAME LIMIT ARGS...: one grid, its log beside its results
   mv "bench-$name.log" "bench/$name/" 2>/dev/null || true
 }
 mkdir -p bench
-bench 960x540 200 --grid full --no-temporal
-bench 1920x1080 130 --grid full --size 1920x1080 --no-curves --no-temporal
-bench 3840x2160 90 --grid full --size 3840x2160 --no-curves --no-temporal \
+bench 960x540 200 --grid full --no-temporal --no-glossy
+bench 1920x1080 130 --grid full --size 1920x1080 --no-curves --no-temporal --no-glossy
+bench 3840x2160 90 --grid full --size 3840x2160 --no-curves --no-temporal --no-glossy \
   --scenes mirror-room,grazing-plane,thin-objects,glossy,sky-heavy \
   --configs "adaptive-l/high,adaptive-l/high-half,adaptive-l/high-no-fallback,hiz/steps128,dda/stride4-thick0.5,position-buffer/tutorial (res0.3-steps5-dist8)"
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "sslr_host/glossy_truth.hpp"
@@ -155,6 +156,38 @@ TEST(GlossyTruth, NearlyMirrorLobeMatchesTheMirrorTruth) {
   EXPECT_GT(visible, 200u);
   EXPECT_GT(escaped, 200u);
   EXPECT_LE(partlyKnown, escaped / 20) << "only pixels along the wall's edge";
+}
+
+// The reference's own error estimate (its two independently rotated halves) is an error
+// measure: it shrinks with more samples, and it predicts how far a 64-ray reference lies from a
+// 1024-ray one.
+TEST(GlossyTruth, ItsErrorEstimateShrinksWithSamplesAndPredictsTheError) {
+  FloorAndWall f;
+  Image color = FloorAndWall::image(3, 0.0f);
+  for (int y = 0; y < FloorAndWall::h; ++y)
+    for (int x = 0; x < FloorAndWall::w; ++x) color.at(x, y, 0) = float((x / 4 + y / 4) % 2);  // a checkerboard
+  const std::vector<std::uint8_t> all(static_cast<size_t>(FloorAndWall::w) * FloorAndWall::h, 1);
+  const Image rough = FloorAndWall::image(1, 0.3f);
+  const GlossyTruth coarse = computeGlossyTruth(*f.tracer, f.clipFromView, color, rough, all, 64);
+  const GlossyTruth fine = computeGlossyTruth(*f.tracer, f.clipFromView, color, rough, all, 1024);
+  double noiseCoarse = 0, noiseFine = 0, actual = 0;
+  size_t n = 0;
+  for (size_t p = 0; p < coarse.radiance.size(); ++p) {
+    if (!(coarse.visibleShare[p] > 0.5f && fine.visibleShare[p] > 0.5f)) continue;
+    noiseCoarse += coarse.halfSpread[p].x * coarse.halfSpread[p].x;
+    noiseFine += fine.halfSpread[p].x * fine.halfSpread[p].x;
+    const double d = coarse.radiance[p].x - fine.radiance[p].x;
+    actual += d * d;
+    ++n;
+  }
+  ASSERT_GT(n, 200u);
+  noiseCoarse = std::sqrt(noiseCoarse / n), noiseFine = std::sqrt(noiseFine / n), actual = std::sqrt(actual / n);
+  std::printf("%zu pixels: estimated error %.5f (64 rays), %.5f (1024); 64 against 1024: %.5f\n", n, noiseCoarse,
+              noiseFine, actual);
+  EXPECT_GT(noiseCoarse, 1e-3);
+  EXPECT_LT(noiseFine, noiseCoarse / 3.0);  // 16x the rays: 4x less at the Monte Carlo rate, more when stratified
+  EXPECT_GT(actual, noiseCoarse / 3.0);
+  EXPECT_LT(actual, noiseCoarse * 3.0);
 }
 
 // Scoring: only pixels at least as rough as asked and mostly on screen count; an output without

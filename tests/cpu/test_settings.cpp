@@ -74,6 +74,10 @@ TEST(Settings, EveryInvalidFieldIsNamed) {
       {"blur.coneScale", [](Settings& s) { s.blur.coneScale = -1.0f; }},
       {"blur.depthSigma", [](Settings& s) { s.blur.depthSigma = 0.0f; }},
       {"blur.normalPower", [](Settings& s) { s.blur.normalPower = NAN; }},
+      {"glossy.mode", [](Settings& s) { s.glossy.mode = static_cast<GlossyMode>(9); }},
+      {"glossy.stochasticFrom", [](Settings& s) { s.glossy.stochasticFrom = 1.5f; }},
+      {"glossy.stochasticFrom", [](Settings& s) { s.glossy.stochasticFrom = NAN; }},
+      {"glossy.mode Stochastic", [](Settings& s) { s.glossy.mode = GlossyMode::Stochastic; s.halfResolution = true; }},
   };
   for (const Bad& b : cases) {
     Settings s;

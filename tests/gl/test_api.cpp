@@ -765,6 +765,62 @@ TEST_F(Api, SignedNormalFormatsGiveTheSameHits) {
   }
 }
 
+// GlossyMode::Stochastic changes the rays of the pixels at least glossy.stochasticFrom rough, and
+// of no other: below the threshold the hits are the cone blur mode's bit for bit; above it they
+// differ from the mirror rays' and from frame to frame (a new draw each dispatch).
+TEST_F(Api, StochasticGlossyDrawsNewRaysOnRoughPixelsOnly) {
+  auto scene = makeBuiltinScene("glossy");  // panels of roughness 0, 0.1, ..., 0.5
+  ASSERT_TRUE(scene);
+  GpuScene gpu(scene.value());
+  GBufferOptions o;
+  o.width = 160;
+  o.height = 90;
+  auto g = GBuffer::create(o);
+  ASSERT_TRUE(g) << g.error();
+  ASSERT_TRUE(g.value()->render(gpu, *scene.value().camera));
+  const FrameInputs in = g.value()->frameInputs();
+  const Image packed = g.value()->readNormalPacked();  // roughness in B (the tools' layout)
+  Settings cone;
+  cone.debug.outputs = true;
+  Settings stochastic = cone;
+  stochastic.glossy.mode = GlossyMode::Stochastic;
+  stochastic.glossy.stochasticFrom = 0.25f;
+  auto ctx = makeContext(o.width, o.height);
+  ASSERT_TRUE(ctx->dispatch(in, cone));
+  const Image hitCone = readTexture(ctx->hitTexture(), o.width, o.height, 4);
+  ASSERT_TRUE(ctx->dispatch(in, stochastic));
+  const Image hitA = readTexture(ctx->hitTexture(), o.width, o.height, 4);
+  ASSERT_TRUE(ctx->dispatch(in, stochastic));
+  const Image hitB = readTexture(ctx->hitTexture(), o.width, o.height, 4);
+  size_t smooth = 0, smoothDiffering = 0, rough = 0, roughVsCone = 0, roughVsLastFrame = 0;
+  for (int y = 0; y < o.height; ++y)
+    for (int x = 0; x < o.width; ++x) {
+      if (!(hitCone.at(x, y, 2) > 0.5f)) continue;  // traced and hit
+      const bool isRough = packed.at(x, y, 2) >= 0.25f;
+      const bool sameAsCone = hitA.at(x, y, 0) == hitCone.at(x, y, 0) && hitA.at(x, y, 1) == hitCone.at(x, y, 1);
+      const bool sameAsLast = hitA.at(x, y, 0) == hitB.at(x, y, 0) && hitA.at(x, y, 1) == hitB.at(x, y, 1);
+      if (isRough) {
+        ++rough;
+        roughVsCone += sameAsCone ? 0 : 1;
+        roughVsLastFrame += sameAsLast ? 0 : 1;
+      } else {
+        ++smooth;
+        smoothDiffering += sameAsCone && sameAsLast ? 0 : 1;
+      }
+    }
+  ASSERT_GT(smooth, 500u);
+  ASSERT_GT(rough, 500u);
+  EXPECT_EQ(smoothDiffering, 0u);
+  EXPECT_GT(roughVsCone, rough * 9 / 10);
+  EXPECT_GT(roughVsLastFrame, rough * 9 / 10);
+  stochastic.halfResolution = true;
+  const Status st = ctx->dispatch(in, stochastic);
+  ASSERT_FALSE(st);
+  EXPECT_EQ(st.code(), StatusCode::InvalidSettings);
+  EXPECT_NE(st.message().find("glossy.mode"), std::string::npos) << st.message();
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
 // OutputMode::Radiance leaves the Fresnel term to the host: the reflection is the hit colour x
 // coverage whatever the surface's reflectance, the weighted output bit for bit where the Fresnel
 // term is 1 (Schlick with F0 = 1), with the weighted output's coverage; composite() refuses it.

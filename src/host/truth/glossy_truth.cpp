@@ -77,15 +77,20 @@ GlossyTruth computeGlossyTruth(const RayTracer& tracer, const glm::dmat4& clipFr
       if (!(ve.z > 0.0f)) continue;
       const float alpha = std::max(g.roughness[p] * g.roughness[p], 1e-4f);
       const glm::vec3 start = primary.vsPosition + n * (1e-5f * std::max(1.0f, glm::length(primary.vsPosition)));
-      const glm::vec2 rotation = pixelRotation(static_cast<std::uint32_t>(p));
+      // Two halves, each a whole stratified set under a rotation of its own (randomized
+      // quasi-Monte Carlo): their difference measures the estimate's own error.
+      const glm::vec2 rotations[2] = {pixelRotation(static_cast<std::uint32_t>(p)),
+                                      pixelRotation(static_cast<std::uint32_t>(p) ^ 0x80000000u)};
+      const int halfCount = samples / 2;
       glm::vec3 sum[2] = {glm::vec3(0.0f), glm::vec3(0.0f)};
       double weight[2] = {0.0, 0.0}, known[2] = {0.0, 0.0};
-      for (int k = 0; k < samples; ++k) {
-        const glm::vec3 h = shared::sslrSampleGgxVndf(ve, alpha, samplePoint(k, samples, rotation));
+      for (int k = 0; k < 2 * halfCount; ++k) {
+        const int half = k / halfCount;
+        const glm::vec3 h =
+            shared::sslrSampleGgxVndf(ve, alpha, samplePoint(k % halfCount, halfCount, rotations[half]));
         const glm::vec3 l = glm::reflect(-ve, h);
         const float w = shared::sslrSmithG1(l.z, alpha);
         if (!(w > 0.0f)) continue;  // below the surface: the lobe's masked part
-        const int half = k & 1;
         weight[half] += w;
         const glm::vec3 vsL = glm::normalize(t * l.x + b * l.y + n * l.z);
         const RayTracer::Hit hit = tracer.intersect(start, vsL);

@@ -21,14 +21,15 @@ namespace sslr::host {
 struct GlossyTruth {
   int width = 0, height = 0, samples = 0;
   std::vector<glm::vec3> radiance;     // GL row order; 0 where not glossy
-  std::vector<glm::vec3> halfSpread;   // |mean of the even samples - mean of the odd ones| / 2: the reference's own noise
+  std::vector<glm::vec3> halfSpread;   // |mean of one half - mean of the other| / 2, each half a stratified
+                                       // set rotated independently: the reference's own error (RMS)
   std::vector<float> visibleShare;     // 0..1; -1: not a pixel the SSR pass traces
   std::vector<float> roughness;        // the G-buffer's, per pixel
 };
 
 // The lobe at each pixel `mask` marks, from the G-buffer's roughness image (one channel) and lit
-// colour, `samples` directions per pixel (stratified, a rotation per pixel; seed fixed, so runs
-// agree). Threads over rows.
+// colour, `samples` directions per pixel (two Hammersley sets of samples / 2, each rotated by a
+// hash of the pixel: fixed, so runs agree). Threads over rows.
 GlossyTruth computeGlossyTruth(const RayTracer& tracer, const glm::dmat4& clipFromView, const Image& color,
                                const Image& roughness, const std::vector<std::uint8_t>& mask, int samples);
 
