@@ -918,6 +918,18 @@ SSLR_FN vec3 sslrSampleGgxVndf(vec3 ve, float alpha, vec2 u) {
   return normalize(vec3(alpha * nh.x, alpha * nh.y, max(0.0f, nh.z)));  // back to the ellipsoid
 }
 
+// Point k of an n-point Hammersley set in [0, 1)^2 (stratified: (k + 0.5) / n, then k's bits
+// reversed).
+SSLR_FN vec2 sslrHammersley(int k, int n) {
+  uint bits = uint(k);
+  bits = (bits << 16u) | (bits >> 16u);
+  bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
+  bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
+  bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
+  bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
+  return vec2((float(k) + 0.5f) / float(n), float(bits) * 2.3283064365386963e-10f);
+}
+
 // A pixel's ray in GlossyMode::Stochastic: the reflection of the view (vsV, towards the surface)
 // about a normal drawn from the lobe's visible normals around vsN; a direction below the surface
 // (the lobe's masked part) falls back to the mirror ray.

@@ -16,16 +16,8 @@ using namespace sslr::host;
 
 namespace {
 
-// A Hammersley set: deterministic, so the tolerances below hold on every run.
-glm::vec2 hammersley(int k, int n) {
-  std::uint32_t bits = static_cast<std::uint32_t>(k);
-  bits = (bits << 16u) | (bits >> 16u);
-  bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
-  bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
-  bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
-  bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
-  return {(k + 0.5f) / n, float(bits) * 2.3283064365386963e-10f};
-}
+// A Hammersley set (sslr_shared.h): deterministic, so the tolerances below hold on every run.
+glm::vec2 hammersley(int k, int n) { return shared::sslrHammersley(k, n); }
 
 // Seen along the normal, the visible normals are GGX's normals weighted by their cosine, whose
 // tan^2 of the angle to the normal is alpha^2 u / (1 - u) for u uniform: its quartiles are

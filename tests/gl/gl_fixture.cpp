@@ -43,6 +43,17 @@ void GlTest::TearDown() {
       << "HIGH-severity KHR_debug messages were reported during the test (an engine that stops on them would stop)";
 }
 
+std::unique_ptr<sslr::Context> makeSslrContext(int w, int h, sslr::DeviceProfile device) {
+  sslr::ContextDesc d;
+  d.width = w;
+  d.height = h;
+  d.getProcAddress = sslr::host::HeadlessContext::getProcAddress();
+  d.device = device;
+  auto c = sslr::Context::create(d);
+  EXPECT_TRUE(c) << c.error();
+  return c ? std::move(c.value()) : nullptr;
+}
+
 }  // namespace sslr::test
 
 int main(int argc, char** argv) {

@@ -5,9 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "sslr/sslr.hpp"
 #include "sslr_host/egl_context.hpp"
 #include "sslr_host/gl.hpp"
 
@@ -17,6 +19,8 @@ sslr::host::HeadlessContext* glContext();     // nullptr if none could be create
 const std::string& glContextError();
 // The textures of the current GL context whose debug label is `label` (sslr labels its own).
 std::vector<GLuint> texturesLabelled(const std::string& label);
+// An sslr context of w x h on the headless context (a failed test and nullptr if none).
+std::unique_ptr<sslr::Context> makeSslrContext(int w, int h, sslr::DeviceProfile device = sslr::DeviceProfile::Auto);
 
 class GlTest : public ::testing::Test {
  protected:

@@ -24,15 +24,7 @@ namespace {
 
 constexpr int W = 64, H = 48;
 
-std::unique_ptr<Context> makeContext(int w = W, int h = H) {
-  ContextDesc d;
-  d.width = w;
-  d.height = h;
-  d.getProcAddress = HeadlessContext::getProcAddress();
-  auto c = Context::create(d);
-  EXPECT_TRUE(c) << c.error();
-  return c ? std::move(c.value()) : nullptr;
-}
+std::unique_ptr<Context> makeContext(int w = W, int h = H) { return sslr::test::makeSslrContext(w, h); }
 
 GLuint makeTexture(GLenum format, int w = W, int h = H) {
   GLuint t = 0;
@@ -454,14 +446,9 @@ TEST_F(Api, FrameStatsCountEachPassCommands) {
   for (DeviceProfile profile : {DeviceProfile::Software, DeviceProfile::Gpu}) {
     const bool gpu = profile == DeviceProfile::Gpu;
     SCOPED_TRACE(gpu ? "Gpu profile" : "Software profile");
-    ContextDesc d;
-    d.width = W;
-    d.height = H;
-    d.getProcAddress = HeadlessContext::getProcAddress();
-    d.device = profile;
-    auto created = Context::create(d);
-    ASSERT_TRUE(created) << created.error();
-    Context* ctx = created.value().get();
+    auto created = sslr::test::makeSslrContext(W, H, profile);
+    ASSERT_TRUE(created);
+    Context* ctx = created.get();
     Frame f;
     Settings s;
     s.debug.collectStats = true;

@@ -28,15 +28,7 @@ struct Reference {
   FrameStats stats;
 };
 
-std::unique_ptr<Context> makeContext(int w, int h) {
-  ContextDesc d;
-  d.width = w;
-  d.height = h;
-  d.getProcAddress = HeadlessContext::getProcAddress();
-  auto c = Context::create(d);
-  EXPECT_TRUE(c) << c.error();
-  return c ? std::move(c.value()) : nullptr;
-}
+std::unique_ptr<Context> makeContext(int w, int h) { return sslr::test::makeSslrContext(w, h); }
 
 // The composite (additive) into a w x h framebuffer cleared to zero, read back.
 Image compositeImage(Context& ctx, int w, int h) {

@@ -208,6 +208,16 @@ std::string plotSvg(const std::vector<const RunRecord*>& runs, double baselineMs
   return s.str();
 }
 
+// An SVG of W x H on white with its two axes (margins: left, right, top, bottom); the caller closes it.
+std::string svgFrame(double W, double H, double L, double R, double T, double B) {
+  std::ostringstream s;
+  s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << W << "' height='" << H
+    << "' font-family='sans-serif' font-size='11'><rect width='100%' height='100%' fill='white'/>"
+    << "<line x1='" << L << "' y1='" << H - B << "' x2='" << W - R << "' y2='" << H - B << "' stroke='black'/>"
+    << "<line x1='" << L << "' y1='" << T << "' x2='" << L << "' y2='" << H - B << "' stroke='black'/>";
+  return s.str();
+}
+
 // A cost curve: median time per method against pixels (log axis) or reflective fraction (%).
 std::string curveSvg(const std::vector<CurvePoint>& points, const std::string& curve) {
   const double W = 640, H = 360, L = 60, R = 150, T = 20, B = 50;
@@ -227,10 +237,7 @@ std::string curveSvg(const std::vector<CurvePoint>& points, const std::string& c
   auto X = [&](double x) { return L + (W - L - R) * (x - xMin) / (xMax - xMin); };
   auto Y = [&](double t) { return H - B - (H - T - B) * t / maxT; };
   std::ostringstream s;
-  s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << W << "' height='" << H
-    << "' font-family='sans-serif' font-size='11'><rect width='100%' height='100%' fill='white'/>"
-    << "<line x1='" << L << "' y1='" << H - B << "' x2='" << W - R << "' y2='" << H - B << "' stroke='black'/>"
-    << "<line x1='" << L << "' y1='" << T << "' x2='" << L << "' y2='" << H - B << "' stroke='black'/>";
+  s << svgFrame(W, H, L, R, T, B);
   for (int i = 0; i <= 4; ++i)
     s << "<text x='" << L - 5 << "' y='" << Y(maxT * i / 4) + 4 << "' text-anchor='end'>" << fmt(maxT * i / 4, 1)
       << "</text>";
@@ -281,10 +288,7 @@ std::string glossySvg(const std::vector<const GlossyPoint*>& points) {
   auto Y = [&](double e) { return H - B - (H - T - B) * e / maxE; };
   static const char* colors[] = {"#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#d62728", "#8c564b"};
   std::ostringstream s;
-  s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << W << "' height='" << H
-    << "' font-family='sans-serif' font-size='11'><rect width='100%' height='100%' fill='white'/>"
-    << "<line x1='" << L << "' y1='" << H - B << "' x2='" << W - R << "' y2='" << H - B << "' stroke='black'/>"
-    << "<line x1='" << L << "' y1='" << T << "' x2='" << L << "' y2='" << H - B << "' stroke='black'/>";
+  s << svgFrame(W, H, L, R, T, B);
   for (int i = 0; i <= 4; ++i)
     s << "<text x='" << X(maxT * i / 4) << "' y='" << H - B + 15 << "' text-anchor='middle'>" << fmt(maxT * i / 4, 1)
       << "</text><text x='" << L - 5 << "' y='" << Y(maxE * i / 4) + 4 << "' text-anchor='end'>" << fmt(maxE * i / 4, 2)

@@ -19,14 +19,7 @@ glm::vec2 pixelRotation(std::uint32_t p) {
 
 // Sample k of n: a Hammersley point, rotated (Cranley-Patterson) and wrapped into [0, 1).
 glm::vec2 samplePoint(int k, int n, glm::vec2 rotation) {
-  std::uint32_t bits = static_cast<std::uint32_t>(k);
-  bits = (bits << 16u) | (bits >> 16u);
-  bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
-  bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
-  bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
-  bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
-  glm::vec2 u((float(k) + 0.5f) / float(n), float(bits) * 2.3283064365386963e-10f);
-  u += rotation;
+  const glm::vec2 u = shared::sslrHammersley(k, n) + rotation;
   return u - glm::floor(u);
 }
 
@@ -184,13 +177,16 @@ GlossyMetrics compareGlossy(const GlossyTruth& truth, const Image& resolved, flo
   return m;
 }
 
+namespace {
+// An RGB image of the truth's size, dark grey (the colour of "not scored").
+Image notScoredImage(const GlossyTruth& truth) {
+  return Image{truth.width, truth.height, 3, std::vector<float>(truth.radiance.size() * 3, 0.08f)};
+}
+}  // namespace
+
 Image glossyErrorImage(const GlossyTruth& truth, const Image& resolved, float gain, float minRoughness,
                        float minVisibleShare) {
-  Image img;
-  img.width = truth.width;
-  img.height = truth.height;
-  img.channels = 3;
-  img.pixels.assign(truth.radiance.size() * 3, 0.08f);
+  Image img = notScoredImage(truth);
   for (size_t p = 0; p < truth.radiance.size(); ++p) {
     if (!scoredPixel(truth, p, minRoughness, minVisibleShare)) continue;
     bool covered = false;
@@ -204,11 +200,7 @@ Image glossyErrorImage(const GlossyTruth& truth, const Image& resolved, float ga
 }
 
 Image glossyTruthImage(const GlossyTruth& truth, float minRoughness, float minVisibleShare) {
-  Image img;
-  img.width = truth.width;
-  img.height = truth.height;
-  img.channels = 3;
-  img.pixels.assign(truth.radiance.size() * 3, 0.08f);
+  Image img = notScoredImage(truth);
   for (size_t p = 0; p < truth.radiance.size(); ++p) {
     if (!scoredPixel(truth, p, minRoughness, minVisibleShare)) continue;
     for (int c = 0; c < 3; ++c) img.pixels[p * 3 + c] = truth.radiance[p][c];
