@@ -277,6 +277,15 @@ struct App {
     int fresnel = t.fresnel == FresnelMode::Classic ? 0 : 1;
     const char* fresnels[] = {"classic", "schlick"};
     if (ImGui::Combo("fresnel", &fresnel, fresnels, 2)) t.fresnel = fresnel == 0 ? FresnelMode::Classic : FresnelMode::Schlick;
+    // Rough surfaces: the cone blur or stochastic rays (which need temporal reuse to converge and
+    // exclude half resolution: choosing one turns the other off).
+    int glossy = t.glossy.mode == GlossyMode::ConeBlur ? 0 : 1;
+    const char* glossyModes[] = {"cone blur", "stochastic"};
+    if (ImGui::Combo("glossy", &glossy, glossyModes, 2)) {
+      t.glossy.mode = glossy == 0 ? GlossyMode::ConeBlur : GlossyMode::Stochastic;
+      if (glossy == 1) t.halfResolution = false;
+    }
+    if (t.halfResolution) t.glossy.mode = GlossyMode::ConeBlur;
     if (ImGui::TreeNode("tracer")) {
       ImGui::SliderInt("adaptiveL.maxIterations", &t.adaptiveL.maxIterations, 1, 64);
       ImGui::SliderInt("traversal.maxSteps", &t.traversal.maxSteps, 1, 256);
