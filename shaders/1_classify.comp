@@ -61,6 +61,9 @@ void listTile(uvec2 tile) {
   atomicAdd(tiles.drawInstances, 1u);
   tiles.tileCoords[slot] = sslrPackCoord(ivec2(tile));
   tiles.tileCoords[sslrQuadRetraceCountIndex(slot)] = 0u;
+#ifdef SSLR_CLASSIFY_WIDE
+  if ((slot & 3u) == 0u) atomicAdd(tiles.quadDispatchX, 1u);  // half resolution's quad pass: 4 tiles a group
+#endif
 #ifdef SSLR_CLASSIFY_ARGS
   // The frame traces: the pyramid's dispatches get their group counts (else they stay at zero).
   if (slot == 0u)

@@ -10,5 +10,5 @@ layout(local_size_x = SSLR_TILE_QUADS) in;
 void main() {
   uint slot = retrace.entries[gl_WorkGroupID.x];
   if (gl_LocalInvocationIndex >= tiles.tileCoords[sslrQuadRetraceCountIndex(slot)]) return;
-  sslrTraceQuad(sslrUnpackCoord(retrace.entries[sslrQuadRetraceRegion(slot) + gl_LocalInvocationIndex]));
+  sslrTraceQuad(slot, sslrUnpackCoord(retrace.entries[sslrQuadRetraceRegion(slot) + gl_LocalInvocationIndex]));
 }

@@ -8,6 +8,16 @@
 #endif
 #include "passes/trace_quad.glsl"
 
-layout(local_size_x = SSLR_TILE_QUADS) in;  // one listed tile's quads (sslrTileQuad)
-
-void main() { sslrTraceQuad(sslrTileOrigin(gl_WorkGroupID.x) / 2 + sslrTileQuad(gl_LocalInvocationIndex)); }
+#ifdef SSLR_QUADS_WIDE
+// DeviceProfile::Gpu: four listed tiles a group (64 invocations, no half-empty warp).
+layout(local_size_x = 4 * SSLR_TILE_QUADS) in;
+void main() {
+  uint slot = gl_WorkGroupID.x * 4u + gl_LocalInvocationIndex / uint(SSLR_TILE_QUADS);
+  if (slot >= tiles.dispatchX) return;  // the last group's tiles past the list
+  sslrTraceQuad(slot, sslrTileOrigin(slot) / 2 + sslrTileQuad(gl_LocalInvocationIndex % uint(SSLR_TILE_QUADS)));
+}
+#else
+// DeviceProfile::Software: one listed tile's quads a group (16 invocations along x).
+layout(local_size_x = SSLR_TILE_QUADS) in;
+void main() { sslrTraceQuad(gl_WorkGroupID.x, sslrTileOrigin(gl_WorkGroupID.x) / 2 + sslrTileQuad(gl_LocalInvocationIndex)); }
+#endif

@@ -303,6 +303,12 @@ SSLR_FRAME_BLOCK_END
   /* then the pyramid-args pass copies each level's real group counts in from hizGroups. */         \
   uint hizDispatch[3 * SSLR_HIZ_MAX_LEVELS];                                                      \
   uint hizGroups[3 * SSLR_HIZ_MAX_LEVELS];                                                        \
+  /* DispatchIndirectCommand of half resolution's quad pass under DeviceProfile::Gpu: x = groups */ \
+  /* of 4 listed tiles (classification increments it at every fourth tile it lists). */           \
+  uint quadDispatchX;                                                                             \
+  uint quadDispatchY;                                                                             \
+  uint quadDispatchZ;                                                                             \
+  uint reserved3;                                                                                 \
   /* DispatchIndirectCommand of the clean-up pass: the previous frame's trace dispatch, copied */   \
   /* here before this frame's header is written (the CPU never writes it). */                      \
   uint cleanupDispatchX;                                                                          \
@@ -318,7 +324,8 @@ static_assert(offsetof(SslrTileHeader, drawCount) == 12, "std430 mirror");
 static_assert(offsetof(SslrTileHeader, blurDispatchX) == 32, "std430 mirror");
 static_assert(offsetof(SslrTileHeader, hizDispatch) == 48, "std430 mirror");
 static_assert(offsetof(SslrTileHeader, hizGroups) == 48 + 12 * SSLR_HIZ_MAX_LEVELS, "std430 mirror");
-static_assert(offsetof(SslrTileHeader, cleanupDispatchX) == 48 + 24 * SSLR_HIZ_MAX_LEVELS, "std430 mirror");
+static_assert(offsetof(SslrTileHeader, quadDispatchX) == 48 + 24 * SSLR_HIZ_MAX_LEVELS, "std430 mirror");
+static_assert(offsetof(SslrTileHeader, cleanupDispatchX) == 64 + 24 * SSLR_HIZ_MAX_LEVELS, "std430 mirror");
 static_assert(sizeof(SslrTileHeader) == offsetof(SslrTileHeader, cleanupDispatchX) + 16, "std430 mirror");
 #endif
 

@@ -27,13 +27,12 @@ void sslrListPixelForRetrace(ivec2 px) {
 // Where tile slot `slot`'s listed quads start in entries.
 uint sslrQuadRetraceRegion(uint slot) { return sslrTileCapacity() + slot * uint(SSLR_TILE_QUADS); }
 
-// Lists a quad of this group's tile (the quad pass runs one group per traced tile, in list slot
-// gl_WorkGroupID.x) for the quad retrace pass, which runs one group per tile with a quad listed.
-void sslrListQuadForRetrace(ivec2 quad) {
+// Lists a quad of the tile in list slot `slot` for the quad retrace pass, which runs one group per
+// tile with a quad listed.
+void sslrListQuadForRetrace(uint slot, ivec2 quad) {
 #ifdef SSLR_COUNT_TRAVERSAL
   atomicAdd(retrace.count, 1u);  // TraversalPass::Auto's feedback: quads that needed the traversal
 #endif
-  uint slot = gl_WorkGroupID.x;
   uint k = atomicAdd(tiles.tileCoords[sslrQuadRetraceCountIndex(slot)], 1u);
   retrace.entries[sslrQuadRetraceRegion(slot) + k] = sslrPackCoord(quad);
   if (k == 0u) retrace.entries[atomicAdd(retrace.dispatchX, 1u)] = slot;

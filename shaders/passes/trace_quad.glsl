@@ -4,7 +4,8 @@
 layout(binding = SSLR_IMAGE_QUAD_HIT, rgba32f) uniform writeonly image2D uQuadHitOut;          // see uQuadHit
 layout(binding = SSLR_IMAGE_QUAD_SURFACE, rgba16f) uniform writeonly image2D uQuadSurfaceOut;  // see uQuadSurface
 
-void sslrTraceQuad(ivec2 quad) {
+// `slot`: the quad's tile's slot in the tile list.
+void sslrTraceQuad(uint slot, ivec2 quad) {
   // The traced pixel rotates through the quad frame by frame, so that a temporal filter sees every
   // pixel's own ray. The pixel is chosen first and traced once after the loop: with the tracer
   // inside the loop, a SIMD batch whose lanes chose different candidates ran it once per candidate.
@@ -24,7 +25,7 @@ void sslrTraceQuad(ivec2 quad) {
     bool needsTraversal;
     SslrHit hit = sslrTraceFirstStage(frame.proj, frame.surface, frame.trace, px, q.vsP, q.vsR, needsTraversal);
     if (needsTraversal) {  // the quad retrace pass traces it (and finds the same pixel of the quad)
-      sslrListQuadForRetrace(quad);
+      sslrListQuadForRetrace(slot, quad);
 #ifdef SSLR_COLLECT_STATS
       atomicAdd(stats.fetches, gFetches);
 #endif

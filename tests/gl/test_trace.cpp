@@ -639,6 +639,7 @@ struct ProfileCase {
   const char* name;
   Method method;
   bool half, temporal;
+  TraversalPass pass = TraversalPass::Auto;  // (Auto: inline under Gpu, deferred under Software)
 };
 class DeviceProfiles : public sslr::test::GlTest, public ::testing::WithParamInterface<ProfileCase> {};
 
@@ -656,6 +657,7 @@ TEST_P(DeviceProfiles, SameOutputsFrameAfterFrame) {
   s.method = c.method;
   s.halfResolution = c.half;
   s.temporal.enabled = c.temporal;
+  s.traversal.pass = c.pass;
   s.debug.outputs = true;
   s.debug.collectStats = true;
   Settings empty = s;
@@ -718,6 +720,8 @@ TEST_P(DeviceProfiles, SameOutputsFrameAfterFrame) {
 INSTANTIATE_TEST_SUITE_P(Paths, DeviceProfiles,
                          ::testing::Values(ProfileCase{"adaptive_l", Method::AdaptiveL, false, false},
                                            ProfileCase{"half_resolution", Method::AdaptiveL, true, false},
+                                           ProfileCase{"half_resolution_deferred", Method::AdaptiveL, true, false,
+                                                       TraversalPass::Deferred},
                                            ProfileCase{"temporal", Method::AdaptiveL, false, true},
                                            ProfileCase{"position_buffer", Method::PositionBuffer, false, false}),
                          [](const ::testing::TestParamInfo<ProfileCase>& info) { return std::string(info.param.name); });

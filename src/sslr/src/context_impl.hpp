@@ -23,6 +23,7 @@ namespace sslr {
 constexpr GLintptr kHizDispatchOffset = offsetof(shared::SslrTileHeader, hizDispatch);  // per pyramid level
 constexpr GLintptr kDrawArgsOffset = offsetof(shared::SslrTileHeader, drawCount);       // the composite's draw
 constexpr GLintptr kBlurDispatchOffset = offsetof(shared::SslrTileHeader, blurDispatchX);
+constexpr GLintptr kQuadDispatchOffset = offsetof(shared::SslrTileHeader, quadDispatchX);  // DeviceProfile::Gpu's quad pass
 constexpr GLintptr kCleanupDispatchOffset = offsetof(shared::SslrTileHeader, cleanupDispatchX);  // the previous trace's
 // The part of the header the CPU writes each frame (all but the clean-up dispatch).
 constexpr GLsizeiptr kHeaderUploadBytes = kCleanupDispatchOffset;

@@ -273,7 +273,8 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
       {&f.programs.hizSingle, optionalProgram(f.pyramid && area.levels > kHizBlockTop, "2_pyramid_top_level.comp", "")},
       {&f.programs.trace, computeProgram(traceEntry, traceDefines)},
       {&f.programs.quads, optionalProgram(settings.halfResolution, "3_trace_quads.comp",
-                                          quadDefines + deferDefine + (f.countQuads ? countDefine : ""))},
+                                          quadDefines + deferDefine + (f.countQuads ? countDefine : "") +
+                                              (f.wideClassify ? "#define SSLR_QUADS_WIDE 1\n" : ""))},
       {&f.programs.quadRetrace, optionalProgram(f.quadRetracePass, "3_retrace_quads.comp", quadDefines)},
       {&f.programs.retrace, optionalProgram(f.retracePass, "3_retrace.comp", retraceDefines)},
       {&f.programs.blurH, optionalProgram(f.blur, "4_blur.comp", "#define SSLR_BLUR_AXIS ivec2(1, 0)\n")},
@@ -379,6 +380,7 @@ void Context::Impl::writeTileHeader() const {
   header.dispatchY = header.dispatchZ = 1;  // the trace: no tile yet
   header.drawCount = 6;                     // the composite: 6 vertices per tile, no instance yet
   header.blurDispatchY = header.blurDispatchZ = 1;
+  header.quadDispatchY = header.quadDispatchZ = 1;  // the quad pass under DeviceProfile::Gpu: no group yet
   // Used: level 1's (the level-1 pass: 8x8 level-1 cells a group), level 2's (2_pyramid_levels2to7.comp's blocks:
   // one kHizBlockTop cell a group) and the level above the blocks' (8x8 of its cells a group).
   for (int level = 1; level <= SSLR_HIZ_MAX_LEVELS; ++level) {
@@ -519,7 +521,8 @@ void Context::Impl::runQuads(const FramePlan& f) const {
   useProgram(f.programs.quads);
   gl.BindImageTexture(SSLR_IMAGE_QUAD_HIT, halfRes.quadHit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   gl.BindImageTexture(SSLR_IMAGE_QUAD_SURFACE, halfRes.quadSurface, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  dispatchComputeIndirect(0);  // one group per listed tile
+  // One group per listed tile (Software: 16 invocations), or per 4 of them (Gpu: 64).
+  dispatchComputeIndirect(f.wideClassify ? kQuadDispatchOffset : 0);
   if (f.quadRetracePass) {  // the quads whose ray needs the traversal
     memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     useProgram(f.programs.quadRetrace);

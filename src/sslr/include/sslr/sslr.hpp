@@ -383,11 +383,12 @@ enum class DeviceProfile {
   Auto,      // Software where GL_RENDERER names a CPU rasterizer (llvmpipe, softpipe, SwiftShader),
              // else Gpu
   Gpu,       // classification in groups of 64 (2x2 tiles) that also clear last frame's untraced
-             // tiles and set the pyramid's dispatches: one pass where Software runs three.
-             // TraversalPass::Auto runs the traversal inline
-  Software,  // classification in groups of 16 (one tile, no barrier), the clean-up and the
-             // pyramid's arguments as passes of their own; TraversalPass::Auto chooses inline or
-             // deferred from the previous frame's counts
+             // tiles and set the pyramid's dispatches: one pass where Software runs three; half
+             // resolution's quad rays 4 tiles a group of 64. TraversalPass::Auto runs the traversal
+             // inline
+  Software,  // classification and the quad rays in groups of 16 (one tile, no barrier), the
+             // clean-up and the pyramid's arguments as passes of their own; TraversalPass::Auto
+             // chooses inline or deferred from the previous frame's counts
 };
 
 struct ContextDesc {
