@@ -178,7 +178,7 @@ TEST_F(Bench, TemporalStudyScoresEveryFrame) {
 // images; and what the study exists to show holds: the cone blur is closer to the reference than
 // the bare mirror reflection, and temporal reuse takes the stochastic rays' noise down (measured at
 // 160x90 with 256 reference rays: glossy 0.0246 against 0.0311, mirror-room@rough0.25 0.0207
-// against 0.0235; stochastic 0.061 -> 0.016 and 0.024 with temporal reuse over 4 still frames).
+// against 0.0235; stochastic 0.061 -> 0.016 and 0.024 with temporal reuse over 5 still frames).
 TEST_F(Bench, GlossyStudyScoresEachModeAgainstTheGgxReference) {
   const fs::path out = fs::path(SSLR_TEST_TMP) / "bench-glossy";
   fs::remove_all(out);
