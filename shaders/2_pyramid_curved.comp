@@ -33,8 +33,8 @@ SslrQuad sslrLoadQuad(ivec2 cell) {
 }
 
 void main() {
-  // (Under DeviceProfile::Gpu classification sizes this dispatch before it knows whether the
-  // frame lists a tile; a frame that lists none needs no pyramid.)
+  // Classification under DeviceProfile::Gpu sizes this dispatch while it lists tiles, so a frame
+  // that lists none may still launch groups; they return here (such a frame needs no pyramid).
   if (gl_GlobalInvocationID.x >= curved.count || tiles.dispatchX == 0u) return;
   ivec2 cell = sslrUnpackCoord(curved.quads[gl_GlobalInvocationID.x]);
   SslrQuad q = sslrLoadQuad(cell);

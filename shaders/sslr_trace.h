@@ -374,9 +374,9 @@ SSLR_FN SslrWeights sslrReflectionWeights(SslrProjection p, SslrSurface s, SslrT
   return w;
 }
 
-// The Fresnel term of a coloured F0, channel by channel (what sslrReflectionWeights' `reflection`
-// is for a grey one, before the coverage): F0 x the article's term (Classic) or Schlick's; 1 for
-// OutputMode::Radiance.
+// The Fresnel term of a coloured F0, channel by channel: F0 x the article's term (Classic) or
+// Schlick's; 1 for OutputMode::Radiance. (sslrReflectionWeights folds the grey-F0 term into
+// `reflection` with the coverage.)
 SSLR_FN vec3 sslrFresnelColored(SslrTraceParams t, vec3 f0, float cosVN) {
   if (t.outputRadiance != 0) return vec3(1.0f);
   if (t.fresnelMode == SSLR_FRESNEL_CLASSIC) return f0 * sslrFresnelClassic(cosVN);

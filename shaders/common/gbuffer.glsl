@@ -74,6 +74,7 @@ vec2 sslrQuadCornerUv(ivec2 cell) {
   return (vec2(sslrTexel(cell * 2)) + 1.0f) / vec2(frame.surface.textureWidth, frame.surface.textureHeight);
 }
 vec4 sslrQuadInFrame(vec4 v, ivec2 cell) {
+  if (frame.surface.viewportInside == 0) return v;  // the textures' clamp to edge did it (uniform)
   bvec2 past = greaterThanEqual(cell * 2 + 1, ivec2(frame.surface.width, frame.surface.height));
   if (past.x) v.yw = v.xz;
   if (past.y) v.zw = v.xy;

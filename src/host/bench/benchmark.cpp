@@ -8,6 +8,7 @@
 #include <memory>
 #include <sstream>
 
+#include "bench_contexts.hpp"
 #include "bench_timer.hpp"
 #include "glossy_study.hpp"
 #include "temporal_study.hpp"
@@ -290,36 +291,6 @@ FrameInputs inputsFor(const SceneFrame& f, const BenchConfig& c) {
   if (c.backDepth) in.backDepthTexture = f.backDepthTexture;
   return in;
 }
-
-// One sslr context per timed configuration, created on first use (at one size). A context keeps
-// state from frame to frame, as a host's does: TraversalPass::Auto follows the traversal share
-// its previous frames fed back, the clean-up the tiles they listed. Timed round by round through
-// one shared context, each configuration ran in the state the one before it left: `medium`,
-// timed right after `ultra` (whose verification sends every hit through the traversal), ran its
-// traversal inline and took high-inline's time (two full runs: 29.1 and 36.5 ms on mirror-room
-// against high's 22.0 and 28.8; equal to high's when timed alone).
-class ConfigContexts {
- public:
-  ConfigContexts(int width, int height) : width_(width), height_(height) {}
-  Expected<Context*> get(size_t config, DeviceProfile device) {
-    if (contexts_.size() <= config) contexts_.resize(config + 1);
-    if (!contexts_[config]) {
-      ContextDesc d;
-      d.width = width_;
-      d.height = height_;
-      d.getProcAddress = HeadlessContext::getProcAddress();
-      d.device = device;
-      auto c = Context::create(d);
-      if (!c) return Status::error(c.error());
-      contexts_[config] = std::move(c.value());
-    }
-    return contexts_[config].get();
-  }
-
- private:
-  int width_, height_;
-  std::vector<std::unique_ptr<Context>> contexts_;
-};
 
 // Times every configuration (method "baseline": the baseline pass) once per round, rounds
 // interleaved (A B C A B C ...) so that all see the same machine state, each through its own

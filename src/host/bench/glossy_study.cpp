@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "sslr_host/egl_context.hpp"
+#include "bench_contexts.hpp"
 #include "sslr_host/frame_renderer.hpp"
 #include "sslr_host/glossy_truth.hpp"
 
@@ -79,14 +79,11 @@ Status runGlossyStudy(const std::string& sceneSpec, const BenchOptions& options,
   FrameInputs inputs = fr.inputs();
   inputs.previousClipFromView = inputs.clipFromView;
   const size_t n = std::size(kConfigs);
-  std::vector<std::unique_ptr<Context>> contexts;
+  ConfigContexts contexts(g.width, g.height);
   std::vector<Settings> settings;
-  for (const GlossyConfig& c : kConfigs) {
-    ContextDesc d;
-    d.width = g.width;
-    d.height = g.height;
-    d.getProcAddress = HeadlessContext::getProcAddress();
-    auto ctx = Context::create(d);
+  for (size_t i = 0; i < n; ++i) {
+    const GlossyConfig& c = kConfigs[i];
+    auto ctx = contexts.get(i);
     if (!ctx) return Status::error(ctx.error());
     Settings s;
     s.output = OutputMode::Radiance;
@@ -95,20 +92,20 @@ Status runGlossyStudy(const std::string& sceneSpec, const BenchOptions& options,
     s.glossy.mode = c.mode;
     s.temporal.enabled = c.temporal;
     if (Status st = ctx.value()->dispatch(inputs, s); !st) return st;
-    contexts.push_back(std::move(ctx.value()));
     settings.push_back(s);
   }
   std::vector<std::vector<double>> times(n);
   for (int round = 0; round < options.warmup + options.frames; ++round)
     for (size_t i = 0; i < n; ++i) {
       Status st;
-      const double ms = timer.timeMs([&] { st = contexts[i]->dispatch(inputs, settings[i]); },
+      Context& ctx = *contexts.get(i).value();  // (created above)
+      const double ms = timer.timeMs([&] { st = ctx.dispatch(inputs, settings[i]); },
                                      timer.repeats(options.batch));
       if (!st) return st;
       if (round >= options.warmup) times[i].push_back(ms);
     }
   for (size_t i = 0; i < n; ++i) {
-    const Image resolved = readTexture(contexts[i]->resolvedTexture(), g.width, g.height, 4);
+    const Image resolved = readTexture(contexts.get(i).value()->resolvedTexture(), g.width, g.height, 4);
     const GlossyMetrics m = compareGlossy(truth.value(), resolved);
     out.push_back({sceneSpec, kConfigs[i].name, m.rmse, m.relativeRmse, m.uncovered, m.referenceNoise,
                    m.rmseAboveNoise, m.scored, median(times[i])});

@@ -40,9 +40,13 @@ Settings Settings::preset(Preset preset) {
   return s;
 }
 
-std::string validate(const Settings& s) {
-  std::ostringstream why;
-  auto finite = [](float v) { return std::isfinite(v); };
+namespace {
+
+// Each group of Settings' checks appends "field = value (must be ...); " for what it finds wrong.
+bool finite(float v) { return std::isfinite(v); }
+
+// What steers the trace: adaptive L, the traversal, the hit tolerance.
+void checkTracer(const Settings& s, std::ostringstream& why) {
   if (s.adaptiveL.maxIterations < 1 || s.adaptiveL.maxIterations > 256)
     why << "adaptiveL.maxIterations = " << s.adaptiveL.maxIterations << " (must be 1..256); ";
   if (s.method == Method::AdaptiveL && s.traversal.verify && !s.traversal.fallback)
@@ -60,14 +64,18 @@ std::string validate(const Settings& s) {
     why << "adaptiveL.convergenceEps = " << s.adaptiveL.convergenceEps << " (must be >= 0); ";
   if (!finite(s.adaptiveL.initialLengthScreen) || s.adaptiveL.initialLengthScreen <= 0.0f || s.adaptiveL.initialLengthScreen > 1.0f)
     why << "adaptiveL.initialLengthScreen = " << s.adaptiveL.initialLengthScreen << " (must be in (0, 1]); ";
-  if (!finite(s.fades.errorK) || s.fades.errorK < 0.0f) why << "fades.errorK = " << s.fades.errorK << " (must be >= 0); ";
-  if (!(s.fades.maxDistance > 0.0f)) why << "fades.maxDistance = " << s.fades.maxDistance << " (must be > 0); ";
   if (!finite(s.hitTolerance.relative) || s.hitTolerance.relative < 0.0f)
     why << "hitTolerance.relative = " << s.hitTolerance.relative << " (must be >= 0); ";
   if (!finite(s.hitTolerance.pixels) || s.hitTolerance.pixels < 0.0f)
     why << "hitTolerance.pixels = " << s.hitTolerance.pixels << " (must be >= 0); ";
   if (s.hitTolerance.relative == 0.0f && s.hitTolerance.pixels == 0.0f)
     why << "hitTolerance.relative and hitTolerance.pixels are both 0 (no hit could validate); ";
+}
+
+// What weighs, blurs and reuses the hits: fades, selection, blur, output, glossy, temporal.
+void checkShading(const Settings& s, std::ostringstream& why) {
+  if (!finite(s.fades.errorK) || s.fades.errorK < 0.0f) why << "fades.errorK = " << s.fades.errorK << " (must be >= 0); ";
+  if (!(s.fades.maxDistance > 0.0f)) why << "fades.maxDistance = " << s.fades.maxDistance << " (must be > 0); ";
   if (!finite(s.fades.screenEdge) || s.fades.screenEdge < 0.0f || s.fades.screenEdge > 0.5f)
     why << "fades.screenEdge = " << s.fades.screenEdge << " (must be 0..0.5); ";
   if (!finite(s.fades.cameraStart) || !finite(s.fades.cameraEnd) || s.fades.cameraEnd < s.fades.cameraStart)
@@ -84,6 +92,18 @@ std::string validate(const Settings& s) {
     why << "blur.depthSigma = " << s.blur.depthSigma << " (must be > 0); ";
   if (!finite(s.blur.normalPower) || s.blur.normalPower < 0.0f)
     why << "blur.normalPower = " << s.blur.normalPower << " (must be >= 0); ";
+  if (!finite(s.temporal.historyWeight) || s.temporal.historyWeight < 0.0f || s.temporal.historyWeight > 0.98f)
+    why << "temporal.historyWeight = " << s.temporal.historyWeight << " (must be 0..0.98); ";
+  if (s.output != OutputMode::Weighted && s.output != OutputMode::Radiance)
+    why << "output = " << static_cast<int>(s.output) << " (not a sslr::OutputMode); ";
+  if (s.glossy.mode != GlossyMode::ConeBlur && s.glossy.mode != GlossyMode::Stochastic)
+    why << "glossy.mode = " << static_cast<int>(s.glossy.mode) << " (not a sslr::GlossyMode); ";
+  if (!(s.glossy.stochasticFrom >= 0.0f && s.glossy.stochasticFrom <= 1.0f))
+    why << "glossy.stochasticFrom = " << s.glossy.stochasticFrom << " (must be 0..1, a roughness); ";
+}
+
+// The method and the comparison methods' parameters.
+void checkComparisons(const Settings& s, std::ostringstream& why) {
   const PositionBufferSettings& pb = s.positionBuffer;
   if (!(pb.maxDistance > 0.0f) || !finite(pb.maxDistance))
     why << "positionBuffer.maxDistance = " << pb.maxDistance << " (must be > 0); ";
@@ -106,16 +126,18 @@ std::string validate(const Settings& s) {
   if (s.method != Method::AdaptiveL && s.method != Method::HierarchicalDepth && s.method != Method::PositionBuffer &&
       s.method != Method::ScreenSpaceDDA && s.method != Method::FidelityFxSssr)
     why << "method = " << static_cast<int>(s.method) << " (not a sslr::Method); ";
-  if (!finite(s.temporal.historyWeight) || s.temporal.historyWeight < 0.0f || s.temporal.historyWeight > 0.98f)
-    why << "temporal.historyWeight = " << s.temporal.historyWeight << " (must be 0..0.98); ";
-  if (s.output != OutputMode::Weighted && s.output != OutputMode::Radiance)
-    why << "output = " << static_cast<int>(s.output) << " (not a sslr::OutputMode); ";
+}
+
+}  // namespace
+
+std::string validate(const Settings& s) {
+  std::ostringstream why;
+  checkTracer(s, why);
+  checkShading(s, why);
+  checkComparisons(s, why);
+  // Settings that do not combine.
   if (s.halfResolution && s.method == Method::PositionBuffer)
     why << "halfResolution works with the depth-only methods, not Method::PositionBuffer; ";
-  if (s.glossy.mode != GlossyMode::ConeBlur && s.glossy.mode != GlossyMode::Stochastic)
-    why << "glossy.mode = " << static_cast<int>(s.glossy.mode) << " (not a sslr::GlossyMode); ";
-  if (!(s.glossy.stochasticFrom >= 0.0f && s.glossy.stochasticFrom <= 1.0f))
-    why << "glossy.stochasticFrom = " << s.glossy.stochasticFrom << " (must be 0..1, a roughness); ";
   if (s.glossy.mode == GlossyMode::Stochastic && s.halfResolution)
     why << "glossy.mode Stochastic does not work with halfResolution (a quad's pixels reuse its mirror ray); ";
   std::string text = why.str();
