@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "projection.hpp"
+#include "sslr/reference.hpp"
 #include "sslr_host/camera.hpp"
 #include "sslr_shared.h"
 
@@ -138,6 +139,16 @@ TEST(Projection, RejectsNonFiniteSingularAndSkewedMatrices) {
   ASSERT_FALSE(r);
   EXPECT_NE(r.error().find("singular"), std::string::npos) << r.error();
 
+  // Scales that single precision holds only as subnormals (1e-40) or not at all (1e-300) are
+  // refused alike: the shaders would rebuild noise or zeros from them.
+  for (double tiny : {1e-40, 1e-300}) {
+    glm::dmat4 small = good;
+    small[0][0] = tiny;
+    r = sslr::detail::reduceProjection(small, DepthConvention::reversed());
+    ASSERT_FALSE(r) << tiny;
+    EXPECT_NE(r.error().find("underflow"), std::string::npos) << r.error();
+  }
+
   glm::dmat4 skew = good;
   skew[1][0] = 0.2;
   r = sslr::detail::reduceProjection(skew, DepthConvention::reversed());
@@ -159,6 +170,34 @@ TEST(Projection, RejectsNonFiniteSingularAndSkewedMatrices) {
   r = sslr::detail::reduceProjection(glm::dmat4(0.0), DepthConvention::reversed());
   ASSERT_FALSE(r);
   EXPECT_NE(r.error().find("neither"), std::string::npos) << r.error();
+}
+
+// FrameInputs' enumerations out of range (a host's cast, uninitialised memory) are refused by name,
+// not read as one of the valid values.
+TEST(Projection, UnknownEnumerationsInTheInputsAreRefused) {
+  Camera cam;
+  FrameInputs good;
+  good.clipFromView = cam.clipFromView(DepthMode::Reversed, 1.5);
+  good.depth = DepthConvention::reversed();
+  ASSERT_TRUE(frameConstants(good, Settings{}, 64, 64));
+  struct Bad {
+    const char* expected;
+    void (*apply)(FrameInputs&);
+  };
+  const Bad cases[] = {
+      {"surface.normals = 5 (not a sslr::NormalEncoding)",
+       [](FrameInputs& in) { in.surface.normals = static_cast<NormalEncoding>(5); }},
+      {"surface.space = 5 (not a sslr::NormalSpace)", [](FrameInputs& in) { in.surface.space = static_cast<NormalSpace>(5); }},
+      {"depth.range = 7 (not a sslr::DepthRange)", [](FrameInputs& in) { in.depth.range = static_cast<DepthRange>(7); }},
+  };
+  for (const Bad& b : cases) {
+    FrameInputs in = good;
+    b.apply(in);
+    auto r = frameConstants(in, Settings{}, 64, 64);
+    ASSERT_FALSE(r) << b.expected;
+    EXPECT_EQ(r.status().code(), StatusCode::InvalidInput);
+    EXPECT_NE(r.error().find(b.expected), std::string::npos) << r.error();
+  }
 }
 
 TEST(Projection, RejectsNearEqualsFarAndConventionMismatch) {

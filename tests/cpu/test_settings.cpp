@@ -75,6 +75,7 @@ TEST(Settings, EveryInvalidFieldIsNamed) {
       {"blur.depthSigma", [](Settings& s) { s.blur.depthSigma = 0.0f; }},
       {"blur.normalPower", [](Settings& s) { s.blur.normalPower = NAN; }},
       {"glossy.mode", [](Settings& s) { s.glossy.mode = static_cast<GlossyMode>(9); }},
+      {"fresnel = 9 (not a sslr::FresnelMode)", [](Settings& s) { s.fresnel = static_cast<FresnelMode>(9); }},
       {"glossy.stochasticFrom", [](Settings& s) { s.glossy.stochasticFrom = 1.5f; }},
       {"glossy.stochasticFrom", [](Settings& s) { s.glossy.stochasticFrom = NAN; }},
       {"glossy.mode Stochastic", [](Settings& s) { s.glossy.mode = GlossyMode::Stochastic; s.halfResolution = true; }},

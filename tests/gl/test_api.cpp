@@ -190,6 +190,8 @@ struct Snapshot {
                        GL_CLIP_DISTANCE0, GL_CLIP_DISTANCE7})
       s.values.push_back(glIsEnabled(cap));
     i(GL_LOGIC_OP_MODE);
+    i(GL_CLIP_ORIGIN);
+    i(GL_CLIP_DEPTH_MODE);
     GLint polygonMode[2] = {0, 0};
     glGetIntegerv(GL_POLYGON_MODE, polygonMode);
     s.values.push_back(polygonMode[0]);
@@ -267,6 +269,7 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   glColorMaski(1, GL_FALSE, GL_TRUE, GL_FALSE, GL_TRUE);
   glDepthMask(GL_FALSE);
   glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);  // a wireframe debug view left on by the host
+  glClipControl(GL_UPPER_LEFT, GL_ZERO_TO_ONE);  // a D3D-style host
   GLuint hostProgram = glCreateProgram();  // any valid program name works as "current"
   (void)hostProgram;
 
@@ -298,6 +301,7 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glBindVertexArray(0);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   glDisable(GL_SCISSOR_TEST);
@@ -705,8 +709,8 @@ TEST_F(Api, WorldSpaceNormalsWithTheViewMatrixGiveTheSameHits) {
 }
 
 // Normals in signed normalized formats (RG16_SNORM octahedral, RGBA16_SNORM xyz) with the signed
-// unpack (SurfaceLayout::normalScale 1, normalBias 0) give the hits of the unsigned G-buffer; read
-// with the unsigned unpack they trace other reflections; a zero scale is refused, named.
+// unpack (SurfaceLayout::normalScale 1, normalBias 0) give the hits of the unsigned G-buffer; a
+// decode that does not map the format's range onto [-1, 1], or a zero scale, is refused, named.
 TEST_F(Api, SignedNormalFormatsGiveTheSameHits) {
   for (NormalEncoding encoding : {NormalEncoding::Octahedral, NormalEncoding::XyzUnorm}) {
     SCOPED_TRACE(encoding == NormalEncoding::Octahedral ? "octahedral, RG16_SNORM" : "xyz, RGBA16_SNORM");
@@ -734,15 +738,26 @@ TEST_F(Api, SignedNormalFormatsGiveTheSameHits) {
     signedIn.surface.normalBias = 0.0f;
     ASSERT_TRUE(ctx->dispatch(signedIn, s));
     const Image hitSigned = readAll(ctx->hitTexture(), 4);
-    signedIn.surface.normalScale = 2.0f;  // the mistake: signed values unpacked as unsigned ones
-    signedIn.surface.normalBias = -1.0f;
-    ASSERT_TRUE(ctx->dispatch(signedIn, s));
-    const Image hitWrong = readAll(ctx->hitTexture(), 4);
     const SameHits same = sameHits(hitUnsigned, hitSigned);
     ASSERT_GT(same.traced, 500u);
     // Requantized once, to 16 bits: a few hits may move by a fraction of a pixel.
     EXPECT_GE(same.share(), 0.98) << same.same << " of " << same.traced;
-    EXPECT_LT(sameHits(hitUnsigned, hitWrong).share(), 0.5) << "signed normals unpacked as unsigned must differ";
+    // The mistakes: signed values left on the unsigned default (they would decode to [-3, 1] and
+    // find almost no hit), and unsigned ones on the signed unpack ([0, 1]): refused, named.
+    signedIn.surface.normalScale = 2.0f;
+    signedIn.surface.normalBias = -1.0f;
+    Status wrong = ctx->dispatch(signedIn, s);
+    ASSERT_FALSE(wrong);
+    EXPECT_EQ(wrong.code(), StatusCode::InvalidInput);
+    EXPECT_NE(wrong.message().find(octahedral ? "is RG16_SNORM" : "is RGBA16_SNORM"), std::string::npos) << wrong.message();
+    EXPECT_NE(wrong.message().find("use 1/0 for a signed (SNORM) format"), std::string::npos) << wrong.message();
+    FrameInputs unsignedAsSigned = unsignedIn;
+    unsignedAsSigned.surface.normalScale = 1.0f;
+    unsignedAsSigned.surface.normalBias = 0.0f;
+    wrong = ctx->dispatch(unsignedAsSigned, s);
+    ASSERT_FALSE(wrong);
+    EXPECT_NE(wrong.message().find("use 2/-1 for an unsigned (UNORM) format"), std::string::npos) << wrong.message();
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
     signedIn.surface.normalScale = 0.0f;
     const Status st = ctx->dispatch(signedIn, s);
     ASSERT_FALSE(st);
@@ -1308,6 +1323,88 @@ TEST_F(Api, CompositeIsFilledWhateverThePolygonMode) {
   EXPECT_EQ(wire, filled);
 }
 
+// A host drawing with an upper-left clip origin (glClipControl, D3D-style) gets the composite in
+// the same texels as a lower-left host: the tiles are placed in the textures' rows, which are the
+// framebuffer's. Its clip control comes back as it was.
+TEST_F(Api, CompositeIsTheSameUnderEitherClipOrigin) {
+  auto ctx = makeContext();
+  Frame f;
+  ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), Settings{}));
+  auto withOrigin = [&](GLenum origin, GLenum depthMode) {
+    return compositeInto(*ctx, GL_RGBA16F, 0.0f, [&] { glClipControl(origin, depthMode); }, [&] {
+      GLint after = 0, afterDepth = 0;
+      glGetIntegerv(GL_CLIP_ORIGIN, &after);
+      glGetIntegerv(GL_CLIP_DEPTH_MODE, &afterDepth);
+      EXPECT_EQ(after, GLint(origin)) << "the host's clip origin is restored";
+      EXPECT_EQ(afterDepth, GLint(depthMode)) << "the host's clip depth mode is restored";
+      glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+    });
+  };
+  const std::vector<float> lowerLeft = withOrigin(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+  double energy = 0.0;
+  for (float v : lowerLeft) energy += v;
+  ASSERT_GT(energy, 1.0) << "the frame must have reflections";
+  EXPECT_EQ(withOrigin(GL_UPPER_LEFT, GL_NEGATIVE_ONE_TO_ONE), lowerLeft);
+  EXPECT_EQ(withOrigin(GL_UPPER_LEFT, GL_ZERO_TO_ONE), lowerLeft);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+// An upper-left host (glClipControl(GL_UPPER_LEFT, ...)) stores its G-buffer with row 0 at the
+// top. Given its projection with the y row negated (what the rows mean to a lower-left reader, as
+// integration.md says), dispatch traces the same reflections, stored in the host's rows: here the
+// lower-left G-buffer is mirrored row by row into new textures and the output mirrored back.
+TEST_F(Api, UpperLeftHostsPassTheirProjectionWithYNegated) {
+  auto ctx = makeContext();
+  Frame f;
+  const FrameInputs lowerLeft = f.gbuffer->frameInputs();
+  ASSERT_TRUE(ctx->dispatch(lowerLeft, Settings{}));
+  const Image expected = readAll(ctx->resolvedTexture(), 4);
+  auto mirrored = [](GLuint tex) -> GLuint {
+    if (tex == 0) return 0;
+    GLint format = 0;
+    glGetTextureLevelParameteriv(tex, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    const GLuint copy = makeTexture(static_cast<GLenum>(format));
+    for (int row = 0; row < H; ++row)
+      glCopyImageSubData(tex, GL_TEXTURE_2D, 0, 0, row, 0, copy, GL_TEXTURE_2D, 0, 0, H - 1 - row, 0, W, 1, 1);
+    return copy;
+  };
+  FrameInputs upperLeft = lowerLeft;
+  for (GLName* tex : {&upperLeft.depthTexture, &upperLeft.colorTexture, &upperLeft.normalTexture,
+                      &upperLeft.materialTexture, &upperLeft.maskTexture, &upperLeft.backDepthTexture})
+    *tex = mirrored(*tex);
+  upperLeft.clipFromView = glm::scale(glm::dmat4(1.0), glm::dvec3(1.0, -1.0, 1.0)) * lowerLeft.clipFromView;
+  ASSERT_TRUE(ctx->dispatch(upperLeft, Settings{}));
+  const Image got = readAll(ctx->resolvedTexture(), 4);
+  // The pyramid's coarse cells are aligned to the other edge, so a traversal may take other steps:
+  // a few pixels may differ; the image may not.
+  size_t differing = 0, covered = 0;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const size_t a = (static_cast<size_t>(y) * W + x) * 4, b = (static_cast<size_t>(H - 1 - y) * W + x) * 4;
+      covered += expected.pixels[a + 3] > 0.1f;
+      float diff = 0.0f;
+      for (int c = 0; c < 4; ++c) diff = std::max(diff, std::abs(expected.pixels[a + c] - got.pixels[b + c]));
+      differing += diff > 0.02f;
+    }
+  ASSERT_GT(covered, 300u) << "the frame must have reflections";
+  EXPECT_LE(differing, covered / 50) << differing << " of " << covered << " reflective pixels differ";
+  // Unflipped, the same projection reads the rows upside down: another image altogether.
+  upperLeft.clipFromView = lowerLeft.clipFromView;
+  ASSERT_TRUE(ctx->dispatch(upperLeft, Settings{}));
+  const Image wrong = readAll(ctx->resolvedTexture(), 4);
+  size_t wrongDiffering = 0;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const size_t a = (static_cast<size_t>(y) * W + x) * 4, b = (static_cast<size_t>(H - 1 - y) * W + x) * 4;
+      wrongDiffering += std::abs(expected.pixels[a + 3] - wrong.pixels[b + 3]) > 0.02f;
+    }
+  EXPECT_GT(wrongDiffering, covered / 10) << "the check must see a projection that was not flipped";
+  for (GLName tex : {upperLeft.depthTexture, upperLeft.colorTexture, upperLeft.normalTexture, upperLeft.materialTexture,
+                     upperLeft.maskTexture, upperLeft.backDepthTexture})
+    if (tex != 0) glDeleteTextures(1, &tex);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
 // A host's per-fragment state that would change what the composite writes (a logic op on a
 // fixed-point target, alpha-to-coverage, a clip distance its vertex shader does not write) is
 // switched off for its draw and restored after it: the target gets the same pixels.
@@ -1362,7 +1459,16 @@ TEST_F(Api, CallsWithoutACurrentContextSaySo) {
   ASSERT_TRUE(eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT));
   const Status dispatched = ctx->dispatch(in, Settings{});
   const Status composited = ctx->composite(0);
+  const Status prepared = ctx->prepare(in, Settings{});
+  const Status resized = ctx->resize(W / 2, H / 2);  // would free and make its targets in no context
   ASSERT_TRUE(eglMakeCurrent(display, draw, read, context));
+  for (const Status* st : {&prepared, &resized}) {
+    ASSERT_FALSE(*st);
+    EXPECT_EQ(st->code(), StatusCode::NoCurrentContext) << st->message();
+  }
+  EXPECT_NE(resized.message().find("resize(): no OpenGL context is current"), std::string::npos) << resized.message();
+  EXPECT_EQ(ctx->width(), W) << "a refused resize keeps the size";
+  EXPECT_NE(ctx->resolvedTexture(), 0u) << "a refused resize keeps the targets";
   ASSERT_FALSE(dispatched);
   EXPECT_NE(dispatched.message().find("dispatch(): no OpenGL context is current"), std::string::npos)
       << dispatched.message();
@@ -1372,6 +1478,11 @@ TEST_F(Api, CallsWithoutACurrentContextSaySo) {
   EXPECT_EQ(dispatched.code(), StatusCode::NoCurrentContext);
   EXPECT_EQ(composited.code(), StatusCode::NoCurrentContext);
   EXPECT_TRUE(ctx->dispatch(in, Settings{})) << "the same context works once current again";
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  const Image resolved = readAll(ctx->resolvedTexture(), 4);
+  double coverage = 0.0;
+  for (size_t i = 3; i < resolved.pixels.size(); i += 4) coverage += resolved.pixels[i];
+  EXPECT_GT(coverage, 1.0) << "the frame after the refused calls has its reflections";
 }
 
 // Every error carries a code of its kind (Status::code), also through Expected (status()), so a

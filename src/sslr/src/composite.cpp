@@ -96,6 +96,12 @@ Status Context::Impl::composite(GLName framebuffer, const CompositeOptions& opti
   gl.ViewportIndexedfv(0, viewport);
   gl.Disablei(GL_SCISSOR_TEST, 0);
   gl.PolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  // The tiles are placed in the textures' rows, which are the framebuffer's: a host drawing with an
+  // upper-left clip origin would see them mirrored. The depth mode is the host's (the draw's z = 0
+  // lies inside either range, and the depth test is off).
+  GLint clipDepthMode = GL_NEGATIVE_ONE_TO_ONE;
+  gl.GetIntegerv(GL_CLIP_DEPTH_MODE, &clipDepthMode);
+  gl.ClipControl(GL_LOWER_LEFT, static_cast<GLenum>(clipDepthMode));
   for (GLenum cap : detail::kCompositeDisables) gl.Disable(cap);
   for (GLenum i = 0; i < detail::kClipDistances; ++i) gl.Disable(GL_CLIP_DISTANCE0 + i);
   // Draw buffer 0 only (its alpha kept); other draw buffers are masked.

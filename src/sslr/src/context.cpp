@@ -203,6 +203,9 @@ Status Context::resize(int width, int height) {
     return Status::error(StatusCode::InvalidSize, "sslr: resize to " + std::to_string(width) + "x" + std::to_string(height) +
                          " is invalid (must be 1..16384 each)");
   if (width == impl_->width && height == impl_->height) return {};
+  // Freeing and making the targets needs the context: without it the calls go nowhere and the
+  // context would be left with no targets.
+  if (Status s = impl_->checkCurrentContext("resize()"); !s) return s;
   impl_->destroyTargets();
   impl_->width = width;
   impl_->height = height;

@@ -35,6 +35,7 @@ namespace sslr::detail {
   X(PFNGLGETNAMEDFRAMEBUFFERATTACHMENTPARAMETERIVPROC, GetNamedFramebufferAttachmentParameteriv) \
   X(PFNGLGETNAMEDRENDERBUFFERPARAMETERIVPROC, GetNamedRenderbufferParameteriv)   \
   X(PFNGLPOLYGONMODEPROC, PolygonMode)                                           \
+  X(PFNGLCLIPCONTROLPROC, ClipControl)                                           \
   X(PFNGLGETFLOATVPROC, GetFloatv)                                               \
   X(PFNGLISTEXTUREPROC, IsTexture)                                               \
   X(PFNGLISFRAMEBUFFERPROC, IsFramebuffer)                                       \

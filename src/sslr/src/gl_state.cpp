@@ -54,6 +54,8 @@ StateGuard::StateGuard(const Gl& gl, bool forDraw) : gl_(gl), forDraw_(forDraw) 
   gl.GetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &drawFramebuffer_);
   gl.GetFloati_v(GL_VIEWPORT, 0, viewport0_);
   gl.GetIntegerv(GL_POLYGON_MODE, polygonMode_);
+  gl.GetIntegerv(GL_CLIP_ORIGIN, &clipOrigin_);
+  gl.GetIntegerv(GL_CLIP_DEPTH_MODE, &clipDepthMode_);
   for (int i = 0; i < kCompositeDisableCount; ++i) disabled_[i] = gl.IsEnabled(kCompositeDisables[i]);
   for (GLenum i = 0; i < kClipDistances; ++i) clipDistances_[i] = gl.IsEnabled(GL_CLIP_DISTANCE0 + i);
   scissorTest0_ = gl.IsEnabledi(GL_SCISSOR_TEST, 0);
@@ -99,6 +101,7 @@ StateGuard::~StateGuard() {
   gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(drawFramebuffer_));
   gl.ViewportIndexedfv(0, viewport0_);
   gl.PolygonMode(GL_FRONT_AND_BACK, static_cast<GLenum>(polygonMode_[0]));
+  gl.ClipControl(static_cast<GLenum>(clipOrigin_), static_cast<GLenum>(clipDepthMode_));
   auto set = [&](GLenum cap, GLboolean on) { on ? gl.Enable(cap) : gl.Disable(cap); };
   for (int i = 0; i < kCompositeDisableCount; ++i) set(kCompositeDisables[i], disabled_[i]);
   for (GLenum i = 0; i < kClipDistances; ++i) set(GL_CLIP_DISTANCE0 + i, clipDistances_[i]);

@@ -56,6 +56,8 @@ class StateGuard {
   GLint drawIndirect_ = 0, vao_ = 0, drawFramebuffer_ = 0;
   GLfloat viewport0_[4] = {};  // viewport index 0, the only one the composite sets
   GLint polygonMode_[2] = {GL_FILL, GL_FILL};  // a host's GL_LINE would draw the composite as wireframe
+  // glClipControl: an upper-left origin would mirror the composite's tiles vertically.
+  GLint clipOrigin_ = GL_LOWER_LEFT, clipDepthMode_ = GL_NEGATIVE_ONE_TO_ONE;
   std::array<GLboolean, kCompositeDisableCount> disabled_{};
   std::array<GLboolean, kClipDistances> clipDistances_{};
   GLboolean scissorTest0_ = 0;  // scissor test of viewport index 0

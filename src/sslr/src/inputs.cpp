@@ -1,7 +1,9 @@
 // Checks of the host's inputs: every texture exists, is 2D, has the context's size and a usable
 // format, and the surface layout fits it. Each error names the field, the GL name and the problem.
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string_view>
 
 #include "context_impl.hpp"
 
@@ -118,6 +120,26 @@ Status Context::Impl::checkTexture(GLName tex, const char* what, FormatInfo::Kin
   return {};
 }
 
+// A normalized format's stored range, decoded by SurfaceLayout::normalScale/normalBias, must be
+// [-1, 1] (within 5%): an SNORM texture left on the unsigned default (2, -1) decodes to [-3, 1] and
+// finds almost no hit, a UNORM one on the signed decode (1, 0) to [0, 1]. Float formats hold
+// whatever the host wrote.
+static Status checkNormalDecode(const SurfaceLayout& sl, const FormatInfo& info, GLName tex) {
+  const std::string_view name = info.name;
+  const bool snorm = name.ends_with("_SNORM");
+  const bool floating = name.find('F') != std::string_view::npos || name == "RGB9_E5";
+  if (floating) return {};
+  const float a = (snorm ? -1.0f : 0.0f) * sl.normalScale + sl.normalBias, b = sl.normalScale + sl.normalBias;
+  const float lo = std::min(a, b), hi = std::max(a, b);
+  if (std::abs(lo + 1.0f) <= 0.05f && std::abs(hi - 1.0f) <= 0.05f) return {};
+  std::ostringstream why;
+  why << "sslr: FrameInputs::normalTexture (texture " << tex << ") is " << info.name << ", whose "
+      << (snorm ? "[-1, 1]" : "[0, 1]") << " values SurfaceLayout::normalScale/normalBias = " << sl.normalScale << "/"
+      << sl.normalBias << " decode to [" << lo << ", " << hi << "], not [-1, 1]: use "
+      << (snorm ? "1/0 for a signed (SNORM) format" : "2/-1 for an unsigned (UNORM) format");
+  return Status::error(StatusCode::InvalidInput, why.str());
+}
+
 // SurfaceLayout's channels against the texture holding them (`materialInfo`: the material
 // texture's format, else the normal texture's), its constants, and the coloured F0's inputs.
 Status Context::Impl::checkSurfaceLayout(const FrameInputs& in, const FormatInfo& materialInfo,
@@ -176,6 +198,7 @@ Status Context::Impl::checkInputs(const FrameInputs& in, Method method, TrafficM
                               &normalInfo);
       !s)
     return s;
+  if (Status s = checkNormalDecode(in.surface, normalInfo, in.normalTexture); !s) return s;
   const SurfaceLayout& sl = in.surface;
   // The material channels are of the material texture when there is one, else of the normal one.
   const bool separate = in.materialTexture != 0;

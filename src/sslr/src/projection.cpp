@@ -100,8 +100,11 @@ Expected<shared::SslrProjection> reduceProjection(const glm::dmat4& m, const Dep
 
   const shared::SslrProjection p =
       shared::sslrProjectionFromMatrix(m, depth.range == DepthRange::ZeroToOne);
-  if (!std::isfinite(p.xScale) || !std::isfinite(p.yScale) || !std::isfinite(p.zScale) ||
-      !std::isfinite(p.zOffset) || p.xScale == 0.0f || p.yScale == 0.0f)
+  // A subnormal (or flushed) entry has lost its precision: the shaders' reconstruction would be
+  // noise or zeros. Zero depth terms are legitimate (an infinite far plane).
+  auto representable = [](float v) { return std::isfinite(v) && (v == 0.0f || std::isnormal(v)); };
+  if (!representable(p.xScale) || !representable(p.yScale) || !representable(p.zScale) ||
+      !representable(p.zOffset) || p.xScale == 0.0f || p.yScale == 0.0f)
     return Status::error(StatusCode::InvalidProjection, "sslr: clipFromView entries overflow or underflow single precision");
   return p;
 }

@@ -12,6 +12,22 @@ namespace sslr {
 
 namespace {
 
+// FrameInputs' enumerations, from a host's cast or memory: an unknown value would be read as one
+// of the others.
+Status checkEnumerations(const FrameInputs& in) {
+  auto notA = [](const char* field, int value, const char* type) {
+    return Status::error(StatusCode::InvalidInput, std::string("sslr: FrameInputs::") + field + " = " +
+                         std::to_string(value) + " (not a sslr::" + type + ")");
+  };
+  if (in.surface.normals != NormalEncoding::Octahedral && in.surface.normals != NormalEncoding::XyzUnorm)
+    return notA("surface.normals", static_cast<int>(in.surface.normals), "NormalEncoding");
+  if (in.surface.space != NormalSpace::View && in.surface.space != NormalSpace::World)
+    return notA("surface.space", static_cast<int>(in.surface.space), "NormalSpace");
+  if (in.depth.range != DepthRange::NegativeOneToOne && in.depth.range != DepthRange::ZeroToOne)
+    return notA("depth.range", static_cast<int>(in.depth.range), "DepthRange");
+  return {};
+}
+
 // How the passes read the G-buffer: layout, convention, optional inputs, world-space normals.
 Status surfaceConstants(const FrameInputs& in, int width, int height, shared::SslrFrame& f) {
   f.surface.normalEncoding =
@@ -154,6 +170,7 @@ Expected<Viewport> frameViewport(const FrameInputs& in, int textureWidth, int te
 
 Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings& s, int width, int height) {
   if (std::string why = validate(s); !why.empty()) return Status::error(StatusCode::InvalidSettings, why);
+  if (Status st = checkEnumerations(in); !st) return st;
   auto proj = detail::reduceProjection(in.clipFromView, in.depth);
   if (!proj) return proj.status();
   auto viewport = frameViewport(in, width, height);

@@ -94,6 +94,8 @@ void checkShading(const Settings& s, std::ostringstream& why) {
     why << "blur.normalPower = " << s.blur.normalPower << " (must be >= 0); ";
   if (!finite(s.temporal.historyWeight) || s.temporal.historyWeight < 0.0f || s.temporal.historyWeight > 0.98f)
     why << "temporal.historyWeight = " << s.temporal.historyWeight << " (must be 0..0.98); ";
+  if (s.fresnel != FresnelMode::Classic && s.fresnel != FresnelMode::Schlick)
+    why << "fresnel = " << static_cast<int>(s.fresnel) << " (not a sslr::FresnelMode); ";
   if (s.output != OutputMode::Weighted && s.output != OutputMode::Radiance)
     why << "output = " << static_cast<int>(s.output) << " (not a sslr::OutputMode); ";
   if (s.glossy.mode != GlossyMode::ConeBlur && s.glossy.mode != GlossyMode::Stochastic)

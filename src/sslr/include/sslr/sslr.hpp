@@ -219,7 +219,8 @@ enum class GlossyMode {
   ConeBlur,
   // Pixels at least Settings::glossy.stochasticFrom rough trace one ray a frame drawn from their
   // GGX lobe (visible normals, Heitz 2018); the blur over the same cone resolves them in space and
-  // temporal reuse (Settings::temporal) over frames. Not with halfResolution.
+  // temporal reuse (Settings::temporal) over frames. Without temporal reuse each frame is one
+  // noisy sample per pixel (for an engine's own denoiser). Not with halfResolution.
   Stochastic,
 };
 
