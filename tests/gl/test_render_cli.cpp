@@ -5,6 +5,11 @@
 #include <filesystem>
 #include <fstream>
 
+#include <csignal>
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include "common/gltf_writer.hpp"
 #include "common/shell.hpp"
 #include "gl/gl_fixture.hpp"
@@ -170,6 +175,53 @@ TEST_F(RenderCli, ASignalDuringWritingLeavesNoTemporary) {
   EXPECT_NE(r.exitCode, 1) << "killed by the signal, not a reported failure: " << r.output;
   ASSERT_TRUE(fs::is_directory(out));
   EXPECT_TRUE(fs::is_empty(out)) << "no partial or temporary file may remain";
+}
+
+// SIGINT or SIGTERM sent the moment a temporary appears (llvmpipe's threads are running, and the
+// writer may be between creating a temporary and finishing it): 20 runs, and none may leave a
+// temporary. The signal thread removes them while no writer can create or rename one.
+TEST_F(RenderCli, ASignalTheMomentATemporaryAppearsLeavesNone) {
+  int signalled = 0;
+  for (int runIndex = 0; runIndex < 20; ++runIndex) {
+    const fs::path out = freshDir("race-" + std::to_string(runIndex));
+    fs::create_directories(out);
+    const std::string outArg = out.string();
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      const int devnull = ::open("/dev/null", O_WRONLY);
+      ::dup2(devnull, 1);
+      ::dup2(devnull, 2);
+      ::execl(SSLR_RENDER_EXE, SSLR_RENDER_EXE, "--size", "256x144", "--dump", "--out", outArg.c_str(),
+              static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    const int sig = runIndex % 2 == 0 ? SIGINT : SIGTERM;
+    bool sent = false;
+    int status = 0;
+    // Bounded by the child's own end: it writes its files and exits if no temporary is seen.
+    while (::waitpid(pid, &status, WNOHANG) == 0) {
+      std::error_code ec;
+      for (const auto& entry : fs::directory_iterator(out, ec)) {
+        const std::string name = entry.path().filename().string();
+        // (The start-up probe of --out is a temporary too, written before any other thread runs.)
+        if (!sent && name.ends_with(".partial") && name.find("sslr-write-probe") == std::string::npos) {
+          ::kill(pid, sig);
+          sent = true;
+        }
+      }
+    }
+    if (sent && WIFSIGNALED(status)) {
+      ++signalled;
+      EXPECT_EQ(WTERMSIG(status), sig) << "run " << runIndex << " ends as the signal says";
+    } else {
+      EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "run " << runIndex << ": status " << status;
+    }
+    for (const auto& entry : fs::directory_iterator(out))
+      EXPECT_FALSE(entry.path().filename().string().ends_with(".partial"))
+          << "run " << runIndex << " left " << entry.path();
+  }
+  EXPECT_GE(signalled, 10) << "most runs must be interrupted while writing, or the race was not tried";
 }
 
 TEST_F(RenderCli, ScoreAndHierarchicalMethod) {

@@ -10,9 +10,12 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
 #include <random>
+#include <thread>
 
 #include <fcntl.h>
+#include <pthread.h>
 #include <unistd.h>
 
 namespace sslr::host {
@@ -61,10 +64,14 @@ Expected<std::vector<unsigned char>> encodeImage(const std::string& path, const 
 }
 
 namespace {
-// Temporaries being written, for the signal handler: fixed slots, no allocation in the handler.
+// Temporaries being written: fixed slots, so that SIGXFSZ's handler (run on the writing thread,
+// mid-write) reads them without allocating. Creating or renaming a temporary and its slot change
+// together under gTempMutex, which the signal thread takes before it removes them: a temporary is
+// either registered or not yet created when the process ends.
 constexpr int kTempSlots = 64;
 char gTempPaths[kTempSlots][4096];
 std::atomic<bool> gTempUsed[kTempSlots];
+std::mutex gTempMutex;
 
 int registerTemp(const std::string& path) {
   if (path.size() >= sizeof gTempPaths[0]) return -1;
@@ -80,11 +87,23 @@ int registerTemp(const std::string& path) {
 void unregisterTemp(int slot) {
   if (slot >= 0) gTempUsed[slot].store(false);
 }
-extern "C" void removeTempsAndRaise(int sig) {
+void removeRegisteredTemps() {
   for (int i = 0; i < kTempSlots; ++i)
     if (gTempUsed[i].load()) ::unlink(gTempPaths[i]);
+}
+// Ends the process as `sig` would have, from the calling thread.
+[[noreturn]] void endBySignal(int sig) {
   std::signal(sig, SIG_DFL);
+  sigset_t one;
+  sigemptyset(&one);
+  sigaddset(&one, sig);
+  ::pthread_sigmask(SIG_UNBLOCK, &one, nullptr);
   std::raise(sig);
+  std::_Exit(128 + sig);  // only if the default action did not end the process
+}
+extern "C" void removeTempsOnFileSizeLimit(int sig) {
+  removeRegisteredTemps();
+  endBySignal(sig);
 }
 
 // A new file beside `path` under a name nobody else uses: O_CREAT | O_EXCL | O_NOFOLLOW, so a file
@@ -106,6 +125,7 @@ Expected<TempFile> createTemp(const std::string& path) {
     std::string name(1, '.');  // hidden: a listing of --out shows finished files only
     name.append(target.filename().string()).append(suffix);
     t.path = (target.parent_path() / name).string();
+    std::lock_guard<std::mutex> lock(gTempMutex);
     t.fd = ::open(t.path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
     if (t.fd >= 0) {
       t.slot = registerTemp(t.path);
@@ -129,18 +149,38 @@ bool writeAll(int fd, const unsigned char* data, size_t size, size_t& written) {
 }  // namespace
 
 void removeTemporariesOnSignal() {
-  for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGXFSZ}) {
+  // SIGINT, SIGTERM and SIGHUP come from outside, to whichever thread does not block them (EGL's
+  // and llvmpipe's threads too): they are blocked here, before any other thread starts (threads
+  // inherit the mask), and one thread of ours takes them with sigwait. A signal the process was
+  // started with ignored (nohup) stays ignored.
+  sigset_t outside;
+  sigemptyset(&outside);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
     struct sigaction current {};
-    // A signal the process was started with ignored (nohup, `trap "" XFSZ`) stays ignored.
     if (::sigaction(sig, nullptr, &current) == 0 && current.sa_handler == SIG_IGN) continue;
-    std::signal(sig, removeTempsAndRaise);
+    sigaddset(&outside, sig);
   }
+  ::pthread_sigmask(SIG_BLOCK, &outside, nullptr);
+  std::thread([outside] {
+    int sig = 0;
+    while (::sigwait(&outside, &sig) != 0) {
+    }
+    gTempMutex.lock();  // held until the process ends: no temporary is created or renamed after this
+    removeRegisteredTemps();
+    endBySignal(sig);
+  }).detach();
+  // SIGXFSZ (a file size limit reached) is raised on the thread whose write passed the limit, with
+  // its temporary registered: a handler there removes the temporaries.
+  struct sigaction current {};
+  if (::sigaction(SIGXFSZ, nullptr, &current) == 0 && current.sa_handler != SIG_IGN)
+    std::signal(SIGXFSZ, removeTempsOnFileSizeLimit);
 }
 
 Status probeWritableDirectory(const std::string& dir) {
   auto temp = createTemp((std::filesystem::path(dir) / "sslr-write-probe").string());
   if (!temp) return Status::error(temp.error());
   ::close(temp.value().fd);
+  std::lock_guard<std::mutex> lock(gTempMutex);
   ::unlink(temp.value().path.c_str());
   unregisterTemp(temp.value().slot);
   return {};
@@ -149,6 +189,7 @@ Status probeWritableDirectory(const std::string& dir) {
 Status writeFiles(const std::vector<std::pair<std::string, std::vector<unsigned char>>>& files) {
   std::vector<TempFile> temps;
   auto discard = [&] {
+    std::lock_guard<std::mutex> lock(gTempMutex);
     for (const auto& t : temps) {
       ::unlink(t.path.c_str());
       unregisterTemp(t.slot);
@@ -174,8 +215,10 @@ Status writeFiles(const std::vector<std::pair<std::string, std::vector<unsigned 
   }
   // rename() replaces a link at the destination itself, never the file it points to.
   for (size_t i = 0; i < files.size(); ++i) {
+    std::unique_lock<std::mutex> lock(gTempMutex);
     if (::rename(temps[i].path.c_str(), files[i].first.c_str()) != 0) {
       const std::string why = std::strerror(errno);
+      lock.unlock();
       discard();
       return Status::error(files[i].first + ": cannot move the finished file into place: " + why);
     }

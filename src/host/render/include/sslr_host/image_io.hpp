@@ -48,7 +48,9 @@ Status writeTextFile(const std::string& path, const std::string& text);
 // Creates and removes a uniquely named file in `dir`: "" if the tools can write there.
 Status probeWritableDirectory(const std::string& dir);
 // SIGINT, SIGTERM, SIGHUP and SIGXFSZ (a file size limit reached mid-write) remove the temporaries
-// being written, then end the process as the signal would have (the tools call it once at start).
+// being written, then end the process as the signal would have. The first three are blocked in
+// every thread and taken by one thread of their own (sigwait), which removes the temporaries while
+// no writer can create or rename one. Call it first in main, before any other thread starts.
 // A signal the process was started with ignored stays ignored.
 void removeTemporariesOnSignal();
 // PNG (8 or 16 bit) reads as stored, scaled to [0,1] (no sRGB decoding); EXR channels R, G, B, A
