@@ -99,6 +99,15 @@ std::vector<std::string> listItems(const std::string& text) {
   return items;
 }
 
+// A scene list's items, each listed once: a scene named twice would be run (and reported) twice.
+std::vector<std::string> uniqueItems(const std::string& text, const std::string& option) {
+  std::vector<std::string> items = listItems(text);
+  for (size_t i = 0; i < items.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      if (items[i] == items[j]) throw std::runtime_error("--" + option + " lists '" + items[i] + "' twice");
+  return items;
+}
+
 // WxH with each side in [lo, hi], or an error naming the option.
 std::pair<int, int> parseSizeOption(const std::string& text, const std::string& option, int lo, int hi) {
   std::istringstream in(text);
@@ -135,70 +144,82 @@ void parseGrid(const cxxopts::ParseResult& args, BenchOptions& bo) {
   positiveInt("warmup", bo.warmup, 0, 100);
   positiveInt("batch", bo.batch, 1, 64);
   if (args.count("size")) std::tie(bo.width, bo.height) = parseSizeOption(args["size"].as<std::string>(), "size", 8, 8192);
-  for (const std::string& s : listItems(args["scenes"].as<std::string>())) {
+  for (const std::string& s : uniqueItems(args["scenes"].as<std::string>(), "scenes")) {
     if (auto check = loadScene(s); !check) throw std::runtime_error(check.error());
     bo.scenes.push_back(s);
   }
 }
 
-// The cost curves and the temporal study, when asked for (the full grid runs both).
+// The cost curves, the glossy and the temporal study, when asked for (the full grid runs them).
+// Every study's options are checked whether or not it runs: a mistyped value is an error even
+// beside --no-curves, --no-glossy or --no-temporal.
 void parseStudies(const cxxopts::ParseResult& args, BenchOptions& bo) {
+  std::vector<std::pair<int, int>> sizes = {{480, 270}, {960, 540}, {1920, 1080}};
+  if (bo.grid == "full") sizes.push_back({3840, 2160});
+  std::vector<int> fractions = {0, 1, 10, 50, 100};
+  if (args.count("curve-sizes")) {
+    sizes.clear();
+    for (const std::string& item : listItems(args["curve-sizes"].as<std::string>()))
+      sizes.push_back(parseSizeOption(item, "curve-sizes", 8, 8192));
+  }
+  if (args.count("curve-fractions")) {
+    fractions.clear();
+    for (const std::string& item : listItems(args["curve-fractions"].as<std::string>())) {
+      std::istringstream in(item);
+      int n = -1;
+      if (!(in >> n) || !in.eof() || n < 0 || n > 100)
+        throw std::runtime_error("--curve-fractions expects percentages 0..100 (got '" + item + "')");
+      fractions.push_back(n);
+    }
+  }
   bool curves = bo.grid == "full" || args.count("curves") || args.count("curve-sizes") || args.count("curve-fractions");
   if (args.count("no-curves")) curves = false;
   if (curves) {
-    bo.curveSizes = {{480, 270}, {960, 540}, {1920, 1080}};
-    if (bo.grid == "full") bo.curveSizes.push_back({3840, 2160});
-    bo.curveFractions = {0, 1, 10, 50, 100};
-    if (args.count("curve-sizes")) {
-      bo.curveSizes.clear();
-      for (const std::string& item : listItems(args["curve-sizes"].as<std::string>()))
-        bo.curveSizes.push_back(parseSizeOption(item, "curve-sizes", 8, 8192));
-    }
-    if (args.count("curve-fractions")) {
-      bo.curveFractions.clear();
-      for (const std::string& item : listItems(args["curve-fractions"].as<std::string>())) {
-        std::istringstream in(item);
-        int n = -1;
-        if (!(in >> n) || !in.eof() || n < 0 || n > 100)
-          throw std::runtime_error("--curve-fractions expects percentages 0..100 (got '" + item + "')");
-        bo.curveFractions.push_back(n);
-      }
-    }
+    bo.curveSizes = sizes;
+    bo.curveFractions = fractions;
+  }
+
+  const auto glossySize = parseSizeOption(args["glossy-size"].as<std::string>(), "glossy-size", 8, 4096);
+  const std::string samples = args["glossy-samples"].as<std::string>();
+  int glossySamples = 0;
+  std::istringstream samplesIn(samples);
+  if (!(samplesIn >> glossySamples) || !samplesIn.eof() || glossySamples < 2 || glossySamples > 65536)
+    throw std::runtime_error("--glossy-samples expects an integer 2..65536 (got '" + samples + "')");
+  std::vector<std::string> glossyScenes = {"glossy", "mirror-room@rough0.25", "curved-mirror@rough0.3",
+                                           "facing-mirror@rough0.3"};
+  if (args.count("glossy-scenes")) {
+    glossyScenes = uniqueItems(args["glossy-scenes"].as<std::string>(), "glossy-scenes");
+    for (const std::string& s : glossyScenes)
+      if (auto check = loadGlossyScene(s); !check) throw std::runtime_error("--glossy-scenes: " + check.error());
   }
   bool glossy = bo.grid == "full" || args.count("glossy") || args.count("glossy-scenes");
   if (args.count("no-glossy")) glossy = false;
   if (glossy) {
-    std::tie(bo.glossyWidth, bo.glossyHeight) = parseSizeOption(args["glossy-size"].as<std::string>(), "glossy-size", 8, 4096);
-    const std::string samples = args["glossy-samples"].as<std::string>();
-    std::istringstream in(samples);
-    if (!(in >> bo.glossySamples) || !in.eof() || bo.glossySamples < 2 || bo.glossySamples > 65536)
-      throw std::runtime_error("--glossy-samples expects an integer 2..65536 (got '" + samples + "')");
-    bo.glossyScenes = {"glossy", "mirror-room@rough0.25", "curved-mirror@rough0.3", "facing-mirror@rough0.3"};
-    if (args.count("glossy-scenes")) bo.glossyScenes = listItems(args["glossy-scenes"].as<std::string>());
-    for (const std::string& s : bo.glossyScenes)
-      if (auto check = loadGlossyScene(s); !check) throw std::runtime_error("--glossy-scenes: " + check.error());
+    std::tie(bo.glossyWidth, bo.glossyHeight) = glossySize;
+    bo.glossySamples = glossySamples;
+    bo.glossyScenes = glossyScenes;
+  }
+
+  const auto temporalSize = parseSizeOption(args["temporal-size"].as<std::string>(), "temporal-size", 8, 4096);
+  std::vector<std::string> temporalScenes = {"mirror-room", "curved-mirror", "glossy"};
+  if (args.count("temporal-scenes")) {
+    temporalScenes = uniqueItems(args["temporal-scenes"].as<std::string>(), "temporal-scenes");
+    for (const std::string& s : temporalScenes)
+      if (auto check = loadScene(s); !check) throw std::runtime_error("--temporal-scenes: " + check.error());
   }
   bool temporal = bo.grid == "full" || args.count("temporal") || args.count("temporal-scenes");
   if (args.count("no-temporal")) temporal = false;
-  if (!temporal) return;
-  std::tie(bo.temporalWidth, bo.temporalHeight) =
-      parseSizeOption(args["temporal-size"].as<std::string>(), "temporal-size", 8, 4096);
-  bo.temporalScenes = {"mirror-room", "curved-mirror", "glossy"};
-  if (args.count("temporal-scenes")) {
-    bo.temporalScenes.clear();
-    for (const std::string& s : listItems(args["temporal-scenes"].as<std::string>())) {
-      if (auto check = loadScene(s); !check) throw std::runtime_error("--temporal-scenes: " + check.error());
-      bo.temporalScenes.push_back(s);
-    }
+  if (temporal) {
+    std::tie(bo.temporalWidth, bo.temporalHeight) = temporalSize;
+    bo.temporalScenes = temporalScenes;
   }
 }
 
 // The output directory, checked before any GL work: a typo or a read-only place costs no run.
 void checkOutputDirectory(const std::string& outDir) {
-  std::error_code ec;
-  std::filesystem::create_directories(std::filesystem::path(outDir) / "report", ec);
-  if (ec) throw std::runtime_error("--out " + outDir + ": cannot create the directory: " + ec.message());
-  if (Status s = probeWritableDirectory(outDir); !s) throw std::runtime_error("--out " + outDir + " is not writable: " + s.message());
+  if (Status s = prepareOutputDirectory(outDir); !s) throw std::runtime_error("--out " + s.message());
+  const std::string report = (std::filesystem::path(outDir) / "report").string();
+  if (Status s = prepareOutputDirectory(report); !s) throw std::runtime_error("--out: " + s.message());
 }
 
 // The defaults per scene (with --configs: every configuration run), times as ratios to the

@@ -64,13 +64,7 @@ void parseSize(const std::string& text, int& w, int& h) {
 // --out must be a directory we can write to: checked (and created) before any rendering, so a
 // typo or a read-only place costs no render and leaves nothing behind.
 void checkOutputDirectory(const fs::path& dir) {
-  std::error_code ec;
-  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-    throw UsageError{"--out " + dir.string() + " exists and is not a directory"};
-  fs::create_directories(dir, ec);
-  if (ec) throw UsageError{"--out " + dir.string() + ": cannot create the directory: " + ec.message()};
-  if (Status s = probeWritableDirectory(dir.string()); !s)
-    throw UsageError{"--out " + dir.string() + " is not writable: " + s.message()};
+  if (Status s = prepareOutputDirectory(dir.string()); !s) throw UsageError{"--out " + s.message()};
 }
 
 // What a size needs, estimated before anything is allocated: on llvmpipe every texture lives in
@@ -454,6 +448,19 @@ void printScore(const HitMetrics& m) {
               m.falseHitRateBeyond1px, m.reflectionRmse, m.nonFinite);
 }
 
+// A frame in which no pixel shows the scene (a model scaled to nothing, a zero node scale, only
+// degenerate triangles, a camera looking away) renders the background alone: said, not silent.
+void warnIfNothingShows(const RenderJob& job, const GBuffer& gbuffer) {
+  const Image depth = gbuffer.readDepth();
+  const float clearDepth = gbuffer.frameInputs().depth.reversedZ ? 0.0f : 1.0f;
+  for (float d : depth.pixels)
+    if (d != clearDepth) return;
+  std::cerr << "sslr-render: warning: no pixel of the " << job.gopt.width << "x" << job.gopt.height << " frame shows "
+            << job.scene.name << " (" << job.scene.triangleCount() << " triangles): the geometry projects to nothing "
+            << "from this camera (a zero or tiny scale, degenerate triangles, or a camera looking away); the images "
+            << "show the background alone\n";
+}
+
 // Renders the job's frames, scores them if asked, writes the images and prints the summary.
 int render(const RenderJob& job) {
   EglOptions eopt;
@@ -481,6 +488,7 @@ int render(const RenderJob& job) {
     }
     if (frame > 0 && stats) laterStats.push_back(r.sslr().waitForStats());
   }
+  warnIfNothingShows(job, r.gbuffer());
   NamedImages files = collectImages(job, r);
   std::optional<HitMetrics> score;
   if (job.score && job.reflections) {
@@ -537,7 +545,11 @@ int run(int argc, char** argv) {
     job.device = args["device"].as<std::string>();
     parseTracing(args, job);
     parseScene(args, job);
-    if (args.count("export-gltf")) return exportGltf(job, args["export-gltf"].as<std::string>());
+    if (args.count("export-gltf")) {
+      const std::string file = args["export-gltf"].as<std::string>();
+      if (Status st = checkOutputFile(file); !st) throw UsageError{"--export-gltf " + st.message()};
+      return exportGltf(job, file);
+    }
     if (Status st = HeadlessContext::checkDevice(job.device); !st) throw UsageError{"--device: " + st.message()};
     checkOutputDirectory(job.outDir);
   } catch (const UsageError& e) {

@@ -65,6 +65,8 @@ int main(int argc, char** argv) {
     if (args.count("screenshot")) {
       vo.screenshot = args["screenshot"].as<std::string>();
       if (vo.frames == 0) throw std::runtime_error("--screenshot needs --frames N (the frame to capture)");
+      if (!vo.screenshot.ends_with(".png")) throw std::runtime_error("--screenshot " + vo.screenshot + ": name a .png file");
+      if (sslr::Status st = checkOutputFile(vo.screenshot); !st) throw std::runtime_error("--screenshot " + st.message());
     }
     vo.hideUi = args.count("hide-ui") > 0;
   } catch (const std::exception& e) {

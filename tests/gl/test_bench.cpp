@@ -123,6 +123,49 @@ namespace {
 
 // The temporal study: every configuration scores every frame of the path, and the result the docs
 // --configs runs exactly the chosen configurations (a method, or method/label) and the baseline;
+
+// A scene given as a file runs under a file-safe name (its plot is no path); a scene listed twice
+// is refused; a switched-off study's options are still checked. All before any GL work but the first.
+TEST_F(Bench, SceneFilesDuplicatesAndSwitchedOffOptions) {
+  const fs::path out = fs::path(SSLR_TEST_TMP) / "bench-scene-file";
+  fs::remove_all(out);
+  const std::string file = std::string(SSLR_SOURCE_DIR) + "/assets/scenes/sky-heavy.gltf";
+  std::string log;
+  ASSERT_EQ(runCommand(std::string(SSLR_BENCH_EXE) + " --configs adaptive-l/high --scenes " + file +
+                           " --size 48x27 --frames 1 --no-curves --out " + out.string(),
+                       &log),
+            0)
+      << log;
+  size_t plots = 0;
+  for (const auto& entry : fs::directory_iterator(out / "report")) {
+    const std::string name = entry.path().filename().string();
+    if (name.starts_with("plot-")) {
+      ++plots;
+      EXPECT_TRUE(name.ends_with("-sky-heavy-gltf.svg")) << name;
+    }
+  }
+  EXPECT_EQ(plots, 1u);
+  const struct {
+    const char* args;
+    const char* message;
+  } refused[] = {
+      {"--scenes sky-heavy,mirror-room,sky-heavy", "--scenes lists 'sky-heavy' twice"},
+      {"--glossy-scenes glossy,glossy", "--glossy-scenes lists 'glossy' twice"},
+      {"--temporal-scenes glossy,glossy --no-temporal", "--temporal-scenes lists 'glossy' twice"},
+      {"--glossy-samples -1 --no-glossy", "--glossy-samples expects an integer 2..65536"},
+      {"--glossy-size 0x0 --no-glossy", "--glossy-size expects WxH"},
+      {"--curve-sizes 0x0 --no-curves", "--curve-sizes expects WxH"},
+      {"--curve-fractions 101 --no-curves", "--curve-fractions expects percentages"},
+      {"--temporal-size 1x1 --no-temporal", "--temporal-size expects WxH"},
+      {"--temporal-scenes no-such-scene --no-temporal", "--temporal-scenes: "},
+  };
+  for (const auto& r : refused) {
+    EXPECT_EQ(runCommand(std::string(SSLR_BENCH_EXE) + " " + r.args + " --out " + (out / "refused").string(), &log), 2)
+        << r.args << ": " << log;
+    EXPECT_NE(log.find(r.message), std::string::npos) << r.args << ": " << log;
+  }
+}
+
 // a name that selects nothing is refused before anything runs, and the error lists the grid.
 TEST_F(Bench, ConfigsSelectsConfigurations) {
   const fs::path out = fs::path(SSLR_TEST_TMP) / "bench-configs";

@@ -142,6 +142,27 @@ TEST_F(RenderCli, DumpWritesEveryNamedBuffer) {
   EXPECT_FALSE(fs::exists(plain / "hit.exr"));
 }
 
+// --out naming a dangling link, and --export-gltf naming a directory or a file in no directory:
+// bad arguments (exit 2) that say what is wrong, before any work.
+TEST(RenderCliNoGl, OutputPathsThatCannotBeUsedAreBadArguments) {
+  const fs::path dir = fs::path(SSLR_TEST_TMP) / "cli-paths";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path dangling = dir / "dangling";
+  fs::create_symlink(dir / "no-such-target", dangling);
+  Result r = run("--size 32x20 --out " + dangling.string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("is a link to"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("which does not exist"), std::string::npos) << r.output;
+  r = run("--export-gltf /");
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("--export-gltf / is a directory"), std::string::npos) << r.output;
+  r = run("--export-gltf " + (dir / "missing" / "scene.gltf").string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("does not exist"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "missing"));
+}
+
 TEST(RenderCliNoGl, OutputThatCannotBeWrittenIsRefusedBeforeRendering) {
   const fs::path dir = fs::path(SSLR_TEST_TMP) / "cli";
   fs::create_directories(dir);
@@ -440,6 +461,28 @@ std::string scaledBoxGltf(const std::string& nodeScale, float positionScale) {
 }
 
 }  // namespace
+
+// A model that shows nothing (scaled by 1e-30, a zero node scale, one degenerate triangle) still
+// renders (the background is a valid picture), but says so; a model that shows is not warned of.
+TEST_F(RenderCli, AModelThatShowsNothingIsSaid) {
+  const std::string degenerate = sslr::test::meshGltf({0, 0, 0, 1, 0, 0, 2, 0, 0}, {0, 1, 2});
+  for (const auto& [name, text] : {std::pair{"tiny", scaledBoxGltf("[1e-30,1e-30,1e-30]", 1.0f)},
+                                   std::pair{"zero-scale", scaledBoxGltf("[0,0,0]", 1.0f)},
+                                   std::pair{"degenerate", degenerate}, std::pair{"visible", scaledBoxGltf("[1,1,1]", 1.0f)}}) {
+    const fs::path out = freshDir(std::string("nothing-") + name);
+    fs::create_directories(out);
+    const fs::path file = out / "scene.gltf";
+    { std::ofstream(file) << text; }
+    const Result r = run("--scene " + file.string() + " --size 48x32 --out " + out.string());
+    if (r.exitCode == 2) {  // the loader may refuse a scene of nothing outright, with its reason
+      EXPECT_NE(std::string(name), "visible") << r.output;
+      continue;
+    }
+    ASSERT_EQ(r.exitCode, 0) << name << "\n" << r.output;
+    const bool warned = r.output.find("warning: no pixel of the 48x32 frame shows") != std::string::npos;
+    EXPECT_EQ(warned, std::string(name) != "visible") << name << "\n" << r.output;
+  }
+}
 
 TEST_F(RenderCli, SingularNodeTransformsRenderFiniteColour) {
   // A node scale of [1,1,0] made the inverse-transpose normal matrix NaN: the object came out

@@ -156,6 +156,18 @@ TEST_F(Viewer, NoDisplayAndBadArgumentsAreClearErrors) {
     EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.output;
     EXPECT_NE(r.output.find("sslr-view:"), std::string::npos) << r.output;
   }
+  // A screenshot that cannot be written is refused before any window opens (no display needed).
+  const struct {
+    const char* args;
+    const char* message;
+  } shots[] = {{"--frames 1 --screenshot /", "name a .png file"},
+               {"--frames 1 --screenshot /tmp", "name a .png file"},
+               {"--frames 1 --screenshot /nonexistent-dir/shot.png", "does not exist"}};
+  for (const auto& shot : shots) {
+    const Result r = sh("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(SSLR_VIEW_EXE) + " " + shot.args);
+    EXPECT_EQ(r.exitCode, 2) << shot.args << ": " << r.output;
+    EXPECT_NE(r.output.find(shot.message), std::string::npos) << shot.args << ": " << r.output;
+  }
   const Result missing = view("--scene /nonexistent/model.gltf --frames 1");
   EXPECT_EQ(missing.exitCode, 2) << missing.output;
   EXPECT_NE(missing.output.find("model.gltf"), std::string::npos) << missing.output;

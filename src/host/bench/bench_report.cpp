@@ -539,7 +539,7 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
       }
     // Each plot also as a standalone SVG file (docs link to them).
     const std::string svg = plotSvg(runs, baselineMs);
-    if (Status s = writeTextFile((fs::path(outDir) / "report" / ("plot-" + sc.scene + ".svg")).string(), svg + "\n"); !s)
+    if (Status s = writeTextFile((fs::path(outDir) / "report" / ("plot-" + fileSlug(sc.scene) + ".svg")).string(), svg + "\n"); !s)
       return s;
     h << "<h2>" << esc(sc.scene) << "</h2><p>Reflective pixels " << sc.reflective << ": visible " << sc.visible
       << ", occluded " << sc.occluded << ", off screen " << sc.offScreen << ", escaped " << sc.escaped << ".</p>"

@@ -186,6 +186,32 @@ Status probeWritableDirectory(const std::string& dir) {
   return {};
 }
 
+Status prepareOutputDirectory(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path path(dir);
+  if (fs::is_symlink(fs::symlink_status(path, ec)) && !fs::exists(path, ec))
+    return Status::error(dir + " is a link to '" + fs::read_symlink(path, ec).string() + "', which does not exist");
+  if (fs::exists(path, ec) && !fs::is_directory(path, ec)) return Status::error(dir + " exists and is not a directory");
+  fs::create_directories(path, ec);
+  if (ec) return Status::error(dir + ": cannot create the directory: " + ec.message());
+  if (Status s = probeWritableDirectory(dir); !s) return Status::error(dir + " is not writable: " + s.message());
+  return {};
+}
+
+Status checkOutputFile(const std::string& file) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path path(file);
+  if (file.empty()) return Status::error("the file name is empty");
+  if (fs::is_directory(path, ec)) return Status::error(file + " is a directory: name a file");
+  const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  if (!fs::is_directory(parent, ec)) return Status::error(file + ": its directory " + parent.string() + " does not exist");
+  if (Status s = probeWritableDirectory(parent.string()); !s)
+    return Status::error(file + ": its directory is not writable: " + s.message());
+  return {};
+}
+
 Status writeFiles(const std::vector<std::pair<std::string, std::vector<unsigned char>>>& files) {
   std::vector<TempFile> temps;
   auto discard = [&] {

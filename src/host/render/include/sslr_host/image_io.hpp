@@ -47,6 +47,11 @@ Status writeFiles(const std::vector<std::pair<std::string, std::vector<unsigned 
 Status writeTextFile(const std::string& path, const std::string& text);
 // Creates and removes a uniquely named file in `dir`: "" if the tools can write there.
 Status probeWritableDirectory(const std::string& dir);
+// An output directory, checked before any work: created if missing, refused (with a message
+// beginning with `dir`) if it is a file, a dangling link, or not writable.
+Status prepareOutputDirectory(const std::string& dir);
+// An output file, checked before any work: not a directory, in an existing, writable directory.
+Status checkOutputFile(const std::string& file);
 // SIGINT, SIGTERM, SIGHUP and SIGXFSZ (a file size limit reached mid-write) remove the temporaries
 // being written, then end the process as the signal would have. The first three are blocked in
 // every thread and taken by one thread of their own (sigwait), which removes the temporaries while
