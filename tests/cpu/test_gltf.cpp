@@ -530,8 +530,8 @@ std::string instancedMesh(const fs::path& dir, const std::string& name, int vert
 }
 
 TEST_F(Gltf, InstancedGeometryIsBudgetedBeforeItIsBuilt) {
-  // 60,000 vertices (0.7 MB) drawn by 2,000 nodes: each node's copy makes 3.6 GB, over the 2 GiB
-  // budget; refused from the accessors' counts, before any copy is made.
+  // 60,000 vertices (0.7 MB) drawn by 2,000 nodes: each node's copy makes 3.6 GB (three copies:
+  // 11 GB), over the 1.25 GiB budget; refused from the accessors' counts, before any copy is made.
   expectError(instancedMesh(dir, "instanced-2000", 60000, 2000), "MiB of geometry");
   // The same mesh under 20 nodes loads: one mesh per node.
   auto s = loadGltf(instancedMesh(dir, "instanced-20", 60000, 20));

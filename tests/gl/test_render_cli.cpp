@@ -4,9 +4,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include <csignal>
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -161,6 +163,52 @@ TEST(RenderCliNoGl, OutputPathsThatCannotBeUsedAreBadArguments) {
   EXPECT_EQ(r.exitCode, 2) << r.output;
   EXPECT_NE(r.output.find("does not exist"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "missing"));
+}
+
+// A 34 KB glTF whose 585 primitives share one 65k-vertex grid in a 2.4 MB .bin (triangles, or a
+// strip that expands to 3 indices a triangle): every copy the tools would make is budgeted from the
+// accessors, so the file is refused (exit 2, the limit named) before any is made. It once reached
+// 4.6 GB resident and died of std::bad_alloc.
+TEST(RenderCliNoGl, ASmallFileOfSharedGeometryIsRefusedByItsBudget) {
+  const fs::path dir = fs::path(SSLR_TEST_TMP) / "cli-geometry-budget";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const int n = 256;
+  std::vector<float> pos;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) pos.insert(pos.end(), {x / float(n - 1), 0.0f, y / float(n - 1)});
+  for (const bool strip : {false, true}) {
+    std::vector<std::uint32_t> idx;
+    if (strip) {
+      for (std::uint32_t i = 0; i < std::uint32_t(n * n); ++i) idx.push_back(i);
+    } else {
+      for (int y = 0; y + 1 < n; ++y)
+        for (int x = 0; x + 1 < n; ++x) {
+          const std::uint32_t a = std::uint32_t(y * n + x);
+          idx.insert(idx.end(), {a, a + n, a + 1, a + 1, a + n, a + n + 1});
+        }
+    }
+    const std::string name = strip ? "strip" : "triangles";
+    const std::string bytes = sslr::test::bytesOf(pos) + sslr::test::bytesOf(idx);
+    { std::ofstream(dir / (name + ".bin"), std::ios::binary) << bytes; }
+    std::ostringstream j;
+    j << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],"meshes":[{"primitives":[)";
+    for (int p = 0; p < 585; ++p)
+      j << (p ? "," : "") << R"({"attributes":{"POSITION":0},"indices":1,"mode":)" << (strip ? 5 : 4) << "}";
+    j << R"(]}],"buffers":[{"byteLength":)" << bytes.size() << R"(,"uri":")" << name << R"(.bin"}],)"
+      << R"("bufferViews":[{"buffer":0,"byteLength":)" << pos.size() * 4 << R"(},{"buffer":0,"byteOffset":)"
+      << pos.size() * 4 << R"(,"byteLength":)" << idx.size() * 4 << R"(}],"accessors":[{"bufferView":0,)"
+      << R"("componentType":5126,"count":)" << n * n << R"(,"type":"VEC3","min":[0,0,0],"max":[1,0,1]},)"
+      << R"({"bufferView":1,"componentType":5125,"count":)" << idx.size() << R"(,"type":"SCALAR"}]})";
+    const fs::path file = dir / (name + ".gltf");
+    { std::ofstream(file) << j.str(); }
+    const Result r = run("--scene " + file.string() + " --size 64x36 --out " + (dir / "out").string());
+    EXPECT_EQ(r.exitCode, 2) << name << ": " << r.output;
+    EXPECT_NE(r.output.find("the tools load up to 1280 MiB"), std::string::npos) << name << ": " << r.output;
+  }
+  struct rusage children {};
+  ::getrusage(RUSAGE_CHILDREN, &children);
+  EXPECT_LT(children.ru_maxrss, 2L << 20) << "KiB: the largest child's peak must stay under 2 GiB";
 }
 
 TEST(RenderCliNoGl, OutputThatCannotBeWrittenIsRefusedBeforeRendering) {

@@ -21,8 +21,17 @@ glm::mat4 toFloat(const glm::dmat4& m) { return glm::mat4(m); }
 }  // namespace
 
 GpuScene::GpuScene(const Scene& scene) : scene_(scene) {
+  // Sized once: growing by doubling would hold up to twice the geometry while it uploads (the
+  // loader's budget counts one upload copy).
+  size_t vertexCount = 0, indexCount = 0;
+  for (const Mesh& m : scene.meshes) {
+    vertexCount += m.positions.size();
+    indexCount += m.indices.size();
+  }
   std::vector<Vertex> vertices;
   std::vector<std::uint32_t> indices;
+  vertices.reserve(vertexCount);
+  indices.reserve(indexCount);
   for (const Mesh& m : scene.meshes) {
     Draw d;
     d.baseVertex = static_cast<GLint>(vertices.size());
