@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -229,6 +230,7 @@ cxxopts::Options renderOptions() {
       ("frames", "render the same view N times; with --stats the pass times are the median of frames 2..N "
                  "(the first compiles shaders)", cxxopts::value<int>()->default_value("1"))
       ("temporal", "temporal reuse (Settings::temporal) from the second frame on")
+      ("no-prepare", "skip Context::prepare() before the first frame (to see the compile hitch it removes; --stats times both)")
       ("score", "score the traced hits against Embree ground truth (recall, error, false hits), print them and write DIR/error.png (and DIR/truth.exr with --dump)")
       ("h,help", "show this help");
   return options;
@@ -245,6 +247,7 @@ struct RenderJob {
   fs::path outDir;
   bool dump = false, score = false;
   int frames = 1;
+  bool prepare = true;                              // Context::prepare() before the first frame
   std::string device;                               // EGL device (--device)
   DeviceProfile profile = DeviceProfile::Auto;      // sslr's pass shapes (--device-profile)
 };
@@ -304,6 +307,7 @@ void parseTracing(const cxxopts::ParseResult& args, RenderJob& job) {
   if (args.count("temporal")) settings.temporal.enabled = true;
   if (std::string why = validate(settings); !why.empty()) throw UsageError{why};  // after every flag
   job.frames = args["frames"].as<int>();
+  job.prepare = args.count("no-prepare") == 0;
   if (job.frames < 1 || job.frames > 10000)
     throw UsageError{"--frames must be 1..10000 (got " + std::to_string(job.frames) + ")"};
 }
@@ -437,6 +441,28 @@ void printStats(const FrameStats& st, const std::vector<FrameStats>& laterStats,
   }
 }
 
+// --stats: what prepare() took, and the frames after it (G-buffer, trace, composite), wall clock
+// around glFinish: the first frame is the one a load-time prepare() should leave no hitch in.
+struct FrameTimes {
+  double prepareMs = -1.0;
+  std::vector<double> frameMs;
+};
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+void printFrameTimes(const FrameTimes& t) {
+  if (t.frameMs.empty()) return;
+  if (t.prepareMs >= 0.0) std::printf("  frame times (wall clock around glFinish): prepare() %.1f ms,", t.prepareMs);
+  else std::printf("  frame times (wall clock around glFinish): prepare() skipped (--no-prepare),");
+  std::printf(" first frame %.1f ms", t.frameMs.front());
+  if (t.frameMs.size() > 1) {
+    std::vector<double> later(t.frameMs.begin() + 1, t.frameMs.end());
+    std::nth_element(later.begin(), later.begin() + static_cast<long>(later.size() / 2), later.end());
+    std::printf(", later frames median %.1f ms (%zu frames)", later[later.size() / 2], later.size());
+  }
+  std::printf("\n");
+}
+
 // --score: the truth's classes and the scores.
 void printScore(const HitMetrics& m) {
   std::printf("  truth: %zu visible (A; %zu of them shown by no pixel within 1 px), %zu occluded (B), %zu off "
@@ -480,11 +506,26 @@ int render(const RenderJob& job) {
   GpuScene gpuScene(job.scene);
   const Settings* settings = job.reflections ? &job.settings : nullptr;
   const bool stats = job.settings.debug.collectStats && job.reflections;
+  // As an engine does at load time: every program compiled and run once before the first frame.
+  FrameTimes times;
+  if (settings != nullptr && job.prepare) {
+    const auto start = std::chrono::steady_clock::now();
+    if (Status s = r.prepare(gpuScene, job.camera, *settings); !s) {
+      std::cerr << "sslr-render: " << s.message() << "\n";
+      return kExitFailure;
+    }
+    times.prepareMs = millisecondsSince(start);
+  }
   std::vector<FrameStats> laterStats;  // every frame after the first (which compiles the shaders)
   for (int frame = 0; frame < job.frames; ++frame) {
+    const auto start = std::chrono::steady_clock::now();
     if (Status s = r.render(gpuScene, job.camera, settings); !s) {
       std::cerr << "sslr-render: " << s.message() << "\n";
       return kExitFailure;
+    }
+    if (stats) {
+      glFinish();
+      times.frameMs.push_back(millisecondsSince(start));
     }
     if (frame > 0 && stats) laterStats.push_back(r.sslr().waitForStats());
   }
@@ -513,7 +554,10 @@ int render(const RenderJob& job) {
   std::cout << "sslr-render: " << job.scene.name << " " << job.gopt.width << "x" << job.gopt.height << " ("
             << toString(job.gopt.depth) << " depth, " << job.scene.triangleCount() << " triangles) -> "
             << (job.outDir / "final.png").string() << (job.dump ? " + buffers" : "") << "\n";
-  if (stats) printStats(r.sslr().waitForStats(), laterStats, job.frames, gl.value()->isSoftware(), r.sslr().device());
+  if (stats) {
+    printStats(r.sslr().waitForStats(), laterStats, job.frames, gl.value()->isSoftware(), r.sslr().device());
+    printFrameTimes(times);
+  }
   if (score) printScore(*score);
   return 0;
 }

@@ -277,6 +277,12 @@ TEST_F(Api, RestoresEveryPieceOfGlStateItTouches) {
   Settings s;
   s.debug.outputs = true;
   s.debug.collectStats = true;
+  PrepareOptions warmComposite;  // prepare's warm-up frames and composite draw
+  warmComposite.composite = true;
+  warmComposite.framebuffer = hostFbo;
+  warmComposite.compositeOptions = {CompositeMode::BlendOverFallback, f.gbuffer->fallbackSpecularTexture()};
+  ASSERT_TRUE(ctx->prepare(f.gbuffer->frameInputs(), s, warmComposite));
+  EXPECT_EQ(Snapshot::take().values, before.values) << "prepare changed GL state";
   FrameInputs depthOnly = f.gbuffer->frameInputs();
   depthOnly.backDepthTexture = 0;
   ASSERT_TRUE(ctx->dispatch(depthOnly, s));
@@ -1054,6 +1060,45 @@ TEST_F(Api, PrepareCompilesEveryProgramFramesUse) {
   }
 }
 
+// prepare() runs each program once on the host's inputs (drivers compile at first use) and then
+// puts the frame state back: the frames after it are bit for bit those of a context that was never
+// prepared (outputs, hits, temporal history, the stats' frame numbers), at full and half resolution.
+TEST_F(Api, PrepareLeavesTheFramesAsWithoutIt) {
+  for (bool half : {false, true}) {
+    SCOPED_TRACE(half ? "half resolution" : "full resolution");
+    auto plain = makeContext();
+    auto prepared = makeContext();
+    Frame f(DepthMode::Reversed, NormalEncoding::Octahedral, true);
+    FrameInputs in = f.gbuffer->frameInputs();
+    in.previousClipFromView = in.clipFromView;
+    Settings s;
+    s.halfResolution = half;
+    s.temporal.enabled = true;
+    s.debug.outputs = true;
+    s.debug.collectStats = true;
+    ASSERT_TRUE(prepared->prepare(in, s));
+    EXPECT_EQ(prepared->lastStats().frame, 0u) << "the warm-up frames are not the host's";
+    // An empty frame first (what the warm-up traced must not show), then traced ones.
+    Settings empty = s;
+    empty.selection.minReflectance = 1.0f;
+    for (std::uint64_t frame = 1; frame <= 4; ++frame) {
+      const Settings& now = frame == 1 ? empty : s;
+      ASSERT_TRUE(plain->dispatch(in, now));
+      ASSERT_TRUE(prepared->dispatch(in, now));
+      for (auto [tex, channels] : {std::pair{&Context::resolvedTexture, 4}, std::pair{&Context::reflectionTexture, 4},
+                                   std::pair{&Context::hitTexture, 4}, std::pair{&Context::iterationsTexture, 1}}) {
+        const Image a = readAll(((*plain).*tex)(), channels), b = readAll(((*prepared).*tex)(), channels);
+        EXPECT_EQ(a.pixels, b.pixels) << "frame " << frame;
+      }
+      const FrameStats sa = plain->waitForStats(), sb = prepared->waitForStats();
+      EXPECT_EQ(sb.frame, frame);
+      EXPECT_EQ(sa.tracedPixels, sb.tracedPixels);
+      EXPECT_EQ(sa.fetches, sb.fetches);
+    }
+  }
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
 // prepare() validates like dispatch(): bad settings and a bad projection are refused, named.
 TEST_F(Api, PrepareRefusesWhatDispatchRefuses) {
   auto ctx = makeContext();
@@ -1069,6 +1114,28 @@ TEST_F(Api, PrepareRefusesWhatDispatchRefuses) {
   const Status proj = ctx->prepare(identity, Settings{});
   ASSERT_FALSE(proj);
   EXPECT_NE(proj.message().find("identity"), std::string::npos) << proj.message();
+  // Its composite warm-up: a framebuffer that is none, a fallback the mode does not read, radiance
+  // output (composite refuses it) are refused, named; nothing is left bound or in error.
+  PrepareOptions warm;
+  warm.composite = true;
+  warm.framebuffer = 4242;
+  Status st2 = ctx->prepare(f.gbuffer->frameInputs(), Settings{}, warm);
+  ASSERT_FALSE(st2);
+  EXPECT_NE(st2.message().find("PrepareOptions::framebuffer 4242 is not a framebuffer name"), std::string::npos)
+      << st2.message();
+  warm.framebuffer = 0;
+  warm.compositeOptions.fallbackSpecularTexture = f.gbuffer->fallbackSpecularTexture();
+  st2 = ctx->prepare(f.gbuffer->frameInputs(), Settings{}, warm);
+  ASSERT_FALSE(st2);
+  EXPECT_NE(st2.message().find("the mode is Add"), std::string::npos) << st2.message();
+  warm.compositeOptions = {};
+  Settings radiance;
+  radiance.output = OutputMode::Radiance;
+  st2 = ctx->prepare(f.gbuffer->frameInputs(), radiance, warm);
+  ASSERT_FALSE(st2);
+  EXPECT_NE(st2.message().find("OutputMode::Radiance"), std::string::npos) << st2.message();
+  EXPECT_TRUE(ctx->prepare(f.gbuffer->frameInputs(), Settings{}, warm)) << "the default framebuffer counts as RGBA8";
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
 // The tools' back-face depth pass: a unit box 4.5 units in front of the camera, seen square on,

@@ -58,6 +58,19 @@ Status FrameRenderer::render(const GpuScene& scene, const Camera& camera, const 
   return sslr_->composite(finalFbo_, composite);
 }
 
+Status FrameRenderer::prepare(const GpuScene& scene, const Camera& camera, const Settings& settings) {
+  if (Status s = gbuffer_->render(scene, camera); !s) return s;
+  FrameInputs inputs = gbuffer_->frameInputs();
+  inputs.previousClipFromView = inputs.clipFromView;
+  PrepareOptions options;
+  options.composite = settings.output == OutputMode::Weighted;
+  options.framebuffer = finalFbo_;
+  options.compositeOptions.mode = compositeMode_;
+  if (compositeMode_ == CompositeMode::BlendOverFallback)
+    options.compositeOptions.fallbackSpecularTexture = gbuffer_->fallbackSpecularTexture();
+  return sslr_->prepare(inputs, settings, options);
+}
+
 Image FrameRenderer::readFinal() const { return readTexture(final_, gbuffer_->width(), gbuffer_->height(), 3); }
 Image FrameRenderer::readReflection() const {
   return readTexture(sslr_->reflectionTexture(), gbuffer_->width(), gbuffer_->height(), 4);

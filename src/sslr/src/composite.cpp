@@ -44,17 +44,8 @@ Expected<GLuint> Context::Impl::compositeProgram(bool overFallback) {
   return program(stages, overFallback ? "#define SSLR_COMPOSITE_FALLBACK 1\n" : "");
 }
 
-Status Context::Impl::composite(GLName framebuffer, const CompositeOptions& options) {
-  if (Status s = checkCurrentContext("composite()"); !s) return s;
-  if (!haveFrame)
-    return Status::error(StatusCode::NoFrame, "sslr: composite() needs a successful dispatch() first");
-  if (frameIsRadiance)
-    return Status::error(StatusCode::InvalidSettings, "sslr: composite(): the last dispatch traced with "
-                         "Settings::output = OutputMode::Radiance, which holds no Fresnel term: apply your own "
-                         "specular term to resolvedTexture(), or dispatch with OutputMode::Weighted");
-  if (framebuffer != 0 && !gl.IsFramebuffer(framebuffer))
-    return Status::error(StatusCode::InvalidInput, "sslr: composite(): " + std::to_string(framebuffer) +
-                         " is not a framebuffer name");
+// CompositeOptions that composite() and prepare()'s warm-up accept.
+Status Context::Impl::checkCompositeOptions(const CompositeOptions& options) const {
   const bool blendOverFallback = options.mode == CompositeMode::BlendOverFallback;
   if (options.mode != CompositeMode::Add && !blendOverFallback)
     return Status::error(StatusCode::InvalidSettings, "sslr: composite(): CompositeOptions::mode " +
@@ -68,6 +59,22 @@ Status Context::Impl::composite(GLName framebuffer, const CompositeOptions& opti
     return Status::error(StatusCode::InvalidSettings, "sslr: composite(): CompositeOptions::fallbackSpecularTexture is set but the mode "
                          "is Add, which does not read it (use CompositeMode::BlendOverFallback)");
   }
+  return {};
+}
+
+Status Context::Impl::composite(GLName framebuffer, const CompositeOptions& options) {
+  if (Status s = checkCurrentContext("composite()"); !s) return s;
+  if (!haveFrame)
+    return Status::error(StatusCode::NoFrame, "sslr: composite() needs a successful dispatch() first");
+  if (frameIsRadiance)
+    return Status::error(StatusCode::InvalidSettings, "sslr: composite(): the last dispatch traced with "
+                         "Settings::output = OutputMode::Radiance, which holds no Fresnel term: apply your own "
+                         "specular term to resolvedTexture(), or dispatch with OutputMode::Weighted");
+  if (framebuffer != 0 && !gl.IsFramebuffer(framebuffer))
+    return Status::error(StatusCode::InvalidInput, "sslr: composite(): " + std::to_string(framebuffer) +
+                         " is not a framebuffer name");
+  if (Status s = checkCompositeOptions(options); !s) return s;
+  const bool blendOverFallback = options.mode == CompositeMode::BlendOverFallback;
   auto addProgram = compositeProgram(false);
   if (!addProgram) return addProgram.status();
   Expected<GLuint> fallbackProgram = GLuint(0);
@@ -81,6 +88,14 @@ Status Context::Impl::composite(GLName framebuffer, const CompositeOptions& opti
     return Status::error(StatusCode::InvalidInput, "sslr: composite(): framebuffer " + std::to_string(framebuffer) +
                          " is not complete");
   if (Status s = checkCompositeTarget(framebuffer); !s) return s;
+  drawComposite(framebuffer, addProgram.value(), fallbackProgram.value(), options);
+  return {};
+}
+
+void Context::Impl::drawComposite(GLName framebuffer, GLuint addProgram, GLuint fallbackProgram,
+                                  const CompositeOptions& options) const {
+  const bool blendOverFallback = options.mode == CompositeMode::BlendOverFallback;
+  gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
   gl.PushDebugGroup(GL_DEBUG_SOURCE_THIRD_PARTY, 0, -1, "sslr.composite");
   gl.BindVertexArray(vao);
   gl.BindBufferBase(GL_UNIFORM_BUFFER, SSLR_BINDING_FRAME_UBO, frameUbo);
@@ -116,15 +131,66 @@ Status Context::Impl::composite(GLName framebuffer, const CompositeOptions& opti
     // existing - coverage * fallback first, as a subtraction by the blender: a fixed-point target
     // clamps a negative source to 0 before blending, so "reflection - coverage * fallback" cannot
     // be one additive draw.
-    gl.UseProgram(fallbackProgram.value());
+    gl.UseProgram(fallbackProgram);
     gl.BlendEquationSeparatei(0, GL_FUNC_REVERSE_SUBTRACT, GL_FUNC_ADD);
     gl.DrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(kDrawArgsOffset));
   }
-  gl.UseProgram(addProgram.value());
+  gl.UseProgram(addProgram);
   gl.BlendEquationSeparatei(0, GL_FUNC_ADD, GL_FUNC_ADD);
   gl.DrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(kDrawArgsOffset));
   gl.PopDebugGroup();
-  return {};
+}
+
+// prepare(): composite()'s draw once, into a scratch target of the host's format (drivers build a
+// draw's machine code for the target format and blend state it first runs with).
+Status Context::Impl::warmUpComposite(const PrepareOptions& options) {
+  const CompositeOptions& co = options.compositeOptions;
+  if (Status s = checkCompositeOptions(co); !s) return s;
+  GLint format = GL_RGBA8;
+  if (options.framebuffer != 0) {
+    if (!gl.IsFramebuffer(options.framebuffer))
+      return Status::error(StatusCode::InvalidInput, "sslr: prepare(): PrepareOptions::framebuffer " +
+                           std::to_string(options.framebuffer) + " is not a framebuffer name");
+    GLint attachment = GL_NONE, type = GL_NONE, name = 0;
+    {
+      detail::StateGuard guard(gl, true);  // GL_DRAW_BUFFER0 is read from the bound draw framebuffer
+      gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, options.framebuffer);
+      gl.GetIntegerv(GL_DRAW_BUFFER0, &attachment);
+    }
+    if (attachment != GL_NONE) {
+      gl.GetNamedFramebufferAttachmentParameteriv(options.framebuffer, static_cast<GLenum>(attachment),
+                                                  GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+      gl.GetNamedFramebufferAttachmentParameteriv(options.framebuffer, static_cast<GLenum>(attachment),
+                                                  GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &name);
+    }
+    if (type == GL_TEXTURE) gl.GetTextureLevelParameteriv(static_cast<GLuint>(name), 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    else if (type == GL_RENDERBUFFER)
+      gl.GetNamedRenderbufferParameteriv(static_cast<GLuint>(name), GL_RENDERBUFFER_INTERNAL_FORMAT, &format);
+    else
+      return Status::error(StatusCode::InvalidInput, "sslr: prepare(): PrepareOptions::framebuffer " +
+                           std::to_string(options.framebuffer) + " has no image on draw buffer 0");
+  }
+  auto addProgram = compositeProgram(false);
+  if (!addProgram) return addProgram.status();
+  auto fallbackProgram = compositeProgram(true);
+  if (!fallbackProgram) return fallbackProgram.status();
+  GLuint target = 0, fbo = 0;
+  gl.CreateTextures(GL_TEXTURE_2D, 1, &target);
+  gl.TextureStorage2D(target, 1, static_cast<GLenum>(format), SSLR_TILE_SIZE, SSLR_TILE_SIZE);
+  gl.CreateFramebuffers(1, &fbo);
+  gl.NamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, target, 0);
+  Status result;
+  {
+    detail::StateGuard guard(gl, true);
+    if (gl.CheckNamedFramebufferStatus(fbo, GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE)
+      drawComposite(fbo, addProgram.value(), fallbackProgram.value(), co);
+    else
+      result = Status::error(StatusCode::InvalidInput, "sslr: prepare(): the format of PrepareOptions::framebuffer's draw "
+                             "buffer 0 (internal format " + std::to_string(format) + ") cannot be rendered to");
+  }
+  gl.DeleteFramebuffers(1, &fbo);
+  gl.DeleteTextures(1, &target);
+  return result;
 }
 
 }  // namespace sslr

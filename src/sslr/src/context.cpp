@@ -48,17 +48,49 @@ void Context::Impl::createTargets() {
   area = whole;
   lastRect = whole.rect;
   pyramid.texture = 0;  // created by the first dispatch that traces it (createPyramid)
-  const GLsizeiptr tiles = static_cast<GLsizeiptr>(tilesX()) * tilesY();
   gl.CreateBuffers(1, &tileBuffer);
-  // Header (see common/tiles.glsl), traced tiles, tiles to blur, per-tile stamps (zero: frame
-  // indices start at 1), the previous frame's traced tiles (none: the outputs start cleared).
-  std::vector<GLuint> zeros(static_cast<size_t>(kTileHeader + kTileArrays * tiles), 0u);
-  zeros[kCleanupDispatchOffset / 4 + 1] = zeros[kCleanupDispatchOffset / 4 + 2] = 1;
-  gl.NamedBufferStorage(tileBuffer, static_cast<GLsizeiptr>(zeros.size() * sizeof(GLuint)), zeros.data(),
+  const std::vector<GLuint> tiles = initialTileList();
+  gl.NamedBufferStorage(tileBuffer, static_cast<GLsizeiptr>(tiles.size() * sizeof(GLuint)), tiles.data(),
                         GL_DYNAMIC_STORAGE_BIT);
   label(GL_BUFFER, tileBuffer, "sslr.tiles");
   const float zero[4] = {0, 0, 0, 0};
   for (GLuint t : {reflection, resolved}) gl.ClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
+}
+
+// Header (see common/tiles.glsl), traced tiles, tiles to blur, per-tile stamps (zero: frame
+// indices start at 1), the previous frame's traced tiles (none: the outputs start cleared).
+std::vector<GLuint> Context::Impl::initialTileList() const {
+  const size_t tiles = static_cast<size_t>(tilesX()) * tilesY();
+  std::vector<GLuint> list(kTileHeader + kTileArrays * tiles, 0u);
+  list[kCleanupDispatchOffset / 4 + 1] = list[kCleanupDispatchOffset / 4 + 2] = 1;
+  return list;
+}
+
+void Context::Impl::resetFrameState(std::uint64_t dispatchesBefore, int frameIndexBefore) {
+  const std::vector<GLuint> tiles = initialTileList();
+  gl.NamedBufferSubData(tileBuffer, 0, static_cast<GLsizeiptr>(tiles.size() * sizeof(GLuint)), tiles.data());
+  const float zero[4] = {0, 0, 0, 0};
+  for (GLuint t : {reflection, blurTemp, resolved, hit, iterations, halfRes.quadHit, halfRes.quadSurface,
+                   history.color, history.key})
+    if (t != 0) gl.ClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
+  if (feedback.fence != nullptr) gl.DeleteSync(feedback.fence);
+  feedback.fence = nullptr;
+  feedback.traversalInline = feedback.hasTraversal = feedback.lastFrameListedNoTile = false;
+  history.valid = false;
+  const FrameArea whole = areaOf(Viewport{0, 0, width, height});
+  area = whole;
+  lastRect = whole.rect;
+  // The warm-up frames are no frames of the host's: their stats slots are dropped, the counters
+  // put back.
+  for (StatsSlot& slot : statsRing)
+    if (slot.frame > dispatchesBefore) {
+      if (slot.fence != nullptr) gl.DeleteSync(slot.fence);
+      slot.fence = nullptr;
+      slot.frame = 0;
+    }
+  dispatches = dispatchesBefore;
+  frameIndex = frameIndexBefore;
+  haveFrame = false;
 }
 
 Context::Impl::FrameArea Context::Impl::areaOf(const Viewport& rect) {
@@ -222,8 +254,8 @@ DeviceProfile Context::device() const {
 Status Context::dispatch(const FrameInputs& inputs, const Settings& settings) {
   return impl_->dispatch(inputs, settings);
 }
-Status Context::prepare(const FrameInputs& inputs, const Settings& settings) {
-  return impl_->prepare(inputs, settings);
+Status Context::prepare(const FrameInputs& inputs, const Settings& settings, const PrepareOptions& options) {
+  return impl_->prepare(inputs, settings, options);
 }
 Status Context::composite(GLName framebuffer, const CompositeOptions& options) {
   return impl_->composite(framebuffer, options);

@@ -237,7 +237,12 @@ struct Context::Impl {
   void buildPyramid(GLuint blockProgram, GLuint singleProgram) const;
   void readFeedback();
   Status dispatch(const FrameInputs& in, const Settings& settings);
-  Status prepare(const FrameInputs& in, const Settings& settings);
+  Status prepare(const FrameInputs& in, const Settings& settings, const PrepareOptions& options);
+  void warmUp(FramePlan& plan, const FrameInputs& in);
+  // The targets' contents, the tile list, the feedback, the history and the counters as after
+  // create() or resize(), keeping every GL name (after prepare's warm-up frames).
+  void resetFrameState(std::uint64_t dispatchesBefore, int frameIndexBefore);
+  std::vector<GLuint> initialTileList() const;
   FramePlan planFrame(const Settings& settings, const shared::SslrFrame& constants,
                       bool hadHistory);
   Status buildPrograms(FramePlan& plan, const FrameInputs& in, const Settings& settings);
@@ -258,6 +263,10 @@ struct Context::Impl {
   void finishFrame(const FramePlan& plan);
   // composite.cpp
   Status composite(GLName framebuffer, const CompositeOptions& options);
+  Status checkCompositeOptions(const CompositeOptions& options) const;
+  // The draw itself, into `framebuffer` (bound and checked by the caller's guard).
+  void drawComposite(GLName framebuffer, GLuint addProgram, GLuint fallbackProgram, const CompositeOptions& options) const;
+  Status warmUpComposite(const PrepareOptions& options);
   Status checkCompositeTarget(GLName framebuffer) const;
   Expected<GLuint> compositeProgram(bool overFallback);
   // An error when no GL context is current on the calling thread (every GL call would then be

@@ -14,6 +14,7 @@ namespace sslr::detail {
 // X(type, name): every GL 4.5 entry point sslr calls, and nothing else.
 #define SSLR_GL_FUNCTIONS(X)                                                     \
   X(PFNGLGETERRORPROC, GetError)                                                 \
+  X(PFNGLFINISHPROC, Finish)                                                     \
   X(PFNGLGETINTEGERVPROC, GetIntegerv)                                           \
   X(PFNGLGETINTEGERI_VPROC, GetIntegeri_v)                                       \
   X(PFNGLGETINTEGER64I_VPROC, GetInteger64i_v)                                   \
@@ -42,6 +43,9 @@ namespace sslr::detail {
   X(PFNGLCREATETEXTURESPROC, CreateTextures)                                     \
   X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                     \
   X(PFNGLTEXTURESTORAGE2DPROC, TextureStorage2D)                                 \
+  X(PFNGLCREATEFRAMEBUFFERSPROC, CreateFramebuffers)                             \
+  X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                             \
+  X(PFNGLNAMEDFRAMEBUFFERTEXTUREPROC, NamedFramebufferTexture)                   \
   X(PFNGLGETTEXTUREPARAMETERIVPROC, GetTextureParameteriv)                       \
   X(PFNGLGETTEXTURELEVELPARAMETERIVPROC, GetTextureLevelParameteriv)             \
   X(PFNGLCLEARTEXIMAGEPROC, ClearTexImage)                                       \

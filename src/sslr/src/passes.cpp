@@ -130,13 +130,32 @@ void Context::Impl::setArea(const FrameInputs& in) {
 
 // Every program variant a dispatch with these inputs and settings can choose: with and without
 // the level-1 pass (a frame after an empty one), and, under TraversalPass::Auto on a software
-// renderer, with the traversal inline and deferred. And both composite programs.
-Status Context::Impl::prepare(const FrameInputs& in, const Settings& settings) {
+// renderer, with the traversal inline and deferred. And both composite programs. Drivers compile a
+// program's machine code at its first use, for the textures and samplers bound then (llvmpipe
+// does), so each variant also runs once on the host's inputs, as a frame would; then the frame
+// state is put back as after create() (warmUp, resetFrameState).
+Status Context::Impl::prepare(const FrameInputs& in, const Settings& settings, const PrepareOptions& options) {
   if (Status s = checkCurrentContext("prepare()"); !s) return s;
   auto constants = frameConstants(in, settings, width, height);  // validates settings + projection
   if (!constants) return constants.status();
+  if (Status s = checkInputs(in, settings.method); !s) return s;
+  if (options.composite) {
+    if (settings.output == OutputMode::Radiance)
+      return Status::error(StatusCode::InvalidSettings, "sslr: prepare(): PrepareOptions::composite with "
+                           "Settings::output = OutputMode::Radiance, which composite() refuses");
+    if (Status s = checkCompositeOptions(options.compositeOptions); !s) return s;
+  }
   setArea(in);
   const FramePlan base = planFrame(settings, constants.value(), false);
+  const std::uint64_t dispatchesBefore = dispatches;
+  const int frameIndexBefore = frameIndex;
+  // However prepare ends, the warm-up frames leave nothing behind.
+  struct Reset {
+    Impl& impl;
+    std::uint64_t dispatches;
+    int frameIndex;
+    ~Reset() { impl.resetFrameState(dispatches, frameIndex); }
+  } reset{*this, dispatchesBefore, frameIndexBefore};
   for (bool level1Pass : {false, true}) {
     for (bool defer : {false, true}) {
       if ((level1Pass && !base.pyramid) || (defer != base.deferTraversal && !base.feedback)) continue;
@@ -146,12 +165,34 @@ Status Context::Impl::prepare(const FrameInputs& in, const Settings& settings) {
       f.countTraversal = f.feedback && !defer;
       f.retracePass = f.halfResolution || defer;
       f.quadRetracePass = f.halfResolution && defer;
+      f.feedbackWritten = false;
+      f.useHistory = false;
       if (Status s = buildPrograms(f, in, settings); !s) return s;
+      warmUp(f, in);
+      if (options.composite && !level1Pass && defer == base.deferTraversal)
+        if (Status s = warmUpComposite(options); !s) return s;
     }
   }
   for (bool overFallback : {false, true})
     if (auto p = compositeProgram(overFallback); !p) return p.status();
+  gl.Finish();  // the driver's compiles happen here, not in the host's first frame
   return {};
+}
+
+// One frame of plan `f` on the host's inputs, its outputs discarded (prepare).
+void Context::Impl::warmUp(FramePlan& f, const FrameInputs& in) {
+  createFrameResources(f);
+  detail::StateGuard guard(gl, false);
+  gl.PushDebugGroup(GL_DEBUG_SOURCE_THIRD_PARTY, 0, -1, "sslr.prepare");
+  beginFrame(f);
+  runClassify(f, in);
+  runPyramid(f);
+  runTrace(f);
+  runBlur(f);
+  runTemporal(f, in);
+  finishFrame(f);
+  gl.PopDebugGroup();
+  history.valid = false;
 }
 
 // Which passes this frame runs. Reads the last frame's feedback (readFeedback), which decides

@@ -466,6 +466,15 @@ struct CompositeOptions {
   GLName fallbackSpecularTexture = 0;
 };
 
+// Context::prepare's warm-up of composite(): its draw run once as the host will call it, into a
+// scratch target of the format of `framebuffer`'s draw buffer 0 (the host's image is not written;
+// the default framebuffer counts as RGBA8), reading `compositeOptions.fallbackSpecularTexture`.
+struct PrepareOptions {
+  bool composite = false;
+  GLName framebuffer = 0;
+  CompositeOptions compositeOptions;
+};
+
 class Context {
  public:
   static Expected<std::unique_ptr<Context>> create(const ContextDesc& desc);
@@ -483,11 +492,14 @@ class Context {
 
   // Compiles every program dispatch() and composite() may use with these inputs and settings
   // (each variant a frame can choose: after an empty frame, with the traversal inline or in a pass
-  // of its own), so that no frame pays for a compile (on llvmpipe 1-4 s; on a GPU driver tens of
-  // ms). Call it at load time, with the inputs as they will be dispatched: their projection and
+  // of its own) and runs each once on the inputs, since drivers finish compiling at first use for
+  // the textures bound then: no frame pays for a compile (on llvmpipe 1-4 s; on a GPU driver tens
+  // of ms). Call it at load time, with the inputs as they will be dispatched: their projection and
   // layout are validated, and which optional textures are non-zero decides what is compiled in
-  // (their contents do not matter). Optional: dispatch compiles what it needs on first use.
-  Status prepare(const FrameInputs& inputs, const Settings& settings);
+  // (their contents do not matter). Afterwards the context is as after create(): outputs cleared,
+  // no temporal history, no frame to composite. Optional: dispatch compiles what it needs on first
+  // use.
+  Status prepare(const FrameInputs& inputs, const Settings& settings, const PrepareOptions& options = {});
 
   // Puts the resolved reflection into colour attachment 0 of `framebuffer` (0 = default) over
   // (0, 0, width, height), by options.mode (see CompositeMode); its alpha is kept. Draws only the

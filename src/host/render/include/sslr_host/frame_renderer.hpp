@@ -23,6 +23,9 @@ class FrameRenderer {
   Status render(const GpuScene& scene, const Camera& camera, const Settings* settings,
                 glm::dvec2 jitterPx = {0.0, 0.0});
 
+  // Rasterizes the G-buffer, then sslr's prepare() on the inputs render() hands it: every program
+  // compiled and run once, as an engine does at load time.
+  Status prepare(const GpuScene& scene, const Camera& camera, const Settings& settings);
   // How the reflection enters the final image (default: over the G-buffer pass's fallback specular).
   void setCompositeMode(CompositeMode mode) { compositeMode_ = mode; }
   CompositeMode compositeMode() const { return compositeMode_; }
