@@ -3,6 +3,9 @@
 #include "passes/trace_common.glsl"
 #include "passes/retrace_list.glsl"
 #include "passes/shade_pixel.glsl"
+#ifdef SSLR_COLLECT_STATS
+#include "passes/ray_work.glsl"
+#endif
 
 layout(local_size_x = SSLR_RETRACE_GROUP) in;
 
@@ -14,6 +17,8 @@ bool sslrPixelHit(ivec2 px, SslrPixel q, out SslrHit hit, out bool ranTracer) {
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= retrace.count) return;
-  sslrShadePixel(sslrUnpackCoord(retrace.entries[i]));
+  uint steps = i < retrace.count ? sslrShadePixel(sslrUnpackCoord(retrace.entries[i])) : 0u;
+#ifdef SSLR_COLLECT_STATS
+  sslrCountRayWork(SSLR_RAY_WORK_RETRACE, steps);
+#endif
 }

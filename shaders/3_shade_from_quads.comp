@@ -79,5 +79,5 @@ bool sslrPixelHit(ivec2 px, SslrPixel q, out SslrHit hit, out bool ranTracer) {
 void main() {
   ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
   if (!sslrInside(px)) return;
-  sslrShadePixel(px);
+  sslrShadePixel(px);  // traces nothing itself (its pixels without an answer go to the retrace pass)
 }

@@ -9,6 +9,9 @@
 #include "passes/retrace_list.glsl"
 #endif
 #include "passes/shade_pixel.glsl"
+#ifdef SSLR_COLLECT_STATS
+#include "passes/ray_work.glsl"
+#endif
 
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 
@@ -32,6 +35,8 @@ bool sslrPixelHit(ivec2 px, SslrPixel q, out SslrHit hit, out bool ranTracer) {
 
 void main() {
   ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
-  if (!sslrInside(px)) return;
-  sslrShadePixel(px);
+  uint steps = sslrInside(px) ? sslrShadePixel(px) : 0u;
+#ifdef SSLR_COLLECT_STATS
+  sslrCountRayWork(SSLR_RAY_WORK_TRACE, steps);
+#endif
 }

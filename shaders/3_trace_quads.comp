@@ -7,17 +7,29 @@
 #include "passes/retrace_list.glsl"
 #endif
 #include "passes/trace_quad.glsl"
+#ifdef SSLR_COLLECT_STATS
+#include "passes/ray_work.glsl"
+#endif
 
 #ifdef SSLR_QUADS_WIDE
 // DeviceProfile::Gpu: four listed tiles a group (64 invocations, no half-empty warp).
 layout(local_size_x = 4 * SSLR_TILE_QUADS) in;
 void main() {
   uint slot = gl_WorkGroupID.x * 4u + gl_LocalInvocationIndex / uint(SSLR_TILE_QUADS);
-  if (slot >= tiles.dispatchX) return;  // the last group's tiles past the list
-  sslrTraceQuad(slot, sslrTileOrigin(slot) / 2 + sslrTileQuad(gl_LocalInvocationIndex % uint(SSLR_TILE_QUADS)));
+  uint steps = 0u;
+  if (slot < tiles.dispatchX)  // (the last group's tiles past the list trace nothing)
+    steps = sslrTraceQuad(slot, sslrTileOrigin(slot) / 2 + sslrTileQuad(gl_LocalInvocationIndex % uint(SSLR_TILE_QUADS)));
+#ifdef SSLR_COLLECT_STATS
+  sslrCountRayWork(SSLR_RAY_WORK_QUADS, steps);
+#endif
 }
 #else
 // DeviceProfile::Software: one listed tile's quads a group (16 invocations along x).
 layout(local_size_x = SSLR_TILE_QUADS) in;
-void main() { sslrTraceQuad(gl_WorkGroupID.x, sslrTileOrigin(gl_WorkGroupID.x) / 2 + sslrTileQuad(gl_LocalInvocationIndex)); }
+void main() {
+  uint steps = sslrTraceQuad(gl_WorkGroupID.x, sslrTileOrigin(gl_WorkGroupID.x) / 2 + sslrTileQuad(gl_LocalInvocationIndex));
+#ifdef SSLR_COLLECT_STATS
+  sslrCountRayWork(SSLR_RAY_WORK_QUADS, steps);
+#endif
+}
 #endif

@@ -139,6 +139,25 @@ using glm::sqrt;
 #define SSLR_IMAGE_COUNT 6
 #define SSLR_RETRACE_GROUP 64        // invocations per group of the retrace pass
 
+// The stats buffer (Settings::debug.collectStats): counters of the trace passes (0-2), the tile
+// counts the host copies in (4, 5), then the ray work of each trace dispatch (passes/ray_work.glsl,
+// FrameStats::RayWork): SSLR_RAY_WORK_FIELDS counters per dispatch.
+#define SSLR_STATS_LISTED_TILES 4
+#define SSLR_STATS_BLUR_TILES 5
+#define SSLR_STATS_RAY_WORK 8          // index of the first ray-work counter
+#define SSLR_RAY_WORK_TRACE 0          // dispatches: the full-resolution trace
+#define SSLR_RAY_WORK_RETRACE 1        // ... the retrace of listed pixels (deferred traversal, half resolution)
+#define SSLR_RAY_WORK_QUADS 2          // ... half resolution's quad rays
+#define SSLR_RAY_WORK_QUAD_RETRACE 3   // ... and their deferred traversal
+#define SSLR_RAY_WORK_DISPATCHES 4
+#define SSLR_RAY_WORK_LANE_STEPS 0     // fields: the lanes' dependent steps, summed
+#define SSLR_RAY_WORK_SIMT32 1         // ... each 32-lane group's largest, summed
+#define SSLR_RAY_WORK_SIMT64 2         // ... each 64-lane group's largest, summed
+#define SSLR_RAY_WORK_CHAIN 3          // ... the largest of any lane
+#define SSLR_RAY_WORK_GROUPS 4         // ... groups with a lane that traced
+#define SSLR_RAY_WORK_FIELDS 5
+#define SSLR_STATS_COUNT (SSLR_STATS_RAY_WORK + SSLR_RAY_WORK_DISPATCHES * SSLR_RAY_WORK_FIELDS)
+
 // ---- Uniform block structs (std140: every member 4 bytes, every struct a multiple of 16) ----
 
 // A projection reduced to the six numbers that a perspective or orthographic matrix without skew

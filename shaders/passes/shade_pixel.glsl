@@ -6,7 +6,8 @@
 // handed to a later pass, which writes its outputs. `ranTracer`: whether a ray was traced here.
 bool sslrPixelHit(ivec2 px, SslrPixel q, out SslrHit hit, out bool ranTracer);
 
-void sslrShadePixel(ivec2 px) {
+// Returns the dependent steps of the tracer run here (0 where none ran: FrameStats' ray work).
+uint sslrShadePixel(ivec2 px) {
   SslrHit hit = sslrNoHit(SSLR_STATUS_NOT_TRACED);
   vec4 reflection = vec4(0.0f);
   float coverage = 0.0f;
@@ -18,7 +19,7 @@ void sslrShadePixel(ivec2 px) {
 #ifdef SSLR_COLLECT_STATS
       atomicAdd(stats.fetches, gFetches);
 #endif
-      return;
+      return uint(hit.iterations);  // the first stage's steps (0 where none ran)
     }
     if (hit.status == SSLR_STATUS_HIT) {
       float reflectance = sslrReflectance(frame.surface, q.material);
@@ -55,4 +56,5 @@ void sslrShadePixel(ivec2 px) {
   // The first pixel of a tile that needs blurring lists the tile (no group barrier: on CPU
   // rasterizers barriers split the shader and cost more than this atomic).
   if (reflection.a * frame.trace.blurMaxRadiusPx >= 0.5f) sslrListTileForBlur(px);
+  return ranTracer ? uint(hit.iterations) : 0u;
 }

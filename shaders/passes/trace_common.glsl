@@ -24,6 +24,9 @@ layout(std430, binding = SSLR_BINDING_STATS_SSBO) buffer SslrStats {
   uint tracedPixels;
   uint fetches;
   uint hierarchicalPixels;
+  uint hostCopies[SSLR_STATS_RAY_WORK - 3];  // listed and blurred tiles (copied by the host's finish pass)
+  // Per trace dispatch (SSLR_RAY_WORK_*): SSLR_RAY_WORK_FIELDS counters (passes/ray_work.glsl).
+  uint rayWork[SSLR_RAY_WORK_DISPATCHES * SSLR_RAY_WORK_FIELDS];
 } stats;
 #endif
 

@@ -4,8 +4,9 @@
 layout(binding = SSLR_IMAGE_QUAD_HIT, rgba32f) uniform writeonly image2D uQuadHitOut;          // see uQuadHit
 layout(binding = SSLR_IMAGE_QUAD_SURFACE, rgba16f) uniform writeonly image2D uQuadSurfaceOut;  // see uQuadSurface
 
-// `slot`: the quad's tile's slot in the tile list.
-void sslrTraceQuad(uint slot, ivec2 quad) {
+// `slot`: the quad's tile's slot in the tile list. Returns the dependent steps of the tracer run
+// here (0 where none ran: FrameStats' ray work).
+uint sslrTraceQuad(uint slot, ivec2 quad) {
   // The traced pixel rotates through the quad frame by frame, so that a temporal filter sees every
   // pixel's own ray. The pixel is chosen first and traced once after the loop: with the tracer
   // inside the loop, a SIMD batch whose lanes chose different candidates ran it once per candidate.
@@ -20,6 +21,7 @@ void sslrTraceQuad(uint slot, ivec2 quad) {
   }
   vec4 quadHit = vec4(0.0f);
   vec4 quadSurface = vec4(0.5f);
+  uint steps = 0u;
   if (index >= 0) {
 #ifdef SSLR_DEFER_TRAVERSAL
     bool needsTraversal;
@@ -29,7 +31,7 @@ void sslrTraceQuad(uint slot, ivec2 quad) {
 #ifdef SSLR_COLLECT_STATS
       atomicAdd(stats.fetches, gFetches);
 #endif
-      return;
+      return uint(hit.iterations);
     }
 #else
     SslrHit hit = sslrTraceRay(px, q.vsP, q.vsV, q.vsR);
@@ -38,6 +40,7 @@ void sslrTraceQuad(uint slot, ivec2 quad) {
     if (hit.hierarchical != 0) atomicAdd(retrace.count, 1u);
 #endif
 #endif
+    steps = uint(hit.iterations);
     float confidence = hit.status == SSLR_STATUS_HIT ? hit.confidence : 0.0f;
     vec3 vsHitNormal = vec3(0.0f, 0.0f, 1.0f);
     if (confidence > 0.0f)
@@ -58,4 +61,5 @@ void sslrTraceQuad(uint slot, ivec2 quad) {
 #ifdef SSLR_COLLECT_STATS
   atomicAdd(stats.fetches, gFetches);
 #endif
+  return steps;
 }

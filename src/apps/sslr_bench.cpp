@@ -228,8 +228,8 @@ void printRuns(const BenchResult& result, const BenchOptions& bo) {
   int nameWidth = 16;
   if (!bo.configs.empty())
     for (const RunRecord& r : result.runs) nameWidth = std::max(nameWidth, static_cast<int>(r.method.size() + 1 + r.label.size()));
-  std::printf("%-14s %-*s %9s %8s %8s %8s %8s %9s %9s\n", "scene", nameWidth, "method", "time ms", "ratio", "rec@1px",
-              "p95 px", "false", "fetch/px", "disp/barr");
+  std::printf("%-14s %-*s %9s %8s %8s %8s %8s %9s %9s %9s %6s\n", "scene", nameWidth, "method", "time ms", "ratio",
+              "rec@1px", "p95 px", "false", "fetch/px", "disp/barr", "simt32", "chain");
   for (const auto& sc : result.scenes) {
     const SceneDefaults defaults = defaultRuns(result, sc.scene);
     const RunRecord* p = defaults.tutorial;
@@ -240,11 +240,13 @@ void printRuns(const BenchResult& result, const BenchOptions& bo) {
         if (r.scene == sc.scene && r.method != "baseline") shown.push_back(&r);
     }
     for (const RunRecord* r : shown)
-      std::printf("%-14s %-*s %9.2f %8s %8.4f %8.3f %8.4f %9.1f %5u/%-3u\n", sc.scene.c_str(), nameWidth,
+      std::printf("%-14s %-*s %9.2f %8s %8.4f %8.3f %8.4f %9.1f %5u/%-3u %9llu %6u\n", sc.scene.c_str(), nameWidth,
                   (bo.configs.empty() ? r->method : r->method + "/" + r->label).c_str(), r->timeMedianMs,
                   p ? std::to_string(r->timeMedianMs / p->timeMedianMs).substr(0, 4).c_str() : "-", r->metrics.recall1px,
                   r->metrics.p95ErrorPx, r->metrics.falseHitRate, r->fetchesPerTracedPixel,
-                  r->commands.dispatches + r->commands.indirectDispatches, r->commands.barriers);
+                  r->commands.dispatches + r->commands.indirectDispatches, r->commands.barriers,
+                  static_cast<unsigned long long>(r->frameStats.totalRayWork().simt32),
+                  r->frameStats.totalRayWork().longestChain);
   }
 }
 

@@ -418,6 +418,19 @@ void printStats(const FrameStats& st, const std::vector<FrameStats>& laterStats,
   const PassCommands total = st.totalCommands();
   std::printf("; frame %u + %u / %u / %u / %u\n", total.dispatches, total.indirectDispatches, total.barriers,
               total.programs, total.uploads);
+  // The ray work per trace dispatch (FrameStats::RayWork): what SIMT hardware pays for the rays.
+  std::printf("  ray work (dependent steps; lanes / 32-lane groups' slowest / 64-lane groups' slowest / longest chain):");
+  const std::pair<const char*, const RayWork*> work[] = {
+      {"trace", &st.traceWork}, {"retrace", &st.retraceWork}, {"quads", &st.quadWork}, {"quad retrace", &st.quadRetraceWork}};
+  for (const auto& [name, w] : work)
+    if (w->groups > 0)
+      std::printf(" %s %llu / %llu / %llu / %u,", name, static_cast<unsigned long long>(w->laneSteps),
+                  static_cast<unsigned long long>(w->simt32), static_cast<unsigned long long>(w->simt64), w->longestChain);
+  const RayWork frameWork = st.totalRayWork();
+  std::printf(" frame %llu / %llu / %llu / %u (%.1f steps per traced pixel)\n",
+              static_cast<unsigned long long>(frameWork.laneSteps), static_cast<unsigned long long>(frameWork.simt32),
+              static_cast<unsigned long long>(frameWork.simt64), frameWork.longestChain,
+              st.tracedPixels ? double(frameWork.laneSteps) / st.tracedPixels : 0.0);
   // The texture memory each pass touched (FrameStats::*Traffic: a model from the counts and formats).
   std::printf("  texture traffic (MB read / written, modelled):");
   printPassTraffic(st);

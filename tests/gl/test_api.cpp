@@ -1060,6 +1060,70 @@ TEST_F(Api, PrepareCompilesEveryProgramFramesUse) {
   }
 }
 
+// FrameStats' ray work is what the iterations image says, regrouped as the trace dispatch's 8x8
+// groups run (invocations 0-31 are a group's rows 0-3): lane steps summed, each 32- and 64-lane
+// group's largest summed, the largest of all. Recomputed here from the image, exactly, for the
+// inline trace, the traversal alone and adaptive L alone; a deferred traversal adds the retrace
+// dispatch's work, in groups of 64 listed pixels.
+TEST_F(Api, RayWorkIsTheIterationsImageRegroupedAsTheGroupsRun) {
+  auto ctx = makeContext();
+  Frame f;
+  const FrameInputs in = f.gbuffer->frameInputs();
+  auto expectRegrouped = [&](const Settings& s, const char* what) {
+    SCOPED_TRACE(what);
+    ASSERT_TRUE(ctx->dispatch(in, s));
+    const FrameStats st = ctx->waitForStats();
+    const Image iterations = readAll(ctx->iterationsTexture(), 1);
+    std::uint64_t lanes = 0, simt32 = 0, simt64 = 0;
+    std::uint32_t chain = 0;
+    for (int ty = 0; ty < H; ty += 8)
+      for (int tx = 0; tx < W; tx += 8) {
+        std::uint32_t half[2] = {0, 0};
+        for (int y = ty; y < std::min(ty + 8, H); ++y)
+          for (int x = tx; x < std::min(tx + 8, W); ++x) {
+            const auto steps = static_cast<std::uint32_t>(iterations.pixels[static_cast<size_t>(y) * W + x]);
+            lanes += steps;
+            half[(y - ty) / 4] = std::max(half[(y - ty) / 4], steps);
+          }
+        simt32 += half[0] + half[1];
+        simt64 += std::max(half[0], half[1]);
+        chain = std::max({chain, half[0], half[1]});
+      }
+    ASSERT_GT(lanes, 1000u) << "the frame must trace";
+    EXPECT_EQ(st.traceWork.laneSteps, lanes);
+    EXPECT_EQ(st.traceWork.simt32, simt32);
+    EXPECT_EQ(st.traceWork.simt64, simt64);
+    EXPECT_EQ(st.traceWork.longestChain, chain);
+    EXPECT_EQ(st.retraceWork.groups, 0u);
+    EXPECT_EQ(st.totalRayWork().laneSteps, lanes);
+    EXPECT_LE(st.traceWork.simt64, st.traceWork.simt32) << "a 64-lane group pays at most its two halves";
+    EXPECT_GE(st.traceWork.simt32 * 32, st.traceWork.laneSteps) << "a group pays at least its lanes' mean";
+  };
+  Settings s;
+  s.debug.outputs = true;
+  s.debug.collectStats = true;
+  s.traversal.pass = TraversalPass::Inline;
+  expectRegrouped(s, "default, inline");
+  Settings hiz = s;
+  hiz.method = Method::HierarchicalDepth;
+  expectRegrouped(hiz, "the traversal alone");
+  Settings alone = s;
+  alone.traversal.verify = false;
+  alone.traversal.fallback = false;
+  expectRegrouped(alone, "adaptive L alone");
+  // Deferred: the trace dispatch counts adaptive L's steps, the retrace dispatch the listed pixels'
+  // whole tracer; every listed pixel is a lane there, 64 to a group.
+  Settings deferred = s;
+  deferred.traversal.pass = TraversalPass::Deferred;
+  ASSERT_TRUE(ctx->dispatch(in, deferred));
+  const FrameStats st = ctx->waitForStats();
+  ASSERT_TRUE(st.traversalDeferred);
+  EXPECT_GT(st.retraceWork.laneSteps, 0u);
+  EXPECT_LE(st.retraceWork.groups, (st.tracedPixels + 63) / 64);
+  EXPECT_EQ(st.totalRayWork().longestChain, st.traceWork.longestChain + st.retraceWork.longestChain);
+  EXPECT_EQ(st.totalRayWork().simt32, st.traceWork.simt32 + st.retraceWork.simt32);
+}
+
 // prepare() runs each program once on the host's inputs (drivers compile at first use) and then
 // puts the frame state back: the frames after it are bit for bit those of a context that was never
 // prepared (outputs, hits, temporal history, the stats' frame numbers), at full and half resolution.

@@ -76,6 +76,24 @@ json passesJson(const FrameStats& st) {
   return out;
 }
 
+// The trace dispatches' ray work (FrameStats::RayWork) of the scored frame: the frame's, and each
+// dispatch that ran.
+json rayWorkJson(const FrameStats& st) {
+  auto one = [](const RayWork& w) {
+    return json{{"laneSteps", w.laneSteps}, {"simt32", w.simt32}, {"simt64", w.simt64},
+                {"longestChain", w.longestChain}, {"groups", w.groups}};
+  };
+  json out = one(st.totalRayWork());
+  out["stepsPerTracedPixel"] = st.tracedPixels ? num(double(st.totalRayWork().laneSteps) / st.tracedPixels) : json(nullptr);
+  json dispatches = json::object();
+  const std::pair<const char*, const RayWork*> each[] = {
+      {"trace", &st.traceWork}, {"retrace", &st.retraceWork}, {"quads", &st.quadWork}, {"quadRetrace", &st.quadRetraceWork}};
+  for (const auto& [name, w] : each)
+    if (w->groups > 0) dispatches[name] = one(*w);
+  out["dispatches"] = dispatches;
+  return out;
+}
+
 json runJson(const RunRecord& r) {
   const HitMetrics& m = r.metrics;
   const bool traced = r.method != "baseline";
@@ -115,6 +133,7 @@ json runJson(const RunRecord& r) {
           {"bytesRead", r.traffic.bytesRead},
           {"bytesWritten", r.traffic.bytesWritten},
           {"passes", passesJson(r.frameStats)},
+          {"rayWork", rayWorkJson(r.frameStats)},
           {"gbufferBytesPerPixel", r.gbufferBytesPerPixel},
           {"extraBytesPerPixel", r.extraBytesPerPixel}};
 }
@@ -372,9 +391,11 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
     out << "scene,method,label,default,width,height,renderer,timingMethod,timeMedianMs,timeMinMs,timeMaxMs,frames,"
            "visible,occluded,offScreen,escaped,recall1px,recall2px,recall4px,medianErrorPx,p95ErrorPx,falseHitRate,"
            "reflectionRmse,reflectionPsnr,nonFiniteHitPixels,nonFiniteOutputPixels,tracedPixels,fetches,"
-           "fetchesPerTracedPixel,dispatches,indirectDispatches,barriers,programs,bytesRead,bytesWritten,gbufferBytesPerPixel,extraBytesPerPixel,parameters\n";
+           "fetchesPerTracedPixel,dispatches,indirectDispatches,barriers,programs,bytesRead,bytesWritten,laneSteps,simt32,"
+           "simt64,longestChain,gbufferBytesPerPixel,extraBytesPerPixel,parameters\n";
     for (const RunRecord& r : result.runs) {
       const json rj = runJson(r);
+      const RayWork work = r.frameStats.totalRayWork();
       auto v = [&](const char* k) { return rj[k].is_null() ? std::string() : rj[k].dump(); };
       std::string params = rj["parameters"].dump();
       std::string quoted = "\"";
@@ -388,7 +409,8 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
           << v("falseHitRate") << "," << v("reflectionRmse") << "," << v("reflectionPsnr") << "," << r.metrics.nonFinite
           << "," << r.nonFiniteOutputs << "," << r.tracedPixels << "," << r.fetches << "," << v("fetchesPerTracedPixel")
           << "," << r.commands.dispatches << "," << r.commands.indirectDispatches << "," << r.commands.barriers << ","
-          << r.commands.programs << "," << r.traffic.bytesRead << "," << r.traffic.bytesWritten
+          << r.commands.programs << "," << r.traffic.bytesRead << "," << r.traffic.bytesWritten << ","
+          << work.laneSteps << "," << work.simt32 << "," << work.simt64 << "," << work.longestChain
           << "," << r.gbufferBytesPerPixel << "," << r.extraBytesPerPixel << "," << quoted << "\n";
     }
     if (Status s = writeTextFile((fs::path(outDir) / "results.csv").string(), out.str()); !s) return s;

@@ -204,7 +204,7 @@ Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
     gl.CreateBuffers(1, &slot.buffer);
     // In video memory: the trace's atomics count into it (in client memory each atomic would cross
     // the bus); NVIDIA's performance note on the read back is the lesser cost.
-    gl.NamedBufferStorage(slot.buffer, 8 * sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    gl.NamedBufferStorage(slot.buffer, SSLR_STATS_COUNT * sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT);
     impl->label(GL_BUFFER, slot.buffer, "sslr.stats");
     gl.CreateQueries(GL_TIMESTAMP, Impl::kTimestamps, slot.queries);
   }

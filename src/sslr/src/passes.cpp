@@ -401,7 +401,7 @@ void Context::Impl::beginFrame(FramePlan& f) {
     if (f.slot->fence != nullptr) gl.DeleteSync(f.slot->fence);
     f.slot->fence = nullptr;
     f.slot->frame = dispatches;
-    const GLuint statsZero[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    const GLuint statsZero[SSLR_STATS_COUNT] = {};
     bufferSubData(f.slot->buffer, 0, sizeof(statsZero), statsZero);
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_STATS_SSBO, f.slot->buffer);
   }
@@ -655,8 +655,9 @@ void Context::Impl::finishFrame(const FramePlan& f) {
     f.slot->traversalDeferred = f.deferTraversal;
     f.slot->followedEmptyFrame = f.level1Pass;
     f.slot->traffic = f.traffic;
-    copyBufferSubData(tileBuffer, f.slot->buffer, 0, 4 * sizeof(GLuint), sizeof(GLuint));
-    copyBufferSubData(tileBuffer, f.slot->buffer, kBlurDispatchOffset, 5 * sizeof(GLuint), sizeof(GLuint));
+    copyBufferSubData(tileBuffer, f.slot->buffer, 0, SSLR_STATS_LISTED_TILES * sizeof(GLuint), sizeof(GLuint));
+    copyBufferSubData(tileBuffer, f.slot->buffer, kBlurDispatchOffset, SSLR_STATS_BLUR_TILES * sizeof(GLuint),
+                      sizeof(GLuint));
     f.slot->fence = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     f.slot->commands = recording;
   }

@@ -38,6 +38,18 @@ PassTraffic FrameStats::totalTraffic() const {
   return total;
 }
 
+RayWork FrameStats::totalRayWork() const {
+  RayWork total;
+  for (const RayWork* w : {&traceWork, &retraceWork, &quadWork, &quadRetraceWork}) {
+    total.laneSteps += w->laneSteps;
+    total.simt32 += w->simt32;
+    total.simt64 += w->simt64;
+    total.longestChain += w->longestChain;
+    total.groups += w->groups;
+  }
+  return total;
+}
+
 namespace {
 using U64 = std::uint64_t;
 void read(PassTraffic& t, U64 texels, int bytes) {
@@ -161,15 +173,22 @@ void Context::Impl::harvestStats(bool waitNewest) const {
     if (oldest == nullptr) return;
     const GLenum r = gl.ClientWaitSync(oldest->fence, 0, 0);
     if (r != GL_ALREADY_SIGNALED && r != GL_CONDITION_SATISFIED) return;  // not done yet: later
-    GLuint counters[6] = {};
+    GLuint counters[SSLR_STATS_COUNT] = {};
     gl.GetNamedBufferSubData(oldest->buffer, 0, sizeof(counters), counters);
     FrameStats f;
     f.frame = oldest->frame;
     f.tracedPixels = counters[0];
     f.fetches = counters[1];
     f.hierarchicalPixels = counters[2];
-    f.tiles = counters[4];
-    f.blurTiles = counters[5];
+    f.tiles = counters[SSLR_STATS_LISTED_TILES];
+    f.blurTiles = counters[SSLR_STATS_BLUR_TILES];
+    const std::array work{&f.traceWork, &f.retraceWork, &f.quadWork, &f.quadRetraceWork};
+    static_assert(work.size() == SSLR_RAY_WORK_DISPATCHES);
+    for (int d = 0; d < SSLR_RAY_WORK_DISPATCHES; ++d) {
+      const GLuint* c = counters + SSLR_STATS_RAY_WORK + d * SSLR_RAY_WORK_FIELDS;
+      *work[static_cast<size_t>(d)] = {c[SSLR_RAY_WORK_LANE_STEPS], c[SSLR_RAY_WORK_SIMT32], c[SSLR_RAY_WORK_SIMT64],
+                                       c[SSLR_RAY_WORK_CHAIN], c[SSLR_RAY_WORK_GROUPS]};
+    }
     f.traversalDeferred = oldest->traversalDeferred;
     f.followedEmptyFrame = oldest->followedEmptyFrame;
     estimateTraffic(oldest->traffic, f);

@@ -422,6 +422,20 @@ struct PassTraffic {
   std::uint64_t bytesRead = 0, bytesWritten = 0;
 };
 
+// The ray work of a trace dispatch: what a GPU pays for its rays whatever its speed. A lane's
+// steps are its tracer's iterations (adaptive L's probes, the traversal's cells and pixel tests):
+// each one fetch whose result decides the next, so they form a dependent chain. SIMT hardware runs
+// a group of 32 or 64 lanes as long as its slowest lane: simt32/simt64 sum each group's largest
+// count, in the dispatch's real group shape. Counted on the GPU with a group barrier (stats only).
+struct RayWork {
+  std::uint64_t laneSteps = 0;    // the lanes' steps, summed
+  std::uint64_t simt32 = 0;       // each 32-lane group's largest, summed
+  std::uint64_t simt64 = 0;       // each 64-lane group's largest, summed
+  std::uint32_t longestChain = 0; // the largest of any lane (the frame's: the dispatches' summed,
+                                  // since each starts when the one before has finished)
+  std::uint32_t groups = 0;       // work groups with a lane that traced
+};
+
 struct FrameStats {  // filled when Settings::debug.collectStats is set
   std::uint64_t frame = 0;          // the dispatch these are of (1 = the context's first; 0 = none yet)
   std::uint32_t tiles = 0;          // classified tiles that were traced
@@ -446,6 +460,11 @@ struct FrameStats {  // filled when Settings::debug.collectStats is set
   // The texture memory of the same passes (the finish pass touches none).
   PassTraffic classifyTraffic, pyramidTraffic, traceTraffic, blurTraffic, temporalTraffic;
   PassTraffic totalTraffic() const;  // the frame's: every pass's summed
+  // The ray work of the trace dispatches: the full-resolution trace, the retrace of listed pixels
+  // (deferred traversal, half resolution's own rays), half resolution's quad rays and their
+  // deferred traversal (zero where a dispatch did not run).
+  RayWork traceWork, retraceWork, quadWork, quadRetraceWork;
+  RayWork totalRayWork() const;  // summed; longestChain: the frame's critical path through them
 };
 
 // How composite() puts the resolved reflection into the host's framebuffer.
