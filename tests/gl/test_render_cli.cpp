@@ -290,7 +290,9 @@ TEST_F(RenderCli, ASignalTheMomentATemporaryAppearsLeavesNone) {
       EXPECT_FALSE(entry.path().filename().string().ends_with(".partial"))
           << "run " << runIndex << " left " << entry.path();
   }
-  EXPECT_GE(signalled, 10) << "most runs must be interrupted while writing, or the race was not tried";
+  // How many signals land mid-write depends on the machine's speed (4 of 20 under ASan, 13 in a
+  // release build): at least one must, or the race was not tried.
+  EXPECT_GE(signalled, 1) << "no run was interrupted while writing";
 }
 
 TEST_F(RenderCli, ScoreAndHierarchicalMethod) {
