@@ -18,7 +18,10 @@
 // Deviations, each forced by sslr's pipeline and without effect on a hit: window space in pixels
 // instead of uv (the same line; FFX's 0.005 texel boundary offset kept in pixels), level 0 read
 // from the depth buffer (sslr's pyramid holds no level-0 texels under a quad of sky), cells past
-// the screen's edge read as background (FFX's out-of-range loads return 0), the direction
+// a mip's size read as background (FFX's out-of-range loads return 0; its mips are sized
+// max(1, size >> level) from the render size, rounded down, so at odd sizes the last row or
+// column of a level has no cell above it: sslr's pyramid, padded to cover the screen, holds
+// cells there that FFX has not, and they are not read), the direction
 // projected from a probe point kept in front of the camera (FFX projects origin + direction,
 // which for a ray towards the camera can land behind it), and the walk's top level capped at the
 // pyramid's (sslrHiZLevelCount) where that is below FFX's 6. FFX's wave-occupancy exit applies to
@@ -36,11 +39,16 @@ namespace sslr::shared {
 
 #define SSLR_FFX_MAX_LEVEL 6
 
-// The nearest depth key of cell `cell` at `level` (background and cells off the screen: the
+// FFX's mip `level` size: max(1, size >> level) from the render size (SPD's rounding down).
+SSLR_FN vec2 sslrFfxMipSize(SslrSurface s, int level) {
+  return max(vec2(1.0f), floor(vec2(s.width, s.height) / float(1 << level)));
+}
+
+// The nearest depth key of cell `cell` at `level` (background and cells past the mip's size: the
 // farthest key, which nothing lies beyond).
 SSLR_FN float sslrFfxNearKey(SslrSurface s, int level, vec2 cell, float keySign) {
   float farKey = keySign * (s.reversedZ != 0 ? 0.0f : 1.0f);
-  vec2 levelSize = ceil(vec2(s.width, s.height) / float(1 << level));
+  vec2 levelSize = sslrFfxMipSize(s, level);
   if (cell.x < 0.0f || cell.y < 0.0f || cell.x >= levelSize.x || cell.y >= levelSize.y) return farKey;
   if (level == 0) {
     float depth = sslrLoadDepth(ivec2(cell));
@@ -98,7 +106,13 @@ SSLR_FN SslrHit sslrTraceFfx(SslrProjection p, SslrSurface s, SslrTraceParams t,
   vec2 fromOrigin = abs(vec2(pos.x, pos.y) - (vec2(pxOrigin) + 0.5f));
   if (fromOrigin.x < 2.0f && fromOrigin.y < 2.0f) return hit;
   ivec2 texel = min(ivec2(floor(vec2(pos.x, pos.y))), ivec2(sizePx) - 1);
-  vec2 quad = sslrLoadPyramidTexel(1, texel / 2);
+  // Mip 1 as FFX sizes it: a candidate in the last row or column of an odd-sized screen has no
+  // texel there, and FFX's load returns background.
+  ivec2 quadCell = texel / 2;
+  vec2 mip1 = sslrFfxMipSize(s, 1);
+  float farDepth = s.reversedZ != 0 ? 0.0f : 1.0f;
+  vec2 quad = float(quadCell.x) < mip1.x && float(quadCell.y) < mip1.y ? sslrLoadPyramidTexel(1, quadCell)
+                                                                       : vec2(farDepth);
   float surfaceDepth = s.reversedZ != 0 ? max(quad.x, quad.y) : min(quad.x, quad.y);
   if (!sslrIsGeometryDepth(s, surfaceDepth)) {
     hit.status = SSLR_STATUS_SKY;

@@ -49,6 +49,7 @@ vec2 sslrLoadPyramidTexel(int level, ivec2 cell) {
 }  // namespace sslr::shared
 
 #include "sslr_trace_hiz.h"
+#include "sslr_trace_ffx.h"
 
 using namespace sslr;
 using namespace sslr::shared;
@@ -193,6 +194,26 @@ TEST_F(CornerHit, RefusesASideSeenNearlyEdgeOn) {
   const vec3 vsQ = vec3(vsEdge.x, vsEdge.y, kFrontZ - 0.1f);
   float L = 0.0f;
   EXPECT_FALSE(corner(vsQ + vec3(4.0f, 0.3f, 1.5f), vsQ, 0.75f, L));
+}
+
+}  // namespace
+
+namespace {
+
+// FidelityFX SSSR's depth hierarchy as AMD ships it: mip sizes max(1, size >> level) from the
+// render size, rounded down; a cell past a mip's size reads as background (its loads return 0)
+// without a fetch. 320x180: level 3 is 40x22 (180 / 8 = 22.5), so row 22 is no cell of FFX's,
+// though sslr's padded pyramid holds one there (whose fetch this test's loader refuses).
+TEST_F(CornerHit, FfxMipsRoundDownAndReadBackgroundPastTheirSize) {
+  EXPECT_EQ(sslrFfxMipSize(gSurf, 3).x, 40.0f);
+  EXPECT_EQ(sslrFfxMipSize(gSurf, 3).y, 22.0f);
+  EXPECT_EQ(sslrFfxMipSize(gSurf, 9).y, 1.0f) << "never below one texel";
+  const float keySign = -1.0f;  // reversed Z
+  const float farKey = sslrFfxNearKey(gSurf, 3, vec2(0.0f, 22.0f), keySign);
+  EXPECT_EQ(farKey, 0.0f) << "row 22 of level 3 lies past FFX's mip: background";
+  EXPECT_EQ(sslrFfxNearKey(gSurf, 3, vec2(40.0f, 0.0f), keySign), 0.0f);
+  // Level 0 is the depth buffer itself: every pixel is in range.
+  EXPECT_EQ(sslrFfxNearKey(gSurf, 0, vec2(319.0f, 179.0f), keySign), keySign * sslrLoadDepth(ivec2(319, 179)));
 }
 
 }  // namespace
