@@ -23,8 +23,9 @@
 // column of a level has no cell above it: sslr's pyramid, padded to cover the screen, holds
 // cells there that FFX has not, and they are not read), the direction
 // projected from a probe point kept in front of the camera (FFX projects origin + direction,
-// which for a ray towards the camera can land behind it), and the walk's top level capped at the
-// pyramid's (sslrHiZLevelCount) where that is below FFX's 6. FFX's wave-occupancy exit applies to
+// which for a ray towards the camera can land behind it), and the levels FFX has above sslr's
+// pyramid's top (sslrHiZLevelCount: 5 at 320x180, where FFX walks up to 6) reduced on the fly
+// from the top level's cells, as FFX's mips hold them (more fetches, the same answer). FFX's wave-occupancy exit applies to
 // glossy rays only (mirror rays never take it) and is left out; its "valid hit" flag
 // (steps <= the cap) is always true after its loop, so it is left out too.
 
@@ -46,7 +47,7 @@ SSLR_FN vec2 sslrFfxMipSize(SslrSurface s, int level) {
 
 // The nearest depth key of cell `cell` at `level` (background and cells past the mip's size: the
 // farthest key, which nothing lies beyond).
-SSLR_FN float sslrFfxNearKey(SslrSurface s, int level, vec2 cell, float keySign) {
+SSLR_FN float sslrFfxNearKey(SslrSurface s, int level, vec2 cell, float keySign, int pyramidTop) {
   float farKey = keySign * (s.reversedZ != 0 ? 0.0f : 1.0f);
   vec2 levelSize = sslrFfxMipSize(s, level);
   if (cell.x < 0.0f || cell.y < 0.0f || cell.x >= levelSize.x || cell.y >= levelSize.y) return farKey;
@@ -54,8 +55,24 @@ SSLR_FN float sslrFfxNearKey(SslrSurface s, int level, vec2 cell, float keySign)
     float depth = sslrLoadDepth(ivec2(cell));
     return sslrIsGeometryDepth(s, depth) ? keySign * depth : farKey;
   }
-  vec2 minMax = sslrLoadPyramidTexel(level, ivec2(cell));
-  return min(keySign * minMax.x, keySign * minMax.y);
+  if (level <= pyramidTop) {
+    vec2 minMax = sslrLoadPyramidTexel(level, ivec2(cell));
+    return min(keySign * minMax.x, keySign * minMax.y);
+  }
+  // Above sslr's pyramid: the nearest of the top level's cells inside this one (FFX's mip chain
+  // reduces them 2x2 a level; every child of a cell in range is in range, rounding down).
+  int n = 1 << (level - pyramidTop);
+  vec2 topSize = sslrFfxMipSize(s, pyramidTop);
+  float nearest = farKey;
+  for (int y = 0; y < n; ++y) {
+    for (int x = 0; x < n; ++x) {
+      vec2 child = cell * float(n) + vec2(float(x), float(y));
+      if (child.x >= topSize.x || child.y >= topSize.y) continue;
+      vec2 minMax = sslrLoadPyramidTexel(pyramidTop, ivec2(child));
+      nearest = min(nearest, min(keySign * minMax.x, keySign * minMax.y));
+    }
+  }
+  return nearest;
 }
 
 SSLR_FN SslrHit sslrTraceFfx(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP, vec3 vsR) {
@@ -71,7 +88,7 @@ SSLR_FN SslrHit sslrTraceFfx(SslrProjection p, SslrSurface s, SslrTraceParams t,
                    d.z != 0.0f ? 1.0f / d.z : 3.0e38f);
   vec2 boundary = vec2(d.x < 0.0f ? 0.0f : 1.0f, d.y < 0.0f ? 0.0f : 1.0f);
   vec2 offset = vec2(d.x < 0.0f ? -0.005f : 0.005f, d.y < 0.0f ? -0.005f : 0.005f);
-  int topLevel = min(SSLR_FFX_MAX_LEVEL, t.hizLevels);
+  int topLevel = SSLR_FFX_MAX_LEVEL;
 
   // Past the origin pixel's boundary first (no self-intersection).
   vec2 planes0 = floor(vec2(o.x, o.y)) + boundary + offset;
@@ -83,7 +100,7 @@ SSLR_FN SslrHit sslrTraceFfx(SslrProjection p, SslrSurface s, SslrTraceParams t,
   while (i < t.ffxMaxIntersections && level >= 0) {
     float cellSize = float(1 << level);
     vec2 cell = floor(vec2(pos.x, pos.y) / cellSize);
-    float surfaceKey = sslrFfxNearKey(s, level, cell, keySign);
+    float surfaceKey = sslrFfxNearKey(s, level, cell, keySign, t.hizLevels);
     vec2 planes = (cell + boundary) * cellSize + offset;
     vec2 tXY = (planes - vec2(o.x, o.y)) * vec2(invD.x, invD.y);
     float tZ = d.z > 0.0f ? (surfaceKey - o.z) * invD.z : 3.0e38f;  // only when going deeper

@@ -209,11 +209,15 @@ TEST_F(CornerHit, FfxMipsRoundDownAndReadBackgroundPastTheirSize) {
   EXPECT_EQ(sslrFfxMipSize(gSurf, 3).y, 22.0f);
   EXPECT_EQ(sslrFfxMipSize(gSurf, 9).y, 1.0f) << "never below one texel";
   const float keySign = -1.0f;  // reversed Z
-  const float farKey = sslrFfxNearKey(gSurf, 3, vec2(0.0f, 22.0f), keySign);
+  const float farKey = sslrFfxNearKey(gSurf, 3, vec2(0.0f, 22.0f), keySign, 5);
   EXPECT_EQ(farKey, 0.0f) << "row 22 of level 3 lies past FFX's mip: background";
-  EXPECT_EQ(sslrFfxNearKey(gSurf, 3, vec2(40.0f, 0.0f), keySign), 0.0f);
+  EXPECT_EQ(sslrFfxNearKey(gSurf, 3, vec2(40.0f, 0.0f), keySign, 5), 0.0f);
+  // FFX walks up to level 6 where sslr's pyramid stops at 5 (320x180): its mip 6 is 5x2, so the
+  // top 52 rows (row 2 and up) are background there.
+  EXPECT_EQ(sslrFfxMipSize(gSurf, 6).y, 2.0f);
+  EXPECT_EQ(sslrFfxNearKey(gSurf, 6, vec2(0.0f, 2.0f), keySign, 5), 0.0f);
   // Level 0 is the depth buffer itself: every pixel is in range.
-  EXPECT_EQ(sslrFfxNearKey(gSurf, 0, vec2(319.0f, 179.0f), keySign), keySign * sslrLoadDepth(ivec2(319, 179)));
+  EXPECT_EQ(sslrFfxNearKey(gSurf, 0, vec2(319.0f, 179.0f), keySign, 5), keySign * sslrLoadDepth(ivec2(319, 179)));
 }
 
 }  // namespace
