@@ -239,6 +239,7 @@ struct Context::Impl {
   Status dispatch(const FrameInputs& in, const Settings& settings);
   Status prepare(const FrameInputs& in, const Settings& settings, const PrepareOptions& options);
   void warmUp(FramePlan& plan, const FrameInputs& in);
+  void recordFrame(FramePlan& plan, const FrameInputs& in, const char* debugGroup);
   // The targets' contents, the tile list, the feedback, the history and the counters as after
   // create() or resize(), keeping every GL name (after prepare's warm-up frames).
   void resetFrameState(std::uint64_t dispatchesBefore, int frameIndexBefore);

@@ -104,17 +104,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   FramePlan plan = planFrame(settings, constants.value(), hadHistory);
   if (plan.collectStats) plan.traffic = trafficModel(plan, formats, settings);
   if (Status s = buildPrograms(plan, in, settings); !s) return s;
-  createFrameResources(plan);
-  detail::StateGuard guard(gl, false);
-  gl.PushDebugGroup(GL_DEBUG_SOURCE_THIRD_PARTY, 0, -1, "sslr.dispatch");
-  beginFrame(plan);
-  runClassify(plan, in);
-  runPyramid(plan);
-  runTrace(plan);
-  runBlur(plan);
-  runTemporal(plan, in);
-  finishFrame(plan);
-  gl.PopDebugGroup();
+  recordFrame(plan, in, "sslr.dispatch");
   haveFrame = true;
   frameIsRadiance = settings.output == OutputMode::Radiance;
   return {};
@@ -181,9 +171,15 @@ Status Context::Impl::prepare(const FrameInputs& in, const Settings& settings, c
 
 // One frame of plan `f` on the host's inputs, its outputs discarded (prepare).
 void Context::Impl::warmUp(FramePlan& f, const FrameInputs& in) {
+  recordFrame(f, in, "sslr.prepare");
+  history.valid = false;
+}
+
+// The frame's passes in order, under the state guard and a debug group of that name.
+void Context::Impl::recordFrame(FramePlan& f, const FrameInputs& in, const char* debugGroup) {
   createFrameResources(f);
   detail::StateGuard guard(gl, false);
-  gl.PushDebugGroup(GL_DEBUG_SOURCE_THIRD_PARTY, 0, -1, "sslr.prepare");
+  gl.PushDebugGroup(GL_DEBUG_SOURCE_THIRD_PARTY, 0, -1, debugGroup);
   beginFrame(f);
   runClassify(f, in);
   runPyramid(f);
@@ -192,7 +188,6 @@ void Context::Impl::warmUp(FramePlan& f, const FrameInputs& in) {
   runTemporal(f, in);
   finishFrame(f);
   gl.PopDebugGroup();
-  history.valid = false;
 }
 
 // Which passes this frame runs. Reads the last frame's feedback (readFeedback), which decides
