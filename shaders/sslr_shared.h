@@ -125,6 +125,7 @@ using glm::sqrt;
 #define SSLR_IMAGE_HIT 1              // trace (debug outputs, temporal reuse)
 #define SSLR_IMAGE_ITERATIONS 2       // trace (debug outputs)
 #define SSLR_IMAGE_RESOLVED 3         // trace, clean-up
+#define SSLR_IMAGE_HIT_DISTANCE 4     // trace (Settings::hitDistance)
 #define SSLR_IMAGE_QUAD_HIT 1         // half resolution's quad pass
 #define SSLR_IMAGE_QUAD_SURFACE 2
 #define SSLR_IMAGE_PYRAMID_LEVEL1 0   // classification, level-1 and curved passes

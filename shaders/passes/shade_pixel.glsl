@@ -48,6 +48,9 @@ uint sslrShadePixel(ivec2 px) {
 #ifdef SSLR_DEBUG_OUTPUTS
   imageStore(uIterations, sslrTexel(px), vec4(float(hit.iterations)));
 #endif
+#ifdef SSLR_HIT_DISTANCE
+  imageStore(uHitDistance, sslrTexel(px), vec4(coverage > 0.0f ? hit.L : 0.0f));
+#endif
 #ifdef SSLR_COLLECT_STATS
   if (ranTracer) atomicAdd(stats.tracedPixels, 1u);
   atomicAdd(stats.fetches, gFetches);

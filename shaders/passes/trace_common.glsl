@@ -19,6 +19,9 @@ layout(binding = SSLR_IMAGE_HIT, rgba32f) uniform writeonly image2D uHit;
 #ifdef SSLR_DEBUG_OUTPUTS
 layout(binding = SSLR_IMAGE_ITERATIONS, r32f) uniform writeonly image2D uIterations;
 #endif
+#ifdef SSLR_HIT_DISTANCE  // Settings::hitDistance
+layout(binding = SSLR_IMAGE_HIT_DISTANCE, r32f) uniform writeonly image2D uHitDistance;
+#endif
 #ifdef SSLR_COLLECT_STATS
 layout(std430, binding = SSLR_BINDING_STATS_SSBO) buffer SslrStats {
   uint tracedPixels;

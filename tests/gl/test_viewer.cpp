@@ -118,7 +118,8 @@ TEST_F(Viewer, ErrorViewAndSplitScreenRun) {
   for (int y = 0; y < 180; ++y)
     for (int x = 0; x < 320; ++x) (x < 160 ? leftGreen : rightGreen) += shot.value().at(x, y, 1);
   EXPECT_GT(rightGreen, 2.0 * leftGreen) << "the DDA's pixel steps should show as more error";
-  for (const char* name : {"reflection", "blur-weight", "coverage", "confidence", "length", "iterations", "hit-uv"}) {
+  for (const char* name :
+       {"reflection", "blur-weight", "coverage", "confidence", "length", "iterations", "hit-distance", "hit-uv"}) {
     const Result r = view("--size 96x54 --frames 1 --hide-ui --view " + std::string(name) + " --screenshot " +
                           (dir / (std::string(name) + ".png")).string());
     EXPECT_EQ(r.exitCode, 0) << name << ": " << r.output;

@@ -32,7 +32,7 @@ namespace sslr::host {
 namespace {
 
 // What the window shows of each view (present.frag's modes).
-enum class Source { Final, Reflection, Resolved, Hit, Iterations, Error };
+enum class Source { Final, Reflection, Resolved, Hit, Iterations, HitDistance, Error };
 struct View {
   const char* name;
   Source source;
@@ -48,6 +48,7 @@ constexpr View kViews[] = {
     {"confidence", Source::Hit, 2, 1.0f},
     {"length", Source::Hit, 3, 10.0f},
     {"iterations", Source::Iterations, 4, 16.0f},
+    {"hit-distance", Source::HitDistance, 4, 10.0f},  // Context::hitDistanceTexture() / 10 view units
     {"hit-uv", Source::Hit, 5, 1.0f},
     {"error", Source::Error, 0, 1.0f},
 };
@@ -81,6 +82,7 @@ Settings settingsFor(const Side& s) {
                : s.method == 3 ? Method::PositionBuffer
                                : Method::AdaptiveL;
   out.debug.outputs = true;  // the debug views read hit and iterations
+  out.hitDistance = true;    // ... and the hit distance output
   out.debug.collectStats = true;
   return out;
 }
@@ -194,6 +196,7 @@ struct App {
       case Source::Resolved: return c.resolvedTexture();
       case Source::Hit: return c.hitTexture();
       case Source::Iterations: return c.iterationsTexture();
+      case Source::HitDistance: return c.hitDistanceTexture();
       case Source::Error: return s.errorTexture != 0 ? s.errorTexture : s.renderer->finalTexture();
     }
     return 0;

@@ -40,7 +40,7 @@ void Context::Impl::createTargets() {
   reflection = makeTexture(GL_RGBA16F, "sslr.reflection");
   blurTemp = makeTexture(GL_RGBA16F, "sslr.blurTemp");
   resolved = makeTexture(GL_RGBA16F, "sslr.resolved");
-  hit = iterations = 0;  // created by the first dispatch that writes them (debug.outputs, temporal)
+  hit = iterations = hitDistance = 0;  // created by the first dispatch that writes them
   const FrameArea whole = areaOf(Viewport{0, 0, width, height});  // the largest frame's pyramid
   pyramid.levels = whole.levels;
   pyramid.level1Width = whole.level1Width;
@@ -70,8 +70,8 @@ void Context::Impl::resetFrameState(std::uint64_t dispatchesBefore, int frameInd
   const std::vector<GLuint> tiles = initialTileList();
   gl.NamedBufferSubData(tileBuffer, 0, static_cast<GLsizeiptr>(tiles.size() * sizeof(GLuint)), tiles.data());
   const float zero[4] = {0, 0, 0, 0};
-  for (GLuint t : {reflection, blurTemp, resolved, hit, iterations, halfRes.quadHit, halfRes.quadSurface,
-                   history.color, history.key})
+  for (GLuint t : {reflection, blurTemp, resolved, hit, iterations, hitDistance, halfRes.quadHit,
+                   halfRes.quadSurface, history.color, history.key})
     if (t != 0) gl.ClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
   if (feedback.fence != nullptr) gl.DeleteSync(feedback.fence);
   feedback.fence = nullptr;
@@ -118,9 +118,9 @@ void Context::Impl::createPyramid() {
 }
 
 void Context::Impl::destroyTargets() {
-  GLuint textures[] = {reflection, blurTemp, resolved, hit,     iterations,
-                       pyramid.texture,        halfRes.quadHit,  halfRes.quadSurface, history.color, history.key};
-  gl.DeleteTextures(10, textures);
+  GLuint textures[] = {reflection,      blurTemp,        resolved,            hit,           iterations, hitDistance,
+                       pyramid.texture, halfRes.quadHit, halfRes.quadSurface, history.color, history.key};
+  gl.DeleteTextures(11, textures);
   gl.DeleteBuffers(1, &retraceBuffer);
   gl.DeleteBuffers(1, &feedback.buffer);
   gl.DeleteBuffers(1, &pyramid.curvedQuads);
@@ -131,7 +131,7 @@ void Context::Impl::destroyTargets() {
   history.valid = false;
   GLuint buffers[] = {tileBuffer};
   gl.DeleteBuffers(1, buffers);
-  reflection = blurTemp = resolved = hit = iterations = pyramid.texture = tileBuffer = 0;
+  reflection = blurTemp = resolved = hit = iterations = hitDistance = pyramid.texture = tileBuffer = 0;
 }
 
 void Context::Impl::destroy() {
@@ -264,6 +264,7 @@ GLName Context::reflectionTexture() const { return impl_->reflection; }
 GLName Context::resolvedTexture() const { return impl_->resolved; }
 GLName Context::hitTexture() const { return impl_->hit; }
 GLName Context::iterationsTexture() const { return impl_->iterations; }
+GLName Context::hitDistanceTexture() const { return impl_->hitDistance; }
 FrameStats Context::lastStats() const {
   impl_->harvestStats(false);
   return impl_->stats;

@@ -59,7 +59,7 @@ struct TrafficModel {
   std::uint64_t level1Cells = 0;  // level-1 cells over the screen
   std::uint64_t upperCells = 0;   // cells of levels 2 and up
   int fetchBytes = 0;             // bytes of one counted fetch (depth, position, or pyramid texel)
-  bool halfResolution = false, hitRecord = false, iterations = false, temporal = false;
+  bool halfResolution = false, hitRecord = false, iterations = false, hitDistance = false, temporal = false;
   int blurTaps = 0;               // taps on each side at the blur's widest (0: no blur)
 };
 // FrameStats' PassTraffic from the model and the frame's counts (tiles, traced pixels, fetches).
@@ -86,7 +86,7 @@ struct Context::Impl {
   static FrameArea areaOf(const Viewport& rect);
 
   // The outputs (reflection, resolved), the blur's scratch and the debug images.
-  GLuint reflection = 0, blurTemp = 0, resolved = 0, hit = 0, iterations = 0;
+  GLuint reflection = 0, blurTemp = 0, resolved = 0, hit = 0, iterations = 0, hitDistance = 0;
   // Min-max depth pyramid: mip m holds level m (sslr_shared.h; level 0 also holds the pixels'
   // curved extra depths). Its base is padded so that every mip halves exactly: mip m has at least
   // ceil(size / 2^m) cells per axis. Created by the first dispatch that traces it.
@@ -212,6 +212,7 @@ struct Context::Impl {
     shared::SslrFrame frame{};  // the constants the passes read (frameConstants)
     Method method = Method::AdaptiveL;
     bool halfResolution = false, temporal = false, debugOutputs = false, collectStats = false;
+    bool hitDistance = false;      // Settings::hitDistance: the trace writes hitDistanceTexture()
     bool pyramid = false;          // the trace reads the depth pyramid
     bool curvedSolids = false;     // ... with the curved quads' pass
     bool level1Pass = false;       // level 1 in a pass of its own (the last frame listed no tile)

@@ -200,6 +200,7 @@ Context::Impl::FramePlan Context::Impl::planFrame(const Settings& settings,
   f.halfResolution = settings.halfResolution;
   f.temporal = settings.temporal.enabled;
   f.debugOutputs = settings.debug.outputs;
+  f.hitDistance = settings.hitDistance;
   f.collectStats = settings.debug.collectStats;
   // frameConstants decided whether the trace uses the traversal; the pyramid follows it, and so
   // do the curved solids (sslr_shared.h).
@@ -256,6 +257,7 @@ TrafficModel Context::Impl::trafficModel(const FramePlan& f, TrafficModel format
   m.halfResolution = f.halfResolution;
   m.hitRecord = f.debugOutputs || f.temporal;
   m.iterations = f.debugOutputs;
+  m.hitDistance = f.hitDistance;
   m.temporal = f.temporal;
   m.blurTaps = f.blur ? static_cast<int>(std::ceil(std::min(settings.blur.maxRadiusPx, 32.0f))) : 0;
   return m;
@@ -285,6 +287,7 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
   std::string traceDefines = methodDefines + statsDefine;
   if (settings.debug.outputs) traceDefines += "#define SSLR_DEBUG_OUTPUTS 1\n";
   if (settings.temporal.enabled) traceDefines += "#define SSLR_TEMPORAL_HITS 1\n";
+  if (settings.hitDistance) traceDefines += "#define SSLR_HIT_DISTANCE 1\n";
   if (settings.glossy.mode == GlossyMode::Stochastic) traceDefines += "#define SSLR_STOCHASTIC 1\n";
   const std::string deferDefine = f.deferTraversal ? "#define SSLR_DEFER_TRAVERSAL 1\n" : "";
   const std::string countDefine = "#define SSLR_COUNT_TRAVERSAL 1\n";
@@ -364,6 +367,7 @@ void Context::Impl::createFrameResources(const FramePlan& f) {
   }
   // The hit record and iteration images only for the frames that write them (20 B per pixel).
   if ((f.debugOutputs || f.temporal) && hit == 0) hit = makeTexture(GL_RGBA32F, "sslr.hit");
+  if (f.hitDistance && hitDistance == 0) hitDistance = makeTexture(GL_R32F, "sslr.hitDistance");
   if (f.debugOutputs && iterations == 0) iterations = makeTexture(GL_R32F, "sslr.iterations");
   if (f.temporal && history.color == 0) {
     history.color = makeTexture(GL_RGBA16F, "sslr.history");
@@ -388,6 +392,8 @@ void Context::Impl::beginFrame(FramePlan& f) {
     clearTexImage(hit, GL_RGBA, GL_FLOAT, zero);
     clearTexImage(iterations, GL_RED, GL_FLOAT, zero);
   }
+  // The hit distance is cleared whole too (0: no hit), so that tiles not traced read 0.
+  if (f.hitDistance) clearTexImage(hitDistance, GL_RED, GL_FLOAT, zero);
   // Stats go to the ring slot of this dispatch (the oldest; a slot still unread is overwritten:
   // lastStats then reports a later frame).
   ++dispatches;
@@ -538,6 +544,8 @@ void Context::Impl::runTrace(const FramePlan& f) const {
   gl.BindImageTexture(SSLR_IMAGE_RESOLVED, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
   if (f.debugOutputs || f.temporal) gl.BindImageTexture(SSLR_IMAGE_HIT, hit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   if (f.debugOutputs) gl.BindImageTexture(SSLR_IMAGE_ITERATIONS, iterations, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  if (f.hitDistance)
+    gl.BindImageTexture(SSLR_IMAGE_HIT_DISTANCE, hitDistance, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
   dispatchComputeIndirect(0);
   if (f.retracePass) {  // the pixels whose quad's ray did not answer them, or that need the traversal
     memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);

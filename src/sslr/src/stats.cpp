@@ -122,6 +122,7 @@ void estimateTraffic(const TrafficModel& m, FrameStats& f) {
     if (m.baseColorBytes > 0) read(t, rays, m.baseColorBytes);  // coloured F0, per hit
     write(t, tilePixels * 2, kRgba16f);  // reflection, resolved
     if (m.hitRecord) write(t, tilePixels, kRgba32f);
+    if (m.hitDistance) write(t, tilePixels, kR32f);
     if (m.iterations) write(t, tilePixels, kR32f);
   }
   f.blurTraffic = {};

@@ -277,6 +277,9 @@ struct Settings {
   Method method = Method::AdaptiveL;
   FresnelMode fresnel = FresnelMode::Classic;
   OutputMode output = OutputMode::Weighted;
+  // Also write hitDistanceTexture(): each pixel's reflected ray length to its hit, in view units
+  // (the input FidelityFX's and Unreal's denoisers and contact-hardening blurs take).
+  bool hitDistance = false;
   bool halfResolution = false;  // one ray per 2x2 quad (the traced pixel rotates per frame); the
                                 // quad's pixels on the same surface reuse its hit, the others trace
                                 // their own ray. Depth-only methods only
@@ -535,6 +538,11 @@ class Context {
                                      // until a dispatch with debug.outputs or temporal created it
   GLName iterationsTexture() const;  // R32F (debug.outputs): adaptive-L iterations run; 0 until a
                                      // dispatch with debug.outputs created it
+  // R32F (Settings::hitDistance): the reflected ray's length from the pixel's surface point to its
+  // hit, in view units, where the pixel has a hit (coverage > 0); 0 (the sentinel: no hit, or not
+  // traced) elsewhere. This frame's ray, before the blur and temporal reuse. 0 until a dispatch
+  // with hitDistance created it.
+  GLName hitDistanceTexture() const;
   // Stats never stall the pipeline: each dispatch with debug.collectStats records into a ring of 4
   // slots, and lastStats() returns the newest whose GPU work has finished (FrameStats::frame says
   // which dispatch; typically 1-3 frames back on a GPU). waitForStats() waits for the newest
