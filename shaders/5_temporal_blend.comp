@@ -20,6 +20,9 @@ layout(binding = SSLR_UNIT_HISTORY_KEY) uniform sampler2D uHistoryKey;  // its k
 layout(binding = SSLR_UNIT_MOTION) uniform sampler2D uMotion;      // optional: uv now - uv then (host motion vectors)
 layout(binding = SSLR_UNIT_HIT_RECORD) uniform sampler2D uHitRecord;   // this frame's hits: uv, confidence, L
 layout(binding = SSLR_IMAGE_TEMPORAL_OUTPUT, rgba16f) uniform writeonly image2D uBlended;
+#ifdef SSLR_HISTORY_CONFIDENCE  // Settings::temporal.outputConfidence
+layout(binding = SSLR_IMAGE_HISTORY_CONFIDENCE, r8) uniform writeonly image2D uHistoryConfidence;
+#endif
 
 // The history at uvPrevious, bilinear over the four texels around it whose key matches
 // keyPrevious (the same surface); false when none does.
@@ -48,6 +51,7 @@ void main() {
   if (!sslrInside(px)) return;
   vec4 current = texelFetch(uCurrent, sslrTexel(px), 0);
   vec4 blended = current;
+  float historyShare = 0.0f;  // how much of `blended` is history
   float depth = texelFetch(uDepth, sslrTexel(px), 0).r;
   vec4 packedNormal = texelFetch(uNormal, sslrTexel(px), 0);
   vec4 history = vec4(0.0f);
@@ -110,7 +114,11 @@ void main() {
     vec4 lo = min(mean - sigma, current), hi = max(mean + sigma, current);
     // A curved mirror's reflection changes within a pixel, and resampled history blurs it: there
     // history gets a quarter of the weight (docs/design-notes.md, "Temporal reuse").
-    blended = mix(current, clamp(history, lo, hi), frame.temporal.historyWeight * (planar ? 1.0f : 0.25f));
+    historyShare = frame.temporal.historyWeight * (planar ? 1.0f : 0.25f);
+    blended = mix(current, clamp(history, lo, hi), historyShare);
   }
   imageStore(uBlended, sslrTexel(px), blended);
+#ifdef SSLR_HISTORY_CONFIDENCE
+  imageStore(uHistoryConfidence, sslrTexel(px), vec4(historyShare));
+#endif
 }

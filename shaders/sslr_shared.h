@@ -136,6 +136,7 @@ using glm::sqrt;
 #define SSLR_IMAGE_BLUR_OUTPUT 0
 #define SSLR_IMAGE_TEMPORAL_OUTPUT 0  // temporal reuse: the blend (store: resolved)
 #define SSLR_IMAGE_HISTORY 1          // ... store: the history
+#define SSLR_IMAGE_HISTORY_CONFIDENCE 1  // ... blend: history's share (Settings::temporal.outputConfidence)
 #define SSLR_IMAGE_HISTORY_KEY 2      // ... store (and its clean-up): the keys
 #define SSLR_IMAGE_COUNT 6
 #define SSLR_RETRACE_GROUP 64        // invocations per group of the retrace pass

@@ -79,6 +79,7 @@ TEST(Settings, EveryInvalidFieldIsNamed) {
       {"glossy.stochasticFrom", [](Settings& s) { s.glossy.stochasticFrom = 1.5f; }},
       {"glossy.stochasticFrom", [](Settings& s) { s.glossy.stochasticFrom = NAN; }},
       {"glossy.mode Stochastic", [](Settings& s) { s.glossy.mode = GlossyMode::Stochastic; s.halfResolution = true; }},
+      {"temporal.outputConfidence needs temporal.enabled", [](Settings& s) { s.temporal.outputConfidence = true; }},
   };
   for (const Bad& b : cases) {
     Settings s;

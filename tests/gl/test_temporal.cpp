@@ -191,3 +191,81 @@ TEST_F(Temporal, MissingOrBadInputsAreRefused) {
 
 
 }  // namespace
+
+namespace {
+
+// Settings::temporal.outputConfidence: historyConfidenceTexture() is history's share of each pixel.
+// A still camera: history is trusted (historyWeight on the planar mirror floor) on nearly every
+// reflective pixel from the second frame on (0 on the first: none yet). A box that stood in front
+// of the floor and is gone in the next frame: inside where it was (its outline's pixels may blend
+// the floor's history beside it), the floor has no history (its key was the box's), and the
+// confidence is 0 there while it stays up elsewhere. A camera cut told by
+// FrameInputs::historyReset: 0 everywhere, and the output is the plain first frame's.
+TEST_F(Temporal, HistoryConfidenceSaysWhereHistoryWasUsed) {
+  Sequence q;
+  Settings s;
+  s.temporal.enabled = true;
+  s.temporal.outputConfidence = true;
+  auto confidence = [&] { return readTexture(q.ctx->historyConfidenceTexture(), W, H, 1); };
+  auto depth = [&] { return readTexture(q.gbuffer->depthTexture(), W, H, 1, GL_DEPTH_COMPONENT); };
+  auto scene = makeBuiltinScene("mirror-room");
+  ASSERT_TRUE(scene);
+  Scene withBox = scene.value();
+  withBox.meshes.push_back(makeBox({0.2, 0.5, 1.0}, {1.4, 1.0, 1.0}, 0));
+  std::unique_ptr<GpuScene> plainScene = std::move(q.gpu);
+  q.gpu = std::make_unique<GpuScene>(withBox);
+  ASSERT_TRUE(q.frame(s, {0.0, 0.0}));
+  ASSERT_NE(q.ctx->historyConfidenceTexture(), 0u);
+  const Image first = confidence();
+  EXPECT_EQ(*std::max_element(first.pixels.begin(), first.pixels.end()), 0.0f) << "no history on the first frame";
+  const Image depthWithBox = depth();
+  q.gpu = std::move(plainScene);
+  ASSERT_TRUE(q.frame(s, {0.0, 0.0}));
+  const Image depthNow = depth(), afterBox = confidence(), covered = q.resolved();
+  auto changed = [&](int x, int y) {
+    x = std::clamp(x, 0, W - 1);
+    y = std::clamp(y, 0, H - 1);
+    return depthWithBox.at(x, y, 0) != depthNow.at(x, y, 0);
+  };
+  size_t uncovered = 0, uncoveredTrusted = 0, stayed = 0, stayedTrusted = 0;
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      if (!(covered.at(x, y, 3) > 0.0f)) continue;
+      bool inside = true;  // the box was at this pixel and at its eight neighbours
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) inside = inside && changed(x + dx, y + dy);
+      const float c = afterBox.at(x, y, 0);
+      if (inside) {
+        ++uncovered;
+        uncoveredTrusted += c > 0.0f;
+      } else if (!changed(x, y)) {
+        ++stayed;
+        stayedTrusted += c > 0.5f;
+      }
+    }
+  ASSERT_GT(uncovered, 20u) << "the box must have hidden some of the reflective floor";
+  EXPECT_EQ(uncoveredTrusted, 0u) << "of " << uncovered << " pixels the box uncovered";
+  EXPECT_GT(stayedTrusted, stayed * 8 / 10) << "of " << stayed;  // historyWeight 0.8 on the floor
+  // A cut, told: no history anywhere, the output as a first frame's.
+  Settings plain;
+  Sequence fresh;
+  ASSERT_TRUE(fresh.frame(plain, {0.0, 0.0}));
+  q.camera = fresh.camera;
+  q.previousClipFromWorld = glm::dmat4(0.0);  // (the host's matrices are the cut's business)
+  ASSERT_TRUE(q.gbuffer->render(*q.gpu, q.camera));
+  FrameInputs cut = q.gbuffer->frameInputs();
+  cut.previousClipFromView = cut.clipFromView;
+  cut.historyReset = true;
+  ASSERT_TRUE(q.ctx->dispatch(cut, s));
+  const Image afterCut = confidence();
+  EXPECT_EQ(*std::max_element(afterCut.pixels.begin(), afterCut.pixels.end()), 0.0f);
+  EXPECT_EQ(q.resolved().pixels, fresh.resolved().pixels) << "a reset frame is a first frame";
+  // Off: no texture.
+  Sequence off;
+  Settings temporalOnly;
+  temporalOnly.temporal.enabled = true;
+  ASSERT_TRUE(off.frame(temporalOnly, {0.0, 0.0}));
+  EXPECT_EQ(off.ctx->historyConfidenceTexture(), 0u);
+}
+
+}  // namespace

@@ -71,7 +71,7 @@ void Context::Impl::resetFrameState(std::uint64_t dispatchesBefore, int frameInd
   gl.NamedBufferSubData(tileBuffer, 0, static_cast<GLsizeiptr>(tiles.size() * sizeof(GLuint)), tiles.data());
   const float zero[4] = {0, 0, 0, 0};
   for (GLuint t : {reflection, blurTemp, resolved, hit, iterations, hitDistance, halfRes.quadHit,
-                   halfRes.quadSurface, history.color, history.key})
+                   halfRes.quadSurface, history.color, history.key, history.confidence})
     if (t != 0) gl.ClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
   if (feedback.fence != nullptr) gl.DeleteSync(feedback.fence);
   feedback.fence = nullptr;
@@ -118,9 +118,9 @@ void Context::Impl::createPyramid() {
 }
 
 void Context::Impl::destroyTargets() {
-  GLuint textures[] = {reflection,      blurTemp,        resolved,            hit,           iterations, hitDistance,
-                       pyramid.texture, halfRes.quadHit, halfRes.quadSurface, history.color, history.key};
-  gl.DeleteTextures(11, textures);
+  GLuint textures[] = {reflection,      blurTemp,        resolved,            hit,           iterations,  hitDistance,
+                       pyramid.texture, halfRes.quadHit, halfRes.quadSurface, history.color, history.key, history.confidence};
+  gl.DeleteTextures(12, textures);
   gl.DeleteBuffers(1, &retraceBuffer);
   gl.DeleteBuffers(1, &feedback.buffer);
   gl.DeleteBuffers(1, &pyramid.curvedQuads);
@@ -128,6 +128,7 @@ void Context::Impl::destroyTargets() {
   feedback.fence = nullptr;
   feedback.traversalInline = feedback.hasTraversal = feedback.lastFrameListedNoTile = false;
   halfRes.quadHit = halfRes.quadSurface = retraceBuffer = feedback.buffer = history.color = history.key = pyramid.curvedQuads = 0;
+  history.confidence = 0;
   history.valid = false;
   GLuint buffers[] = {tileBuffer};
   gl.DeleteBuffers(1, buffers);
@@ -265,6 +266,7 @@ GLName Context::resolvedTexture() const { return impl_->resolved; }
 GLName Context::hitTexture() const { return impl_->hit; }
 GLName Context::iterationsTexture() const { return impl_->iterations; }
 GLName Context::hitDistanceTexture() const { return impl_->hitDistance; }
+GLName Context::historyConfidenceTexture() const { return impl_->history.confidence; }
 FrameStats Context::lastStats() const {
   impl_->harvestStats(false);
   return impl_->stats;

@@ -122,6 +122,7 @@ struct Context::Impl {
   // on first use. valid: the last dispatch stored them.
   struct TemporalHistory {
     GLuint color = 0, key = 0;
+    GLuint confidence = 0;  // Settings::temporal.outputConfidence: history's share per pixel
     bool valid = false;
   } history;
   GLuint frameUbo = 0, tileBuffer = 0;
@@ -213,6 +214,7 @@ struct Context::Impl {
     Method method = Method::AdaptiveL;
     bool halfResolution = false, temporal = false, debugOutputs = false, collectStats = false;
     bool hitDistance = false;      // Settings::hitDistance: the trace writes hitDistanceTexture()
+    bool historyConfidence = false;  // Settings::temporal.outputConfidence: the blend writes it
     bool pyramid = false;          // the trace reads the depth pyramid
     bool curvedSolids = false;     // ... with the curved quads' pass
     bool level1Pass = false;       // level 1 in a pass of its own (the last frame listed no tile)

@@ -89,7 +89,7 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   // Temporal history is the previous dispatch's only if that one stored it: a failed or
   // non-temporal dispatch in between breaks the chain (the host's "previous" matrices would not
   // describe the stored frame).
-  bool hadHistory = history.valid;
+  bool hadHistory = history.valid && !in.historyReset;
   history.valid = false;
   if (Status s = checkCurrentContext("dispatch()"); !s) return s;
   auto constants = frameConstants(in, settings, width, height);  // validates settings + projection
@@ -201,6 +201,7 @@ Context::Impl::FramePlan Context::Impl::planFrame(const Settings& settings,
   f.temporal = settings.temporal.enabled;
   f.debugOutputs = settings.debug.outputs;
   f.hitDistance = settings.hitDistance;
+  f.historyConfidence = settings.temporal.enabled && settings.temporal.outputConfidence;
   f.collectStats = settings.debug.collectStats;
   // frameConstants decided whether the trace uses the traversal; the pyramid follows it, and so
   // do the curved solids (sslr_shared.h).
@@ -318,7 +319,9 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
       {&f.programs.retrace, optionalProgram(f.retracePass, "3_retrace.comp", retraceDefines)},
       {&f.programs.blurH, optionalProgram(f.blur, "4_blur.comp", "#define SSLR_BLUR_AXIS ivec2(1, 0)\n")},
       {&f.programs.blurV, optionalProgram(f.blur, "4_blur.comp", "#define SSLR_BLUR_AXIS ivec2(0, 1)\n#define SSLR_BLUR_VERTICAL 1\n")},
-      {&f.programs.temporalBlend, optionalProgram(settings.temporal.enabled, "5_temporal_blend.comp", "")},
+      {&f.programs.temporalBlend,
+       optionalProgram(settings.temporal.enabled, "5_temporal_blend.comp",
+                       f.historyConfidence ? "#define SSLR_HISTORY_CONFIDENCE 1\n" : "")},
       {&f.programs.temporalStore, optionalProgram(settings.temporal.enabled, "5_temporal_store.comp", "")},
       {&f.programs.historyCleanup, optionalProgram(settings.temporal.enabled, "5_clear_untraced_history.comp", "")}};
   for (const auto& [slot, program] : built) {
@@ -368,6 +371,7 @@ void Context::Impl::createFrameResources(const FramePlan& f) {
   // The hit record and iteration images only for the frames that write them (20 B per pixel).
   if ((f.debugOutputs || f.temporal) && hit == 0) hit = makeTexture(GL_RGBA32F, "sslr.hit");
   if (f.hitDistance && hitDistance == 0) hitDistance = makeTexture(GL_R32F, "sslr.hitDistance");
+  if (f.historyConfidence && history.confidence == 0) history.confidence = makeTexture(GL_R8, "sslr.historyConfidence");
   if (f.debugOutputs && iterations == 0) iterations = makeTexture(GL_R32F, "sslr.iterations");
   if (f.temporal && history.color == 0) {
     history.color = makeTexture(GL_RGBA16F, "sslr.history");
@@ -394,6 +398,7 @@ void Context::Impl::beginFrame(FramePlan& f) {
   }
   // The hit distance is cleared whole too (0: no hit), so that tiles not traced read 0.
   if (f.hitDistance) clearTexImage(hitDistance, GL_RED, GL_FLOAT, zero);
+  if (f.historyConfidence) clearTexImage(history.confidence, GL_RED, GL_FLOAT, zero);
   // Stats go to the ring slot of this dispatch (the oldest; a slot still unread is overwritten:
   // lastStats then reports a later frame).
   ++dispatches;
@@ -625,6 +630,8 @@ void Context::Impl::runTemporal(const FramePlan& f, const FrameInputs& in) {
   gl.bindTexture2D(SSLR_UNIT_HISTORY, history.color);
   gl.bindTexture2D(SSLR_UNIT_HISTORY_KEY, history.key);
   gl.BindImageTexture(SSLR_IMAGE_TEMPORAL_OUTPUT, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  if (f.historyConfidence)
+    gl.BindImageTexture(SSLR_IMAGE_HISTORY_CONFIDENCE, history.confidence, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8);
   dispatchComputeIndirect(0);
   memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   useProgram(f.programs.temporalStore);

@@ -140,6 +140,8 @@ std::string validate(const Settings& s) {
   // Settings that do not combine.
   if (s.halfResolution && s.method == Method::PositionBuffer)
     why << "halfResolution works with the depth-only methods, not Method::PositionBuffer; ";
+  if (s.temporal.outputConfidence && !s.temporal.enabled)
+    why << "temporal.outputConfidence needs temporal.enabled (it is the temporal blend's); ";
   if (s.glossy.mode == GlossyMode::Stochastic && s.halfResolution)
     why << "glossy.mode Stochastic does not work with halfResolution (a quad's pixels reuse its mirror ray); ";
   std::string text = why.str();

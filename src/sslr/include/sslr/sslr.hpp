@@ -183,6 +183,9 @@ struct FrameInputs {
   // clip space = previous clipFromView (its jitter included) x previous viewFromWorld x this
   // frame's worldFromView (the inverse of viewFromWorld). All zeros = not given.
   glm::dmat4 previousClipFromView{0.0};
+  // Settings::temporal only: this frame starts the history afresh (a camera cut, a teleport): no
+  // history is read, as on the first frame; this frame's output becomes the next one's history.
+  bool historyReset = false;
   DepthConvention depth{};
   SurfaceLayout surface{};
   // Where the frame lies in the textures (all of them, inputs and outputs, the context's size):
@@ -358,6 +361,9 @@ struct Settings {
   struct Temporal {
     bool enabled = false;
     float historyWeight = 0.8f;  // 0..0.98: the history's share of the output
+    // Also write historyConfidenceTexture(): how much of each pixel's resolved value came from
+    // history (0 where it was disoccluded, rejected or absent), for an engine's own TAA.
+    bool outputConfidence = false;
   } temporal;
 
   struct Debug {
@@ -543,6 +549,11 @@ class Context {
   // traced) elsewhere. This frame's ray, before the blur and temporal reuse. 0 until a dispatch
   // with hitDistance created it.
   GLName hitDistanceTexture() const;
+  // R8 (Settings::temporal.outputConfidence): the history's share of each pixel's resolved value,
+  // 0..temporal.historyWeight: 0 where history was not found (disocclusion, a camera cut, a new
+  // rectangle, the first frame), historyWeight where it was fully trusted, a quarter of it on
+  // curved mirrors. 0 until a dispatch with outputConfidence created it.
+  GLName historyConfidenceTexture() const;
   // Stats never stall the pipeline: each dispatch with debug.collectStats records into a ring of 4
   // slots, and lastStats() returns the newest whose GPU work has finished (FrameStats::frame says
   // which dispatch; typically 1-3 frames back on a GPU). waitForStats() waits for the newest
