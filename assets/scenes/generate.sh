@@ -9,7 +9,8 @@ set -euo pipefail
 cd "$(dirname "$0")"
 render=${1:-../../build/release/src/apps/sslr-render}
 for name in mirror-room grazing-plane thin-objects sky-heavy mirror-box tilted-mirror facing-mirror mirror-walls \
-            curved-mirror glossy turned-mirror mirror-corridor mirrors-from-above; do
+            curved-mirror glossy turned-mirror mirror-corridor mirrors-from-above sphere-over-mirror-32 \
+            sphere-over-mirror-128; do
   "$render" --scene "$name" --export-gltf "$name.gltf" > /dev/null
 done
 

@@ -31,7 +31,8 @@ std::vector<std::string> defaultBenchScenes() {
   // The scenes built to break the tracer first (those nobody tuned for leading), then the rest;
   // every built-in and asset scene but the two analytic test scenes (mirror-box, tilted-mirror).
   return {"turned-mirror", "mirror-corridor", "mirrors-from-above", "spider-on-mirror", "wuson-as-mirror",
-          "facing-mirror", "thin-objects",    "mirror-walls",       "curved-mirror",    "glossy",
+          "facing-mirror", "thin-objects",    "mirror-walls",       "curved-mirror",    "sphere-over-mirror-32",
+          "sphere-over-mirror-128",           "glossy",
           "mirror-room",   "grazing-plane",   "sky-heavy"};
 }
 

@@ -420,6 +420,24 @@ Scene curvedMirror() {
   return s;
 }
 
+// A copper mirror sphere over a gold mirror floor, the sphere a faceted mesh (`segments` around,
+// half as many rings) with interpolated normals, as glTF spheres are: the depth shows flat facets
+// while the shading normal turns smoothly, where reflected rays have refused true hits
+// (docs/results.md, "Isolated rejections in reflected curved objects").
+Scene sphereOverMirror(int segments) {
+  Scene s;
+  s.name = "sphere-over-mirror-" + std::to_string(segments);
+  const int copper = addMaterial(s, glm::vec3(0.95f, 0.64f, 0.54f), 1.0f, 0.0f);
+  const int gold = addMaterial(s, glm::vec3(1.0f, 0.78f, 0.34f), 1.0f, 0.0f);
+  const int wall = addMaterial(s, glm::vec3(0.55f, 0.6f, 0.68f), 0.0f, 0.9f, 0.1f);
+  s.meshes.push_back(makeQuad({0, 0, 0}, {12, 12}, {0, 1, 0}, gold));
+  s.meshes.push_back(makeQuad({0, 3, -6}, {12, 6}, {0, 0, 1}, wall));
+  s.meshes.push_back(makeSphere({0.0, 1.0, 0.0}, 0.8, copper, segments / 2, segments));
+  s.camera = perspectiveCamera({0.0, 1.6, 4.5}, {0.0, 0.7, 0.0}, 52.0, 0.1, 100.0);
+  s.background = glm::vec3(0.3f, 0.33f, 0.4f);
+  return s;
+}
+
 // A mirror wall on the right, turned 20 degrees about the vertical away from the view: rays
 // meeting it leave straight along the view direction, away from the camera, towards the boxes
 // standing along it deep in the scene (screen-space steps shrink towards the vanishing point).
@@ -567,7 +585,7 @@ Scene reflectiveFraction(int percent) {
 std::vector<std::string> builtinSceneNames() {
   return {"mirror-room",   "grazing-plane", "thin-objects",  "sky-heavy",       "mirror-box",
           "tilted-mirror", "facing-mirror", "mirror-walls",  "curved-mirror",   "glossy",
-          "turned-mirror", "mirror-corridor", "mirrors-from-above"};
+          "turned-mirror", "mirror-corridor", "mirrors-from-above", "sphere-over-mirror-32", "sphere-over-mirror-128"};
 }
 
 std::vector<std::string> assetSceneNames() { return {"spider-on-mirror", "wuson-as-mirror"}; }
@@ -591,6 +609,8 @@ Expected<Scene> makeBuiltinScene(const std::string& name) {
   if (name == "turned-mirror") return turnedMirror();
   if (name == "mirror-corridor") return mirrorCorridor();
   if (name == "mirrors-from-above") return mirrorsFromAbove();
+  if (name == "sphere-over-mirror-32") return sphereOverMirror(32);
+  if (name == "sphere-over-mirror-128") return sphereOverMirror(128);
   if (name.rfind("reflective-", 0) == 0) {
     const std::string digits = name.substr(11);
     if (!digits.empty() && digits.size() <= 3 && std::all_of(digits.begin(), digits.end(), ::isdigit) &&
