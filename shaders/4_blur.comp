@@ -3,7 +3,7 @@
 // reflection stays premultiplied by its coverage) over the tiles the trace listed for blurring
 // (tiles with a pixel whose radius is at least half a pixel). The radius comes from the reflection's
 // alpha (the cone footprint written by the trace); neighbours count only if they are traced pixels
-// on a similar surface (sslrBlurWeight: depth and normal terms), so reflections do not bleed
+// on a similar surface (sslrBlurTapWeight: depth and normal terms), so reflections do not bleed
 // across edges.
 //
 // H pass: unblurred resolved -> blurTemp. V pass: blurTemp -> resolved. The V pass reads a
@@ -103,7 +103,7 @@ void main() {
   for (int i = -ownTaps; i <= ownTaps; ++i) {
     vec4 guide1 = sGuide[line][at + i];
     if (i == 0 || guide1.w < 0.0f) continue;
-    float w = sslrBlurWeight(centre, i, guide1.w, guide1.xyz);
+    float w = sslrBlurTapWeight(centre, i, guide1.w, guide1.xyz);
     sum += sValue[line][at + i] * w;
     weightSum += w;
   }

@@ -908,7 +908,9 @@ SSLR_FN SslrBlurCentre sslrBlurCentre(SslrTraceParams t, float radiusPx, float z
   return c;
 }
 
-SSLR_FN float sslrBlurWeight(SslrBlurCentre c, int offsetPx, float z1, vec3 n1) {
+// One tap's weight in the blur's sum (not the "blur weight", the reflection's alpha that sets
+// the radius): Gaussian in the offset, falling with the depth and normal differences.
+SSLR_FN float sslrBlurTapWeight(SslrBlurCentre c, int offsetPx, float z1, vec3 n1) {
   float normalLog2 = 0.0f;  // blur.normalPower 0: no normal term
   if (c.normalPower > 0.0f) {
     float cosine = dot(c.normal, n1);

@@ -405,11 +405,11 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
 //   reflection the weight applied to the hit's colour: Fresnel term x coverage, with the Fresnel
 //              term reflectance x the article's Fresnel (Classic) or Schlick with F0 = reflectance;
 //              coverage alone for OutputMode::Radiance (the host applies its own specular term).
-//   blurAlpha  the roughness blur's radius / blur.maxRadiusPx (stored in the reflection's alpha).
+//   blurWeight the roughness blur's radius / blur.maxRadiusPx (stored in the reflection's alpha).
 struct SslrWeights {
   float reflection;
   float coverage;
-  float blurAlpha;
+  float blurWeight;
 };
 
 SSLR_FN SslrWeights sslrReflectionWeights(SslrProjection p, SslrSurface s, SslrTraceParams t, SslrHit hit,
@@ -424,7 +424,7 @@ SSLR_FN SslrWeights sslrReflectionWeights(SslrProjection p, SslrSurface s, SslrT
   w.coverage = sslrSaturate(hit.confidence * hit.fade * errorWeight * sslrEdgeFade(hit.uvHit, t.edgeFade) *
                             sslrCameraFacingFade(vsR, vsV, t.cameraFadeStart, t.cameraFadeEnd));
   w.reflection = (t.outputRadiance != 0 ? 1.0f : fresnel) * w.coverage;
-  w.blurAlpha = t.blurMaxRadiusPx > 0.0f ? sslrSaturate(radius / t.blurMaxRadiusPx) : 0.0f;
+  w.blurWeight = t.blurMaxRadiusPx > 0.0f ? sslrSaturate(radius / t.blurMaxRadiusPx) : 0.0f;
   return w;
 }
 

@@ -32,9 +32,9 @@ uint sslrShadePixel(ivec2 px) {
       color = clamp(color, vec3(0.0f), vec3(60000.0f));
 #ifdef SSLR_COLORED_F0
       vec3 f0 = sslrColoredF0At(px, q.material, reflectance);
-      reflection = vec4(color * (sslrFresnelColored(frame.trace, f0, q.cosVN) * w.coverage), w.blurAlpha);
+      reflection = vec4(color * (sslrFresnelColored(frame.trace, f0, q.cosVN) * w.coverage), w.blurWeight);
 #else
-      reflection = vec4(color * w.reflection, w.blurAlpha);
+      reflection = vec4(color * w.reflection, w.blurWeight);
 #endif
       coverage = w.coverage;
     }

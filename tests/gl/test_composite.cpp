@@ -82,7 +82,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, CompositeCoverage, ::testing::Values("mirror-ro
                            return n;
                          });
 
-// The blur as sslr_shared.h defines it (sslrBlurWeight over the pixels sslrShouldTrace accepts,
+// The blur as sslr_shared.h defines it (sslrBlurTapWeight over the pixels sslrShouldTrace accepts,
 // each pixel's radius from the trace's blur weight), run on the CPU: one axis of the separable
 // filter over `in`, rounded to RGBA16F as the GPU's intermediate and output textures store it.
 Image cpuBlurAxis(const Image& in, glm::ivec2 axis, const Image& reflection, const Image& depth, const Image& normals,
@@ -113,7 +113,7 @@ Image cpuBlurAxis(const Image& in, glm::ivec2 axis, const Image& reflection, con
         float z1 = 0.0f;
         glm::vec3 n1(0.0f);
         if (i == 0 || !neighbour(q, z1, n1)) continue;
-        const float w = shared::sslrBlurWeight(centre, i, z1, n1);
+        const float w = shared::sslrBlurTapWeight(centre, i, z1, n1);
         sum += w * glm::vec4(in.at(q.x, q.y, 0), in.at(q.x, q.y, 1), in.at(q.x, q.y, 2), in.at(q.x, q.y, 3));
         weightSum += w;
       }
