@@ -249,7 +249,8 @@ struct SslrTraceParams {
   int ffxMaxIntersections;
   int outputRadiance;         // 1: Settings::output is Radiance (no Fresnel term in the reflection)
   float stochasticFrom;       // GlossyMode::Stochastic: pixels this rough or more draw their ray (> 1: none)
-  int tracePad0;
+  float maxHitLuminance;      // Settings::radianceClamp: a hit colour's luminance at most this
+                              // (colour-texture units; 0 = no clamp)
   int tracePad1;
   int tracePad2;
 };
@@ -906,6 +907,13 @@ SSLR_FN SslrBlurCentre sslrBlurCentre(SslrTraceParams t, float radiusPx, float z
   c.normalPower = t.blurNormalPower;
   c.normal = n0;
   return c;
+}
+
+// Settings::radianceClamp: `color` scaled down (hue kept) to a Rec. 709 luminance of at most
+// `maxLuminance`; unchanged when that is 0 (off) or the colour is below it.
+SSLR_FN vec3 sslrClampLuminance(vec3 color, float maxLuminance) {
+  float luminance = dot(color, vec3(0.2126f, 0.7152f, 0.0722f));
+  return maxLuminance > 0.0f && luminance > maxLuminance ? color * (maxLuminance / luminance) : color;
 }
 
 // One tap's weight in the blur's sum (not the "blur weight", the reflection's alpha that sets

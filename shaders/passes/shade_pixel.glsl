@@ -30,6 +30,7 @@ uint sslrShadePixel(ivec2 px) {
       // kept inside RGBA16F's range.
       if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0f);
       color = clamp(color, vec3(0.0f), vec3(60000.0f));
+      color = sslrClampLuminance(color, frame.trace.maxHitLuminance);
 #ifdef SSLR_COLORED_F0
       vec3 f0 = sslrColoredF0At(px, q.material, reflectance);
       reflection = vec4(color * (sslrFresnelColored(frame.trace, f0, q.cosVN) * w.coverage), w.blurWeight);

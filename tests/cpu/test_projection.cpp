@@ -174,7 +174,7 @@ TEST(Projection, RejectsNonFiniteSingularAndSkewedMatrices) {
 
 // FrameInputs' enumerations out of range (a host's cast, uninitialised memory) are refused by name,
 // not read as one of the valid values.
-TEST(Projection, UnknownEnumerationsInTheInputsAreRefused) {
+TEST(Projection, UnknownEnumerationsAndBadExposuresAreRefused) {
   Camera cam;
   FrameInputs good;
   good.clipFromView = cam.clipFromView(DepthMode::Reversed, 1.5);
@@ -189,6 +189,8 @@ TEST(Projection, UnknownEnumerationsInTheInputsAreRefused) {
        [](FrameInputs& in) { in.surface.normals = static_cast<NormalEncoding>(5); }},
       {"surface.space = 5 (not a sslr::NormalSpace)", [](FrameInputs& in) { in.surface.space = static_cast<NormalSpace>(5); }},
       {"depth.range = 7 (not a sslr::DepthRange)", [](FrameInputs& in) { in.depth.range = static_cast<DepthRange>(7); }},
+      {"FrameInputs::exposure = 0", [](FrameInputs& in) { in.exposure = 0.0f; }},
+      {"FrameInputs::exposure = inf", [](FrameInputs& in) { in.exposure = INFINITY; }},
   };
   for (const Bad& b : cases) {
     FrameInputs in = good;
@@ -364,6 +366,23 @@ TEST(Temporal, VirtualPointObeysTheLawOfReflection) {
   glm::vec3 x;
   EXPECT_FALSE(sslrVirtualPointOnMirror(glm::vec4(0.0f), p, n, L, x));
   EXPECT_FALSE(sslrVirtualPointOnMirror(glm::vec4(0.0f, -3.0f, 0.0f, 1.0f), p, n, L, x));
+}
+
+}  // namespace
+
+namespace {
+
+// Settings::radianceClamp's rule (sslr_shared.h, sslrClampLuminance): off (0) and below the limit
+// the colour passes unchanged; above it the Rec. 709 luminance becomes the limit and the hue (the
+// channels' ratios) stays.
+TEST(RadianceClamp, ScalesBrightColoursDownToTheLimitKeepingTheirHue) {
+  const vec3 sun(3000.0f, 2000.0f, 1000.0f);
+  EXPECT_EQ(sslrClampLuminance(sun, 0.0f), sun) << "0: off";
+  EXPECT_EQ(sslrClampLuminance(vec3(0.5f, 0.4f, 0.3f), 4.0f), vec3(0.5f, 0.4f, 0.3f)) << "below the limit";
+  const vec3 clamped = sslrClampLuminance(sun, 4.0f);
+  EXPECT_NEAR(glm::dot(clamped, vec3(0.2126f, 0.7152f, 0.0722f)), 4.0f, 1e-5f);
+  EXPECT_NEAR(clamped.x / clamped.z, 3.0f, 1e-5f);
+  EXPECT_NEAR(clamped.y / clamped.z, 2.0f, 1e-5f);
 }
 
 }  // namespace

@@ -80,6 +80,8 @@ TEST(Settings, EveryInvalidFieldIsNamed) {
       {"glossy.stochasticFrom", [](Settings& s) { s.glossy.stochasticFrom = NAN; }},
       {"glossy.mode Stochastic", [](Settings& s) { s.glossy.mode = GlossyMode::Stochastic; s.halfResolution = true; }},
       {"temporal.outputConfidence needs temporal.enabled", [](Settings& s) { s.temporal.outputConfidence = true; }},
+      {"radianceClamp.maxLuminance", [](Settings& s) { s.radianceClamp.maxLuminance = -1.0f; }},
+      {"radianceClamp.maxLuminance", [](Settings& s) { s.radianceClamp.maxLuminance = NAN; }},
   };
   for (const Bad& b : cases) {
     Settings s;

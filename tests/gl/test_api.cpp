@@ -1124,6 +1124,40 @@ TEST_F(Api, RayWorkIsTheIterationsImageRegroupedAsTheGroupsRun) {
   EXPECT_EQ(st.totalRayWork().simt32, st.traceWork.simt32 + st.retraceWork.simt32);
 }
 
+// Settings::radianceClamp on a colour texture at 1,000 (an emitter or a sun in every hit): the
+// reflection's luminance stays at most the limit / exposure (Fresnel and coverage only lower it;
+// RGBA16F rounds up by at most 2^-10), and a limit no colour reaches changes nothing.
+TEST_F(Api, RadianceClampBoundsBrightHits) {
+  auto ctx = makeContext();
+  Frame f;
+  FrameInputs in = f.gbuffer->frameInputs();
+  const GLuint bright = makeTexture(GL_RGBA16F);
+  const float value[4] = {1000.0f, 800.0f, 600.0f, 1.0f};
+  glClearTexImage(bright, 0, GL_RGBA, GL_FLOAT, value);
+  in.colorTexture = bright;
+  auto maxLuminance = [&](const Settings& s, float exposure) {
+    FrameInputs frame = in;
+    frame.exposure = exposure;
+    EXPECT_TRUE(ctx->dispatch(frame, s));
+    const Image r = readAll(ctx->reflectionTexture(), 4);
+    float most = 0.0f;
+    for (size_t p = 0; p < r.pixels.size(); p += 4)
+      most = std::max(most, 0.2126f * r.pixels[p] + 0.7152f * r.pixels[p + 1] + 0.0722f * r.pixels[p + 2]);
+    return std::pair{most, r.pixels};
+  };
+  Settings off, clamped, unreached;
+  clamped.radianceClamp.maxLuminance = 4.0f;
+  unreached.radianceClamp.maxLuminance = 1e30f;
+  const auto [offMost, offPixels] = maxLuminance(off, 1.0f);
+  EXPECT_GT(offMost, 100.0f) << "the bright hits must show unclamped";
+  EXPECT_LE(maxLuminance(clamped, 1.0f).first, 4.0f * (1.0f + 1.0f / 512.0f));
+  EXPECT_GT(maxLuminance(clamped, 1.0f).first, 1.0f) << "clamped, not removed";
+  EXPECT_LE(maxLuminance(clamped, 2.0f).first, 2.0f * (1.0f + 1.0f / 512.0f)) << "the limit is in display units";
+  EXPECT_EQ(maxLuminance(unreached, 1.0f).second, offPixels);
+  glDeleteTextures(1, &bright);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
 // prepare() runs each program once on the host's inputs (drivers compile at first use) and then
 // puts the frame state back: the frames after it are bit for bit those of a context that was never
 // prepared (outputs, hits, temporal history, the stats' frame numbers), at full and half resolution.

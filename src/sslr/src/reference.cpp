@@ -12,9 +12,9 @@ namespace sslr {
 
 namespace {
 
-// FrameInputs' enumerations, from a host's cast or memory: an unknown value would be read as one
-// of the others.
-Status checkEnumerations(const FrameInputs& in) {
+// FrameInputs' enumerations (from a host's cast or memory, an unknown value would be read as one
+// of the others) and its exposure.
+Status checkInputValues(const FrameInputs& in) {
   auto notA = [](const char* field, int value, const char* type) {
     return Status::error(StatusCode::InvalidInput, std::string("sslr: FrameInputs::") + field + " = " +
                          std::to_string(value) + " (not a sslr::" + type + ")");
@@ -25,6 +25,9 @@ Status checkEnumerations(const FrameInputs& in) {
     return notA("surface.space", static_cast<int>(in.surface.space), "NormalSpace");
   if (in.depth.range != DepthRange::NegativeOneToOne && in.depth.range != DepthRange::ZeroToOne)
     return notA("depth.range", static_cast<int>(in.depth.range), "DepthRange");
+  if (!std::isfinite(in.exposure) || !(in.exposure > 0.0f))
+    return Status::error(StatusCode::InvalidInput, "sslr: FrameInputs::exposure = " + std::to_string(in.exposure) +
+                         " (must be finite and > 0; 1 = the colour texture's own units)");
   return {};
 }
 
@@ -95,6 +98,8 @@ void traceConstants(const FrameInputs& in, const Settings& s, int width, int hei
   t.fresnelMode = s.fresnel == FresnelMode::Classic ? SSLR_FRESNEL_CLASSIC : SSLR_FRESNEL_SCHLICK;
   t.outputRadiance = s.output == OutputMode::Radiance ? 1 : 0;
   t.stochasticFrom = s.glossy.mode == GlossyMode::Stochastic ? s.glossy.stochasticFrom : 2.0f;
+  // The limit is in display units (luminance x exposure): in the colour texture's, / exposure.
+  t.maxHitLuminance = s.radianceClamp.maxLuminance > 0.0f ? s.radianceClamp.maxLuminance / in.exposure : 0.0f;
   t.outlineThinning = s.traversal.outlineThinning ? 1 : 0;
   // A measured thickness (back-face depth) replaces the curved solids' estimate.
   t.curvedSolids = s.traversal.curvedSolids && in.backDepthTexture == 0 && s.method != Method::FidelityFxSssr ? 1 : 0;
@@ -170,7 +175,7 @@ Expected<Viewport> frameViewport(const FrameInputs& in, int textureWidth, int te
 
 Expected<shared::SslrFrame> frameConstants(const FrameInputs& in, const Settings& s, int width, int height) {
   if (std::string why = validate(s); !why.empty()) return Status::error(StatusCode::InvalidSettings, why);
-  if (Status st = checkEnumerations(in); !st) return st;
+  if (Status st = checkInputValues(in); !st) return st;
   auto proj = detail::reduceProjection(in.clipFromView, in.depth);
   if (!proj) return proj.status();
   auto viewport = frameViewport(in, width, height);

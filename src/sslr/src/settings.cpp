@@ -92,6 +92,8 @@ void checkShading(const Settings& s, std::ostringstream& why) {
     why << "blur.depthSigma = " << s.blur.depthSigma << " (must be > 0); ";
   if (!finite(s.blur.normalPower) || s.blur.normalPower < 0.0f)
     why << "blur.normalPower = " << s.blur.normalPower << " (must be >= 0); ";
+  if (!finite(s.radianceClamp.maxLuminance) || s.radianceClamp.maxLuminance < 0.0f)
+    why << "radianceClamp.maxLuminance = " << s.radianceClamp.maxLuminance << " (must be >= 0; 0 = off); ";
   if (!finite(s.temporal.historyWeight) || s.temporal.historyWeight < 0.0f || s.temporal.historyWeight > 0.98f)
     why << "temporal.historyWeight = " << s.temporal.historyWeight << " (must be 0..0.98); ";
   if (s.fresnel != FresnelMode::Classic && s.fresnel != FresnelMode::Schlick)

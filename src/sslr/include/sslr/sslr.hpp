@@ -183,6 +183,9 @@ struct FrameInputs {
   // clip space = previous clipFromView (its jitter included) x previous viewFromWorld x this
   // frame's worldFromView (the inverse of viewFromWorld). All zeros = not given.
   glm::dmat4 previousClipFromView{0.0};
+  // Scene-to-display scale of colorTexture's values (an engine's exposure), for
+  // Settings::radianceClamp's limit; finite, > 0.
+  float exposure = 1.0f;
   // Settings::temporal only: this frame starts the history afresh (a camera cut, a teleport): no
   // history is read, as on the first frame; this frame's output becomes the next one's history.
   bool historyReset = false;
@@ -358,6 +361,14 @@ struct Settings {
 
   // Temporal reuse (pass 5): blends with the previous frame's output, reprojected through
   // FrameInputs::previousClipFromView (converges half resolution and jittered projections).
+  // HDR-safe radiance: a sun or an emitter at 1,000x the average luminance, reflected by a few
+  // pixels, turns the blur and the temporal history into fireflies. A hit colour whose luminance
+  // (Rec. 709) times FrameInputs::exposure exceeds maxLuminance is scaled down to it (hue kept),
+  // before the weights, the blur and temporal reuse. 0 = off.
+  struct RadianceClamp {
+    float maxLuminance = 0.0f;  // >= 0, in display units (the colour texture's x exposure)
+  } radianceClamp;
+
   struct Temporal {
     bool enabled = false;
     float historyWeight = 0.8f;  // 0..0.98: the history's share of the output
