@@ -6,29 +6,41 @@
 
 namespace sslr {
 
+// The image draw buffer 0 of `framebuffer` (bound as the draw framebuffer: GL_DRAW_BUFFER0 is
+// read from it) writes: attachment GL_NONE when there is none.
+Context::Impl::DrawImage Context::Impl::drawBuffer0Image(GLName framebuffer) const {
+  DrawImage image;
+  gl.GetIntegerv(GL_DRAW_BUFFER0, &image.attachment);
+  if (image.attachment == GL_NONE) return image;
+  const auto parameter = [&](GLenum pname, GLint* value) {
+    gl.GetNamedFramebufferAttachmentParameteriv(framebuffer, static_cast<GLenum>(image.attachment), pname, value);
+  };
+  parameter(GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &image.type);
+  parameter(GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &image.name);
+  if (image.type == GL_TEXTURE) {
+    parameter(GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL, &image.level);
+    gl.GetTextureLevelParameteriv(static_cast<GLuint>(image.name), image.level, GL_TEXTURE_WIDTH, &image.width);
+    gl.GetTextureLevelParameteriv(static_cast<GLuint>(image.name), image.level, GL_TEXTURE_HEIGHT, &image.height);
+    gl.GetTextureLevelParameteriv(static_cast<GLuint>(image.name), image.level, GL_TEXTURE_INTERNAL_FORMAT, &image.format);
+  } else if (image.type == GL_RENDERBUFFER) {
+    gl.GetNamedRenderbufferParameteriv(static_cast<GLuint>(image.name), GL_RENDERBUFFER_WIDTH, &image.width);
+    gl.GetNamedRenderbufferParameteriv(static_cast<GLuint>(image.name), GL_RENDERBUFFER_HEIGHT, &image.height);
+    gl.GetNamedRenderbufferParameteriv(static_cast<GLuint>(image.name), GL_RENDERBUFFER_INTERNAL_FORMAT, &image.format);
+  }
+  return image;
+}
+
 // The image draw buffer 0 of `framebuffer` writes must cover the context's size: a smaller one
 // would get only part of the reflection. (The default framebuffer's size is the window system's,
 // which GL does not report: it is the host's to match.)
 Status Context::Impl::checkCompositeTarget(GLName framebuffer) const {
   if (framebuffer == 0) return {};
-  GLint attachment = GL_NONE;
-  gl.GetIntegerv(GL_DRAW_BUFFER0, &attachment);  // of the bound draw framebuffer
-  if (attachment == GL_NONE)
+  const DrawImage image = drawBuffer0Image(framebuffer);  // (bound by composite())
+  if (image.attachment == GL_NONE)
     return Status::error(StatusCode::InvalidInput, "sslr: composite(): framebuffer " + std::to_string(framebuffer) +
                          " has no image on draw buffer 0, where the reflection is written");
-  GLint type = GL_NONE, name = 0, level = 0, w = 0, h = 0;
-  gl.GetNamedFramebufferAttachmentParameteriv(framebuffer, static_cast<GLenum>(attachment), GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
-  gl.GetNamedFramebufferAttachmentParameteriv(framebuffer, static_cast<GLenum>(attachment), GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &name);
-  if (type == GL_TEXTURE) {
-    gl.GetNamedFramebufferAttachmentParameteriv(framebuffer, static_cast<GLenum>(attachment), GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL, &level);
-    gl.GetTextureLevelParameteriv(static_cast<GLuint>(name), level, GL_TEXTURE_WIDTH, &w);
-    gl.GetTextureLevelParameteriv(static_cast<GLuint>(name), level, GL_TEXTURE_HEIGHT, &h);
-  } else if (type == GL_RENDERBUFFER) {
-    gl.GetNamedRenderbufferParameteriv(static_cast<GLuint>(name), GL_RENDERBUFFER_WIDTH, &w);
-    gl.GetNamedRenderbufferParameteriv(static_cast<GLuint>(name), GL_RENDERBUFFER_HEIGHT, &h);
-  } else {
-    return {};
-  }
+  if (image.type != GL_TEXTURE && image.type != GL_RENDERBUFFER) return {};
+  const GLint type = image.type, name = image.name, w = image.width, h = image.height;
   if (w < width || h < height)
     return Status::error(StatusCode::InvalidInput, "sslr: composite(): framebuffer " + std::to_string(framebuffer) + "'s draw buffer 0 (" +
                          (type == GL_TEXTURE ? "texture " : "renderbuffer ") + std::to_string(name) + ") is " +
@@ -151,24 +163,16 @@ Status Context::Impl::warmUpComposite(const PrepareOptions& options) {
     if (!gl.IsFramebuffer(options.framebuffer))
       return Status::error(StatusCode::InvalidInput, "sslr: prepare(): PrepareOptions::framebuffer " +
                            std::to_string(options.framebuffer) + " is not a framebuffer name");
-    GLint attachment = GL_NONE, type = GL_NONE, name = 0;
+    DrawImage image;
     {
-      detail::StateGuard guard(gl, true);  // GL_DRAW_BUFFER0 is read from the bound draw framebuffer
+      detail::StateGuard guard(gl, true);  // bound for drawBuffer0Image, then the host's binding back
       gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, options.framebuffer);
-      gl.GetIntegerv(GL_DRAW_BUFFER0, &attachment);
+      image = drawBuffer0Image(options.framebuffer);
     }
-    if (attachment != GL_NONE) {
-      gl.GetNamedFramebufferAttachmentParameteriv(options.framebuffer, static_cast<GLenum>(attachment),
-                                                  GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
-      gl.GetNamedFramebufferAttachmentParameteriv(options.framebuffer, static_cast<GLenum>(attachment),
-                                                  GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &name);
-    }
-    if (type == GL_TEXTURE) gl.GetTextureLevelParameteriv(static_cast<GLuint>(name), 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
-    else if (type == GL_RENDERBUFFER)
-      gl.GetNamedRenderbufferParameteriv(static_cast<GLuint>(name), GL_RENDERBUFFER_INTERNAL_FORMAT, &format);
-    else
+    if (image.type != GL_TEXTURE && image.type != GL_RENDERBUFFER)
       return Status::error(StatusCode::InvalidInput, "sslr: prepare(): PrepareOptions::framebuffer " +
                            std::to_string(options.framebuffer) + " has no image on draw buffer 0");
+    format = image.format;
   }
   auto addProgram = compositeProgram(false);
   if (!addProgram) return addProgram.status();

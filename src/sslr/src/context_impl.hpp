@@ -207,6 +207,7 @@ struct Context::Impl {
                       FormatInfo* infoOut = nullptr) const;
   Status checkInputs(const FrameInputs& in, Method method, TrafficModel* formats = nullptr) const;
   Status checkSurfaceLayout(const FrameInputs& in, const FormatInfo& materialInfo, FormatInfo* baseColorInfo) const;
+  Status checkNormalDecode(const SurfaceLayout& sl, const FormatInfo& info, GLName tex) const;
   // passes.cpp: a frame's plan (which passes run, their switches and programs), then one function
   // per pass, in the order they run.
   struct FramePlan {
@@ -272,6 +273,10 @@ struct Context::Impl {
   void drawComposite(GLName framebuffer, GLuint addProgram, GLuint fallbackProgram, const CompositeOptions& options) const;
   Status warmUpComposite(const PrepareOptions& options);
   Status checkCompositeTarget(GLName framebuffer) const;
+  struct DrawImage {
+    GLint attachment = GL_NONE, type = GL_NONE, name = 0, level = 0, width = 0, height = 0, format = GL_NONE;
+  };
+  DrawImage drawBuffer0Image(GLName framebuffer) const;
   Expected<GLuint> compositeProgram(bool overFallback);
   // An error when no GL context is current on the calling thread (every GL call would then be
   // lost, and the first texture check would blame a texture).

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-#include <string_view>
 
 #include "context_impl.hpp"
 
@@ -123,12 +122,12 @@ Status Context::Impl::checkTexture(GLName tex, const char* what, FormatInfo::Kin
 // A normalized format's stored range, decoded by SurfaceLayout::normalScale/normalBias, must be
 // [-1, 1] (within 5%): an SNORM texture left on the unsigned default (2, -1) decodes to [-3, 1] and
 // finds almost no hit, a UNORM one on the signed decode (1, 0) to [0, 1]. Float formats hold
-// whatever the host wrote.
-static Status checkNormalDecode(const SurfaceLayout& sl, const FormatInfo& info, GLName tex) {
-  const std::string_view name = info.name;
-  const bool snorm = name.ends_with("_SNORM");
-  const bool floating = name.find('F') != std::string_view::npos || name == "RGB9_E5";
-  if (floating) return {};
+// whatever the host wrote. The GL says which kind the texture's components are.
+Status Context::Impl::checkNormalDecode(const SurfaceLayout& sl, const FormatInfo& info, GLName tex) const {
+  GLint componentType = GL_NONE;
+  gl.GetTextureLevelParameteriv(tex, 0, GL_TEXTURE_RED_TYPE, &componentType);
+  const bool snorm = componentType == GL_SIGNED_NORMALIZED;
+  if (!snorm && componentType != GL_UNSIGNED_NORMALIZED) return {};
   const float a = (snorm ? -1.0f : 0.0f) * sl.normalScale + sl.normalBias, b = sl.normalScale + sl.normalBias;
   const float lo = std::min(a, b), hi = std::max(a, b);
   if (std::abs(lo + 1.0f) <= 0.05f && std::abs(hi - 1.0f) <= 0.05f) return {};
