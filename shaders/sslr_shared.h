@@ -82,6 +82,8 @@ using glm::sqrt;
 #define SSLR_HIZ_ONLY 2      // the hierarchical traversal alone (Method::HierarchicalDepth)
 #define SSLR_HIZ_VERIFY 3    // as FALLBACK, and the traversal also checks every adaptive-L hit for an
                              // earlier crossing (Settings::traversal.verify)
+#define SSLR_HIZ_TRAVERSAL_FIRST 4  // the traversal on every ray; adaptive L where it has no hit
+                                    // (Settings::traversal.order, the default)
 
 // Most levels of the min-max depth pyramid above the depth buffer (level l: 2^l-pixel cells).
 #define SSLR_HIZ_MAX_LEVELS 8

@@ -70,7 +70,8 @@ SSLR_FN int sslrHiZMode(SslrTraceParams t) {
 
 // Whether the hierarchical traversal stands behind adaptive L (answers what it leaves).
 SSLR_FN bool sslrHasHiZFallback(SslrTraceParams t) {
-  return sslrHiZMode(t) == SSLR_HIZ_FALLBACK || sslrHiZMode(t) == SSLR_HIZ_VERIFY;
+  return sslrHiZMode(t) == SSLR_HIZ_FALLBACK || sslrHiZMode(t) == SSLR_HIZ_VERIFY ||
+         sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST;
 }
 
 // Hit tolerance (view units) on a surface at view depth `dist` seen at tan(angle) `tanView`: a

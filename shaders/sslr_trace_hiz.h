@@ -362,24 +362,60 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
 // found twice differs by less) replaces adaptive L's. Anything else keeps adaptive L's hit: the
 // traversal's own misses (a slab it stopped in, steps run out) are no better evidence.
 //
+// SSLR_HIZ_TRAVERSAL_FIRST (the default) reaches verification's answers the other way round: the
+// traversal on every ray, adaptive L only where the traversal has no hit. Verification paid for
+// both tracers on every ray; this pays for the traversal and a few adaptive-L rays
+// (docs/results.md, "Ray work").
+//
 // Two stages, so that a pass can run the first alone and leave the traversal to a pass of its own
 // (Settings::traversal.pass): sslrTraceFirstStage answers the pixel or says it needs the second.
 
 // Rays that come back towards the camera, or run within ~17 degrees of the image plane, are where
 // adaptive L jumps over what stands between (its probes see the front of the occluders, not the
 // ray): they go to the traversal at once.
-SSLR_FN bool sslrTraversalFirst(SslrProjection p, SslrTraceParams t, vec3 vsP, vec3 vsR) {
+SSLR_FN bool sslrTraversalOnly(SslrProjection p, SslrTraceParams t, vec3 vsP, vec3 vsR) {
   return sslrHiZMode(t) == SSLR_HIZ_ONLY ||
          (sslrHasHiZFallback(t) && dot(vsR, -sslrViewDirection(p, vsP)) > -0.3f);
 }
 
 SSLR_FN bool sslrConfidentHit(SslrHit h) { return h.status == SSLR_STATUS_HIT && h.confidence >= 0.5f; }
 
+// SSLR_HIZ_TRAVERSAL_FIRST: the traversal's hit where it has a confident one; where it stopped
+// on the screen without one (inside a thin object's assumed slab, which adaptive L's probes carry
+// past; at its step cap; a crossing it refused), adaptive L's, if confident and not beyond where
+// the traversal found the ray hidden. These are verification's answers (the traversal's hit is the
+// first crossing it walked to; adaptive L's replaced only a missing one), with adaptive L run on
+// the few rays the traversal leaves instead of on every ray.
+SSLR_FN SslrHit sslrTraceTraversalFirst(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin,
+                                        vec3 vsP, vec3 vsR) {
+  SslrHit walked = sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
+  // A ray the traversal walked off the screen (or out of the depth range) crossed nothing it could
+  // take: adaptive L there finds little and spends its whole iteration budget (design-notes.md,
+  // "Traversal first").
+  if (sslrConfidentHit(walked) || walked.status == SSLR_STATUS_OFF_SCREEN || sslrTraversalOnly(p, t, vsP, vsR))
+    return walked;
+  SslrHit probed = sslrTraceAdaptiveL(p, s, t, pxOrigin, vsP, vsR);
+  bool useProbed = sslrConfidentHit(probed) ||
+                   (probed.status == SSLR_STATUS_HIT && !(walked.status == SSLR_STATUS_HIT &&
+                                                          walked.confidence >= probed.confidence));
+  // Known hidden from walked.L on (a measured solid, the hidden-passage limit): a hit beyond that
+  // (by verification's 3%) lies behind what hid the ray.
+  if (walked.status == SSLR_STATUS_HIDDEN && walked.L < 0.97f * probed.L) useProbed = false;
+  SslrHit answer = useProbed ? probed : walked;
+  answer.iterations = walked.iterations + probed.iterations;
+  answer.hierarchical = 1;
+  return answer;
+}
+
 // Adaptive L's answer; needsTraversal: the pixel's answer is sslrTraceSecondStage's instead.
 SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
                                     vec3 vsR, SSLR_OUT(bool) needsTraversal) {
   needsTraversal = true;
-  if (sslrTraversalFirst(p, t, vsP, vsR)) return sslrNoHit(SSLR_STATUS_MISS);
+  if (sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST) {  // one stage: both tracers here
+    needsTraversal = false;
+    return sslrTraceTraversalFirst(p, s, t, pxOrigin, vsP, vsR);
+  }
+  if (sslrTraversalOnly(p, t, vsP, vsR)) return sslrNoHit(SSLR_STATUS_MISS);
   SslrHit first = sslrTraceAdaptiveL(p, s, t, pxOrigin, vsP, vsR);
   bool firstHit = sslrConfidentHit(first);
   needsTraversal = sslrHasHiZFallback(t) && (!firstHit || sslrHiZMode(t) == SSLR_HIZ_VERIFY);
@@ -390,7 +426,7 @@ SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTracePa
 SSLR_FN SslrHit sslrTraceSecondStage(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
                                      vec3 vsR, SslrHit first) {
   SslrHit second = sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
-  if (sslrTraversalFirst(p, t, vsP, vsR)) return second;
+  if (sslrTraversalOnly(p, t, vsP, vsR)) return second;
   second.iterations += first.iterations;
   if (sslrConfidentHit(first)) {  // verification (SSLR_HIZ_VERIFY)
     if (sslrConfidentHit(second) && second.L < 0.97f * first.L) return second;

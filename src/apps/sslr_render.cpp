@@ -178,10 +178,13 @@ cxxopts::Options renderOptions() {
       ("dump", "also write every buffer as EXR (color, normal, depth, position, hit, reflection, iterations, resolved)")
       ("method", "tracer: adaptive-l (depth-only SSLR, hierarchical fallback), hiz (the depth pyramid traversal alone), dda (McGuire & Mara 2014's screen-space DDA), ffx-sssr (AMD FidelityFX SSSR's hierarchical raymarch) or position-buffer (the tutorial's), for comparison, or none", cxxopts::value<std::string>()->default_value("adaptive-l"))
       ("no-hiz-fallback", "adaptive-l alone, without the hierarchical traversal where it finds nothing")
-      ("hiz-verify", "adaptive-l: also run the hierarchical traversal over every hit and keep an earlier one it "
-                     "finds (the high and ultra presets' default)")
-      ("no-hiz-verify", "adaptive-l: take adaptive L's hits unchecked (the low and medium presets' choice; faster, "
-                        "and below the traversal alone where a ray passes behind something)")
+      ("order", "adaptive-l: which tracer runs first: traversal-first (the traversal on every ray, adaptive L where "
+                "it has no hit; the high and ultra presets' choice) or adaptive-l-first (the article's order)",
+       cxxopts::value<std::string>())
+      ("hiz-verify", "adaptive-l, adaptive L first: also run the hierarchical traversal over every hit and keep an "
+                     "earlier one it finds (same hits as traversal-first, at both tracers' cost)")
+      ("no-hiz-verify", "adaptive-l, adaptive L first: take adaptive L's hits unchecked (the low and medium presets' "
+                        "choice; below the traversal alone where a ray passes behind something)")
       ("preset", "quality preset: low, medium, high, ultra", cxxopts::value<std::string>()->default_value("high"))
       ("fresnel", "weighting: classic (the article) or schlick", cxxopts::value<std::string>()->default_value("classic"))
       ("iterations", "override the preset's adaptive-L iteration cap", cxxopts::value<std::string>())
@@ -294,8 +297,22 @@ void parseTracing(const cxxopts::ParseResult& args, RenderJob& job) {
   else throw UsageError{"--composite must be blend or add (got '" + composite + "')"};
   if (args.count("hiz-verify") && args.count("no-hiz-verify"))
     throw UsageError{"--hiz-verify and --no-hiz-verify exclude each other"};
-  if (args.count("hiz-verify")) settings.traversal.verify = true;
-  if (args.count("no-hiz-verify")) settings.traversal.verify = false;
+  if (args.count("hiz-verify") || args.count("no-hiz-verify")) {
+    settings.traversal.order = TraversalOrder::AdaptiveLFirst;  // verification is that order's
+    settings.traversal.verify = args.count("hiz-verify") != 0;
+  }
+  if (args.count("order")) {
+    const std::string order = args["order"].as<std::string>();
+    if (order == "traversal-first") {
+      if (args.count("hiz-verify") || args.count("no-hiz-verify"))
+        throw UsageError{"--order traversal-first excludes --hiz-verify and --no-hiz-verify (adaptive L first only)"};
+      settings.traversal.order = TraversalOrder::TraversalFirst;
+    } else if (order == "adaptive-l-first") {
+      settings.traversal.order = TraversalOrder::AdaptiveLFirst;
+    } else {
+      throw UsageError{"--order must be traversal-first or adaptive-l-first (got '" + order + "')"};
+    }
+  }
   if (args.count("no-hiz-fallback")) {  // adaptive L alone: no traversal at all
     if (args.count("hiz-verify")) throw UsageError{"--hiz-verify and --no-hiz-fallback exclude each other"};
     settings.traversal.fallback = false;

@@ -1032,31 +1032,36 @@ TEST_F(Api, PrepareCompilesEveryProgramFramesUse) {
     ASSERT_TRUE(ctx) << ctx.error();
     Frame f(DepthMode::Reversed, NormalEncoding::Octahedral, true);
     const FrameInputs in = f.gbuffer->frameInputs();
-    Settings s;
-    s.halfResolution = half;
-    s.debug.collectStats = true;
-    ASSERT_TRUE(ctx.value()->prepare(in, s));
-    const int prepared = compiled;
-    EXPECT_GT(prepared, 5) << "half " << half;
-    Settings empty = s;
-    empty.selection.minReflectance = 1.0f;  // nothing reflects: no tile is listed
-    GLuint target = makeTexture(GL_RGBA16F), fbo = 0;
-    glCreateFramebuffers(1, &fbo);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, target, 0);
-    bool sawDeferred = false, sawInline = false, sawLevel1Pass = false;
-    for (const Settings* frame : {&s, &s, &empty, &s, &s, &s}) {
-      ASSERT_TRUE(ctx.value()->dispatch(in, *frame));
-      const FrameStats st = ctx.value()->waitForStats();
-      if (st.hierarchicalPixels > 0) (st.traversalDeferred ? sawDeferred : sawInline) = true;
-      sawLevel1Pass = sawLevel1Pass || st.followedEmptyFrame;
-      ASSERT_TRUE(ctx.value()->composite(fbo));
-      ASSERT_TRUE(ctx.value()->composite(fbo, {CompositeMode::BlendOverFallback, f.gbuffer->fallbackSpecularTexture()}));
+    for (TraversalOrder order : {TraversalOrder::TraversalFirst, TraversalOrder::AdaptiveLFirst}) {
+      compiled = 0;
+      Settings s;
+      s.halfResolution = half;
+      s.debug.collectStats = true;
+      s.traversal.order = order;  // adaptive L first: TraversalPass::Auto switches passes
+      s.traversal.verify = false;
+      ASSERT_TRUE(ctx.value()->prepare(in, s));
+      const int prepared = compiled;
+      EXPECT_GT(prepared, 2) << "half " << half;  // classify, pyramid, trace at least
+      Settings empty = s;
+      empty.selection.minReflectance = 1.0f;  // nothing reflects: no tile is listed
+      GLuint target = makeTexture(GL_RGBA16F), fbo = 0;
+      glCreateFramebuffers(1, &fbo);
+      glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, target, 0);
+      bool sawDeferred = false, sawInline = false, sawLevel1Pass = false;
+      for (const Settings* frame : {&s, &s, &empty, &s, &s, &s}) {
+        ASSERT_TRUE(ctx.value()->dispatch(in, *frame));
+        const FrameStats st = ctx.value()->waitForStats();
+        if (st.hierarchicalPixels > 0) (st.traversalDeferred ? sawDeferred : sawInline) = true;
+        sawLevel1Pass = sawLevel1Pass || st.followedEmptyFrame;
+        ASSERT_TRUE(ctx.value()->composite(fbo));
+        ASSERT_TRUE(ctx.value()->composite(fbo, {CompositeMode::BlendOverFallback, f.gbuffer->fallbackSpecularTexture()}));
+      }
+      EXPECT_EQ(compiled, prepared) << "a frame compiled a program prepare() did not (half " << half << ")";
+      EXPECT_TRUE(sawLevel1Pass) << "the frame after the empty one builds level 1 in a pass of its own";
+      EXPECT_TRUE(sawDeferred || sawInline);
+      glDeleteFramebuffers(1, &fbo);
+      glDeleteTextures(1, &target);
     }
-    EXPECT_EQ(compiled, prepared) << "a frame compiled a program prepare() did not (half " << half << ")";
-    EXPECT_TRUE(sawLevel1Pass) << "the frame after the empty one builds level 1 in a pass of its own";
-    EXPECT_TRUE(sawDeferred || sawInline);
-    glDeleteFramebuffers(1, &fbo);
-    glDeleteTextures(1, &target);
   }
 }
 
@@ -1114,6 +1119,7 @@ TEST_F(Api, RayWorkIsTheIterationsImageRegroupedAsTheGroupsRun) {
   // Deferred: the trace dispatch counts adaptive L's steps, the retrace dispatch the listed pixels'
   // whole tracer; every listed pixel is a lane there, 64 to a group.
   Settings deferred = s;
+  deferred.traversal.order = TraversalOrder::AdaptiveLFirst;  // traversal first defers nothing
   deferred.traversal.pass = TraversalPass::Deferred;
   ASSERT_TRUE(ctx->dispatch(in, deferred));
   const FrameStats st = ctx->waitForStats();
@@ -1358,6 +1364,7 @@ TEST_F(Api, EveryOptionAtOnceLeavesNoGlError) {
   in.viewFromWorld = f.gbuffer->viewFromWorld();
   Settings s = Settings::preset(Preset::Ultra);
   s.halfResolution = true;
+  s.traversal.order = TraversalOrder::AdaptiveLFirst;  // traversal first defers nothing
   s.traversal.pass = TraversalPass::Deferred;
   s.debug.outputs = true;
   s.debug.collectStats = true;

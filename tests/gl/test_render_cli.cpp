@@ -69,6 +69,8 @@ TEST(RenderCliNoGl, BadArgumentsExitTwoWithAMessageAndWriteNothing) {
       {"--hiz-verify --no-hiz-fallback", "exclude each other"},
       {"--preset low --hiz-verify", "traversal.verify needs traversal.fallback"},
       {"--hiz-verify --no-hiz-verify", "exclude each other"},
+      {"--order sideways", "--order must be traversal-first or adaptive-l-first"},
+      {"--order traversal-first --no-hiz-verify", "--order traversal-first excludes"},
       {"--hidden-passage -3", "traversal.hiddenPassageLimitPx"},
       {"--hidden-passage far", "--hidden-passage expects a number"},
       {"--stage sideways", "--stage must be on-mirror or as-mirror"},

@@ -331,6 +331,55 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DefaultAgainstTraversal,
                                            "wuson-as-mirror", "sphere-over-mirror-32", "sphere-over-mirror-128"),
                          sceneParamName);
 
+// Traversal first (the default order) reaches the verified order's hits (adaptive L first, the
+// traversal over every hit) for the traversal's work and adaptive L on the rays the traversal
+// stopped on screen without a hit. Recall within 0.002 of verification's (a pixel or two where
+// the two find the reflection a pixel's rounding apart), false hits no more than verification's
+// plus the same margin, and less SIMT work than verification: FrameStats' ray work, a count of
+// dependent steps summed over 32-lane groups' slowest lanes (counted, not timed).
+class TraversalFirst : public sslr::test::GlTest, public ::testing::WithParamInterface<const char*> {};
+
+TEST_P(TraversalFirst, VerifiedHitsForLessWork) {
+  auto scene = loadScene(GetParam());
+  ASSERT_TRUE(scene) << GetParam();
+  GBufferOptions o;
+  o.width = 256;
+  o.height = 144;
+  struct Run {
+    HitMetrics m;
+    RayWork work;
+  };
+  auto run = [&](Settings s) {
+    s.debug.collectStats = true;
+    s.traversal.pass = TraversalPass::Inline;  // verification's groups as the trace pass runs them
+    const ScoredFrame f = renderScored(scene.value(), *scene.value().camera, o, s);
+    EXPECT_TRUE(f.renderer);
+    if (!f.renderer) return Run{};
+    return Run{compareHits(f.truth, f.hit), f.renderer->sslr().waitForStats().totalRayWork()};
+  };
+  Settings verified;
+  verified.traversal.order = TraversalOrder::AdaptiveLFirst;
+  Settings hiz;
+  hiz.method = Method::HierarchicalDepth;
+  const Run first = run(Settings{}), verify = run(verified), alone = run(hiz);
+  std::printf("%s: traversal first %.4f (false hits %.4f, simt32 %llu), verified %.4f (%.4f, %llu), traversal alone "
+              "%.4f (%.4f, %llu)\n",
+              GetParam(), first.m.recall1px, first.m.falseHitRate, (unsigned long long)first.work.simt32,
+              verify.m.recall1px, verify.m.falseHitRate, (unsigned long long)verify.work.simt32, alone.m.recall1px,
+              alone.m.falseHitRate, (unsigned long long)alone.work.simt32);
+  ASSERT_GT(first.work.laneSteps, 0u);
+  EXPECT_GE(first.m.recall1px, verify.m.recall1px - 0.002);
+  EXPECT_GE(first.m.recall1px, alone.m.recall1px - 0.002);
+  EXPECT_LE(first.m.falseHitRate, verify.m.falseHitRate + 0.002);
+  EXPECT_LT(first.work.simt32, verify.work.simt32);
+  EXPECT_GE(first.work.simt32, alone.work.simt32) << "the traversal runs on every ray";
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, TraversalFirst,
+                         ::testing::Values("mirror-room", "grazing-plane", "thin-objects", "mirror-walls", "glossy",
+                                           "sphere-over-mirror-32"),
+                         sceneParamName);
+
 // A back-face depth input (FrameInputs::backDepthTexture) measures what the slab assumes: rays
 // then pass behind thin objects and stop inside thick ones. Measured at 192x108 (recall / false
 // hits, depth-only -> with back depth): facing-mirror 0.9048 / 9.75% -> 0.9131 / 7.25%,
@@ -553,7 +602,11 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(OptionCase{"outline_thinning", "facing-mirror", 480, 270,
                                  [](Settings& s, bool on) { s.traversal.outlineThinning = on; }, 0.004, 0.003},
                       OptionCase{"hit_verification", "thin-objects", 320, 180,
-                                 [](Settings& s, bool on) { s.traversal.verify = on; }, 0.01, 0.0005},
+                                 [](Settings& s, bool on) {
+                                   s.traversal.order = TraversalOrder::AdaptiveLFirst;
+                                   s.traversal.verify = on;
+                                 },
+                                 0.01, 0.0005},
                       // Fewer false hits, not more recall: rays into a sphere's hidden side no longer
                       // pass behind it (2.2% -> 0.85%; recall may lose one pixel in a thousand).
                       OptionCase{"curved_solids", "curved-mirror", 320, 180,
@@ -609,6 +662,7 @@ TEST_P(TraversalPasses, DeferredAndInlineGiveTheSameHits) {
   inlined.halfResolution = c.half;
   inlined.debug.outputs = true;
   inlined.debug.collectStats = true;
+  inlined.traversal.order = TraversalOrder::AdaptiveLFirst;  // traversal first defers nothing
   inlined.traversal.pass = TraversalPass::Inline;
   Settings deferred = inlined;
   deferred.traversal.pass = TraversalPass::Deferred;
@@ -661,6 +715,7 @@ TEST_P(TraversalAuto, FollowsTheLastFramesShareOfTraversalPixels) {
   s.debug.outputs = true;
   s.halfResolution = GetParam();
   // Verification sends every hit to the traversal: mirror-room's share would stay above half.
+  s.traversal.order = TraversalOrder::AdaptiveLFirst;
   s.traversal.verify = false;
   auto facing = makeBuiltinScene("facing-mirror");
   auto room = makeBuiltinScene("mirror-room");
@@ -766,6 +821,7 @@ TEST_P(DeviceProfiles, SameOutputsFrameAfterFrame) {
   s.halfResolution = c.half;
   s.temporal.enabled = c.temporal;
   s.traversal.pass = c.pass;
+  if (c.pass == TraversalPass::Deferred) s.traversal.order = TraversalOrder::AdaptiveLFirst;
   s.debug.outputs = true;
   s.debug.collectStats = true;
   Settings empty = s;

@@ -38,6 +38,7 @@ json settingsJson(const BenchConfig& c) {
                               : s.traversal.pass == TraversalPass::Inline ? "inline"
                                                                          : "deferred";
   return {{"adaptiveL.maxIterations", s.adaptiveL.maxIterations},       {"traversal.fallback", s.traversal.fallback},
+          {"traversal.order", s.traversal.order == TraversalOrder::TraversalFirst ? "traversal-first" : "adaptive-l-first"},
           {"traversal.verify", s.traversal.verify}, {"traversal.maxSteps", s.traversal.maxSteps},
           {"traversal.pass", traversalPass},         {"traversal.objectDepthRelative", s.traversal.objectDepthRelative},
           {"traversal.outlineThinning", s.traversal.outlineThinning},   {"traversal.curvedSolids", s.traversal.curvedSolids},

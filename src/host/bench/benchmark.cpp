@@ -54,10 +54,14 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
       BenchConfig half{"adaptive-l", "high-half", Settings::preset(preset), false};  // one ray per quad
       half.settings.halfResolution = true;
       configs.push_back(half);
-      if (full) {  // adaptive L's hits taken unchecked (medium's choice), alone
-        BenchConfig unchecked{"adaptive-l", "high-no-verify", Settings::preset(preset), false};
-        unchecked.settings.traversal.verify = false;
-        configs.push_back(unchecked);
+      if (full) {  // adaptive L first: its hits verified (0.4's default), unchecked (medium's choice)
+        for (bool verify : {true, false}) {
+          BenchConfig alFirst{"adaptive-l", verify ? "high-verify" : "high-no-verify", Settings::preset(preset),
+                              false};
+          alFirst.settings.traversal.order = TraversalOrder::AdaptiveLFirst;
+          alFirst.settings.traversal.verify = verify;
+          configs.push_back(alFirst);
+        }
         // Where the traversal runs (Settings::traversal.pass; the default, Auto, is one of the two).
         // Measured thickness (a back-face depth input), and the hidden-passage rule with and without it.
         BenchConfig measured{"adaptive-l", "high-back-depth", Settings::preset(preset), false, true};
@@ -78,9 +82,12 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
           shaped.device = device;
           configs.push_back(shaped);
         }
-        for (auto [label, pass] : {std::pair{"high-inline", TraversalPass::Inline},
-                                   std::pair{"high-deferred", TraversalPass::Deferred}}) {
+        // Where the traversal runs behind adaptive L (traversal first runs both in the trace pass).
+        for (auto [label, pass] : {std::pair{"high-no-verify-inline", TraversalPass::Inline},
+                                   std::pair{"high-no-verify-deferred", TraversalPass::Deferred}}) {
           BenchConfig where{"adaptive-l", label, Settings::preset(preset), false};
+          where.settings.traversal.order = TraversalOrder::AdaptiveLFirst;
+          where.settings.traversal.verify = false;
           where.settings.traversal.pass = pass;
           configs.push_back(where);
         }

@@ -266,8 +266,14 @@ struct App {
     if (s.method == 0) {
       ImGui::Checkbox("hierarchical fallback", &t.traversal.fallback);
       if (t.traversal.fallback) {
+        bool traversalFirst = t.traversal.order == TraversalOrder::TraversalFirst;
         ImGui::SameLine();
-        ImGui::Checkbox("verify hits", &t.traversal.verify);
+        if (ImGui::Checkbox("traversal first", &traversalFirst))
+          t.traversal.order = traversalFirst ? TraversalOrder::TraversalFirst : TraversalOrder::AdaptiveLFirst;
+        if (!traversalFirst) {
+          ImGui::SameLine();
+          ImGui::Checkbox("verify hits", &t.traversal.verify);
+        }
       } else {
         t.traversal.verify = false;  // verification runs the fallback's traversal
       }

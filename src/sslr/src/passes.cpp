@@ -210,7 +210,9 @@ Context::Impl::FramePlan Context::Impl::planFrame(const Settings& settings,
   // TraversalPass::Auto defers the traversal on software renderers, unless most pixels (at half
   // resolution: quads) needed it last frame (then it runs inline: the pass of its own costs more
   // than it saves). The share is fed back from each such frame.
-  const bool adaptiveWithTraversal = settings.method == Method::AdaptiveL && f.pyramid;
+  // (Traversal first runs both tracers in the trace pass: adaptive L after the traversal, on few rays.)
+  const bool adaptiveWithTraversal = settings.method == Method::AdaptiveL && f.pyramid &&
+                                     constants.trace.hizMode != SSLR_HIZ_TRAVERSAL_FIRST;
   f.feedback = adaptiveWithTraversal && settings.traversal.pass == TraversalPass::Auto && softwareRenderer;
   if (f.pyramid) readFeedback();
   // This frame's counts go to the feedback buffer unless an earlier frame's are still unread there.

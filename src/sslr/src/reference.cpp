@@ -107,7 +107,9 @@ void traceConstants(const FrameInputs& in, const Settings& s, int width, int hei
   t.hizMode = s.method == Method::HierarchicalDepth || s.method == Method::FidelityFxSssr
                   ? SSLR_HIZ_ONLY
                   : (s.method == Method::AdaptiveL && s.traversal.fallback
-                         ? (s.traversal.verify ? SSLR_HIZ_VERIFY : SSLR_HIZ_FALLBACK)
+                         ? (s.traversal.order == TraversalOrder::TraversalFirst
+                                ? SSLR_HIZ_TRAVERSAL_FIRST
+                                : (s.traversal.verify ? SSLR_HIZ_VERIFY : SSLR_HIZ_FALLBACK))
                          : SSLR_HIZ_OFF);
   t.hizMaxSteps = s.traversal.maxSteps;
   t.objectDepthRelative = s.traversal.objectDepthRelative;

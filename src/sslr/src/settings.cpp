@@ -15,20 +15,22 @@ Settings Settings::preset(Preset preset) {
       // Adaptive L alone: with 8 iterations it fails often enough that a fallback would make the
       // cheapest preset the slowest.
       s.traversal.fallback = false;
+      s.traversal.order = TraversalOrder::AdaptiveLFirst;
       s.traversal.verify = false;
       s.blur.maxRadiusPx = 4.0f;
       s.selection.roughnessCutoff = 0.3f;
       break;
     case Preset::Medium:
-      // High's tracer with a 96-step cap, hits unchecked, a narrower blur and fewer rough pixels
-      // traced (docs/design-notes.md, "Presets").
+      // Adaptive L first with the traversal where it has no hit, a 96-step cap, hits unchecked, a
+      // narrower blur and fewer rough pixels traced (docs/design-notes.md, "Presets").
       s.traversal.maxSteps = 96;
+      s.traversal.order = TraversalOrder::AdaptiveLFirst;
       s.traversal.verify = false;  // adaptive L's hits unchecked: cheaper, below the traversal alone
       s.blur.maxRadiusPx = 6.0f;
       s.selection.roughnessCutoff = 0.4f;
       break;
     case Preset::High:
-      break;  // the defaults: adaptive L, every hit verified and every miss retraced by the traversal
+      break;  // the defaults: the traversal first, adaptive L where it has no hit
     case Preset::Ultra:
       s.adaptiveL.maxIterations = 32;
       s.adaptiveL.convergenceEps = 0.0005f;
@@ -51,6 +53,8 @@ void checkTracer(const Settings& s, std::ostringstream& why) {
     why << "adaptiveL.maxIterations = " << s.adaptiveL.maxIterations << " (must be 1..256); ";
   if (s.method == Method::AdaptiveL && s.traversal.verify && !s.traversal.fallback)
     why << "traversal.verify needs traversal.fallback (both run the hierarchical traversal); ";
+  if (s.traversal.order != TraversalOrder::TraversalFirst && s.traversal.order != TraversalOrder::AdaptiveLFirst)
+    why << "traversal.order = " << static_cast<int>(s.traversal.order) << " (not a TraversalOrder); ";
   if (s.traversal.pass != TraversalPass::Auto && s.traversal.pass != TraversalPass::Inline &&
       s.traversal.pass != TraversalPass::Deferred)
     why << "traversal.pass = " << static_cast<int>(s.traversal.pass) << " (not a TraversalPass); ";

@@ -242,6 +242,15 @@ enum class Method {
                        // and hit validation for mirror rays (shaders/sslr_trace_ffx.h)
 };
 
+// Which of Method::AdaptiveL's two tracers runs first (with Settings::traversal.fallback).
+enum class TraversalOrder {
+  TraversalFirst,  // the hierarchical traversal traces every ray; adaptive L answers only the rays
+                   // it leaves without a hit (a ray it stopped inside an object's assumed slab, a
+                   // hit it refused): the verified order's hits for the traversal's work
+  AdaptiveLFirst,  // the article's order: adaptive L first, the traversal where it has no hit and,
+                   // with traversal.verify, over every hit it has
+};
+
 // Where the hierarchical traversal of Method::AdaptiveL runs (the answers are the same).
 enum class TraversalPass {
   Auto,      // Inline under DeviceProfile::Gpu. Under DeviceProfile::Software Deferred,
@@ -308,10 +317,12 @@ struct Settings {
   // tracer (docs/algorithm.md, "The hierarchical traversal").
   struct Traversal {
     bool fallback = true;  // AdaptiveL: trace the pyramid where adaptive L finds no hit
-    bool verify = true;    // AdaptiveL: also over every adaptive-L hit, keeping an earlier crossing
-                           // it finds (a ray adaptive L carried behind something): the default
-                           // then never finds less than the traversal alone. Needs fallback; off
-                           // in Preset::Low/Medium
+    TraversalOrder order = TraversalOrder::TraversalFirst;  // AdaptiveL with fallback: which
+                           // tracer runs first (AdaptiveLFirst in Preset::Low/Medium)
+    bool verify = true;    // AdaptiveL, AdaptiveLFirst: the traversal also over every adaptive-L
+                           // hit, keeping an earlier crossing it finds (a ray adaptive L carried
+                           // behind something): then never less than the traversal alone. Needs
+                           // fallback; off in Preset::Low/Medium
     int maxSteps = 128;    // 1..1024 pyramid cells visited per ray, each one fetch
     TraversalPass pass = TraversalPass::Auto;  // inline or in a pass of its own (same hits)
     float objectDepthRelative = 0.075f;  // >= 0, fraction of the view depth: how deep what a
