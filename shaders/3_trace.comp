@@ -27,7 +27,7 @@ bool sslrPixelHit(ivec2 px, SslrPixel q, out SslrHit hit, out bool ranTracer) {
   ranTracer = true;
 #ifdef SSLR_COUNT_TRAVERSAL
   // Inline under TraversalPass::Auto: count the pixels the traversal ran for (its feedback).
-  if (hit.hierarchical != 0) atomicAdd(retrace.count, 1u);
+  if (sslrRanSecondStage(frame.trace, hit)) atomicAdd(retrace.count, 1u);
 #endif
   return true;
 #endif

@@ -367,8 +367,9 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
 // both tracers on every ray; this pays for the traversal and a few adaptive-L rays
 // (docs/results.md, "Ray work").
 //
-// Two stages, so that a pass can run the first alone and leave the traversal to a pass of its own
-// (Settings::traversal.pass): sslrTraceFirstStage answers the pixel or says it needs the second.
+// Two stages, so that a pass can run the first alone and leave the second (the traversal; with
+// traversal first, adaptive L) to a pass of its own (Settings::traversal.pass):
+// sslrTraceFirstStage answers the pixel or says it needs the second.
 
 // Rays that come back towards the camera, or run within ~17 degrees of the image plane, are where
 // adaptive L jumps over what stands between (its probes see the front of the occluders, not the
@@ -385,15 +386,20 @@ SSLR_FN bool sslrConfidentHit(SslrHit h) { return h.status == SSLR_STATUS_HIT &&
 // past; at its step cap; a crossing it refused), adaptive L's, if confident and not beyond where
 // the traversal found the ray hidden. These are verification's answers (the traversal's hit is the
 // first crossing it walked to; adaptive L's replaced only a missing one), with adaptive L run on
-// the few rays the traversal leaves instead of on every ray.
-SSLR_FN SslrHit sslrTraceTraversalFirst(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin,
-                                        vec3 vsP, vec3 vsR) {
-  SslrHit walked = sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
-  // A ray the traversal walked off the screen (or out of the depth range) crossed nothing it could
-  // take: adaptive L there finds little and spends its whole iteration budget (design-notes.md,
-  // "Traversal first").
-  if (sslrConfidentHit(walked) || walked.status == SSLR_STATUS_OFF_SCREEN || sslrTraversalOnly(p, t, vsP, vsR))
-    return walked;
+// the few rays the traversal leaves instead of on every ray. The two stages below: the traversal
+// (`walked`), then adaptive L where sslrWalkedNeedsProbes says so.
+
+// A ray the traversal walked off the screen (or out of the depth range) crossed nothing it could
+// take: adaptive L there finds little and spends its whole iteration budget (design-notes.md,
+// "Traversal first").
+SSLR_FN bool sslrWalkedNeedsProbes(SslrProjection p, SslrTraceParams t, vec3 vsP, vec3 vsR, SslrHit walked) {
+  return !sslrConfidentHit(walked) && walked.status != SSLR_STATUS_OFF_SCREEN && !sslrTraversalOnly(p, t, vsP, vsR);
+}
+
+// The answer for a ray the traversal left (`walked`): adaptive L's, or the traversal's. hierarchical
+// = 2 says both ran (the share TraversalPass::Auto follows).
+SSLR_FN SslrHit sslrProbeAfterWalk(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
+                                   vec3 vsR, SslrHit walked) {
   SslrHit probed = sslrTraceAdaptiveL(p, s, t, pxOrigin, vsP, vsR);
   bool useProbed = sslrConfidentHit(probed) ||
                    (probed.status == SSLR_STATUS_HIT && !(walked.status == SSLR_STATUS_HIT &&
@@ -403,17 +409,24 @@ SSLR_FN SslrHit sslrTraceTraversalFirst(SslrProjection p, SslrSurface s, SslrTra
   if (walked.status == SSLR_STATUS_HIDDEN && walked.L < 0.97f * probed.L) useProbed = false;
   SslrHit answer = useProbed ? probed : walked;
   answer.iterations = walked.iterations + probed.iterations;
-  answer.hierarchical = 1;
+  answer.hierarchical = 2;
   return answer;
 }
 
-// Adaptive L's answer; needsTraversal: the pixel's answer is sslrTraceSecondStage's instead.
+// Whether the second stage ran for this answer (the pixels a deferred pass lists).
+SSLR_FN bool sslrRanSecondStage(SslrTraceParams t, SslrHit h) {
+  return sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST ? h.hierarchical == 2 : h.hierarchical != 0;
+}
+
+// The first stage's answer (adaptive L's; traversal first: the traversal's); needsTraversal: the
+// pixel's answer is sslrTraceSecondStage's instead.
 SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
                                     vec3 vsR, SSLR_OUT(bool) needsTraversal) {
   needsTraversal = true;
-  if (sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST) {  // one stage: both tracers here
-    needsTraversal = false;
-    return sslrTraceTraversalFirst(p, s, t, pxOrigin, vsP, vsR);
+  if (sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST) {  // the traversal first; the second stage probes
+    SslrHit walked = sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
+    needsTraversal = sslrWalkedNeedsProbes(p, t, vsP, vsR, walked);
+    return walked;
   }
   if (sslrTraversalOnly(p, t, vsP, vsR)) return sslrNoHit(SSLR_STATUS_MISS);
   SslrHit first = sslrTraceAdaptiveL(p, s, t, pxOrigin, vsP, vsR);
@@ -425,6 +438,7 @@ SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTracePa
 // The traversal's part, given the first stage's answer `first` for a pixel that needs it.
 SSLR_FN SslrHit sslrTraceSecondStage(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
                                      vec3 vsR, SslrHit first) {
+  if (sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST) return sslrProbeAfterWalk(p, s, t, pxOrigin, vsP, vsR, first);
   SslrHit second = sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
   if (sslrTraversalOnly(p, t, vsP, vsR)) return second;
   second.iterations += first.iterations;

@@ -1119,7 +1119,7 @@ TEST_F(Api, RayWorkIsTheIterationsImageRegroupedAsTheGroupsRun) {
   // Deferred: the trace dispatch counts adaptive L's steps, the retrace dispatch the listed pixels'
   // whole tracer; every listed pixel is a lane there, 64 to a group.
   Settings deferred = s;
-  deferred.traversal.order = TraversalOrder::AdaptiveLFirst;  // traversal first defers nothing
+  deferred.traversal.order = TraversalOrder::AdaptiveLFirst;  // most pixels listed: adaptive L first
   deferred.traversal.pass = TraversalPass::Deferred;
   ASSERT_TRUE(ctx->dispatch(in, deferred));
   const FrameStats st = ctx->waitForStats();
@@ -1364,7 +1364,6 @@ TEST_F(Api, EveryOptionAtOnceLeavesNoGlError) {
   in.viewFromWorld = f.gbuffer->viewFromWorld();
   Settings s = Settings::preset(Preset::Ultra);
   s.halfResolution = true;
-  s.traversal.order = TraversalOrder::AdaptiveLFirst;  // traversal first defers nothing
   s.traversal.pass = TraversalPass::Deferred;
   s.debug.outputs = true;
   s.debug.collectStats = true;

@@ -207,12 +207,11 @@ Context::Impl::FramePlan Context::Impl::planFrame(const Settings& settings,
   // do the curved solids (sslr_shared.h).
   f.pyramid = constants.trace.hizMode != SSLR_HIZ_OFF;
   f.curvedSolids = f.pyramid && constants.trace.curvedSolids != 0;
-  // TraversalPass::Auto defers the traversal on software renderers, unless most pixels (at half
-  // resolution: quads) needed it last frame (then it runs inline: the pass of its own costs more
-  // than it saves). The share is fed back from each such frame.
-  // (Traversal first runs both tracers in the trace pass: adaptive L after the traversal, on few rays.)
-  const bool adaptiveWithTraversal = settings.method == Method::AdaptiveL && f.pyramid &&
-                                     constants.trace.hizMode != SSLR_HIZ_TRAVERSAL_FIRST;
+  // TraversalPass::Auto defers the second tracer (the traversal; traversal first: adaptive L) on
+  // software renderers, unless most pixels (at half resolution: quads) needed it last frame (then
+  // it runs inline: the pass of its own costs more than it saves). The share is fed back from each
+  // such frame.
+  const bool adaptiveWithTraversal = settings.method == Method::AdaptiveL && f.pyramid;
   f.feedback = adaptiveWithTraversal && settings.traversal.pass == TraversalPass::Auto && softwareRenderer;
   if (f.pyramid) readFeedback();
   // This frame's counts go to the feedback buffer unless an earlier frame's are still unread there.

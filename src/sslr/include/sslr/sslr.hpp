@@ -251,15 +251,16 @@ enum class TraversalOrder {
                    // with traversal.verify, over every hit it has
 };
 
-// Where the hierarchical traversal of Method::AdaptiveL runs (the answers are the same).
+// Where Method::AdaptiveL's second tracer runs (the traversal; with TraversalOrder::
+// TraversalFirst, adaptive L). The answers are the same.
 enum class TraversalPass {
   Auto,      // Inline under DeviceProfile::Gpu. Under DeviceProfile::Software Deferred,
              // but Inline while more than about half the pixels (half resolution: quads) of the
-             // traced tiles needed the traversal in the previous frame (deferring then costs more
-             // than it saves)
-  Inline,    // in the pixel's own invocation, after adaptive L: GPUs (deferred was slower on an H100)
+             // traced tiles needed the second tracer in the previous frame (deferring then costs
+             // more than it saves)
+  Inline,    // in the pixel's own invocation, after the first tracer: GPUs
   Deferred,  // a pass of its own over the pixels that need it: CPU rasterizers run code a pixel
-             // does not take under lane masks, so the traversal inline slows every pixel
+             // does not take under lane masks, so the second tracer inline slows every pixel
 };
 
 // Parameters of Method::PositionBuffer, with the tutorial's demo values.
