@@ -3,9 +3,6 @@
 #include "passes/trace_common.glsl"
 #include "passes/retrace_list.glsl"
 #include "passes/shade_pixel.glsl"
-#ifdef SSLR_COLLECT_STATS
-#include "passes/ray_work.glsl"
-#endif
 
 layout(local_size_x = SSLR_RETRACE_GROUP) in;
 
@@ -18,7 +15,5 @@ bool sslrPixelHit(ivec2 px, SslrPixel q, out SslrHit hit, out bool ranTracer) {
 void main() {
   uint i = gl_GlobalInvocationID.x;
   uint steps = i < retrace.count ? sslrShadePixel(sslrUnpackCoord(retrace.entries[i])) : 0u;
-#ifdef SSLR_COLLECT_STATS
   sslrCountRayWork(SSLR_RAY_WORK_RETRACE, steps);
-#endif
 }

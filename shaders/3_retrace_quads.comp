@@ -4,9 +4,6 @@
 #include "passes/trace_common.glsl"
 #include "passes/retrace_list.glsl"
 #include "passes/trace_quad.glsl"
-#ifdef SSLR_COLLECT_STATS
-#include "passes/ray_work.glsl"
-#endif
 
 layout(local_size_x = SSLR_TILE_QUADS) in;
 
@@ -15,7 +12,5 @@ void main() {
   uint steps = 0u;
   if (gl_LocalInvocationIndex < tiles.tileCoords[sslrQuadRetraceCountIndex(slot)])
     steps = sslrTraceQuad(slot, sslrUnpackCoord(retrace.entries[sslrQuadRetraceRegion(slot) + gl_LocalInvocationIndex]));
-#ifdef SSLR_COLLECT_STATS
   sslrCountRayWork(SSLR_RAY_WORK_QUAD_RETRACE, steps);
-#endif
 }

@@ -1,17 +1,14 @@
 // Pass 3, the trace (passes.cpp runTrace): one invocation per pixel of a listed tile traces its
 // ray and writes the reflection (rgb = hit colour x weights, a = blur weight), the resolved output
 // (same rgb, a = coverage) and, with SSLR_DEBUG_OUTPUTS, the hit and iteration images.
-// With a deferred traversal (Settings::traversal.pass, SSLR_DEFER_TRAVERSAL) it runs adaptive L
-// alone and lists the pixels that need the traversal for 3_retrace.comp, so that the traversal's
-// code is in no program that every pixel runs.
+// With a deferred second stage (Settings::traversal.pass, SSLR_DEFER_TRAVERSAL) it runs the first
+// stage alone and lists the pixels that need the second for 3_retrace.comp, so that the second
+// tracer's code is in no program that every pixel runs.
 #include "passes/trace_common.glsl"
 #if defined(SSLR_DEFER_TRAVERSAL) || defined(SSLR_COUNT_TRAVERSAL)
 #include "passes/retrace_list.glsl"
 #endif
 #include "passes/shade_pixel.glsl"
-#ifdef SSLR_COLLECT_STATS
-#include "passes/ray_work.glsl"
-#endif
 
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 
@@ -36,7 +33,5 @@ bool sslrPixelHit(ivec2 px, SslrPixel q, out SslrHit hit, out bool ranTracer) {
 void main() {
   ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
   uint steps = sslrInside(px) ? sslrShadePixel(px) : 0u;
-#ifdef SSLR_COLLECT_STATS
   sslrCountRayWork(SSLR_RAY_WORK_TRACE, steps);
-#endif
 }

@@ -4,7 +4,8 @@
 // is the sum over 32- and over 64-lane groups, in the dispatch's own group shape (invocations
 // 0-31 and 32-63 of a group form its 32-lane groups), of the group's largest count. A group
 // smaller than 32 or 64 lanes fills one such group alone. Counted with a group barrier: called
-// once by every invocation of the group, in uniform control flow.
+// once by every invocation of the group, in uniform control flow. Without stats: a no-op.
+#ifdef SSLR_COLLECT_STATS
 shared uint sRayWorkMax[3];  // the two 32-lane halves, the whole group
 shared uint sRayWorkSum;
 
@@ -30,3 +31,6 @@ void sslrCountRayWork(uint slot, uint steps) {
     atomicAdd(stats.rayWork[base + SSLR_RAY_WORK_GROUPS], 1u);
   }
 }
+#else
+void sslrCountRayWork(uint slot, uint steps) {}
+#endif

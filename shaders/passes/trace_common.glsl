@@ -42,6 +42,7 @@ bool sslrLoadSurface(ivec2 px, out vec3 vsPos) {
   return sslrSurfaceFromDepth(frame.proj, frame.surface, px, sslrLoadDepth(px), vsPos);
 }
 vec4 sslrLoadNormal(ivec2 px) { return texelFetch(uNormal, sslrTexel(px), 0); }
+#include "passes/ray_work.glsl"  // sslrCountRayWork (a no-op without SSLR_COLLECT_STATS)
 
 #ifdef SSLR_METHOD_POSITION_BUFFER
 layout(binding = SSLR_UNIT_POSITION) uniform sampler2D uPosition;  // view-space position, w = 1 on geometry

@@ -302,10 +302,9 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
   // unless the last frame listed no tile (then the levels-0-and-1 pass does, if this frame lists
   // one). Under DeviceProfile::Gpu it also does the clean-up's and the pyramid arguments' work.
   std::string classifyDefines = f.pyramid && !f.level1Pass ? "#define SSLR_CLASSIFY_LEVEL1 1\n" + curvedDefine : "";
-  if (f.wideClassify) classifyDefines += f.pyramid ? "#define SSLR_CLASSIFY_WIDE 1\n#define SSLR_CLASSIFY_ARGS 1\n"
-                                                   : "#define SSLR_CLASSIFY_WIDE 1\n";
+  if (f.wideClassify && f.pyramid) classifyDefines += "#define SSLR_CLASSIFY_ARGS 1\n";
   const std::pair<GLuint*, Expected<GLuint>> built[] = {
-      {&f.programs.classify, computeProgram("1_classify.comp", classifyDefines)},
+      {&f.programs.classify, computeProgram(f.wideClassify ? "1_classify_wide.comp" : "1_classify.comp", classifyDefines)},
       {&f.programs.cleanup, optionalProgram(!f.wideClassify, "1_clear_untraced.comp", "")},
       {&f.programs.hizArgs, optionalProgram(f.pyramid && !f.wideClassify, "2_pyramid_arguments.comp", curvedDefine)},
       {&f.programs.level1, optionalProgram(f.level1Pass, "2_pyramid_levels01.comp", curvedDefine)},
