@@ -134,7 +134,7 @@ struct SurfaceLayout {
   int reflectanceChannel = 3;       // 0..3 (F0 in [0,1]), or -1: constantReflectance
   float constantRoughness = 0.0f;
   float constantReflectance = 1.0f;
-  NormalSpace space = NormalSpace::View;  // last, so existing aggregate initializers still compile
+  NormalSpace space = NormalSpace::View;  // the space the decoded normals are in
   // How a stored normal channel unpacks to [-1, 1]: value * normalScale + normalBias (finite, scale
   // not 0). The default suits unsigned formats (RGBA8, RGBA16, RG16, float textures holding 0..1);
   // signed normalized formats (RG16_SNORM, RGBA16_SNORM, RGBA8_SNORM) and float textures holding
@@ -233,8 +233,8 @@ enum class GlossyMode {
 enum class Preset { Low, Medium, High, Ultra };
 
 enum class Method {
-  AdaptiveL,           // depth-only: the SSLR article's adaptive-L iteration (sslr's method), with
-                       // the hierarchical traversal where it finds nothing (traversal.fallback)
+  AdaptiveL,           // depth-only, sslr's method: the SSLR article's adaptive-L iteration and the
+                       // hierarchical traversal (traversal.fallback), in traversal.order
   HierarchicalDepth,   // depth-only: the min-max depth pyramid traversal alone (for comparison)
   PositionBuffer,      // comparison: "3D Game Shaders For Beginners" march on a position texture
   ScreenSpaceDDA,      // comparison, depth-only: McGuire & Mara 2014's perspective-correct DDA
