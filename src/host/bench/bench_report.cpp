@@ -328,13 +328,8 @@ std::string glossySvg(const std::vector<const GlossyPoint*>& points) {
   return s.str();
 }
 
-}  // namespace
-
-Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
-  std::error_code ec;
-  fs::create_directories(fs::path(outDir) / "report", ec);
-  if (ec) return Status::error("cannot create " + outDir + "/report: " + ec.message());
-
+// results.json: the options, every run, the scenes' classes and representations, the studies.
+json resultsJson(const BenchResult& result) {
   json j;
   j["renderer"] = result.renderer;
   j["timingMethod"] = result.timingMethod;
@@ -386,38 +381,42 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
                            {"rmseAboveNoise", num(p.rmseAboveNoise)},
                            {"scored", p.scored},
                            {"timeMedianMs", num(p.timeMedianMs)}});
-  if (Status s = writeTextFile((fs::path(outDir) / "results.json").string(), j.dump(2) + "\n"); !s) return s;
-  {
-    std::ostringstream out;
-    out << "scene,method,label,default,width,height,renderer,timingMethod,timeMedianMs,timeMinMs,timeMaxMs,frames,"
-           "visible,occluded,offScreen,escaped,recall1px,recall2px,recall4px,medianErrorPx,p95ErrorPx,falseHitRate,"
-           "reflectionRmse,reflectionPsnr,nonFiniteHitPixels,nonFiniteOutputPixels,tracedPixels,fetches,"
-           "fetchesPerTracedPixel,dispatches,indirectDispatches,barriers,programs,bytesRead,bytesWritten,laneSteps,simt32,"
-           "simt64,longestChain,gbufferBytesPerPixel,extraBytesPerPixel,parameters\n";
-    for (const RunRecord& r : result.runs) {
-      const json rj = runJson(r);
-      const RayWork work = r.frameStats.totalRayWork();
-      auto v = [&](const char* k) { return rj[k].is_null() ? std::string() : rj[k].dump(); };
-      std::string params = rj["parameters"].dump();
-      std::string quoted = "\"";
-      for (char c : params) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-      quoted += "\"";
-      out << r.scene << "," << r.method << ",\"" << r.label << "\"," << (r.config.isDefault ? 1 : 0) << "," << r.width
-          << "," << r.height << ",\"" << r.renderer << "\",\"" << r.timingMethod << "\"," << v("timeMedianMs") << ","
-          << v("timeMinMs") << "," << v("timeMaxMs") << "," << r.frames << "," << r.metrics.visible << ","
-          << r.metrics.occluded << "," << r.metrics.offScreen << "," << r.metrics.escaped << "," << v("recall1px") << ","
-          << v("recall2px") << "," << v("recall4px") << "," << v("medianErrorPx") << "," << v("p95ErrorPx") << ","
-          << v("falseHitRate") << "," << v("reflectionRmse") << "," << v("reflectionPsnr") << "," << r.metrics.nonFinite
-          << "," << r.nonFiniteOutputs << "," << r.tracedPixels << "," << r.fetches << "," << v("fetchesPerTracedPixel")
-          << "," << r.commands.dispatches << "," << r.commands.indirectDispatches << "," << r.commands.barriers << ","
-          << r.commands.programs << "," << r.traffic.bytesRead << "," << r.traffic.bytesWritten << ","
-          << work.laneSteps << "," << work.simt32 << "," << work.simt64 << "," << work.longestChain
-          << "," << r.gbufferBytesPerPixel << "," << r.extraBytesPerPixel << "," << quoted << "\n";
-    }
-    if (Status s = writeTextFile((fs::path(outDir) / "results.csv").string(), out.str()); !s) return s;
-  }
+  return j;
+}
 
-  std::ostringstream h;
+// results.csv: one row per run.
+std::string resultsCsv(const BenchResult& result) {
+  std::ostringstream out;
+  out << "scene,method,label,default,width,height,renderer,timingMethod,timeMedianMs,timeMinMs,timeMaxMs,frames,"
+         "visible,occluded,offScreen,escaped,recall1px,recall2px,recall4px,medianErrorPx,p95ErrorPx,falseHitRate,"
+         "reflectionRmse,reflectionPsnr,nonFiniteHitPixels,nonFiniteOutputPixels,tracedPixels,fetches,"
+         "fetchesPerTracedPixel,dispatches,indirectDispatches,barriers,programs,bytesRead,bytesWritten,laneSteps,simt32,"
+         "simt64,longestChain,gbufferBytesPerPixel,extraBytesPerPixel,parameters\n";
+  for (const RunRecord& r : result.runs) {
+    const json rj = runJson(r);
+    const RayWork work = r.frameStats.totalRayWork();
+    auto v = [&](const char* k) { return rj[k].is_null() ? std::string() : rj[k].dump(); };
+    std::string params = rj["parameters"].dump();
+    std::string quoted = "\"";
+    for (char c : params) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    quoted += "\"";
+    out << r.scene << "," << r.method << ",\"" << r.label << "\"," << (r.config.isDefault ? 1 : 0) << "," << r.width
+        << "," << r.height << ",\"" << r.renderer << "\",\"" << r.timingMethod << "\"," << v("timeMedianMs") << ","
+        << v("timeMinMs") << "," << v("timeMaxMs") << "," << r.frames << "," << r.metrics.visible << ","
+        << r.metrics.occluded << "," << r.metrics.offScreen << "," << r.metrics.escaped << "," << v("recall1px") << ","
+        << v("recall2px") << "," << v("recall4px") << "," << v("medianErrorPx") << "," << v("p95ErrorPx") << ","
+        << v("falseHitRate") << "," << v("reflectionRmse") << "," << v("reflectionPsnr") << "," << r.metrics.nonFinite
+        << "," << r.nonFiniteOutputs << "," << r.tracedPixels << "," << r.fetches << "," << v("fetchesPerTracedPixel")
+        << "," << r.commands.dispatches << "," << r.commands.indirectDispatches << "," << r.commands.barriers << ","
+        << r.commands.programs << "," << r.traffic.bytesRead << "," << r.traffic.bytesWritten << ","
+        << work.laneSteps << "," << work.simt32 << "," << work.simt64 << "," << work.longestChain
+        << "," << r.gbufferBytesPerPixel << "," << r.extraBytesPerPixel << "," << quoted << "\n";
+  }
+  return out.str();
+}
+
+// The report's head: how the runs were timed and scored.
+void reportHead(std::ostringstream& h, const BenchResult& result) {
   h << "<!doctype html><html><head><meta charset='utf-8'><title>sslr benchmark</title><style>"
        "body{font-family:sans-serif;margin:24px;max-width:1400px}table{border-collapse:collapse;margin:8px 0 24px}"
        "td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}th{background:#f3f3f3}td:first-child,th:first-child"
@@ -430,6 +429,10 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
     << ". Error: Embree ground truth; recall = visible (class A) reflections reported (confidence &gt; 0.5) within N px of "
        "the true hit; false hits = occluded/off-screen/escaped reflections reported; RMSE = colour at the reported hit "
        "(0 if none) vs colour at the true hit, over class A. Large dots: each method's default.</p>";
+}
+
+// The defaults side by side per scene, and each method's fastest configuration reaching recall 0.95.
+void reportSummaries(std::ostringstream& h, const BenchResult& result) {
   // Summary table: the defaults side by side per scene.
   h << "<h2>Summary (defaults)</h2><table><tr><th>scene</th><th>method</th><th>time ms</th><th>time ratio</th>"
        "<th>recall@1px</th><th>p95 px</th><th>false hits</th><th>RMSE</th><th>fetches/px</th><th>G-buffer B/px</th></tr>";
@@ -470,6 +473,10 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
     }
   }
   h << "</table>";
+}
+
+// Cost curves, with the ratios the targets are stated in (their SVGs also as files).
+Status reportCurves(std::ostringstream& h, const BenchResult& result, const std::string& outDir) {
   // Cost curves, with the ratios the targets are stated in.
   for (const char* curve : {"resolution", "fraction"}) {
     bool any = false;
@@ -503,6 +510,11 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
     }
     h << "</table>";
   }
+  return Status{};
+}
+
+// The temporal and glossy studies (the glossy plots also as files).
+Status reportStudies(std::ostringstream& h, const BenchResult& result, const std::string& outDir) {
   // Temporal reuse over a camera path.
   if (!result.temporal.empty()) {
     h << "<h2>Temporal reuse over a camera path</h2><p>Still for 8 frames, then orbiting 0.25&deg; and 2.5&deg; "
@@ -552,6 +564,11 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
       h << "</div>";
     }
   }
+  return Status{};
+}
+
+// Per scene: its plot (also as a file), images, representations and every run.
+Status reportScenes(std::ostringstream& h, const BenchResult& result, const std::string& outDir) {
   for (const SceneRecord& sc : result.scenes) {
     std::vector<const RunRecord*> runs;
     double baselineMs = 0;
@@ -586,8 +603,25 @@ Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
     h << "<tr><td>baseline</td><td>read G-buffer + write 1 texel</td><td>" << fmt(baselineMs, 2)
       << "</td><td colspan='6'></td></tr></table>";
   }
+  return Status{};
+}
+
+}  // namespace
+
+Status writeBenchResults(const BenchResult& result, const std::string& outDir) {
+  std::error_code ec;
+  fs::create_directories(fs::path(outDir) / "report", ec);
+  if (ec) return Status::error("cannot create " + outDir + "/report: " + ec.message());
+  if (Status s = writeTextFile((fs::path(outDir) / "results.json").string(), resultsJson(result).dump(2) + "\n"); !s)
+    return s;
+  if (Status s = writeTextFile((fs::path(outDir) / "results.csv").string(), resultsCsv(result)); !s) return s;
+  std::ostringstream h;
+  reportHead(h, result);
+  reportSummaries(h, result);
+  if (Status s = reportCurves(h, result, outDir); !s) return s;
+  if (Status s = reportStudies(h, result, outDir); !s) return s;
+  if (Status s = reportScenes(h, result, outDir); !s) return s;
   h << "</body></html>\n";
   return writeTextFile((fs::path(outDir) / "report" / "index.html").string(), h.str());
 }
-
 }  // namespace sslr::host
