@@ -365,7 +365,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
 // SSLR_HIZ_TRAVERSAL_FIRST (the default) reaches verification's answers the other way round: the
 // traversal on every ray, adaptive L only where the traversal has no hit. Verification paid for
 // both tracers on every ray; this pays for the traversal and a few adaptive-L rays
-// (docs/results.md, "Ray work").
+// (docs/results/ray-work.md).
 //
 // Two stages, so that a pass can run the first alone and leave the second (the traversal; with
 // traversal first, adaptive L) to a pass of its own (Settings::traversal.pass):

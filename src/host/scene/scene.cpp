@@ -423,7 +423,7 @@ Scene curvedMirror() {
 // A copper mirror sphere over a gold mirror floor, the sphere a faceted mesh (`segments` around,
 // half as many rings) with interpolated normals, as glTF spheres are: the depth shows flat facets
 // while the shading normal turns smoothly, where reflected rays have refused true hits
-// (docs/results.md, "Isolated rejections in reflected curved objects").
+// (docs/results/curved-objects.md).
 Scene sphereOverMirror(int segments) {
   Scene s;
   s.name = "sphere-over-mirror-" + std::to_string(segments);
