@@ -1,4 +1,4 @@
-// Small glTF 2.0 files written by tests: a base64 encoder for data: URIs and a one-mesh file.
+// Small glTF 2.0 files written by tests: a one-mesh file, with the tools' base64 for data: URIs.
 #pragma once
 
 #include <cstdint>
@@ -6,26 +6,11 @@
 #include <string>
 #include <vector>
 
+#include "sslr_host/gltf_writer.hpp"
+
 namespace sslr::test {
 
-// base64 of raw bytes, for data: URIs.
-inline std::string base64(const std::string& bytes) {
-  static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  size_t i = 0;
-  for (; i + 2 < bytes.size(); i += 3) {
-    const unsigned v = (unsigned char)bytes[i] << 16 | (unsigned char)bytes[i + 1] << 8 | (unsigned char)bytes[i + 2];
-    out += t[v >> 18 & 63]; out += t[v >> 12 & 63]; out += t[v >> 6 & 63]; out += t[v & 63];
-  }
-  if (i + 1 == bytes.size()) {
-    const unsigned v = (unsigned char)bytes[i] << 16;
-    out += t[v >> 18 & 63]; out += t[v >> 12 & 63]; out += "==";
-  } else if (i + 2 == bytes.size()) {
-    const unsigned v = (unsigned char)bytes[i] << 16 | (unsigned char)bytes[i + 1] << 8;
-    out += t[v >> 18 & 63]; out += t[v >> 12 & 63]; out += t[v >> 6 & 63]; out += '=';
-  }
-  return out;
-}
+using sslr::host::base64;  // the tools' encoder (sslr_host/gltf_writer.hpp)
 
 template <typename T>
 std::string bytesOf(const std::vector<T>& v) {

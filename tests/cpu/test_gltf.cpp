@@ -571,6 +571,16 @@ TEST_F(Gltf, ImageUrisArePrintedAsPrintableText) {
   EXPECT_EQ(warnings.find('\x1b'), std::string::npos) << "a raw escape reached the warnings";
 }
 
+// The one base64 encoder of tools and tests: RFC 4648's test vectors (padding for 1 and 2 bytes
+// left over), and a byte above 127 (unsigned).
+TEST(Base64, EncodesAsRfc4648) {
+  const std::pair<const char*, const char*> vectors[] = {{"", ""},         {"f", "Zg=="},         {"fo", "Zm8="},
+                                                         {"foo", "Zm9v"},  {"foob", "Zm9vYg=="},   {"fooba", "Zm9vYmE="},
+                                                         {"foobar", "Zm9vYmFy"}};
+  for (const auto& [in, out] : vectors) EXPECT_EQ(sslr::host::base64(in), out) << in;
+  EXPECT_EQ(sslr::host::base64(std::string("\xff\xfe", 2)), "//4=");
+}
+
 TEST(NormalMatrix, SingularAndExtremeTransformsKeepFiniteNormals) {
   // A node scaled to zero along z keeps its faces in the xy plane: their normal is +-z.
   const glm::dmat3 flat = normalMatrixOf(glm::scale(glm::dmat4(1.0), glm::dvec3(1, 1, 0)));

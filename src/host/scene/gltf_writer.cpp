@@ -9,10 +9,6 @@
 
 namespace sslr::host {
 
-namespace {
-
-using nlohmann::json;
-
 std::string base64(const std::string& bytes) {
   static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
@@ -25,6 +21,10 @@ std::string base64(const std::string& bytes) {
   }
   return out;
 }
+
+namespace {
+
+using nlohmann::json;
 
 json matrixJson(const glm::dmat4& m) {
   json a = json::array();

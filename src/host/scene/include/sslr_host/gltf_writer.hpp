@@ -15,4 +15,7 @@ namespace sslr::host {
 // written (the built-in scenes have none): a scene with textures is refused with the reason.
 Expected<std::string> gltfFromScene(const Scene& scene);
 
+// base64 of raw bytes (RFC 4648, padded), for glTF's data: URIs; the tests' files use it too.
+std::string base64(const std::string& bytes);
+
 }  // namespace sslr::host
