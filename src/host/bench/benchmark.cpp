@@ -36,10 +36,52 @@ std::vector<std::string> defaultBenchScenes() {
           "mirror-room",   "grazing-plane",   "sky-heavy"};
 }
 
-std::vector<BenchConfig> benchGrid(const std::string& grid) {
-  std::vector<BenchConfig> configs;
-  const bool full = grid == "full";
-  // sslr's depth-only adaptive-L at each preset.
+namespace {
+
+// The full grid's variants of the high preset: adaptive L first (verified, unchecked), measured
+// thickness and the hidden-passage rule, each device profile's pass shapes, the second stage's pass.
+void highVariants(std::vector<BenchConfig>& configs) {
+  const Preset preset = Preset::High;
+  // adaptive L first: its hits verified (0.4's default), unchecked (medium's choice)
+  for (bool verify : {true, false}) {
+    BenchConfig alFirst{"adaptive-l", verify ? "high-verify" : "high-no-verify", Settings::preset(preset),
+                        false};
+    alFirst.settings.traversal.order = TraversalOrder::AdaptiveLFirst;
+    alFirst.settings.traversal.verify = verify;
+    configs.push_back(alFirst);
+  }
+  // Measured thickness (a back-face depth input), and the hidden-passage rule with and without it.
+  BenchConfig measured{"adaptive-l", "high-back-depth", Settings::preset(preset), false, true};
+  configs.push_back(measured);
+  for (float limit : {16.0f, 8.0f}) {
+    for (bool back : {false, true}) {
+      BenchConfig hidden{"adaptive-l", std::string(back ? "high-back-depth" : "high") + "-hidden" +
+                                           std::to_string(static_cast<int>(limit)),
+                         Settings::preset(preset), false, back};
+      hidden.settings.traversal.hiddenPassageLimitPx = limit;
+      configs.push_back(hidden);
+    }
+  }
+  // The pass shapes of each device profile (the Auto profile's is one of the two).
+  for (auto [label, device] : {std::pair{"high-gpu-profile", DeviceProfile::Gpu},
+                               std::pair{"high-software-profile", DeviceProfile::Software}}) {
+    BenchConfig shaped{"adaptive-l", label, Settings::preset(preset), false};
+    shaped.device = device;
+    configs.push_back(shaped);
+  }
+  // Where adaptive L first's second stage (the traversal) runs: Settings::traversal.pass.
+  for (auto [label, pass] : {std::pair{"high-no-verify-inline", TraversalPass::Inline},
+                             std::pair{"high-no-verify-deferred", TraversalPass::Deferred}}) {
+    BenchConfig where{"adaptive-l", label, Settings::preset(preset), false};
+    where.settings.traversal.order = TraversalOrder::AdaptiveLFirst;
+    where.settings.traversal.verify = false;
+    where.settings.traversal.pass = pass;
+    configs.push_back(where);
+  }
+}
+
+// sslr's method at each preset, and the high preset's variants.
+void adaptiveLConfigs(std::vector<BenchConfig>& configs, bool full) {
   const std::pair<const char*, Preset> presets[] = {
       {"low", Preset::Low}, {"medium", Preset::Medium}, {"high", Preset::High}, {"ultra", Preset::Ultra}};
   for (const auto& [name, preset] : presets) {
@@ -54,48 +96,14 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
       BenchConfig half{"adaptive-l", "high-half", Settings::preset(preset), false};  // one ray per quad
       half.settings.halfResolution = true;
       configs.push_back(half);
-      if (full) {  // adaptive L first: its hits verified (0.4's default), unchecked (medium's choice)
-        for (bool verify : {true, false}) {
-          BenchConfig alFirst{"adaptive-l", verify ? "high-verify" : "high-no-verify", Settings::preset(preset),
-                              false};
-          alFirst.settings.traversal.order = TraversalOrder::AdaptiveLFirst;
-          alFirst.settings.traversal.verify = verify;
-          configs.push_back(alFirst);
-        }
-        // Where the traversal runs (Settings::traversal.pass; the default, Auto, is one of the two).
-        // Measured thickness (a back-face depth input), and the hidden-passage rule with and without it.
-        BenchConfig measured{"adaptive-l", "high-back-depth", Settings::preset(preset), false, true};
-        configs.push_back(measured);
-        for (float limit : {16.0f, 8.0f}) {
-          for (bool back : {false, true}) {
-            BenchConfig hidden{"adaptive-l", std::string(back ? "high-back-depth" : "high") + "-hidden" +
-                                                 std::to_string(static_cast<int>(limit)),
-                               Settings::preset(preset), false, back};
-            hidden.settings.traversal.hiddenPassageLimitPx = limit;
-            configs.push_back(hidden);
-          }
-        }
-        // The pass shapes of each device profile (the Auto profile's is one of the two).
-        for (auto [label, device] : {std::pair{"high-gpu-profile", DeviceProfile::Gpu},
-                                     std::pair{"high-software-profile", DeviceProfile::Software}}) {
-          BenchConfig shaped{"adaptive-l", label, Settings::preset(preset), false};
-          shaped.device = device;
-          configs.push_back(shaped);
-        }
-        // Where the traversal runs behind adaptive L (traversal first runs both in the trace pass).
-        for (auto [label, pass] : {std::pair{"high-no-verify-inline", TraversalPass::Inline},
-                                   std::pair{"high-no-verify-deferred", TraversalPass::Deferred}}) {
-          BenchConfig where{"adaptive-l", label, Settings::preset(preset), false};
-          where.settings.traversal.order = TraversalOrder::AdaptiveLFirst;
-          where.settings.traversal.verify = false;
-          where.settings.traversal.pass = pass;
-          configs.push_back(where);
-        }
-      }
+      if (full) highVariants(configs);
     }
   }
-  // The hierarchical traversal alone (Method::HierarchicalDepth) at the presets' step caps (medium,
-  // high, ultra).
+}
+
+// The hierarchical traversal alone (Method::HierarchicalDepth) at the presets' step caps (medium,
+// high, ultra).
+void hizConfigs(std::vector<BenchConfig>& configs, bool full) {
   const int defaultSteps = Settings::preset(Preset::High).traversal.maxSteps;
   const std::vector<int> allSteps{Settings::preset(Preset::Medium).traversal.maxSteps, defaultSteps,
                                   Settings::preset(Preset::Ultra).traversal.maxSteps};
@@ -105,6 +113,10 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
     c.settings.traversal.maxSteps = steps;
     configs.push_back(c);
   }
+}
+
+// McGuire & Mara's screen-space DDA over stride and thickness.
+void ddaConfigs(std::vector<BenchConfig>& configs, bool full) {
   // McGuire & Mara's screen-space DDA: stride x thickness, each with steps enough to cross about
   // 1024 pixels (so that the stride, not the step cap, sets the reach).
   std::vector<float> strides = full ? std::vector<float>{1.0f, 2.0f, 4.0f, 8.0f} : std::vector<float>{2.0f, 8.0f};
@@ -120,6 +132,10 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
       label << "stride" << stride << "-thick" << thick;
       configs.push_back({"dda", label.str(), s, stride == 2.0f && thick == 0.5f});
     }
+}
+
+// FidelityFX SSSR at its sample's thickness and thicker.
+void ffxConfigs(std::vector<BenchConfig>& configs, bool full) {
   // AMD FidelityFX SSSR's mirror-ray raymarch and hit validation: its sample's defaults (depth
   // buffer thickness 0.015, 128 intersections), then thicker (the thickness is its only tolerance).
   std::vector<float> ffxThicknesses = full ? std::vector<float>{0.015f, 0.05f, 0.15f, 0.5f} : std::vector<float>{0.015f};
@@ -131,6 +147,10 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
     label << "thick" << thick;
     configs.push_back({"ffx-sssr", label.str(), s, thick == 0.015f});
   }
+}
+
+// The tutorial's position-buffer march: its demo values, its text's, a sweep.
+void positionBufferConfigs(std::vector<BenchConfig>& configs, bool full) {
   // The tutorial's method: its demo values first, then the values its text gives (maxDistance 15,
   // resolution 0.3, steps 10), then a sweep.
   std::vector<float> resolutions = full ? std::vector<float>{0.1f, 0.3f, 0.6f, 1.0f} : std::vector<float>{0.3f, 1.0f};
@@ -157,6 +177,18 @@ std::vector<BenchConfig> benchGrid(const std::string& grid) {
     s.positionBuffer.steps = 10;
     configs.push_back({"position-buffer", "tutorial text (res0.3-steps10-dist15)", s, false});
   }
+}
+
+}  // namespace
+
+std::vector<BenchConfig> benchGrid(const std::string& grid) {
+  std::vector<BenchConfig> configs;
+  const bool full = grid == "full";
+  adaptiveLConfigs(configs, full);
+  hizConfigs(configs, full);
+  ddaConfigs(configs, full);
+  ffxConfigs(configs, full);
+  positionBufferConfigs(configs, full);
   BenchConfig baseline{"baseline", "read G-buffer, write 1 texel", Settings{}, false};
   configs.push_back(baseline);
   return configs;
