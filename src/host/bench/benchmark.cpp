@@ -406,6 +406,148 @@ Status timeCurvePoint(const std::string& curve, const std::string& sceneName, in
 
 }  // namespace
 
+namespace {
+
+// A scene's record: its reflective pixels by truth class.
+SceneRecord sceneRecordOf(const std::string& sceneName, const GroundTruth& gt) {
+  SceneRecord sr;
+  sr.scene = sceneName;
+  sr.reflective = gt.reflective();
+  sr.visible = gt.count(TruthClass::Visible);
+  sr.occluded = gt.count(TruthClass::Occluded);
+  sr.offScreen = gt.count(TruthClass::OffScreen);
+  sr.escaped = gt.count(TruthClass::Escaped);
+  return sr;
+}
+
+// The two representations alone: the position rebuilt from depth against the stored one, and one
+// tracer (adaptive L's CPU run) on both.
+void measureRepresentations(SceneRecord& sr, const GroundTruth& gt, const SceneFrame& sf, const Image& depth,
+                            const Image& normal, const Image& positions, const BenchOptions& options) {
+  const FrameInputs& inputs = sf.inputs;
+  const GBuffer& gb = sf.renderer->gbuffer();
+  const Settings defaults;
+  const Image rebuilt = reconstructPositions(depth, gb.clipFromView(), inputs.depth);
+  std::vector<double> errs;
+  for (size_t p = 0; p < gt.pixels.size(); ++p) {
+    if (positions.pixels[p * 4 + 3] == 0.0f || rebuilt.pixels[p * 4 + 3] == 0.0f) continue;
+    const glm::vec3 a(rebuilt.pixels[p * 4], rebuilt.pixels[p * 4 + 1], rebuilt.pixels[p * 4 + 2]);
+    const glm::vec3 b(positions.pixels[p * 4], positions.pixels[p * 4 + 1], positions.pixels[p * 4 + 2]);
+    const double e = glm::length(a - b);
+    errs.push_back(e);
+    sr.positionErrorMaxRelative = std::max(sr.positionErrorMaxRelative, e / std::max(1e-6, double(glm::length(b))));
+  }
+  if (!errs.empty()) {
+    sr.positionErrorMax = *std::max_element(errs.begin(), errs.end());
+    sr.positionErrorMedian = median(errs);
+  }
+  const CpuGBuffer cg{&depth, &normal, &positions};
+  const Image hitDepth = traceOnCpu(cg, inputs, defaults, SurfaceSource::Depth);
+  const Image hitStored = traceOnCpu(cg, inputs, defaults, SurfaceSource::StoredPositions);
+  size_t traced = 0, agree = 0;
+  for (size_t p = 0; p < gt.pixels.size(); ++p) {
+    if (gt.pixels[p].cls == TruthClass::NotReflective) continue;
+    ++traced;
+    const bool a = hitDepth.pixels[p * 4 + 2] > kReportedConfidence,
+               b = hitStored.pixels[p * 4 + 2] > kReportedConfidence;
+    const float du = (hitDepth.pixels[p * 4] - hitStored.pixels[p * 4]) * options.width;
+    const float dv = (hitDepth.pixels[p * 4 + 1] - hitStored.pixels[p * 4 + 1]) * options.height;
+    agree += a == b && (!a || std::hypot(du, dv) <= 1.0f);
+  }
+  sr.hitAgreement = traced ? double(agree) / traced : 1.0;
+  sr.recallDepth = compareHits(gt, hitDepth).recall1px;
+  sr.recallStored = compareHits(gt, hitStored).recall1px;
+}
+
+// One configuration's untimed quality pass on a scene: hits scored against the truth, the frame's
+// stats, and for a method's default its image and error map in the report.
+Expected<RunRecord> qualityRun(const BenchConfig& c, size_t i, const std::string& sceneName, SceneFrame& sf,
+                               const GroundTruth& gt, const Image& color, ConfigContexts& contexts,
+                               const BenchOptions& options, const std::string& renderer,
+                               const std::string& timingMethod, const std::string& reportDir, SceneRecord& sr) {
+  FrameRenderer& fr = *sf.renderer;
+  GBuffer& gb = fr.gbuffer();
+  const std::string prefix = fileSlug(sceneName);
+  RunRecord r;
+  r.scene = sceneName;
+  r.method = c.method;
+  r.label = c.label;
+  r.config = c;
+  r.width = options.width;
+  r.height = options.height;
+  r.renderer = renderer;
+  r.timingMethod = timingMethod;
+  r.extraBytesPerPixel = c.method == "baseline" ? 8 : 24;  // 3 x RGBA16F
+  r.gbufferBytesPerPixel = gb.bytesPerPixel() + (c.method == "position-buffer" ? 16 : 0);
+  if (c.method != "baseline") {
+    Settings s = c.settings;
+    s.debug.outputs = true;
+    s.debug.collectStats = true;
+    // The scene's renderer's context, unless the config asks for a device profile of its own
+    // (then its timing context: the commands counted are that profile's).
+    Context* ctx = &fr.sslr();
+    if (c.device != DeviceProfile::Auto) {
+      auto own = contexts.get(i, c.device);
+      if (!own) return Status::error(own.error());
+      ctx = own.value();
+    }
+    if (Status st = ctx->dispatch(inputsFor(sf, c), s); !st) return Status::error(st.message());
+    const Image hit = readTexture(ctx->hitTexture(), options.width, options.height, 4);
+    r.metrics = compareHits(gt, hit, kReportedConfidence, &color);
+    const FrameStats stats = ctx->waitForStats();
+    r.tracedPixels = stats.tracedPixels;
+    r.fetches = stats.fetches;
+    r.commands = stats.totalCommands();
+    r.traffic = stats.totalTraffic();
+    r.frameStats = stats;
+    r.fetchesPerTracedPixel = stats.tracedPixels ? double(stats.fetches) / stats.tracedPixels : 0.0;
+    r.nonFiniteOutputs = countNonFinite(readTexture(ctx->reflectionTexture(), options.width, options.height, 4)) +
+                         countNonFinite(readTexture(ctx->resolvedTexture(), options.width, options.height, 4));
+    if (c.isDefault) {
+      const std::string m = prefix + "-" + fileSlug(c.method);
+      if (Status st = writeImage((fs::path(reportDir) / (m + ".png")).string(), methodImage(gt, hit, color)); !st)
+        return Status::error(st.message());
+      if (Status st = writeImage((fs::path(reportDir) / (m + "-error.png")).string(), hitErrorImage(gt, hit)); !st)
+        return Status::error(st.message());
+      sr.images.push_back(m + ".png");
+      sr.images.push_back(m + "-error.png");
+    }
+  }
+  return r;
+}
+
+// The studies after the scenes: cost curves, temporal reuse, glossy reflections.
+Status runStudies(const BenchOptions& options, const std::vector<BenchConfig>& grid, Timer& timer,
+                  const std::string& reportDir, BenchResult& result, int done, int total,
+                  const std::function<void(int, int, const std::string&)>& progress) {
+  // Cost curves: time against resolution (mirror-room) and against reflective fraction.
+  for (const auto& [w, h] : options.curveSizes) {
+    progress(done, total, "cost curve: " + std::to_string(w) + "x" + std::to_string(h));
+    if (Status s = timeCurvePoint("resolution", "mirror-room", w, h, -1, grid, options, timer, result.curves); !s)
+      return s;
+  }
+  for (int percent : options.curveFractions) {
+    progress(done, total, "cost curve: reflective-" + std::to_string(percent));
+    if (Status s = timeCurvePoint("fraction", "reflective-" + std::to_string(percent), options.width, options.height,
+                                  percent, grid, options, timer, result.curves);
+        !s)
+      return s;
+  }
+  for (const std::string& sceneName : options.temporalScenes) {
+    progress(done, total, "temporal study: " + sceneName);
+    if (Status s = runTemporalStudy(sceneName, options, timer, result.temporal); !s)
+      return Status::error("temporal study on " + sceneName + ": " + s.message());
+  }
+  for (const std::string& sceneSpec : options.glossyScenes) {
+    progress(done, total, "glossy study: " + sceneSpec);
+    if (Status s = runGlossyStudy(sceneSpec, options, timer, reportDir, result.glossy); !s)
+      return Status::error("glossy study on " + sceneSpec + ": " + s.message());
+  }
+  return Status{};
+}
+
+}  // namespace
+
 Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, const std::string& renderer,
                                    const std::string& reportDir,
                                    const std::function<void(int, int, const std::string&)>& progress) {
@@ -439,7 +581,6 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
     const Scene& scene = sf.scene;
     FrameRenderer& fr = *sf.renderer;
     GBuffer& gb = fr.gbuffer();
-    const FrameInputs& inputs = sf.inputs;
     const Image depth = gb.readDepth(), normal = gb.readNormalPacked(), positions = gb.readPosition(),
                 color = gb.readColor();
 
@@ -450,46 +591,8 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
     if (!truth) return Status::error(truth.error());
     const GroundTruth& gt = truth.value();
 
-    SceneRecord sr;
-    sr.scene = sceneName;
-    sr.reflective = gt.reflective();
-    sr.visible = gt.count(TruthClass::Visible);
-    sr.occluded = gt.count(TruthClass::Occluded);
-    sr.offScreen = gt.count(TruthClass::OffScreen);
-    sr.escaped = gt.count(TruthClass::Escaped);
-    // The two representations alone: reconstruction error, and one tracer on both.
-    {
-      const Image rebuilt = reconstructPositions(depth, gb.clipFromView(), inputs.depth);
-      std::vector<double> errs;
-      for (size_t p = 0; p < gt.pixels.size(); ++p) {
-        if (positions.pixels[p * 4 + 3] == 0.0f || rebuilt.pixels[p * 4 + 3] == 0.0f) continue;
-        const glm::vec3 a(rebuilt.pixels[p * 4], rebuilt.pixels[p * 4 + 1], rebuilt.pixels[p * 4 + 2]);
-        const glm::vec3 b(positions.pixels[p * 4], positions.pixels[p * 4 + 1], positions.pixels[p * 4 + 2]);
-        const double e = glm::length(a - b);
-        errs.push_back(e);
-        sr.positionErrorMaxRelative = std::max(sr.positionErrorMaxRelative, e / std::max(1e-6, double(glm::length(b))));
-      }
-      if (!errs.empty()) {
-        sr.positionErrorMax = *std::max_element(errs.begin(), errs.end());
-        sr.positionErrorMedian = median(errs);
-      }
-      const CpuGBuffer cg{&depth, &normal, &positions};
-      const Image hitDepth = traceOnCpu(cg, inputs, defaults, SurfaceSource::Depth);
-      const Image hitStored = traceOnCpu(cg, inputs, defaults, SurfaceSource::StoredPositions);
-      size_t traced = 0, agree = 0;
-      for (size_t p = 0; p < gt.pixels.size(); ++p) {
-        if (gt.pixels[p].cls == TruthClass::NotReflective) continue;
-        ++traced;
-        const bool a = hitDepth.pixels[p * 4 + 2] > kReportedConfidence,
-                   b = hitStored.pixels[p * 4 + 2] > kReportedConfidence;
-        const float du = (hitDepth.pixels[p * 4] - hitStored.pixels[p * 4]) * options.width;
-        const float dv = (hitDepth.pixels[p * 4 + 1] - hitStored.pixels[p * 4 + 1]) * options.height;
-        agree += a == b && (!a || std::hypot(du, dv) <= 1.0f);
-      }
-      sr.hitAgreement = traced ? double(agree) / traced : 1.0;
-      sr.recallDepth = compareHits(gt, hitDepth).recall1px;
-      sr.recallStored = compareHits(gt, hitStored).recall1px;
-    }
+    SceneRecord sr = sceneRecordOf(sceneName, gt);
+    measureRepresentations(sr, gt, sf, depth, normal, positions, options);
     const std::string prefix = fileSlug(sceneName);
     if (Status s = writeImage((fs::path(reportDir) / (prefix + "-truth.png")).string(), truthImage(gt, color)); !s)
       return Status::error(s.message());
@@ -499,52 +602,9 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
     std::vector<RunRecord> runs;
     for (size_t i = 0; i < grid.size(); ++i) {
       const BenchConfig& c = grid[i];
-      RunRecord r;
-      r.scene = sceneName;
-      r.method = c.method;
-      r.label = c.label;
-      r.config = c;
-      r.width = options.width;
-      r.height = options.height;
-      r.renderer = renderer;
-      r.timingMethod = result.timingMethod;
-      r.extraBytesPerPixel = c.method == "baseline" ? 8 : 24;  // 3 x RGBA16F
-      r.gbufferBytesPerPixel = gb.bytesPerPixel() + (c.method == "position-buffer" ? 16 : 0);
-      if (c.method != "baseline") {
-        Settings s = c.settings;
-        s.debug.outputs = true;
-        s.debug.collectStats = true;
-        // The scene's renderer's context, unless the config asks for a device profile of its own
-        // (then its timing context: the commands counted are that profile's).
-        Context* ctx = &fr.sslr();
-        if (c.device != DeviceProfile::Auto) {
-          auto own = contexts.get(i, c.device);
-          if (!own) return Status::error(own.error());
-          ctx = own.value();
-        }
-        if (Status st = ctx->dispatch(inputsFor(sf, c), s); !st) return Status::error(st.message());
-        const Image hit = readTexture(ctx->hitTexture(), options.width, options.height, 4);
-        r.metrics = compareHits(gt, hit, kReportedConfidence, &color);
-        const FrameStats stats = ctx->waitForStats();
-        r.tracedPixels = stats.tracedPixels;
-        r.fetches = stats.fetches;
-        r.commands = stats.totalCommands();
-        r.traffic = stats.totalTraffic();
-        r.frameStats = stats;
-        r.fetchesPerTracedPixel = stats.tracedPixels ? double(stats.fetches) / stats.tracedPixels : 0.0;
-        r.nonFiniteOutputs = countNonFinite(readTexture(ctx->reflectionTexture(), options.width, options.height, 4)) +
-                             countNonFinite(readTexture(ctx->resolvedTexture(), options.width, options.height, 4));
-        if (c.isDefault) {
-          const std::string m = prefix + "-" + fileSlug(c.method);
-          if (Status st = writeImage((fs::path(reportDir) / (m + ".png")).string(), methodImage(gt, hit, color)); !st)
-            return Status::error(st.message());
-          if (Status st = writeImage((fs::path(reportDir) / (m + "-error.png")).string(), hitErrorImage(gt, hit)); !st)
-            return Status::error(st.message());
-          sr.images.push_back(m + ".png");
-          sr.images.push_back(m + "-error.png");
-        }
-      }
-      runs.push_back(r);
+      auto r = qualityRun(c, i, sceneName, sf, gt, color, contexts, options, renderer, result.timingMethod, reportDir, sr);
+      if (!r) return Status::error(r.error());
+      runs.push_back(r.value());
       progress(++done, total, sceneName + ": quality " + c.method + " " + c.label);
     }
     // Timing, interleaved (timeInterleaved).
@@ -562,29 +622,8 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
     result.runs.insert(result.runs.end(), runs.begin(), runs.end());
     result.scenes.push_back(sr);
   }
-  // Cost curves: time against resolution (mirror-room) and against reflective fraction.
-  for (const auto& [w, h] : options.curveSizes) {
-    progress(done, total, "cost curve: " + std::to_string(w) + "x" + std::to_string(h));
-    if (Status s = timeCurvePoint("resolution", "mirror-room", w, h, -1, grid, options, timer, result.curves); !s)
-      return Status::error(s.message());
-  }
-  for (int percent : options.curveFractions) {
-    progress(done, total, "cost curve: reflective-" + std::to_string(percent));
-    if (Status s = timeCurvePoint("fraction", "reflective-" + std::to_string(percent), options.width, options.height,
-                                  percent, grid, options, timer, result.curves);
-        !s)
-      return Status::error(s.message());
-  }
-  for (const std::string& sceneName : options.temporalScenes) {
-    progress(done, total, "temporal study: " + sceneName);
-    if (Status s = runTemporalStudy(sceneName, options, timer, result.temporal); !s)
-      return Status::error("temporal study on " + sceneName + ": " + s.message());
-  }
-  for (const std::string& sceneSpec : options.glossyScenes) {
-    progress(done, total, "glossy study: " + sceneSpec);
-    if (Status s = runGlossyStudy(sceneSpec, options, timer, reportDir, result.glossy); !s)
-      return Status::error("glossy study on " + sceneSpec + ": " + s.message());
-  }
+  if (Status s = runStudies(options, grid, timer, reportDir, result, done, total, progress); !s)
+    return Status::error(s.message());
   return result;
 }
 
