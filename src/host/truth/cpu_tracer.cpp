@@ -51,26 +51,39 @@ bool sslrLoadSurface(ivec2 px, vec3& vsPos) {
 
 namespace sslr::host {
 
-Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& settings, SurfaceSource source) {
+namespace {
+
+// Classification's level-1 cell (cx, cy) (with the curved solids' backs or the measured depths),
+// writing the curved pass's level-0 extra depths of the quad's pixels on screen.
+shared::vec2 level1Cell(const CpuGBuffer& g, const shared::SslrProjection& proj, const shared::SslrSurface& surf,
+                        const shared::SslrTraceParams& t, int cx, int cy, int w, int h) {
   using namespace sslr::shared;
-  const int w = g.depth->width, h = g.depth->height;
-  Image hit;
-  hit.width = w;
-  hit.height = h;
-  hit.channels = 4;
-  hit.pixels.assign(static_cast<size_t>(w) * h * 4, 0.0f);
-  auto frame = frameConstants(in, settings, w, h);  // the block the GPU pass would read
-  if (!frame) return hit;
-  const SslrProjection proj = frame.value().proj;
-  const SslrSurface surf = frame.value().surface;
-  const SslrTraceParams t = frame.value().trace;
-  const SslrPositionParams pb = frame.value().positionBuffer;
-  tG = &g;
-  tProj = proj;
-  tSurf = surf;
-  tStored = source == SurfaceSource::StoredPositions;
-  // Pyramid levels as pass 2 builds them (level l: ceil(size / 2^l) cells per axis), only when
-  // the trace uses them (as dispatch() builds them only then).
+  vec2 m = sslrHiZEmpty();
+  const ivec2 cell(cx, cy), last(w - 1, h - 1);
+  const ivec2 q0 = sslrQuadPixel(cell, 0, last), q1 = sslrQuadPixel(cell, 1, last);
+  const ivec2 q2 = sslrQuadPixel(cell, 2, last), q3 = sslrQuadPixel(cell, 3, last);
+  vec4 extra;
+  const vec4 depths(sslrLoadDepth(q0), sslrLoadDepth(q1), sslrLoadDepth(q2), sslrLoadDepth(q3));
+  if (sslrBackDepth(surf) && g.backDepth) {  // classification's measured cells
+    auto back = [&](ivec2 q) { return g.backDepth->at(q.x, q.y, 0); };
+    m = sslrHiZLevel1Measured(proj, surf, t, depths, vec4(back(q0), back(q1), back(q2), back(q3)), extra);
+    if (!sslrHiZCellHoldsGeometry(surf, m)) extra = vec4(0.0f);
+  } else {
+    m = sslrHiZLevel1Cell(proj, surf, t, q0, q1, q2, q3, depths, sslrLoadNormal(q0), sslrLoadNormal(q1),
+                          sslrLoadNormal(q2), sslrLoadNormal(q3), extra);
+  }
+  for (int k = 0; k < 4; ++k) {  // the curved pass's level-0 texels: the quad's pixels on screen
+    const ivec2 q(2 * cx + (k & 1), 2 * cy + (k >> 1));
+    if (q.x < w && q.y < h) tPyramid[0][static_cast<size_t>(q.y) * w + q.x].y = extra[k];
+  }
+  return m;
+}
+
+// The pyramid's levels as pass 2 builds them (level l: ceil(size / 2^l) cells per axis), into
+// tPyramid: only when the trace uses them (as dispatch() builds them only then).
+void buildCpuPyramid(const CpuGBuffer& g, const shared::SslrProjection& proj, const shared::SslrSurface& surf,
+                     const shared::SslrTraceParams& t, int w, int h) {
+  using namespace sslr::shared;
   tPyramid.clear();
   tPyramidWidth.clear();
   tPyramidHeight.clear();
@@ -90,25 +103,8 @@ Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& set
     for (int cy = 0; cy < ph; ++cy)
       for (int cx = 0; cx < pw; ++cx) {
         vec2 m = sslrHiZEmpty();
-        if (level == 1) {  // classification's level 1 (with the curved solids' backs)
-          const ivec2 cell(cx, cy), last(w - 1, h - 1);
-          const ivec2 q0 = sslrQuadPixel(cell, 0, last), q1 = sslrQuadPixel(cell, 1, last);
-          const ivec2 q2 = sslrQuadPixel(cell, 2, last), q3 = sslrQuadPixel(cell, 3, last);
-          vec4 extra;
-          const vec4 depths(sslrLoadDepth(q0), sslrLoadDepth(q1), sslrLoadDepth(q2), sslrLoadDepth(q3));
-          if (sslrBackDepth(surf) && g.backDepth) {  // classification's measured cells
-            auto back = [&](ivec2 q) { return g.backDepth->at(q.x, q.y, 0); };
-            m = sslrHiZLevel1Measured(proj, surf, t, depths, vec4(back(q0), back(q1), back(q2), back(q3)), extra);
-            if (!sslrHiZCellHoldsGeometry(surf, m)) extra = vec4(0.0f);
-          } else {
-            m = sslrHiZLevel1Cell(proj, surf, t, q0, q1, q2, q3, depths, sslrLoadNormal(q0), sslrLoadNormal(q1),
-                                  sslrLoadNormal(q2), sslrLoadNormal(q3), extra);
-          }
-          for (int k = 0; k < 4; ++k) {  // the curved pass's level-0 texels: the quad's pixels on screen
-            const ivec2 q(2 * cx + (k & 1), 2 * cy + (k >> 1));
-            if (q.x < w && q.y < h) tPyramid[0][static_cast<size_t>(q.y) * w + q.x].y = extra[k];
-          }
-          cells[static_cast<size_t>(cy) * pw + cx] = m;
+        if (level == 1) {
+          cells[static_cast<size_t>(cy) * pw + cx] = level1Cell(g, proj, surf, t, cx, cy, w, h);
           continue;
         }
         for (int k = 0; k < 4; ++k) {  // levels 2...: the min-max of the level below
@@ -122,6 +118,29 @@ Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& set
     tPyramidWidth.push_back(pw);
     tPyramidHeight.push_back(ph);
   }
+}
+
+}  // namespace
+
+Image traceOnCpu(const CpuGBuffer& g, const FrameInputs& in, const Settings& settings, SurfaceSource source) {
+  using namespace sslr::shared;
+  const int w = g.depth->width, h = g.depth->height;
+  Image hit;
+  hit.width = w;
+  hit.height = h;
+  hit.channels = 4;
+  hit.pixels.assign(static_cast<size_t>(w) * h * 4, 0.0f);
+  auto frame = frameConstants(in, settings, w, h);  // the block the GPU pass would read
+  if (!frame) return hit;
+  const SslrProjection proj = frame.value().proj;
+  const SslrSurface surf = frame.value().surface;
+  const SslrTraceParams t = frame.value().trace;
+  const SslrPositionParams pb = frame.value().positionBuffer;
+  tG = &g;
+  tProj = proj;
+  tSurf = surf;
+  tStored = source == SurfaceSource::StoredPositions;
+  buildCpuPyramid(g, proj, surf, t, w, h);
   const bool positionMethod = settings.method == Method::PositionBuffer;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
