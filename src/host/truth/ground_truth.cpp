@@ -127,16 +127,14 @@ std::vector<std::uint8_t> reflectiveMask(const Image& depth, const Image& normal
   return mask;
 }
 
-GroundTruth computeGroundTruth(const RayTracer& tracer, const glm::dmat4& clipFromView, int width, int height,
-                               const std::vector<std::uint8_t>& reflective) {
-  GroundTruth gt;
-  gt.width = width;
-  gt.height = height;
-  gt.pixels.resize(static_cast<size_t>(width) * height);
-  const bool ortho = clipFromView[3][3] == 1.0;
-  const glm::dmat4 viewFromClip = glm::inverse(clipFromView);
-  // Primary ray through a pixel centre, built in double from the exact matrix.
-  auto primaryRay = [&](int x, int y, glm::dvec3& origin, glm::dvec3& dir) {
+namespace {
+
+// Primary rays through pixel centres, built in double from the exact matrix.
+struct PrimaryRays {
+  glm::dmat4 viewFromClip;
+  bool ortho;
+  int width, height;
+  void at(int x, int y, glm::dvec3& origin, glm::dvec3& dir) const {
     const glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0, (y + 0.5) / height * 2.0 - 1.0);
     glm::dvec4 nearPt = viewFromClip * glm::dvec4(ndc, -1.0, 1.0);
     glm::dvec4 farPt = viewFromClip * glm::dvec4(ndc, 0.5, 1.0);
@@ -144,83 +142,113 @@ GroundTruth computeGroundTruth(const RayTracer& tracer, const glm::dmat4& clipFr
     farPt /= farPt.w;
     origin = ortho ? glm::dvec3(nearPt.x, nearPt.y, 0.0) : glm::dvec3(0.0);
     dir = ortho ? glm::dvec3(0, 0, -1) : glm::normalize(glm::dvec3(farPt));
-  };
-  // What a pixel shows (mesh and normal), traced once on first use: neighbouring visible hits
-  // ask for the same pixels many times over.
+  }
+};
+
+// What a pixel shows (mesh and normal), traced once on first use: neighbouring visible hits ask
+// for the same pixels many times over.
+class ShownPixels {
+ public:
+  ShownPixels(const RayTracer& tracer, const PrimaryRays& rays)
+      : tracer_(tracer), rays_(rays), shown_(static_cast<size_t>(rays.width) * rays.height) {}
+
+  // Whether a pixel within 1 px of `hit` (at uv) shows its surface: same mesh, normals within 25 deg.
+  bool near(glm::dvec2 uv, const RayTracer::Hit& hit) {
+    const int cx = static_cast<int>(std::floor(uv.x * rays_.width)), cy = static_cast<int>(std::floor(uv.y * rays_.height));
+    for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, rays_.height - 1); ++y)
+      for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, rays_.width - 1); ++x) {
+        const Shown& seen = at(x, y);
+        if (seen.mesh == std::int32_t(hit.mesh) && glm::dot(seen.vsNormal, hit.vsNormal) > 0.906f) return true;
+      }
+    return false;
+  }
+
+ private:
   struct Shown {
     glm::vec3 vsNormal{0.0f};
     std::int32_t mesh = -2;  // -2: not traced yet; -1: nothing (16 bytes a pixel)
   };
-  std::vector<Shown> shown(static_cast<size_t>(width) * height);
-  auto shownAt = [&](int x, int y) -> const Shown& {
-    Shown& s = shown[static_cast<size_t>(y) * width + x];
+  const Shown& at(int x, int y) {
+    Shown& s = shown_[static_cast<size_t>(y) * rays_.width + x];
     if (s.mesh == -2) {
       glm::dvec3 origin, dir;
-      primaryRay(x, y, origin, dir);
-      const RayTracer::Hit h = tracer.intersect(glm::vec3(origin), glm::vec3(dir));
+      rays_.at(x, y, origin, dir);
+      const RayTracer::Hit h = tracer_.intersect(glm::vec3(origin), glm::vec3(dir));
       s.mesh = h.hit ? std::int32_t(h.mesh) : -1;
       s.vsNormal = h.vsNormal;
     }
     return s;
-  };
-  // Whether a pixel within 1 px of `hit` (at uv) shows its surface: same mesh, normals within 25 deg.
-  auto shownNear = [&](glm::dvec2 uv, const RayTracer::Hit& hit) {
-    const int cx = static_cast<int>(std::floor(uv.x * width)), cy = static_cast<int>(std::floor(uv.y * height));
-    for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, height - 1); ++y)
-      for (int x = std::max(cx - 1, 0); x <= std::min(cx + 1, width - 1); ++x) {
-        const Shown& seen = shownAt(x, y);
-        if (seen.mesh == std::int32_t(hit.mesh) && glm::dot(seen.vsNormal, hit.vsNormal) > 0.906f) return true;
-      }
-    return false;
-  };
+  }
+  const RayTracer& tracer_;
+  const PrimaryRays& rays_;
+  std::vector<Shown> shown_;
+};
+
+// The true reflection of the reflective pixel (x, y), classified.
+TruthPixel truthAt(const RayTracer& tracer, const glm::dmat4& clipFromView, const PrimaryRays& rays,
+                   ShownPixels& shown, int x, int y) {
+  const bool ortho = rays.ortho;
+  glm::dvec3 origin, dir;
+  rays.at(x, y, origin, dir);
+  const RayTracer::Hit primary = tracer.intersect(glm::vec3(origin), glm::vec3(dir));
+  TruthPixel tp;
+  if (!primary.hit) {
+    tp.cls = TruthClass::Escaped;  // the G-buffer saw geometry the tracer missed (edge pixel)
+    return tp;
+  }
+  const glm::vec3 V(dir);
+  const glm::vec3 N = primary.vsNormal;
+  const glm::vec3 R = glm::normalize(glm::reflect(V, N));
+  // Offset along the normal against self-intersection (relative to the distance).
+  const glm::vec3 start = primary.vsPosition + N * (1e-5f * std::max(1.0f, glm::length(primary.vsPosition)));
+  const RayTracer::Hit refl = tracer.intersect(start, R);
+  if (!refl.hit) {
+    tp.cls = TruthClass::Escaped;
+    return tp;
+  }
+  tp.length = glm::length(refl.vsPosition - primary.vsPosition);
+  const glm::dvec4 clip = clipFromView * glm::dvec4(glm::dvec3(refl.vsPosition), 1.0);
+  if (!(clip.w > 0.0)) {
+    tp.cls = TruthClass::OffScreen;
+    return tp;
+  }
+  const glm::dvec3 ndcHit = glm::dvec3(clip) / clip.w;
+  const glm::dvec2 uv = glm::dvec2(ndcHit) * 0.5 + 0.5;
+  const bool inDepth = ndcHit.z >= -1.0 - 1e-9 && ndcHit.z <= 1.0 + 1e-9;  // within near..far (either range)
+  if (uv.x < 0.0 || uv.x > 1.0 || uv.y < 0.0 || uv.y > 1.0 || !inDepth) {
+    tp.cls = TruthClass::OffScreen;
+    return tp;
+  }
+  tp.uvHit = glm::vec2(uv);
+  // Visible if nothing lies between the camera and the hit point.
+  const glm::vec3 camOrigin = ortho ? glm::vec3(refl.vsPosition.x, refl.vsPosition.y, 0.0f) : glm::vec3(0.0f);
+  const glm::vec3 toHit = refl.vsPosition - camOrigin;
+  const float dist = glm::length(toHit);
+  const bool hidden = tracer.occluded(camOrigin, toHit / dist, dist * (1.0f - 1e-4f));
+  tp.cls = hidden ? TruthClass::Occluded : TruthClass::Visible;
+  if (!hidden) {
+    // The hit's normal as the camera sees it (the tracer's faces the reflected ray's origin).
+    RayTracer::Hit facingCamera = refl;
+    if (glm::dot(facingCamera.vsNormal, toHit) > 0.0f) facingCamera.vsNormal = -facingCamera.vsNormal;
+    tp.shown = shown.near(uv, facingCamera);
+  }
+  return tp;
+}
+
+}  // namespace
+
+GroundTruth computeGroundTruth(const RayTracer& tracer, const glm::dmat4& clipFromView, int width, int height,
+                               const std::vector<std::uint8_t>& reflective) {
+  GroundTruth gt;
+  gt.width = width;
+  gt.height = height;
+  gt.pixels.resize(static_cast<size_t>(width) * height);
+  const PrimaryRays rays{glm::inverse(clipFromView), clipFromView[3][3] == 1.0, width, height};
+  ShownPixels shown(tracer, rays);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const size_t p = static_cast<size_t>(y) * width + x;
-      if (!reflective[p]) continue;
-      glm::dvec3 origin, dir;
-      primaryRay(x, y, origin, dir);
-      const RayTracer::Hit primary = tracer.intersect(glm::vec3(origin), glm::vec3(dir));
-      TruthPixel& tp = gt.pixels[p];
-      if (!primary.hit) {
-        tp.cls = TruthClass::Escaped;  // the G-buffer saw geometry the tracer missed (edge pixel)
-        continue;
-      }
-      const glm::vec3 V(dir);
-      const glm::vec3 N = primary.vsNormal;
-      const glm::vec3 R = glm::normalize(glm::reflect(V, N));
-      // Offset along the normal against self-intersection (relative to the distance).
-      const glm::vec3 start = primary.vsPosition + N * (1e-5f * std::max(1.0f, glm::length(primary.vsPosition)));
-      const RayTracer::Hit refl = tracer.intersect(start, R);
-      if (!refl.hit) {
-        tp.cls = TruthClass::Escaped;
-        continue;
-      }
-      tp.length = glm::length(refl.vsPosition - primary.vsPosition);
-      const glm::dvec4 clip = clipFromView * glm::dvec4(glm::dvec3(refl.vsPosition), 1.0);
-      if (!(clip.w > 0.0)) {
-        tp.cls = TruthClass::OffScreen;
-        continue;
-      }
-      const glm::dvec3 ndcHit = glm::dvec3(clip) / clip.w;
-      const glm::dvec2 uv = glm::dvec2(ndcHit) * 0.5 + 0.5;
-      const bool inDepth = ndcHit.z >= -1.0 - 1e-9 && ndcHit.z <= 1.0 + 1e-9;  // within near..far (either range)
-      if (uv.x < 0.0 || uv.x > 1.0 || uv.y < 0.0 || uv.y > 1.0 || !inDepth) {
-        tp.cls = TruthClass::OffScreen;
-        continue;
-      }
-      tp.uvHit = glm::vec2(uv);
-      // Visible if nothing lies between the camera and the hit point.
-      const glm::vec3 camOrigin = ortho ? glm::vec3(refl.vsPosition.x, refl.vsPosition.y, 0.0f) : glm::vec3(0.0f);
-      const glm::vec3 toHit = refl.vsPosition - camOrigin;
-      const float dist = glm::length(toHit);
-      const bool hidden = tracer.occluded(camOrigin, toHit / dist, dist * (1.0f - 1e-4f));
-      tp.cls = hidden ? TruthClass::Occluded : TruthClass::Visible;
-      if (!hidden) {
-        // The hit's normal as the camera sees it (the tracer's faces the reflected ray's origin).
-        RayTracer::Hit facingCamera = refl;
-        if (glm::dot(facingCamera.vsNormal, toHit) > 0.0f) facingCamera.vsNormal = -facingCamera.vsNormal;
-        tp.shown = shownNear(uv, facingCamera);
-      }
+      if (reflective[p]) gt.pixels[p] = truthAt(tracer, clipFromView, rays, shown, x, y);
     }
   return gt;
 }
