@@ -32,6 +32,24 @@ void tangentFrame(glm::vec3 n, glm::vec3& t, glm::vec3& b) {
   b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
 }
 
+// Where (uv) the ray from `start` along `vsL` meets the scene, if the camera sees that point on
+// screen (within the depth range, nothing in between): what the screen shows of the ray.
+bool visibleOnScreen(const RayTracer& tracer, const glm::dmat4& clipFromView, bool ortho, glm::vec3 start,
+                     glm::vec3 vsL, glm::vec2& uv) {
+  const RayTracer::Hit hit = tracer.intersect(start, vsL);
+  if (!hit.hit) return false;
+  const glm::dvec4 clip = clipFromView * glm::dvec4(glm::dvec3(hit.vsPosition), 1.0);
+  if (!(clip.w > 0.0)) return false;
+  const glm::dvec3 ndcHit = glm::dvec3(clip) / clip.w;
+  uv = glm::vec2(glm::dvec2(ndcHit) * 0.5 + 0.5);
+  if (uv.x < 0.0f || uv.x > 1.0f || uv.y < 0.0f || uv.y > 1.0f || ndcHit.z < -1.0 - 1e-9 || ndcHit.z > 1.0 + 1e-9)
+    return false;
+  const glm::vec3 camera = ortho ? glm::vec3(hit.vsPosition.x, hit.vsPosition.y, 0.0f) : glm::vec3(0.0f);
+  const glm::vec3 toHit = hit.vsPosition - camera;
+  const float dist = glm::length(toHit);
+  return !tracer.occluded(camera, toHit / dist, dist * (1.0f - 1e-4f));
+}
+
 }  // namespace
 
 GlossyTruth computeGlossyTruth(const RayTracer& tracer, const glm::dmat4& clipFromView, const Image& color,
@@ -86,18 +104,8 @@ GlossyTruth computeGlossyTruth(const RayTracer& tracer, const glm::dmat4& clipFr
         if (!(w > 0.0f)) continue;  // below the surface: the lobe's masked part
         weight[half] += w;
         const glm::vec3 vsL = glm::normalize(t * l.x + b * l.y + n * l.z);
-        const RayTracer::Hit hit = tracer.intersect(start, vsL);
-        if (!hit.hit) continue;
-        const glm::dvec4 clip = clipFromView * glm::dvec4(glm::dvec3(hit.vsPosition), 1.0);
-        if (!(clip.w > 0.0)) continue;
-        const glm::dvec3 ndcHit = glm::dvec3(clip) / clip.w;
-        const glm::vec2 uv = glm::vec2(glm::dvec2(ndcHit) * 0.5 + 0.5);
-        if (uv.x < 0.0f || uv.x > 1.0f || uv.y < 0.0f || uv.y > 1.0f || ndcHit.z < -1.0 - 1e-9 || ndcHit.z > 1.0 + 1e-9)
-          continue;
-        const glm::vec3 camera = ortho ? glm::vec3(hit.vsPosition.x, hit.vsPosition.y, 0.0f) : glm::vec3(0.0f);
-        const glm::vec3 toHit = hit.vsPosition - camera;
-        const float dist = glm::length(toHit);
-        if (tracer.occluded(camera, toHit / dist, dist * (1.0f - 1e-4f))) continue;
+        glm::vec2 uv;
+        if (!visibleOnScreen(tracer, clipFromView, ortho, start, vsL, uv)) continue;
         sum[half] += sampleBilinear(color, uv) * w;
         known[half] += w;
       }
