@@ -667,12 +667,106 @@ void readSslrExtras(const tinygltf::Value& extras, Scene& scene) {
     scene.warnings.push_back("asset.extras.sslr.lightDirection ignored (not a finite non-zero vector)");
 }
 
-}  // namespace
 
-Expected<Scene> loadGltf(const std::string& path) {
+// The default scene's root nodes (every parentless node without a scene), after checking that each
+// node has at most one parent and each root none: the walk below is then a forest walk.
+std::vector<int> sceneRoots(const tinygltf::Model& model) {
+  // glTF allows one parent per node and scene roots without parents: check it before instancing
+  // (a node listed twice as a child turns 20 nodes into 2^20 instances) and so the traversal below
+  // is a forest walk, iterative, whatever the file's depth.
+  const size_t nodeCount = model.nodes.size();
+  std::vector<int> parent(nodeCount, -1);
+  for (size_t i = 0; i < nodeCount; ++i)
+    for (int child : model.nodes[i].children) {
+      if (child < 0 || static_cast<size_t>(child) >= nodeCount)
+        throw LoadError{"node " + std::to_string(i) + " lists child " + std::to_string(child) + ", which does not exist"};
+      if (parent[child] >= 0)
+        throw LoadError{"node " + std::to_string(child) + " has more than one parent (nodes " +
+                        std::to_string(parent[child]) + " and " + std::to_string(i) +
+                        "); glTF allows one parent per node"};
+      parent[child] = static_cast<int>(i);
+    }
+  std::vector<int> roots;
+  if (!model.scenes.empty()) {
+    const int s = model.defaultScene >= 0 && model.defaultScene < static_cast<int>(model.scenes.size())
+                      ? model.defaultScene : 0;
+    roots = model.scenes[s].nodes;
+    for (int r : roots) {
+      if (r < 0 || static_cast<size_t>(r) >= nodeCount)
+        throw LoadError{"scene " + std::to_string(s) + " lists node " + std::to_string(r) + ", which does not exist"};
+      if (parent[r] >= 0)
+        throw LoadError{"scene " + std::to_string(s) + " lists node " + std::to_string(r) +
+                        " as a root, but node " + std::to_string(parent[r]) + " is its parent (a cycle or a shared node)"};
+    }
+  } else {
+    // No scene: every node that is nobody's child is a root.
+    for (size_t i = 0; i < nodeCount; ++i)
+      if (parent[i] < 0) roots.push_back(static_cast<int>(i));
+  }
+  return roots;
+}
+
+// The glTF camera of a node (world: the node's transform), or none with a warning if invalid.
+std::optional<Camera> nodeCamera(const tinygltf::Camera& gc, int cameraIndex, const glm::dmat4& world, Scene& scene) {
+  Camera c;
+  c.eye = glm::dvec3(world * glm::dvec4(0, 0, 0, 1));
+  c.target = c.eye + glm::normalize(glm::dvec3(world * glm::dvec4(0, 0, -1, 0)));
+  c.up = glm::normalize(glm::dvec3(world * glm::dvec4(0, 1, 0, 0)));
+  if (gc.type == "orthographic") {
+    c.orthographic = true;
+    c.orthoHeight = 2.0 * gc.orthographic.ymag;
+    c.nearPlane = std::max(gc.orthographic.znear, 1e-4);
+    c.farPlane = gc.orthographic.zfar;
+  } else {
+    c.fovyDegrees = glm::degrees(gc.perspective.yfov);
+    c.nearPlane = gc.perspective.znear;
+    // glTF allows an infinite far plane (zfar = 0); the tools need a finite one.
+    c.farPlane = gc.perspective.zfar > 0.0 ? gc.perspective.zfar : gc.perspective.znear * 1e5;
+  }
+  if (std::string why = c.validate(); !why.empty()) {
+    scene.warnings.push_back("camera " + std::to_string(cameraIndex) + " ignored: " + why);
+    return std::nullopt;
+  }
+  return c;
+}
+
+// Walks the node forest from `roots`: each mesh instance with its world transform, and the first
+// valid camera.
+std::vector<std::pair<int, glm::dmat4>> walkNodes(const tinygltf::Model& model, const std::vector<int>& roots,
+                                                  Scene& scene, Ignored& ignored, std::optional<Camera>& camera) {
+  const size_t nodeCount = model.nodes.size();
+  std::vector<std::pair<int, glm::dmat4>> instances;  // mesh, worldFromModel: one copy each
+  std::vector<bool> visited(nodeCount, false);
+  std::vector<std::pair<int, glm::dmat4>> stack;
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, glm::dmat4(1.0));
+  while (!stack.empty()) {
+    const auto [nodeIndex, parentWorld] = stack.back();
+    stack.pop_back();
+    // With one parent per node and parentless roots, a node is reached once; a repeated root
+    // in the scene list is the only way back.
+    if (visited[nodeIndex]) throw LoadError{"node " + std::to_string(nodeIndex) + " is listed twice in the scene"};
+    visited[nodeIndex] = true;
+    const tinygltf::Node& node = model.nodes[nodeIndex];
+    const glm::dmat4 world = parentWorld * nodeMatrix(node);
+    if (!finiteMatrix(world)) throw LoadError{"node " + std::to_string(nodeIndex) + ": transform is not finite"};
+    if (node.skin >= 0) ignored.insert("skins (meshes drawn in their bind pose)");
+    if (node.mesh >= 0) {
+      if (node.mesh >= static_cast<int>(model.meshes.size()))
+        throw LoadError{"node " + std::to_string(nodeIndex) + ": mesh " + std::to_string(node.mesh) + " does not exist"};
+      instances.emplace_back(node.mesh, world);
+    }
+    if (node.camera >= 0 && !camera && node.camera < static_cast<int>(model.cameras.size()))
+      camera = nodeCamera(model.cameras[node.camera], node.camera, world, scene);
+    for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.emplace_back(*it, world);
+  }
+  return instances;
+}
+
+// Reads and parses the file at `path` into `model` (glTF 2.0, no unsupported required extension);
+// external buffers and images only from the file's own folder. An error names the file.
+Status parseModel(const std::string& path, tinygltf::Model& model, std::string& warn) {
   namespace fs = std::filesystem;
   std::error_code ec;
-  if (!fs::exists(path, ec)) return Status::error(path + ": file not found");
   // The model is read once, through the descriptor that was checked; what follows parses those
   // bytes (tinygltf reads only the external buffers and images, through the jail below).
   std::vector<unsigned char> file;
@@ -683,10 +777,9 @@ Expected<Scene> loadGltf(const std::string& path) {
   jail.root = fs::path(jail.modelFile).parent_path();
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({&jailFileExists, &jailExpandFilePath, &jailReadWholeFile, &jailWriteWholeFile, &jail});
-  tinygltf::Model model;
   ImageBudget imageBudget{&model, 0};
   loader.SetImageLoader(&limitedImageLoader, &imageBudget);  // it checks views against model.buffers
-  std::string err, warn;
+  std::string err;
   // A GLB by its magic, whatever the file's name says.
   const bool binary = file.size() >= 4 && std::memcmp(file.data(), "glTF", 4) == 0;
   if (std::string why = precheck(file, binary); !why.empty()) return Status::error(path + ": " + why);
@@ -716,6 +809,18 @@ Expected<Scene> loadGltf(const std::string& path) {
     for (const std::string& e : model.extensionsRequired) names += (names.empty() ? "" : ", ") + printable(e, 80);
     return Status::error(path + ": requires extension(s) " + names + ", which the tools do not support");
   }
+  return Status{};
+}
+
+}  // namespace
+
+Expected<Scene> loadGltf(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return Status::error(path + ": file not found");
+  tinygltf::Model model;
+  std::string warn;
+  if (Status st = parseModel(path, model, warn); !st) return st;
   Scene scene;
   scene.name = fs::path(path).filename().string();
   if (!warn.empty()) scene.warnings.push_back(printable(warn, 400));
@@ -729,83 +834,9 @@ Expected<Scene> loadGltf(const std::string& path) {
       if (std::find(model.extensionsRequired.begin(), model.extensionsRequired.end(), ext) ==
           model.extensionsRequired.end())
         ignored.insert("extension " + printable(ext, 80));
-    // glTF allows one parent per node and scene roots without parents: check it before instancing
-    // (a node listed twice as a child turns 20 nodes into 2^20 instances) and so the traversal below
-    // is a forest walk, iterative, whatever the file's depth.
-    const size_t nodeCount = model.nodes.size();
-    std::vector<int> parent(nodeCount, -1);
-    for (size_t i = 0; i < nodeCount; ++i)
-      for (int child : model.nodes[i].children) {
-        if (child < 0 || static_cast<size_t>(child) >= nodeCount)
-          throw LoadError{"node " + std::to_string(i) + " lists child " + std::to_string(child) + ", which does not exist"};
-        if (parent[child] >= 0)
-          throw LoadError{"node " + std::to_string(child) + " has more than one parent (nodes " +
-                          std::to_string(parent[child]) + " and " + std::to_string(i) +
-                          "); glTF allows one parent per node"};
-        parent[child] = static_cast<int>(i);
-      }
-    std::vector<int> roots;
-    if (!model.scenes.empty()) {
-      const int s = model.defaultScene >= 0 && model.defaultScene < static_cast<int>(model.scenes.size())
-                        ? model.defaultScene : 0;
-      roots = model.scenes[s].nodes;
-      for (int r : roots) {
-        if (r < 0 || static_cast<size_t>(r) >= nodeCount)
-          throw LoadError{"scene " + std::to_string(s) + " lists node " + std::to_string(r) + ", which does not exist"};
-        if (parent[r] >= 0)
-          throw LoadError{"scene " + std::to_string(s) + " lists node " + std::to_string(r) +
-                          " as a root, but node " + std::to_string(parent[r]) + " is its parent (a cycle or a shared node)"};
-      }
-    } else {
-      // No scene: every node that is nobody's child is a root.
-      for (size_t i = 0; i < nodeCount; ++i)
-        if (parent[i] < 0) roots.push_back(static_cast<int>(i));
-    }
+    const std::vector<int> roots = sceneRoots(model);
     std::optional<Camera> camera;
-    std::vector<std::pair<int, glm::dmat4>> instances;  // mesh, worldFromModel: one copy each
-    std::vector<bool> visited(nodeCount, false);
-    std::vector<std::pair<int, glm::dmat4>> stack;
-    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.emplace_back(*it, glm::dmat4(1.0));
-    while (!stack.empty()) {
-      const auto [nodeIndex, parentWorld] = stack.back();
-      stack.pop_back();
-      // With one parent per node and parentless roots, a node is reached once; a repeated root
-      // in the scene list is the only way back.
-      if (visited[nodeIndex]) throw LoadError{"node " + std::to_string(nodeIndex) + " is listed twice in the scene"};
-      visited[nodeIndex] = true;
-      const tinygltf::Node& node = model.nodes[nodeIndex];
-      const glm::dmat4 world = parentWorld * nodeMatrix(node);
-      if (!finiteMatrix(world)) throw LoadError{"node " + std::to_string(nodeIndex) + ": transform is not finite"};
-      if (node.skin >= 0) ignored.insert("skins (meshes drawn in their bind pose)");
-      if (node.mesh >= 0) {
-        if (node.mesh >= static_cast<int>(model.meshes.size()))
-          throw LoadError{"node " + std::to_string(nodeIndex) + ": mesh " + std::to_string(node.mesh) + " does not exist"};
-        instances.emplace_back(node.mesh, world);
-      }
-      if (node.camera >= 0 && !camera && node.camera < static_cast<int>(model.cameras.size())) {
-        const tinygltf::Camera& gc = model.cameras[node.camera];
-        Camera c;
-        c.eye = glm::dvec3(world * glm::dvec4(0, 0, 0, 1));
-        c.target = c.eye + glm::normalize(glm::dvec3(world * glm::dvec4(0, 0, -1, 0)));
-        c.up = glm::normalize(glm::dvec3(world * glm::dvec4(0, 1, 0, 0)));
-        if (gc.type == "orthographic") {
-          c.orthographic = true;
-          c.orthoHeight = 2.0 * gc.orthographic.ymag;
-          c.nearPlane = std::max(gc.orthographic.znear, 1e-4);
-          c.farPlane = gc.orthographic.zfar;
-        } else {
-          c.fovyDegrees = glm::degrees(gc.perspective.yfov);
-          c.nearPlane = gc.perspective.znear;
-          // glTF allows an infinite far plane (zfar = 0); the tools need a finite one.
-          c.farPlane = gc.perspective.zfar > 0.0 ? gc.perspective.zfar : gc.perspective.znear * 1e5;
-        }
-        if (std::string why = c.validate(); why.empty())
-          camera = c;
-        else
-          scene.warnings.push_back("camera " + std::to_string(node.camera) + " ignored: " + why);
-      }
-      for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.emplace_back(*it, world);
-    }
+    const auto instances = walkNodes(model, roots, scene, ignored, camera);
     checkGeometryBudget(model, instances);
     for (const auto& [meshIndex, world] : instances) {
       const auto& prims = model.meshes[static_cast<size_t>(meshIndex)].primitives;
