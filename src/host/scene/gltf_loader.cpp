@@ -417,6 +417,36 @@ std::vector<std::uint32_t> triangleList(int mode, const std::vector<std::uint32_
   return out;
 }
 
+// The primitive's normals (unit length; (0, 0, 1) where a stored one is degenerate), or without a
+// NORMAL attribute area-weighted vertex normals from its triangles.
+void loadNormals(const tinygltf::Model& model, const tinygltf::Primitive& prim, const std::string& where,
+                 size_t vertexCount, Mesh& mesh) {
+  auto nrm = prim.attributes.find("NORMAL");
+  if (nrm != prim.attributes.end()) {
+    AccessorView nv = viewAccessor(model, nrm->second, where + " NORMAL", TINYGLTF_TYPE_VEC3,
+                                   {TINYGLTF_COMPONENT_TYPE_FLOAT});
+    if (nv.count != vertexCount) throw LoadError{where + ": NORMAL count differs from POSITION count"};
+    for (size_t i = 0; i < nv.count; ++i) {
+      glm::vec3 n(nv.component(i, 0), nv.component(i, 1), nv.component(i, 2));
+      const float len = glm::length(n);
+      mesh.normals.push_back(std::isfinite(len) && len > 1e-12f ? n / len : glm::vec3(0, 0, 1));
+    }
+  } else {
+    // No normals: area-weighted vertex normals from the triangles.
+    mesh.normals.assign(vertexCount, glm::vec3(0.0f));
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+      const glm::vec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]],
+                      c = mesh.positions[mesh.indices[t + 2]];
+      const glm::vec3 n = glm::cross(b - a, c - a);
+      for (int k = 0; k < 3; ++k) mesh.normals[mesh.indices[t + k]] += n;
+    }
+    for (auto& n : mesh.normals) {
+      const float len = glm::length(n);
+      n = len > 1e-20f ? n / len : glm::vec3(0, 0, 1);
+    }
+  }
+}
+
 void loadPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim, const std::string& where,
                    const glm::dmat4& worldFromModel, Scene& scene, Ignored& ignored) {
   const int mode = prim.mode == -1 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
@@ -464,30 +494,7 @@ void loadPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& prim
     scene.warnings.push_back(where + ": no triangles; primitive skipped");
     return;
   }
-  auto nrm = prim.attributes.find("NORMAL");
-  if (nrm != prim.attributes.end()) {
-    AccessorView nv = viewAccessor(model, nrm->second, where + " NORMAL", TINYGLTF_TYPE_VEC3,
-                                   {TINYGLTF_COMPONENT_TYPE_FLOAT});
-    if (nv.count != pv.count) throw LoadError{where + ": NORMAL count differs from POSITION count"};
-    for (size_t i = 0; i < nv.count; ++i) {
-      glm::vec3 n(nv.component(i, 0), nv.component(i, 1), nv.component(i, 2));
-      const float len = glm::length(n);
-      mesh.normals.push_back(std::isfinite(len) && len > 1e-12f ? n / len : glm::vec3(0, 0, 1));
-    }
-  } else {
-    // No normals: area-weighted vertex normals from the triangles.
-    mesh.normals.assign(pv.count, glm::vec3(0.0f));
-    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-      const glm::vec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]],
-                      c = mesh.positions[mesh.indices[t + 2]];
-      const glm::vec3 n = glm::cross(b - a, c - a);
-      for (int k = 0; k < 3; ++k) mesh.normals[mesh.indices[t + k]] += n;
-    }
-    for (auto& n : mesh.normals) {
-      const float len = glm::length(n);
-      n = len > 1e-20f ? n / len : glm::vec3(0, 0, 1);
-    }
-  }
+  loadNormals(model, prim, where, pv.count, mesh);
   auto uv = prim.attributes.find("TEXCOORD_0");
   if (uv != prim.attributes.end()) {
     AccessorView uvv = viewAccessor(model, uv->second, where + " TEXCOORD_0", TINYGLTF_TYPE_VEC2,
