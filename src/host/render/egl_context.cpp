@@ -79,10 +79,15 @@ Status HeadlessContext::checkDevice(const std::string& device) {
   return {};
 }
 
-Expected<std::unique_ptr<HeadlessContext>> HeadlessContext::create(const EglOptions& options) {
-  const std::string choice = deviceChoice(options.device);
-  if (Status s = checkDevice(options.device); !s) return Status::error(s.message());
+namespace {
 
+// The EGL display for the device choice (an index, hardware, software, surfaceless or auto), with
+// a description of what it is.
+struct OpenedDisplay {
+  EGLDisplay display = EGL_NO_DISPLAY;
+  std::string description;
+};
+Expected<OpenedDisplay> openDisplay(const std::string& choice) {
   const char* clientExts = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   // The EXT entry point: EGL 1.5's eglGetPlatformDisplay trips libepoxy-style wrappers.
   auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
@@ -141,6 +146,19 @@ Expected<std::unique_ptr<HeadlessContext>> HeadlessContext::create(const EglOpti
   if (display == EGL_NO_DISPLAY)
     return Status::error("EGL: no usable display for device choice '" + choice +
                          "' (is libegl-mesa0 or an NVIDIA EGL driver installed?)");
+  return OpenedDisplay{display, description};
+}
+
+}  // namespace
+
+Expected<std::unique_ptr<HeadlessContext>> HeadlessContext::create(const EglOptions& options) {
+  const std::string choice = deviceChoice(options.device);
+  if (Status s = checkDevice(options.device); !s) return Status::error(s.message());
+
+  auto opened = openDisplay(choice);
+  if (!opened) return Status::error(opened.error());
+  EGLDisplay display = opened.value().display;
+  const std::string description = opened.value().description;
 
   if (!eglBindAPI(EGL_OPENGL_API)) return Status::error(eglErrorText("eglBindAPI(EGL_OPENGL_API)"));
   const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
