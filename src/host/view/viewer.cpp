@@ -475,33 +475,116 @@ const std::vector<std::string>& viewerMethodNames() {
   return names;
 }
 
-int runViewer(const ViewerOptions& options) {
+namespace {
+
+// A window with an OpenGL 4.5 core context, current, its functions loaded; false (said on stderr,
+// GLFW terminated) when the display offers none.
+bool openWindow(App& app, const ViewerOptions& options) {
   glfwSetErrorCallback([](int, const char* text) { std::fprintf(stderr, "sslr-view: GLFW: %s\n", text); });
   if (!glfwInit()) {
     std::fprintf(stderr,
                  "sslr-view: cannot open a window: no display (set DISPLAY, or run headless under "
                  "xvfb-run -a -s '-screen 0 1920x1080x24' sslr-view ...)\n");
-    return 1;
+    return false;
   }
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  App app;
-  app.options = options;
   app.window = glfwCreateWindow(options.width, options.height, "sslr-view", nullptr, nullptr);
   if (app.window == nullptr) {
     std::fprintf(stderr, "sslr-view: the display offers no OpenGL 4.5 core context (sslr needs one)\n");
     glfwTerminate();
-    return 1;
+    return false;
   }
   glfwMakeContextCurrent(app.window);
   glfwSwapInterval(options.frames > 0 ? 0 : 1);
   if (gladLoadGL(reinterpret_cast<GLADloadfunc>(&glfwGetProcAddress)) == 0) {
     std::fprintf(stderr, "sslr-view: loading OpenGL 4.5 functions failed\n");
     glfwTerminate();
-    return 1;
+    return false;
   }
+  return true;
+}
+
+enum class FrameResult { Next, Stop };
+
+// One frame of the window: events, a dropped scene, both sides rendered, the panel; the scripted
+// run's last frame writes its screenshot. exitCode: set on failure.
+FrameResult drawFrame(App& app, const ViewerOptions& options, int frame, int& exitCode) {
+  glfwPollEvents();
+  if (!app.pendingScene.empty()) {
+    const Status st = app.loadSceneNamed(app.pendingScene);
+    app.status = st ? "loaded " + app.pendingScene : st.message();
+    app.pendingScene.clear();
+  }
+  glfwGetFramebufferSize(app.window, &app.width, &app.height);
+  if (app.width <= 0 || app.height <= 0) return FrameResult::Next;  // minimized
+  if (Status st = app.ensureRenderers(); !st) {
+    std::fprintf(stderr, "sslr-view: %s\n", st.message().c_str());
+    exitCode = 1;
+    return FrameResult::Stop;
+  }
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  app.handleInput();
+  if (options.orbitDegrees != 0.0) app.control.orbit(options.orbitDegrees, 0.0);
+  const auto t0 = std::chrono::steady_clock::now();
+  app.renderSide(app.sides[0]);
+  if (app.compare) app.renderSide(app.sides[1]);
+  glFinish();
+  app.frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  // The error view is computed when first shown (and by its button after the camera moved).
+  if (kViews[app.view].source == Source::Error)
+    for (int i = 0; i < (app.compare ? 2 : 1); ++i)
+      if (app.sides[i].errorTexture == 0 && app.sides[i].method != 4) app.computeError(app.sides[i]);
+  app.present();
+  if (!options.hideUi) app.panel();
+  ImGui::Render();
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  if (options.frames > 0 && frame + 1 >= options.frames) {
+    if (!options.screenshot.empty()) {
+      const Status st = writeImage(options.screenshot, app.readWindow());
+      if (!st) {
+        std::fprintf(stderr, "sslr-view: %s\n", st.message().c_str());
+        exitCode = 1;
+      }
+      for (const Side& s : app.sides)
+        if (!s.error.empty()) {
+          std::fprintf(stderr, "sslr-view: %s\n", s.error.c_str());
+          exitCode = 1;
+        }
+    }
+    glfwSwapBuffers(app.window);
+    return FrameResult::Stop;
+  }
+  glfwSwapBuffers(app.window);
+  return FrameResult::Next;
+}
+
+// Everything the viewer made on the GL context and in Dear ImGui, released.
+void releaseViewer(App& app) {
+  gApp = nullptr;
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  for (Side& s : app.sides) {
+    s.renderer.reset();
+    if (s.errorTexture != 0) glDeleteTextures(1, &s.errorTexture);
+  }
+  app.gpu.reset();
+  glDeleteProgram(app.presentProgram);
+  glDeleteVertexArrays(1, &app.presentVao);
+  glDeleteSamplers(1, &app.presentSampler);
+}
+
+}  // namespace
+
+int runViewer(const ViewerOptions& options) {
+  App app;
+  app.options = options;
+  if (!openWindow(app, options)) return 1;
   const std::string renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   app.software = renderer.find("llvmpipe") != std::string::npos || renderer.find("softpipe") != std::string::npos;
   std::fprintf(stderr, "sslr-view: %s | %s\n", renderer.c_str(), reinterpret_cast<const char*>(glGetString(GL_VERSION)));
@@ -541,67 +624,9 @@ int runViewer(const ViewerOptions& options) {
     });
 
     for (int frame = 0; exitCode == 0 && !glfwWindowShouldClose(app.window); ++frame) {
-      glfwPollEvents();
-      if (!app.pendingScene.empty()) {
-        const Status st = app.loadSceneNamed(app.pendingScene);
-        app.status = st ? "loaded " + app.pendingScene : st.message();
-        app.pendingScene.clear();
-      }
-      glfwGetFramebufferSize(app.window, &app.width, &app.height);
-      if (app.width <= 0 || app.height <= 0) continue;  // minimized
-      if (Status st = app.ensureRenderers(); !st) {
-        std::fprintf(stderr, "sslr-view: %s\n", st.message().c_str());
-        exitCode = 1;
-        break;
-      }
-      ImGui_ImplOpenGL3_NewFrame();
-      ImGui_ImplGlfw_NewFrame();
-      ImGui::NewFrame();
-      app.handleInput();
-      if (options.orbitDegrees != 0.0) app.control.orbit(options.orbitDegrees, 0.0);
-      const auto t0 = std::chrono::steady_clock::now();
-      app.renderSide(app.sides[0]);
-      if (app.compare) app.renderSide(app.sides[1]);
-      glFinish();
-      app.frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      // The error view is computed when first shown (and by its button after the camera moved).
-      if (kViews[app.view].source == Source::Error)
-        for (int i = 0; i < (app.compare ? 2 : 1); ++i)
-          if (app.sides[i].errorTexture == 0 && app.sides[i].method != 4) app.computeError(app.sides[i]);
-      app.present();
-      if (!options.hideUi) app.panel();
-      ImGui::Render();
-      ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-      if (options.frames > 0 && frame + 1 >= options.frames) {
-        if (!options.screenshot.empty()) {
-          const Status st = writeImage(options.screenshot, app.readWindow());
-          if (!st) {
-            std::fprintf(stderr, "sslr-view: %s\n", st.message().c_str());
-            exitCode = 1;
-          }
-          for (const Side& s : app.sides)
-            if (!s.error.empty()) {
-              std::fprintf(stderr, "sslr-view: %s\n", s.error.c_str());
-              exitCode = 1;
-            }
-        }
-        glfwSwapBuffers(app.window);
-        break;
-      }
-      glfwSwapBuffers(app.window);
+      if (drawFrame(app, options, frame, exitCode) == FrameResult::Stop) break;
     }
-    gApp = nullptr;
-    ImGui_ImplOpenGL3_Shutdown();
-    ImGui_ImplGlfw_Shutdown();
-    ImGui::DestroyContext();
-    for (Side& s : app.sides) {
-      s.renderer.reset();
-      if (s.errorTexture != 0) glDeleteTextures(1, &s.errorTexture);
-    }
-    app.gpu.reset();
-    glDeleteProgram(app.presentProgram);
-    glDeleteVertexArrays(1, &app.presentVao);
-    glDeleteSamplers(1, &app.presentSampler);
+    releaseViewer(app);
   }
   glfwDestroyWindow(app.window);
   glfwTerminate();
