@@ -1,0 +1,204 @@
+// The benchmark's grid: every configuration of each method (quick and full), the default scenes,
+// and the selection --configs makes from them.
+#include "sslr_host/benchmark.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+namespace sslr::host {
+
+std::string fileSlug(std::string name) {
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '-';
+  return name;
+}
+
+std::vector<std::string> defaultBenchScenes() {
+  // The scenes built to break the tracer first (those nobody tuned for leading), then the rest;
+  // every built-in and asset scene but the two analytic test scenes (mirror-box, tilted-mirror).
+  return {"turned-mirror", "mirror-corridor", "mirrors-from-above", "spider-on-mirror", "wuson-as-mirror",
+          "facing-mirror", "thin-objects",    "mirror-walls",       "curved-mirror",    "sphere-over-mirror-32",
+          "sphere-over-mirror-128",           "glossy",
+          "mirror-room",   "grazing-plane",   "sky-heavy"};
+}
+
+namespace {
+
+// The full grid's variants of the high preset: adaptive L first (verified, unchecked), measured
+// thickness and the hidden-passage rule, each device profile's pass shapes, the second stage's pass.
+void highVariants(std::vector<BenchConfig>& configs) {
+  const Preset preset = Preset::High;
+  // adaptive L first: its hits verified (0.4's default), unchecked (medium's choice)
+  for (bool verify : {true, false}) {
+    BenchConfig alFirst{"adaptive-l", verify ? "high-verify" : "high-no-verify", Settings::preset(preset),
+                        false};
+    alFirst.settings.traversal.order = TraversalOrder::AdaptiveLFirst;
+    alFirst.settings.traversal.verify = verify;
+    configs.push_back(alFirst);
+  }
+  // Measured thickness (a back-face depth input), and the hidden-passage rule with and without it.
+  BenchConfig measured{"adaptive-l", "high-back-depth", Settings::preset(preset), false, true};
+  configs.push_back(measured);
+  for (float limit : {16.0f, 8.0f}) {
+    for (bool back : {false, true}) {
+      BenchConfig hidden{"adaptive-l", std::string(back ? "high-back-depth" : "high") + "-hidden" +
+                                           std::to_string(static_cast<int>(limit)),
+                         Settings::preset(preset), false, back};
+      hidden.settings.traversal.hiddenPassageLimitPx = limit;
+      configs.push_back(hidden);
+    }
+  }
+  // The pass shapes of each device profile (the Auto profile's is one of the two).
+  for (auto [label, device] : {std::pair{"high-gpu-profile", DeviceProfile::Gpu},
+                               std::pair{"high-software-profile", DeviceProfile::Software}}) {
+    BenchConfig shaped{"adaptive-l", label, Settings::preset(preset), false};
+    shaped.device = device;
+    configs.push_back(shaped);
+  }
+  // Where adaptive L first's second stage (the traversal) runs: Settings::traversal.pass.
+  for (auto [label, pass] : {std::pair{"high-no-verify-inline", TraversalPass::Inline},
+                             std::pair{"high-no-verify-deferred", TraversalPass::Deferred}}) {
+    BenchConfig where{"adaptive-l", label, Settings::preset(preset), false};
+    where.settings.traversal.order = TraversalOrder::AdaptiveLFirst;
+    where.settings.traversal.verify = false;
+    where.settings.traversal.pass = pass;
+    configs.push_back(where);
+  }
+}
+
+// sslr's method at each preset, and the high preset's variants.
+void adaptiveLConfigs(std::vector<BenchConfig>& configs, bool full) {
+  const std::pair<const char*, Preset> presets[] = {
+      {"low", Preset::Low}, {"medium", Preset::Medium}, {"high", Preset::High}, {"ultra", Preset::Ultra}};
+  for (const auto& [name, preset] : presets) {
+    if (!full && preset == Preset::Ultra) continue;
+    BenchConfig c{"adaptive-l", name, Settings::preset(preset), preset == Preset::High};
+    configs.push_back(c);
+    if (preset == Preset::High) {  // the article's tracer alone, without the hierarchical fallback
+      BenchConfig alone{"adaptive-l", "high-no-fallback", Settings::preset(preset), false};
+      alone.settings.traversal.fallback = false;
+      alone.settings.traversal.verify = false;
+      configs.push_back(alone);
+      BenchConfig half{"adaptive-l", "high-half", Settings::preset(preset), false};  // one ray per quad
+      half.settings.halfResolution = true;
+      configs.push_back(half);
+      if (full) highVariants(configs);
+    }
+  }
+}
+
+// The hierarchical traversal alone (Method::HierarchicalDepth) at the presets' step caps (medium,
+// high, ultra).
+void hizConfigs(std::vector<BenchConfig>& configs, bool full) {
+  const int defaultSteps = Settings::preset(Preset::High).traversal.maxSteps;
+  const std::vector<int> allSteps{Settings::preset(Preset::Medium).traversal.maxSteps, defaultSteps,
+                                  Settings::preset(Preset::Ultra).traversal.maxSteps};
+  for (int steps : full ? allSteps : std::vector<int>{defaultSteps}) {
+    BenchConfig c{"hiz", "steps" + std::to_string(steps), Settings::preset(Preset::High), steps == defaultSteps};
+    c.settings.method = Method::HierarchicalDepth;
+    c.settings.traversal.maxSteps = steps;
+    configs.push_back(c);
+  }
+}
+
+// McGuire & Mara's screen-space DDA over stride and thickness.
+void ddaConfigs(std::vector<BenchConfig>& configs, bool full) {
+  // McGuire & Mara's screen-space DDA: stride x thickness, each with steps enough to cross about
+  // 1024 pixels (so that the stride, not the step cap, sets the reach).
+  std::vector<float> strides = full ? std::vector<float>{1.0f, 2.0f, 4.0f, 8.0f} : std::vector<float>{2.0f, 8.0f};
+  std::vector<float> thicknesses = full ? std::vector<float>{0.1f, 0.5f} : std::vector<float>{0.5f};
+  for (float stride : strides)
+    for (float thick : thicknesses) {
+      Settings s;
+      s.method = Method::ScreenSpaceDDA;
+      s.dda.stride = stride;
+      s.dda.objectDepth = thick;
+      s.dda.maxSteps = static_cast<int>(1024.0f / stride);
+      std::ostringstream label;
+      label << "stride" << stride << "-thick" << thick;
+      configs.push_back({"dda", label.str(), s, stride == 2.0f && thick == 0.5f});
+    }
+}
+
+// FidelityFX SSSR at its sample's thickness and thicker.
+void ffxConfigs(std::vector<BenchConfig>& configs, bool full) {
+  // AMD FidelityFX SSSR's mirror-ray raymarch and hit validation: its sample's defaults (depth
+  // buffer thickness 0.015, 128 intersections), then thicker (the thickness is its only tolerance).
+  std::vector<float> ffxThicknesses = full ? std::vector<float>{0.015f, 0.05f, 0.15f, 0.5f} : std::vector<float>{0.015f};
+  for (float thick : ffxThicknesses) {
+    Settings s;
+    s.method = Method::FidelityFxSssr;
+    s.ffx.depthBufferThickness = thick;
+    std::ostringstream label;
+    label << "thick" << thick;
+    configs.push_back({"ffx-sssr", label.str(), s, thick == 0.015f});
+  }
+}
+
+// The tutorial's position-buffer march: its demo values, its text's, a sweep.
+void positionBufferConfigs(std::vector<BenchConfig>& configs, bool full) {
+  // The tutorial's method: its demo values first, then the values its text gives (maxDistance 15,
+  // resolution 0.3, steps 10), then a sweep.
+  std::vector<float> resolutions = full ? std::vector<float>{0.1f, 0.3f, 0.6f, 1.0f} : std::vector<float>{0.3f, 1.0f};
+  std::vector<int> steps = full ? std::vector<int>{5, 10} : std::vector<int>{5};
+  std::vector<float> distances = full ? std::vector<float>{8.0f, 32.0f} : std::vector<float>{8.0f, 32.0f};
+  for (float dist : distances)
+    for (float res : resolutions)
+      for (int st : steps) {
+        Settings s;
+        s.method = Method::PositionBuffer;
+        s.positionBuffer.maxDistance = dist;
+        s.positionBuffer.resolution = res;
+        s.positionBuffer.steps = st;
+        std::ostringstream label;
+        label << "res" << res << "-steps" << st << "-dist" << dist;
+        const bool tutorial = dist == 8.0f && res == 0.3f && st == 5;
+        configs.push_back({"position-buffer", tutorial ? "tutorial (res0.3-steps5-dist8)" : label.str(), s, tutorial});
+      }
+  {
+    Settings s;
+    s.method = Method::PositionBuffer;
+    s.positionBuffer.maxDistance = 15.0f;
+    s.positionBuffer.resolution = 0.3f;
+    s.positionBuffer.steps = 10;
+    configs.push_back({"position-buffer", "tutorial text (res0.3-steps10-dist15)", s, false});
+  }
+}
+
+}  // namespace
+
+std::vector<BenchConfig> benchGrid(const std::string& grid) {
+  std::vector<BenchConfig> configs;
+  const bool full = grid == "full";
+  adaptiveLConfigs(configs, full);
+  hizConfigs(configs, full);
+  ddaConfigs(configs, full);
+  ffxConfigs(configs, full);
+  positionBufferConfigs(configs, full);
+  BenchConfig baseline{"baseline", "read G-buffer, write 1 texel", Settings{}, false};
+  configs.push_back(baseline);
+  return configs;
+}
+
+Expected<std::vector<BenchConfig>> selectConfigs(const std::vector<BenchConfig>& grid,
+                                                 const std::vector<std::string>& names) {
+  if (names.empty()) return grid;
+  auto selects = [](const std::string& name, const BenchConfig& c) {
+    return name == c.method || name == c.method + "/" + c.label;
+  };
+  for (const std::string& name : names)
+    if (std::none_of(grid.begin(), grid.end(), [&](const BenchConfig& c) { return selects(name, c); })) {
+      std::string known;
+      for (const BenchConfig& c : grid)
+        if (c.method != "baseline") known += (known.empty() ? "" : ", ") + c.method + "/" + c.label;
+      return Status::error("--configs: '" + name + "' is no configuration of this grid (" + known + ")");
+    }
+  std::vector<BenchConfig> out;
+  for (const BenchConfig& c : grid)
+    if (c.method == "baseline" ||
+        std::any_of(names.begin(), names.end(), [&](const std::string& n) { return selects(n, c); }))
+      out.push_back(c);
+  return out;
+}
+
+}  // namespace sslr::host
