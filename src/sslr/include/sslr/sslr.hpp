@@ -27,6 +27,7 @@
 
 #include <glm/glm.hpp>
 
+#include "sslr/compare.hpp"  // the comparison methods' settings (Settings::positionBuffer, dda, ffx)
 #include "sslr/version.hpp"  // SSLR_VERSION_MAJOR/MINOR/PATCH, SSLR_VERSION_STRING
 
 namespace sslr {
@@ -263,30 +264,6 @@ enum class TraversalPass {
              // does not take under lane masks, so the second tracer inline slows every pixel
 };
 
-// Parameters of Method::PositionBuffer, with the tutorial's demo values.
-struct PositionBufferSettings {
-  float maxDistance = 8.0f;  // ray length, view units
-  float resolution = 0.3f;   // fraction of pixels the coarse march visits (0..1]
-  int steps = 5;             // binary refinement steps
-  float hitTolerance = 0.5f; // view units: a ray point this close behind the stored position hits
-};
-
-// Parameters of Method::ScreenSpaceDDA (McGuire & Mara 2014, JCGT 3(4)).
-struct DdaSettings {
-  float stride = 2.0f;           // pixels per step (>= 1)
-  float objectDepth = 0.5f;      // view units: depth assumed behind every visible surface (the paper's zThickness)
-  float maxDistance = 1.0e30f;   // ray length, view units (capped at 1e4 x the origin's distance)
-  int maxSteps = 256;            // depth fetches per ray at most, refinement not counted
-  bool jitter = true;            // checkerboard offset of half a stride (stride > 1)
-  bool refine = true;            // re-march the stride of a hit one pixel at a time (stride > 1)
-};
-
-// Parameters of Method::FidelityFxSssr, with FFX SSSR's sample defaults.
-struct FfxSssrSettings {
-  float depthBufferThickness = 0.015f;  // view units: confidence (1 - smoothstep(0, this, d))^2
-  int maxTraversalIntersections = 128;  // steps of the hierarchical raymarch at most
-};
-
 // Every setting with its unit and valid range; validate() enforces each range. Grouped by the
 // stage it steers; Settings::preset gives the tuned combinations.
 struct Settings {
@@ -395,6 +372,7 @@ struct Settings {
                                 // few frames late: no stall; see lastStats)
   } debug;
 
+  // The comparison methods' parameters (sslr/compare.hpp); sslr's own method reads none of them.
   PositionBufferSettings positionBuffer;  // Method::PositionBuffer only
   DdaSettings dda;                        // Method::ScreenSpaceDDA only
   FfxSssrSettings ffx;                    // Method::FidelityFxSssr only
