@@ -21,6 +21,7 @@
 #include "sslr_host/gbuffer.hpp"
 #include "sslr_host/gltf_writer.hpp"
 #include "sslr_host/ground_truth.hpp"
+#include "sslr_host/reference_image.hpp"
 #include "sslr_host/image_io.hpp"
 #include "sslr_host/scene.hpp"
 
@@ -150,6 +151,7 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
   numberOption(args, "object-thickness", "a number", s.traversal.objectDepthRelative);
   numberOption(args, "hidden-passage", "a number", s.traversal.hiddenPassageLimitPx);
   numberOption(args, "ffx-thickness", "a number", s.ffx.depthBufferThickness);
+  numberOption(args, "error-k", "a number", s.fades.errorK);
   numberOption(args, "iterations", "an integer", s.adaptiveL.maxIterations);
   numberOption(args, "hiz-steps", "an integer", s.traversal.maxSteps);
   if (args.count("no-outline-thinning")) s.traversal.outlineThinning = false;
@@ -205,6 +207,8 @@ cxxopts::Options renderOptions() {
       ("composite", "how the reflection enters final.png: blend (over the fallback specular, a sky/ground environment, by coverage) or add (on top of it)",
        cxxopts::value<std::string>()->default_value("blend"))
       ("half-res", "one ray per 2x2 quad, reused by the quad's pixels on the same surface")
+      ("error-k", "classic Fresnel's error term: weight 1 - saturate(L / distance x K) (default 0.15; 0 = off)",
+       cxxopts::value<std::string>())
       ("hidden-passage", "refuse hits of rays that travelled more than this many pixels behind the depth buffer "
                          "(Settings::traversal.hiddenPassageLimitPx; default off)", cxxopts::value<std::string>())
       ("ffx-thickness", "--method ffx-sssr: FidelityFX SSSR's depth buffer thickness, view units (default 0.015, "
@@ -562,6 +566,8 @@ int render(const RenderJob& job) {
   warnIfNothingShows(job, r.gbuffer());
   NamedImages files = collectImages(job, r);
   std::optional<HitMetrics> score;
+  std::optional<ImageError> composite;
+  std::optional<CompositeBreakdown> breakdown;
   if (job.score && job.reflections) {
     auto truth = groundTruthFor(job.scene, r.gbuffer(), job.settings);
     if (!truth) {
@@ -572,6 +578,20 @@ int render(const RenderJob& job) {
     score = compareHits(truth.value(), hit, kReportedConfidence, &color);
     files.push_back({"error.png", {hitErrorImage(truth.value(), hit), {}}});
     if (job.dump) files.push_back({"truth.exr", {truthImage(truth.value()), {"R", "G", "B", "A"}}});
+    // What the user sees against the ray-traced reference: the composite over the fallback of a
+    // weighted reflection (the reference replaces that fallback).
+    if (job.compositeMode == CompositeMode::BlendOverFallback && job.settings.output == OutputMode::Weighted) {
+      auto reference = referenceFor(job.scene, r.gbuffer(), truth.value());
+      if (!reference) {
+        std::cerr << "sslr-render: reference image: " << reference.error() << "\n";
+        return kExitFailure;
+      }
+      const Image final = r.readFinal();
+      composite = compositeError(reference.value(), final);
+      breakdown = compositeBreakdown(reference.value(), final, truth.value(), hit);
+      files.push_back({"reference.png", {reference.value().composite, {}}});
+      files.push_back({"composite-error.png", {compositeErrorMap(reference.value(), final), {}}});
+    }
   }
   if (gl.value()->glErrorCount() > 0) {
     std::cerr << "sslr-render: " << gl.value()->glErrorCount() << " GL error(s) were reported; no output written\n";
@@ -589,6 +609,17 @@ int render(const RenderJob& job) {
     printFrameTimes(times);
   }
   if (score) printScore(*score);
+  if (composite)
+    std::printf("  composite against the ray-traced reference: RMSE %.4f, PSNR %.1f dB over %zu mirror pixels\n",
+                composite->rmse, composite->psnr, composite->pixels);
+  if (breakdown) {
+    std::printf("  its error by pixel (RMSE, share of the squared error, pixels):");
+    const std::pair<const char*, const CompositeBreakdown::Kind*> kinds[] = {
+        {"hits within 1 px", &breakdown->hit}, {"wrong hits", &breakdown->wrong},
+        {"missed", &breakdown->missed}, {"unreachable", &breakdown->unreachable}};
+    for (const auto& [name, k] : kinds) std::printf(" %s %.4f, %.0f%%, %zu;", name, k->rmse, 100.0 * k->share, k->pixels);
+    std::printf("\n");
+  }
   return 0;
 }
 

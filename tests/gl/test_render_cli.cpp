@@ -73,6 +73,8 @@ TEST(RenderCliNoGl, BadArgumentsExitTwoWithAMessageAndWriteNothing) {
       {"--order traversal-first --no-hiz-verify", "--order traversal-first excludes"},
       {"--hidden-passage -3", "traversal.hiddenPassageLimitPx"},
       {"--hidden-passage far", "--hidden-passage expects a number"},
+      {"--error-k -1", "fades.errorK"},
+      {"--error-k strong", "--error-k expects a number"},
       {"--stage sideways", "--stage must be on-mirror or as-mirror"},
       {"--no-such-option", "no-such-option"},
       {"--method raymarch", "--method must be"},

@@ -19,6 +19,7 @@
 #include "sslr_host/cpu_tracer.hpp"
 #include "sslr_host/egl_context.hpp"
 #include "sslr_host/frame_renderer.hpp"
+#include "sslr_host/reference_image.hpp"
 
 namespace sslr::host {
 
@@ -271,7 +272,8 @@ void measureRepresentations(SceneRecord& sr, const GroundTruth& gt, const SceneF
 // One configuration's untimed quality pass on a scene: hits scored against the truth, the frame's
 // stats, and for a method's default its image and error map in the report.
 Expected<RunRecord> qualityRun(const BenchConfig& c, size_t i, const std::string& sceneName, SceneFrame& sf,
-                               const GroundTruth& gt, const Image& color, ConfigContexts& contexts,
+                               const GroundTruth& gt, const ReferenceImage& reference, const Image& color,
+                               ConfigContexts& contexts,
                                const BenchOptions& options, const std::string& renderer,
                                const std::string& timingMethod, const std::string& reportDir, SceneRecord& sr) {
   FrameRenderer& fr = *sf.renderer;
@@ -303,6 +305,10 @@ Expected<RunRecord> qualityRun(const BenchConfig& c, size_t i, const std::string
     if (Status st = ctx->dispatch(inputsFor(sf, c), s); !st) return Status::error(st.message());
     const Image hit = readTexture(ctx->hitTexture(), options.width, options.height, 4);
     r.metrics = compareHits(gt, hit, kReportedConfidence, &color);
+    if (Status st = fr.compositeFrom(*ctx); !st) return Status::error(st.message());
+    const ImageError composite = compositeError(reference, fr.readFinal());
+    r.compositeRmse = composite.rmse;
+    r.compositePsnr = composite.psnr;
     const FrameStats stats = ctx->waitForStats();
     r.tracedPixels = stats.tracedPixels;
     r.fetches = stats.fetches;
@@ -387,7 +393,6 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
     auto frame = renderSceneFrame(sceneName, options.width, options.height, anyBackDepth);
     if (!frame) return Status::error(frame.error());
     SceneFrame& sf = frame.value();
-    const Scene& scene = sf.scene;
     FrameRenderer& fr = *sf.renderer;
     GBuffer& gb = fr.gbuffer();
     const Image depth = gb.readDepth(), normal = gb.readNormalPacked(), positions = gb.readPosition(),
@@ -396,9 +401,11 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
     // Ground truth (Embree), once per scene.
     progress(done, total, sceneName + ": ground truth");
     const Settings defaults;
-    auto truth = groundTruthFor(scene, gb, defaults);
+    auto truth = groundTruthFor(sf.scene, gb, defaults);
     if (!truth) return Status::error(truth.error());
     const GroundTruth& gt = truth.value();
+    auto reference = referenceFor(sf.scene, gb, gt);  // what a perfect mirror tracer would composite
+    if (!reference) return Status::error(reference.error());
 
     SceneRecord sr = sceneRecordOf(sceneName, gt);
     measureRepresentations(sr, gt, sf, depth, normal, positions, options);
@@ -411,7 +418,8 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
     std::vector<RunRecord> runs;
     for (size_t i = 0; i < grid.size(); ++i) {
       const BenchConfig& c = grid[i];
-      auto r = qualityRun(c, i, sceneName, sf, gt, color, contexts, options, renderer, result.timingMethod, reportDir, sr);
+      auto r = qualityRun(c, i, sceneName, sf, gt, reference.value(), color, contexts, options, renderer,
+                          result.timingMethod, reportDir, sr);
       if (!r) return Status::error(r.error());
       runs.push_back(r.value());
       progress(++done, total, sceneName + ": quality " + c.method + " " + c.label);

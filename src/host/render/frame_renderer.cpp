@@ -34,12 +34,6 @@ FrameRenderer::~FrameRenderer() {
 Status FrameRenderer::render(const GpuScene& scene, const Camera& camera, const Settings* settings,
                              glm::dvec2 jitterPx) {
   if (Status s = gbuffer_->render(scene, camera, jitterPx); !s) return s;
-  // final = lit colour (which includes the fallback specular), then sslr's reflection replaces the
-  // fallback where it has coverage (BlendOverFallback), or is added on top (Add).
-  const int w = gbuffer_->width(), h = gbuffer_->height();
-  glNamedFramebufferReadBuffer(gbuffer_->framebuffer(), GL_COLOR_ATTACHMENT0);
-  glBlitNamedFramebuffer(gbuffer_->framebuffer(), finalFbo_, 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT,
-                         GL_NEAREST);
   // The previous frame's matrices, as a host keeps them for temporal reuse (the first frame has
   // none: its own stand in, and sslr has no history then anyway).
   FrameInputs& inputs = inputs_;
@@ -49,13 +43,30 @@ Status FrameRenderer::render(const GpuScene& scene, const Camera& camera, const 
                                     ? gbuffer_->clipFromView()
                                     : previousClipFromWorld_ * glm::inverse(gbuffer_->viewFromWorld());
   previousClipFromWorld_ = clipFromWorld;
-  if (settings == nullptr) return {};
+  if (settings == nullptr) {
+    copyColorToFinal();
+    return {};
+  }
   if (Status s = sslr_->dispatch(inputs, *settings); !s) return s;
+  return compositeFrom(*sslr_);
+}
+
+void FrameRenderer::copyColorToFinal() {
+  const int w = gbuffer_->width(), h = gbuffer_->height();
+  glNamedFramebufferReadBuffer(gbuffer_->framebuffer(), GL_COLOR_ATTACHMENT0);
+  glBlitNamedFramebuffer(gbuffer_->framebuffer(), finalFbo_, 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT,
+                         GL_NEAREST);
+}
+
+// final = lit colour (which includes the fallback specular), then sslr's reflection replaces the
+// fallback where it has coverage (BlendOverFallback), or is added on top (Add).
+Status FrameRenderer::compositeFrom(Context& ctx) {
+  copyColorToFinal();
   CompositeOptions composite;
   composite.mode = compositeMode_;
   if (compositeMode_ == CompositeMode::BlendOverFallback)
     composite.fallbackSpecularTexture = gbuffer_->fallbackSpecularTexture();
-  return sslr_->composite(finalFbo_, composite);
+  return ctx.composite(finalFbo_, composite);
 }
 
 Status FrameRenderer::prepare(const GpuScene& scene, const Camera& camera, const Settings& settings) {

@@ -81,6 +81,8 @@ RayTracer::Hit RayTracer::intersect(glm::vec3 o, glm::vec3 d, float tFar) const 
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
   h.hit = true;
   h.mesh = rh.hit.geomID;
+  h.primitive = rh.hit.primID;
+  h.barycentric = glm::vec2(rh.hit.u, rh.hit.v);
   h.t = rh.ray.tfar;
   h.vsPosition = o + d * h.t;
   const auto& idx = impl_->indices[rh.hit.geomID];
@@ -128,22 +130,6 @@ std::vector<std::uint8_t> reflectiveMask(const Image& depth, const Image& normal
 }
 
 namespace {
-
-// Primary rays through pixel centres, built in double from the exact matrix.
-struct PrimaryRays {
-  glm::dmat4 viewFromClip;
-  bool ortho;
-  int width, height;
-  void at(int x, int y, glm::dvec3& origin, glm::dvec3& dir) const {
-    const glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0, (y + 0.5) / height * 2.0 - 1.0);
-    glm::dvec4 nearPt = viewFromClip * glm::dvec4(ndc, -1.0, 1.0);
-    glm::dvec4 farPt = viewFromClip * glm::dvec4(ndc, 0.5, 1.0);
-    nearPt /= nearPt.w;
-    farPt /= farPt.w;
-    origin = ortho ? glm::dvec3(nearPt.x, nearPt.y, 0.0) : glm::dvec3(0.0);
-    dir = ortho ? glm::dvec3(0, 0, -1) : glm::normalize(glm::dvec3(farPt));
-  }
-};
 
 // What a pixel shows (mesh and normal), traced once on first use: neighbouring visible hits ask
 // for the same pixels many times over.

@@ -2,6 +2,8 @@
 // against Embree ground truth; results as JSON/CSV and a static HTML report.
 #pragma once
 
+#include <cmath>
+
 #include <functional>
 #include <string>
 #include <vector>
@@ -64,6 +66,9 @@ struct RunRecord {
   int gbufferBytesPerPixel = 0;  // colour + normal + depth (+ position for the tutorial's method)
   int extraBytesPerPixel = 0;    // sslr's own textures (reflection, blur temp, resolved)
   size_t nonFiniteOutputs = 0;   // NaN/Inf pixels in reflection + resolved
+  // The composite (over the fallback) against the ray-traced reference, over the mirror pixels
+  // (reference_image.hpp): what the user sees. NaN where not measured (the baseline).
+  double compositeRmse = NAN, compositePsnr = NAN;
 };
 
 struct SceneRecord {

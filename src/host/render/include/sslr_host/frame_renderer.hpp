@@ -26,6 +26,9 @@ class FrameRenderer {
   // Rasterizes the G-buffer, then sslr's prepare() on the inputs render() hands it: every program
   // compiled and run once, as an engine does at load time.
   Status prepare(const GpuScene& scene, const Camera& camera, const Settings& settings);
+  // final = the G-buffer's colour with `ctx`'s last dispatch composited (the renderer's composite
+  // mode): for a context other than the renderer's own, over the same G-buffer.
+  Status compositeFrom(Context& ctx);
   // How the reflection enters the final image (default: over the G-buffer pass's fallback specular).
   void setCompositeMode(CompositeMode mode) { compositeMode_ = mode; }
   CompositeMode compositeMode() const { return compositeMode_; }
@@ -45,6 +48,7 @@ class FrameRenderer {
   FrameRenderer() = default;
   std::unique_ptr<GBuffer> gbuffer_;
   std::unique_ptr<Context> sslr_;
+  void copyColorToFinal();
   GLuint final_ = 0, finalFbo_ = 0;
   CompositeMode compositeMode_ = CompositeMode::BlendOverFallback;
   glm::dmat4 previousClipFromWorld_{0.0};  // the last render's, for temporal reuse

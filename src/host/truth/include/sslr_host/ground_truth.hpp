@@ -53,6 +53,8 @@ class RayTracer {
     glm::vec3 vsPosition{0.0f};
     glm::vec3 vsNormal{0.0f};  // interpolated vertex normal (facing the ray origin side)
     unsigned mesh = 0;         // index of the scene mesh hit
+    unsigned primitive = 0;    // its triangle
+    glm::vec2 barycentric{0.0f};  // (u, v): weights of the triangle's 2nd and 3rd vertex
   };
   Hit intersect(glm::vec3 vsOrigin, glm::vec3 vsDirection, float tFar = 1e30f) const;
   bool occluded(glm::vec3 vsOrigin, glm::vec3 vsDirection, float tFar) const;
@@ -61,6 +63,22 @@ class RayTracer {
   RayTracer() = default;
   struct Impl;
   std::unique_ptr<Impl> impl_;
+};
+
+// Primary rays through pixel centres, built in double from the exact matrix.
+struct PrimaryRays {
+  glm::dmat4 viewFromClip;
+  bool ortho;
+  int width, height;
+  void at(int x, int y, glm::dvec3& origin, glm::dvec3& dir) const {
+    const glm::dvec2 ndc((x + 0.5) / width * 2.0 - 1.0, (y + 0.5) / height * 2.0 - 1.0);
+    glm::dvec4 nearPt = viewFromClip * glm::dvec4(ndc, -1.0, 1.0);
+    glm::dvec4 farPt = viewFromClip * glm::dvec4(ndc, 0.5, 1.0);
+    nearPt /= nearPt.w;
+    farPt /= farPt.w;
+    origin = ortho ? glm::dvec3(nearPt.x, nearPt.y, 0.0) : glm::dvec3(0.0);
+    dir = ortho ? glm::dvec3(0, 0, -1) : glm::normalize(glm::dvec3(farPt));
+  }
 };
 
 // Which pixels the SSR pass traces (sslrShouldTrace on the read-back G-buffer).

@@ -1,0 +1,67 @@
+// The ray-traced reference of what a user sees: each mirror pixel's composite with its exact
+// reflection, shaded by Embree's hit with the G-buffer pass's own lighting (whether the camera sees
+// that point or not; escaped rays get the fallback environment), and the image error of a
+// method's composite against it (docs/results.md, "How these numbers were obtained").
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "sslr_host/gbuffer.hpp"
+#include "sslr_host/ground_truth.hpp"
+#include "sslr_host/image_io.hpp"
+#include "sslr_host/scene.hpp"
+
+namespace sslr::host {
+
+// Mirror pixels: the primary surface's material roughness at most this (rough pixels are blurred
+// by a cone; their reference is the glossy study's).
+constexpr float kReferenceMaxRoughness = 0.02f;
+
+struct ReferenceImage {
+  // RGB, linear: colour - fallback specular + reflectance x Fresnel (classic) x the exact
+  // reflection, on the scored pixels; the G-buffer colour elsewhere.
+  Image composite;
+  std::vector<std::uint8_t> scored;  // 1: a mirror pixel sslr traces, compared
+  size_t scoredCount = 0;
+};
+
+// The reference for what `gbuffer` last rendered of `scene` (`truth`: its reflective pixels).
+ReferenceImage referenceComposite(const Scene& scene, const RayTracer& tracer, const GBuffer& gbuffer,
+                                  const GroundTruth& truth);
+
+// The same, with a ray tracer of its own over `scene` (Embree; an error names what failed).
+Expected<ReferenceImage> referenceFor(const Scene& scene, const GBuffer& gbuffer, const GroundTruth& truth);
+
+// The G-buffer pass's lit colour of a point the tracer hit, as the camera would see it (the G-buffer's
+// shader: a directional light, a sky/ground ambient, emission and the fallback specular).
+glm::vec3 shadeAsGBuffer(const Scene& scene, const RayTracer::Hit& hit, const glm::dmat4& viewFromWorld,
+                         bool orthographic);
+
+struct ImageError {
+  double rmse = 0.0;  // over the scored pixels' RGB channels
+  double psnr = 0.0;  // dB, peak 1
+  size_t pixels = 0;
+};
+ImageError compositeError(const ReferenceImage& reference, const Image& composite);
+
+// Where the composite error comes from: the scored pixels by what the method reported (its hit
+// image: RG = uv, B = confidence, reported above kReportedConfidence) against the truth.
+struct CompositeBreakdown {
+  struct Kind {
+    size_t pixels = 0;
+    double rmse = 0.0;   // over this kind's pixels
+    double share = 0.0;  // of the total squared error
+  };
+  Kind hit;          // visible reflection, reported within 1 px of the true hit: fades, blur, shading
+  Kind wrong;        // reported elsewhere: a false hit, or a visible reflection's hit over 1 px off
+  Kind missed;       // visible reflection not reported: the fallback shows instead
+  Kind unreachable;  // occluded, off screen or escaped, not reported: what no screen-space method sees
+};
+CompositeBreakdown compositeBreakdown(const ReferenceImage& reference, const Image& composite, const GroundTruth& truth,
+                                      const Image& hit);
+
+// |composite - reference| x 4 on the scored pixels, dark grey elsewhere (an sRGB image to look at).
+Image compositeErrorMap(const ReferenceImage& reference, const Image& composite);
+
+}  // namespace sslr::host

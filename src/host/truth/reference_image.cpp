@@ -1,0 +1,180 @@
+#include "sslr_host/reference_image.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sslr_shared.h"
+
+namespace sslr::host {
+
+namespace {
+
+float srgbToLinear(std::uint8_t v) {
+  const float c = v / 255.0f;
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+// Bilinear, wrapping (GL_REPEAT), sRGB decoded before filtering as GL_SRGB8_ALPHA8 is; the base
+// level only (the G-buffer's trilinear filtering of a minified texture is not reproduced).
+glm::vec3 sampleTexture(const Texture& t, glm::vec2 uv) {
+  if (t.width <= 0 || t.height <= 0) return glm::vec3(1.0f);
+  const float x = uv.x * t.width - 0.5f, y = uv.y * t.height - 0.5f;
+  const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
+  const float fx = x - x0, fy = y - y0;
+  auto texel = [&](int tx, int ty) {
+    tx = ((tx % t.width) + t.width) % t.width;
+    ty = ((ty % t.height) + t.height) % t.height;
+    const std::uint8_t* p = &t.rgba8[(static_cast<size_t>(ty) * t.width + tx) * 4];
+    return glm::vec3(srgbToLinear(p[0]), srgbToLinear(p[1]), srgbToLinear(p[2]));
+  };
+  return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx), glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx),
+                  fy);
+}
+
+// The fallback environment in direction vsR: the sky above the horizon, a dim ground below it
+// (shaders/host/gbuffer.frag).
+glm::vec3 environment(glm::vec3 vsR, glm::vec3 vsUp, glm::vec3 sky) {
+  const float t = glm::clamp((glm::dot(vsR, vsUp) + 0.05f) / 0.1f, 0.0f, 1.0f);
+  return glm::mix(0.25f * sky, sky, t * t * (3.0f - 2.0f * t));
+}
+
+glm::vec3 viewDirection(const glm::dmat4& viewFromWorld, glm::dvec3 world) {
+  return glm::normalize(glm::vec3(viewFromWorld * glm::dvec4(world, 0.0)));
+}
+
+glm::vec3 rgbAt(const Image& image, size_t p) {
+  const float* v = &image.pixels[p * static_cast<size_t>(image.channels)];
+  return glm::vec3(v[0], v[1], v[2]);
+}
+
+}  // namespace
+
+glm::vec3 shadeAsGBuffer(const Scene& scene, const RayTracer::Hit& hit, const glm::dmat4& viewFromWorld,
+                         bool orthographic) {
+  const Mesh& mesh = scene.meshes.at(hit.mesh);
+  const Material& m = scene.materials.at(static_cast<size_t>(mesh.material));
+  glm::vec3 base = m.baseColor;
+  if (m.baseColorTexture >= 0 && static_cast<size_t>(m.baseColorTexture) < scene.textures.size() &&
+      !mesh.uvs.empty()) {
+    const std::uint32_t* tri = &mesh.indices[3 * static_cast<size_t>(hit.primitive)];
+    const glm::vec2 b = hit.barycentric;
+    const glm::vec2 uv = mesh.uvs[tri[0]] * (1.0f - b.x - b.y) + mesh.uvs[tri[1]] * b.x + mesh.uvs[tri[2]] * b.y;
+    base *= sampleTexture(scene.textures[static_cast<size_t>(m.baseColorTexture)], uv);
+  }
+  const glm::vec3 toCamera = orthographic ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::normalize(-hit.vsPosition);
+  const glm::vec3 n = glm::dot(hit.vsNormal, toCamera) < 0.0f ? -hit.vsNormal : hit.vsNormal;  // the side seen
+  const glm::vec3 vsLight = viewDirection(viewFromWorld, glm::dvec3(scene.lightDirection));
+  const glm::vec3 vsUp = viewDirection(viewFromWorld, glm::dvec3(0.0, 1.0, 0.0));
+  const float diffuse = std::max(glm::dot(n, -vsLight), 0.0f);
+  const float ambient = 0.18f + 0.12f * glm::dot(n, vsUp);
+  const float kd = 1.0f - 0.85f * m.metallic;
+  const glm::vec3 fallback = reflectance(m) * shared::sslrFresnelClassic(std::max(glm::dot(toCamera, n), 0.0f)) *
+                             environment(glm::reflect(-toCamera, n), vsUp, scene.background);
+  return base * kd * (0.85f * diffuse + ambient) + m.baseColor * m.emissive + m.emissiveColor + fallback;
+}
+
+ReferenceImage referenceComposite(const Scene& scene, const RayTracer& tracer, const GBuffer& gbuffer,
+                                  const GroundTruth& truth) {
+  ReferenceImage ref;
+  const Image color = gbuffer.readColor(), fallback = gbuffer.readFallbackSpecular();
+  const int w = truth.width, h = truth.height;
+  ref.composite.width = w;
+  ref.composite.height = h;
+  ref.composite.channels = 3;
+  ref.composite.pixels.assign(static_cast<size_t>(w) * h * 3, 0.0f);
+  ref.scored.assign(static_cast<size_t>(w) * h, 0);
+  const glm::dmat4& clipFromView = gbuffer.clipFromView();
+  const bool ortho = clipFromView[3][3] == 1.0;
+  const PrimaryRays rays{glm::inverse(clipFromView), ortho, w, h};
+  const glm::vec3 vsUp = viewDirection(gbuffer.viewFromWorld(), glm::dvec3(0.0, 1.0, 0.0));
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t p = static_cast<size_t>(y) * w + x;
+      glm::vec3 out = rgbAt(color, p);
+      if (truth.pixels[p].cls != TruthClass::NotReflective) {
+        glm::dvec3 origin, dir;
+        rays.at(x, y, origin, dir);
+        const RayTracer::Hit primary = tracer.intersect(glm::vec3(origin), glm::vec3(dir));
+        const Material* m = primary.hit ? &scene.materials.at(static_cast<size_t>(scene.meshes.at(primary.mesh).material))
+                                        : nullptr;
+        if (m != nullptr && m->roughness <= kReferenceMaxRoughness) {
+          const glm::vec3 V(dir), N = primary.vsNormal;
+          const glm::vec3 R = glm::normalize(glm::reflect(V, N));
+          const glm::vec3 start = primary.vsPosition + N * (1e-5f * std::max(1.0f, glm::length(primary.vsPosition)));
+          const RayTracer::Hit reflected = tracer.intersect(start, R);
+          const glm::vec3 radiance = reflected.hit ? shadeAsGBuffer(scene, reflected, gbuffer.viewFromWorld(), ortho)
+                                                   : environment(R, vsUp, scene.background);
+          out += reflectance(*m) * shared::sslrFresnelClassic(std::max(glm::dot(-V, N), 0.0f)) * radiance -
+                 rgbAt(fallback, p);
+          ref.scored[p] = 1;
+          ++ref.scoredCount;
+        }
+      }
+      for (int c = 0; c < 3; ++c) ref.composite.pixels[p * 3 + c] = out[c];
+    }
+  return ref;
+}
+
+Expected<ReferenceImage> referenceFor(const Scene& scene, const GBuffer& gbuffer, const GroundTruth& truth) {
+  auto tracer = RayTracer::create(scene, gbuffer.viewFromWorld());
+  if (!tracer) return Status::error(tracer.error());
+  return referenceComposite(scene, *tracer.value(), gbuffer, truth);
+}
+
+ImageError compositeError(const ReferenceImage& reference, const Image& composite) {
+  ImageError e;
+  double sum = 0.0;
+  for (size_t p = 0; p < reference.scored.size(); ++p) {
+    if (!reference.scored[p]) continue;
+    const glm::vec3 d = rgbAt(composite, p) - rgbAt(reference.composite, p);
+    sum += double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
+    ++e.pixels;
+  }
+  if (e.pixels == 0) return e;
+  e.rmse = std::sqrt(sum / (3.0 * double(e.pixels)));
+  e.psnr = e.rmse > 0.0 ? 20.0 * std::log10(1.0 / e.rmse) : 99.0;
+  return e;
+}
+
+CompositeBreakdown compositeBreakdown(const ReferenceImage& reference, const Image& composite, const GroundTruth& truth,
+                                      const Image& hit) {
+  CompositeBreakdown b;
+  double sum[4] = {0, 0, 0, 0}, total = 0.0;
+  CompositeBreakdown::Kind* kinds[4] = {&b.hit, &b.wrong, &b.missed, &b.unreachable};
+  for (size_t p = 0; p < reference.scored.size(); ++p) {
+    if (!reference.scored[p]) continue;
+    const TruthPixel& tp = truth.pixels[p];
+    const float* h = &hit.pixels[p * static_cast<size_t>(hit.channels)];
+    const bool reported = h[2] > kReportedConfidence;
+    const bool visible = tp.cls == TruthClass::Visible;
+    const bool within1px =
+        visible && std::hypot((h[0] - tp.uvHit.x) * truth.width, (h[1] - tp.uvHit.y) * truth.height) <= 1.0f;
+    const int k = reported ? (within1px ? 0 : 1) : (visible ? 2 : 3);
+    const glm::vec3 d = rgbAt(composite, p) - rgbAt(reference.composite, p);
+    const double e = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
+    sum[k] += e;
+    total += e;
+    ++kinds[k]->pixels;
+  }
+  for (int k = 0; k < 4; ++k) {
+    if (kinds[k]->pixels > 0) kinds[k]->rmse = std::sqrt(sum[k] / (3.0 * double(kinds[k]->pixels)));
+    kinds[k]->share = total > 0.0 ? sum[k] / total : 0.0;
+  }
+  return b;
+}
+
+Image compositeErrorMap(const ReferenceImage& reference, const Image& composite) {
+  Image map;
+  map.width = reference.composite.width;
+  map.height = reference.composite.height;
+  map.channels = 3;
+  map.pixels.assign(static_cast<size_t>(map.width) * map.height * 3, 0.1f);
+  for (size_t p = 0; p < reference.scored.size(); ++p) {
+    if (!reference.scored[p]) continue;
+    const glm::vec3 d = glm::min(glm::abs(rgbAt(composite, p) - rgbAt(reference.composite, p)) * 4.0f, glm::vec3(1.0f));
+    for (int c = 0; c < 3; ++c) map.pixels[p * 3 + c] = d[c];
+  }
+  return map;
+}
+
+}  // namespace sslr::host
