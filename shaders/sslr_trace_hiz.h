@@ -435,7 +435,8 @@ SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTracePa
   return first;
 }
 
-// The traversal's part, given the first stage's answer `first` for a pixel that needs it.
+// The second stage (the traversal; traversal first: adaptive L), given the first stage's answer
+// `first` for a pixel that needs it.
 SSLR_FN SslrHit sslrTraceSecondStage(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
                                      vec3 vsR, SslrHit first) {
   if (sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST) return sslrProbeAfterWalk(p, s, t, pxOrigin, vsP, vsR, first);
