@@ -1,5 +1,6 @@
 // Host G-buffer pass: lit colour, packed normal + material, optional exact view position.
 #include "sslr_shared.h"
+#include "lighting.h"
 
 in vec3 vVsPosition;
 in vec3 vVsNormal;
@@ -40,21 +41,12 @@ void main() {
   }
   vec3 base = uBaseColor;
   if (uHasTexture != 0) base *= texture(uBaseColorTexture, vUv).rgb;
-  // Deterministic lighting: one directional light plus a sky/ground ambient. Metals get little
-  // diffuse light, so their look comes from the reflection sslr adds.
-  float diffuse = max(dot(n, -uVsLightDirection), 0.0f);
-  float ambient = 0.18f + 0.12f * dot(n, uVsUp);
-  float kd = 1.0f - 0.85f * uMetallic;
-  // Fallback specular, the stand-in for an engine's probes / IBL: the environment (the sky above the
-  // horizon, a dim ground below it) in the mirror direction, times the Fresnel term sslr's default
-  // (Classic) mode uses, so a traced reflection and the fallback meet without a seam.
+  // Deterministic lighting (host/lighting.h) and the fallback specular, the stand-in for an engine's
+  // probes / IBL.
   vec3 vsV = uOrthographic != 0 ? vec3(0.0f, 0.0f, 1.0f) : normalize(-vVsPosition);
-  vec3 vsR = reflect(-vsV, n);
-  vec3 environment = mix(0.25f * uSky, uSky, smoothstep(-0.05f, 0.05f, dot(vsR, uVsUp)));
-  float cosVN = max(dot(vsV, n), 0.0f);
-  vec3 fallback = uReflectance * sslrFresnelClassic(cosVN) * environment;
+  vec3 fallback = sslrHostFallbackSpecular(uReflectance, vsV, n, uVsUp, uSky);
   oFallbackSpecular = vec4(fallback, 1.0f);
-  oColor = vec4(base * kd * (0.85f * diffuse + ambient) + uEmission + fallback, 1.0f);
+  oColor = vec4(sslrHostLitColor(base, uMetallic, uEmission, n, uVsLightDirection, uVsUp) + fallback, 1.0f);
   // Material values quantized here, halves to even: a value on a half-step (roughness 0.5 is
   // 32767.5 of RGBA16's steps, 0.3 is 19660.5 in float) is rounded by each driver its own way, and
   // the glossy scene's panels sit on the presets' cutoffs (an H100 traced the 0.5 panel at cutoff

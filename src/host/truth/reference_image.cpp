@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sslr_shared.h"
+#include "host/lighting.h"
 
 namespace sslr::host {
 
@@ -29,13 +29,6 @@ glm::vec3 sampleTexture(const Texture& t, glm::vec2 uv) {
   };
   return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx), glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx),
                   fy);
-}
-
-// The fallback environment in direction vsR: the sky above the horizon, a dim ground below it
-// (shaders/host/gbuffer.frag).
-glm::vec3 environment(glm::vec3 vsR, glm::vec3 vsUp, glm::vec3 sky) {
-  const float t = glm::clamp((glm::dot(vsR, vsUp) + 0.05f) / 0.1f, 0.0f, 1.0f);
-  return glm::mix(0.25f * sky, sky, t * t * (3.0f - 2.0f * t));
 }
 
 glm::vec3 viewDirection(const glm::dmat4& viewFromWorld, glm::dvec3 world) {
@@ -65,12 +58,8 @@ glm::vec3 shadeAsGBuffer(const Scene& scene, const RayTracer::Hit& hit, const gl
   const glm::vec3 n = glm::dot(hit.vsNormal, toCamera) < 0.0f ? -hit.vsNormal : hit.vsNormal;  // the side seen
   const glm::vec3 vsLight = viewDirection(viewFromWorld, glm::dvec3(scene.lightDirection));
   const glm::vec3 vsUp = viewDirection(viewFromWorld, glm::dvec3(0.0, 1.0, 0.0));
-  const float diffuse = std::max(glm::dot(n, -vsLight), 0.0f);
-  const float ambient = 0.18f + 0.12f * glm::dot(n, vsUp);
-  const float kd = 1.0f - 0.85f * m.metallic;
-  const glm::vec3 fallback = reflectance(m) * shared::sslrFresnelClassic(std::max(glm::dot(toCamera, n), 0.0f)) *
-                             environment(glm::reflect(-toCamera, n), vsUp, scene.background);
-  return base * kd * (0.85f * diffuse + ambient) + m.baseColor * m.emissive + m.emissiveColor + fallback;
+  return shared::sslrHostLitColor(base, m.metallic, m.baseColor * m.emissive + m.emissiveColor, n, vsLight, vsUp) +
+         shared::sslrHostFallbackSpecular(reflectance(m), toCamera, n, vsUp, scene.background);
 }
 
 ReferenceImage referenceComposite(const Scene& scene, const RayTracer& tracer, const GBuffer& gbuffer,
@@ -98,13 +87,12 @@ ReferenceImage referenceComposite(const Scene& scene, const RayTracer& tracer, c
         const Material* m = primary.hit ? &scene.materials.at(static_cast<size_t>(scene.meshes.at(primary.mesh).material))
                                         : nullptr;
         if (m != nullptr && m->roughness <= kReferenceMaxRoughness) {
-          const glm::vec3 V(dir), N = primary.vsNormal;
-          const glm::vec3 R = glm::normalize(glm::reflect(V, N));
-          const glm::vec3 start = primary.vsPosition + N * (1e-5f * std::max(1.0f, glm::length(primary.vsPosition)));
-          const RayTracer::Hit reflected = tracer.intersect(start, R);
-          const glm::vec3 radiance = reflected.hit ? shadeAsGBuffer(scene, reflected, gbuffer.viewFromWorld(), ortho)
-                                                   : environment(R, vsUp, scene.background);
-          out += reflectance(*m) * shared::sslrFresnelClassic(std::max(glm::dot(-V, N), 0.0f)) * radiance -
+          const Reflection reflected = traceReflection(tracer, primary, glm::vec3(dir));
+          const glm::vec3 radiance = reflected.hit.hit
+                                         ? shadeAsGBuffer(scene, reflected.hit, gbuffer.viewFromWorld(), ortho)
+                                         : shared::sslrHostEnvironment(reflected.direction, vsUp, scene.background);
+          const float cosVN = std::max(glm::dot(-glm::vec3(dir), primary.vsNormal), 0.0f);
+          out += reflectance(*m) * shared::sslrFresnelClassic(cosVN) * radiance -
                  rgbAt(fallback, p);
           ref.scored[p] = 1;
           ++ref.scoredCount;
