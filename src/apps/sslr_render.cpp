@@ -497,8 +497,40 @@ void printFrameTimes(const FrameTimes& t) {
   std::printf("\n");
 }
 
-// --score: the truth's classes and the scores.
-void printScore(const HitMetrics& m) {
+// --score: the hits against Embree's truth and, for a weighted composite over the fallback, the
+// final image against the ray-traced reference (the reference replaces that fallback).
+struct Scores {
+  std::optional<HitMetrics> hits;
+  std::optional<ImageError> composite;
+  std::optional<CompositeBreakdown> breakdown;
+};
+
+// Scores the frame `r` rendered (one Embree scene for the truth and the reference) and adds the
+// error images to `files`.
+Expected<Scores> scoreFrame(const RenderJob& job, FrameRenderer& r, NamedImages& files) {
+  auto tracer = RayTracer::create(job.scene, r.gbuffer().viewFromWorld());
+  if (!tracer) return Status::error("ground truth: " + tracer.error());
+  const GroundTruth truth = groundTruthFor(*tracer.value(), r.gbuffer(), job.settings);
+  Scores scores;
+  const Image color = r.gbuffer().readColor(), hit = r.readHit();
+  scores.hits = compareHits(truth, hit, kReportedConfidence, &color);
+  files.push_back({"error.png", {hitErrorImage(truth, hit), {}}});
+  if (job.dump) files.push_back({"truth.exr", {truthImage(truth), {"R", "G", "B", "A"}}});
+  if (job.compositeMode == CompositeMode::BlendOverFallback && job.settings.output == OutputMode::Weighted) {
+    const ReferenceImage reference = referenceComposite(job.scene, *tracer.value(), r.gbuffer(), truth);
+    const Image final = r.readFinal();
+    scores.composite = compositeError(reference, final);
+    scores.breakdown = compositeBreakdown(reference, final, truth, hit);
+    files.push_back({"reference.png", {reference.composite, {}}});
+    files.push_back({"composite-error.png", {compositeErrorMap(reference, final), {}}});
+  }
+  return scores;
+}
+
+// The truth's classes and the scores.
+void printScores(const Scores& scores) {
+  if (!scores.hits) return;
+  const HitMetrics& m = *scores.hits;
   std::printf("  truth: %zu visible (A; %zu of them shown by no pixel within 1 px), %zu occluded (B), %zu off "
               "screen (C), %zu escaped (D)\n",
               m.visible, m.unshown, m.occluded, m.offScreen, m.escaped);
@@ -506,6 +538,16 @@ void printScore(const HitMetrics& m) {
               "%.4f (%.4f beyond 1 px of the true hit)  reflection RMSE %.4f  non-finite %zu\n",
               m.recall1px, m.recallShown1px, m.recall2px, m.recall4px, m.medianErrorPx, m.p95ErrorPx, m.falseHitRate,
               m.falseHitRateBeyond1px, m.reflectionRmse, m.nonFinite);
+  if (scores.composite)
+    std::printf("  composite against the ray-traced reference: RMSE %.4f, PSNR %.1f dB over %zu mirror pixels\n",
+                scores.composite->rmse, scores.composite->psnr, scores.composite->pixels);
+  if (!scores.breakdown) return;
+  const CompositeBreakdown& b = *scores.breakdown;
+  std::printf("  its error by pixel (RMSE, share of the squared error, pixels):");
+  const std::pair<const char*, const CompositeBreakdown::Kind*> kinds[] = {
+      {"hits within 1 px", &b.hit}, {"wrong hits", &b.wrong}, {"missed", &b.missed}, {"unreachable", &b.unreachable}};
+  for (const auto& [name, k] : kinds) std::printf(" %s %.4f, %.0f%%, %zu;", name, k->rmse, 100.0 * k->share, k->pixels);
+  std::printf("\n");
 }
 
 // A frame in which no pixel shows the scene (a model scaled to nothing, a zero node scale, only
@@ -565,33 +607,14 @@ int render(const RenderJob& job) {
   }
   warnIfNothingShows(job, r.gbuffer());
   NamedImages files = collectImages(job, r);
-  std::optional<HitMetrics> score;
-  std::optional<ImageError> composite;
-  std::optional<CompositeBreakdown> breakdown;
+  Scores scores;
   if (job.score && job.reflections) {
-    auto truth = groundTruthFor(job.scene, r.gbuffer(), job.settings);
-    if (!truth) {
-      std::cerr << "sslr-render: ground truth: " << truth.error() << "\n";
+    auto scored = scoreFrame(job, r, files);
+    if (!scored) {
+      std::cerr << "sslr-render: " << scored.error() << "\n";
       return kExitFailure;
     }
-    const Image color = r.gbuffer().readColor(), hit = r.readHit();
-    score = compareHits(truth.value(), hit, kReportedConfidence, &color);
-    files.push_back({"error.png", {hitErrorImage(truth.value(), hit), {}}});
-    if (job.dump) files.push_back({"truth.exr", {truthImage(truth.value()), {"R", "G", "B", "A"}}});
-    // What the user sees against the ray-traced reference: the composite over the fallback of a
-    // weighted reflection (the reference replaces that fallback).
-    if (job.compositeMode == CompositeMode::BlendOverFallback && job.settings.output == OutputMode::Weighted) {
-      auto reference = referenceFor(job.scene, r.gbuffer(), truth.value());
-      if (!reference) {
-        std::cerr << "sslr-render: reference image: " << reference.error() << "\n";
-        return kExitFailure;
-      }
-      const Image final = r.readFinal();
-      composite = compositeError(reference.value(), final);
-      breakdown = compositeBreakdown(reference.value(), final, truth.value(), hit);
-      files.push_back({"reference.png", {reference.value().composite, {}}});
-      files.push_back({"composite-error.png", {compositeErrorMap(reference.value(), final), {}}});
-    }
+    scores = scored.value();
   }
   if (gl.value()->glErrorCount() > 0) {
     std::cerr << "sslr-render: " << gl.value()->glErrorCount() << " GL error(s) were reported; no output written\n";
@@ -608,18 +631,7 @@ int render(const RenderJob& job) {
     printStats(r.sslr().waitForStats(), laterStats, job.frames, gl.value()->isSoftware(), r.sslr().device());
     printFrameTimes(times);
   }
-  if (score) printScore(*score);
-  if (composite)
-    std::printf("  composite against the ray-traced reference: RMSE %.4f, PSNR %.1f dB over %zu mirror pixels\n",
-                composite->rmse, composite->psnr, composite->pixels);
-  if (breakdown) {
-    std::printf("  its error by pixel (RMSE, share of the squared error, pixels):");
-    const std::pair<const char*, const CompositeBreakdown::Kind*> kinds[] = {
-        {"hits within 1 px", &breakdown->hit}, {"wrong hits", &breakdown->wrong},
-        {"missed", &breakdown->missed}, {"unreachable", &breakdown->unreachable}};
-    for (const auto& [name, k] : kinds) std::printf(" %s %.4f, %.0f%%, %zu;", name, k->rmse, 100.0 * k->share, k->pixels);
-    std::printf("\n");
-  }
+  printScores(scores);
   return 0;
 }
 

@@ -411,9 +411,7 @@ TEST_P(ReferenceShading, IsTheGBuffersColourWhereTheCameraSeesTheHit) {
       rays.at(x, y, origin, dir);
       const RayTracer::Hit primary = tracer.value()->intersect(glm::vec3(origin), glm::vec3(dir));
       ASSERT_TRUE(primary.hit);
-      const glm::vec3 R = glm::normalize(glm::reflect(glm::vec3(dir), primary.vsNormal));
-      const glm::vec3 start = primary.vsPosition + primary.vsNormal * (1e-5f * std::max(1.0f, glm::length(primary.vsPosition)));
-      const RayTracer::Hit hit = tracer.value()->intersect(start, R);
+      const RayTracer::Hit hit = traceReflection(*tracer.value(), primary, glm::vec3(dir)).hit;
       ASSERT_TRUE(hit.hit);
       const glm::vec3 shade = shadeAsGBuffer(scene.value(), hit, g.viewFromWorld(), ortho);
       const int hx = std::clamp(static_cast<int>(tp.uvHit.x * o.width), 0, o.width - 1);

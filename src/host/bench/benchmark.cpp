@@ -398,14 +398,12 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
     const Image depth = gb.readDepth(), normal = gb.readNormalPacked(), positions = gb.readPosition(),
                 color = gb.readColor();
 
-    // Ground truth (Embree), once per scene.
+    // Ground truth (Embree), once per scene, and what a perfect mirror tracer would composite.
     progress(done, total, sceneName + ": ground truth");
-    const Settings defaults;
-    auto truth = groundTruthFor(sf.scene, gb, defaults);
-    if (!truth) return Status::error(truth.error());
-    const GroundTruth& gt = truth.value();
-    auto reference = referenceFor(sf.scene, gb, gt);  // what a perfect mirror tracer would composite
-    if (!reference) return Status::error(reference.error());
+    auto tracer = RayTracer::create(sf.scene, gb.viewFromWorld());
+    if (!tracer) return Status::error(tracer.error());
+    const GroundTruth gt = groundTruthFor(*tracer.value(), gb, Settings{});
+    const ReferenceImage reference = referenceComposite(sf.scene, *tracer.value(), gb, gt);
 
     SceneRecord sr = sceneRecordOf(sceneName, gt);
     measureRepresentations(sr, gt, sf, depth, normal, positions, options);
@@ -418,7 +416,7 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
     std::vector<RunRecord> runs;
     for (size_t i = 0; i < grid.size(); ++i) {
       const BenchConfig& c = grid[i];
-      auto r = qualityRun(c, i, sceneName, sf, gt, reference.value(), color, contexts, options, renderer,
+      auto r = qualityRun(c, i, sceneName, sf, gt, reference, color, contexts, options, renderer,
                           result.timingMethod, reportDir, sr);
       if (!r) return Status::error(r.error());
       runs.push_back(r.value());

@@ -64,20 +64,17 @@ GlossyTruth computeGlossyTruth(const RayTracer& tracer, const glm::dmat4& clipFr
   g.visibleShare.assign(count, -1.0f);
   g.roughness.assign(count, 0.0f);
   const bool ortho = clipFromView[3][3] == 1.0;
-  const glm::dmat4 viewFromClip = glm::inverse(clipFromView);
+  const PrimaryRays rays{glm::inverse(clipFromView), ortho, g.width, g.height};
   auto row = [&](int y) {
     for (int x = 0; x < g.width; ++x) {
       const size_t p = static_cast<size_t>(y) * g.width + x;
       g.roughness[p] = roughness.pixels[p * roughness.channels];
       if (!mask[p]) continue;
       // The primary ray through the pixel centre (as the mirror truth's).
-      const glm::dvec2 ndc((x + 0.5) / g.width * 2.0 - 1.0, (y + 0.5) / g.height * 2.0 - 1.0);
-      glm::dvec4 nearPt = viewFromClip * glm::dvec4(ndc, -1.0, 1.0), farPt = viewFromClip * glm::dvec4(ndc, 0.5, 1.0);
-      nearPt /= nearPt.w;
-      farPt /= farPt.w;
-      const glm::vec3 origin = ortho ? glm::vec3(nearPt.x, nearPt.y, 0.0) : glm::vec3(0.0f);
-      const glm::vec3 dir = ortho ? glm::vec3(0, 0, -1) : glm::vec3(glm::normalize(glm::dvec3(farPt)));
-      const RayTracer::Hit primary = tracer.intersect(origin, dir);
+      glm::dvec3 dOrigin, dDir;
+      rays.at(x, y, dOrigin, dDir);
+      const glm::vec3 dir(dDir);
+      const RayTracer::Hit primary = tracer.intersect(glm::vec3(dOrigin), dir);
       g.visibleShare[p] = 0.0f;
       if (!primary.hit) continue;
       const glm::vec3 n = primary.vsNormal;
@@ -87,7 +84,7 @@ GlossyTruth computeGlossyTruth(const RayTracer& tracer, const glm::dmat4& clipFr
       const glm::vec3 ve(glm::dot(toEye, t), glm::dot(toEye, b), glm::dot(toEye, n));
       if (!(ve.z > 0.0f)) continue;
       const float alpha = std::max(g.roughness[p] * g.roughness[p], 1e-4f);
-      const glm::vec3 start = primary.vsPosition + n * (1e-5f * std::max(1.0f, glm::length(primary.vsPosition)));
+      const glm::vec3 start = offsetFromSurface(primary);
       // Two halves, each a whole stratified set under a rotation of its own (randomized
       // quasi-Monte Carlo): their difference measures the estimate's own error.
       const glm::vec2 rotations[2] = {pixelRotation(static_cast<std::uint32_t>(p)),

@@ -182,12 +182,7 @@ TruthPixel truthAt(const RayTracer& tracer, const glm::dmat4& clipFromView, cons
     tp.cls = TruthClass::Escaped;  // the G-buffer saw geometry the tracer missed (edge pixel)
     return tp;
   }
-  const glm::vec3 V(dir);
-  const glm::vec3 N = primary.vsNormal;
-  const glm::vec3 R = glm::normalize(glm::reflect(V, N));
-  // Offset along the normal against self-intersection (relative to the distance).
-  const glm::vec3 start = primary.vsPosition + N * (1e-5f * std::max(1.0f, glm::length(primary.vsPosition)));
-  const RayTracer::Hit refl = tracer.intersect(start, R);
+  const RayTracer::Hit refl = traceReflection(tracer, primary, glm::vec3(dir)).hit;
   if (!refl.hit) {
     tp.cls = TruthClass::Escaped;
     return tp;
@@ -242,8 +237,12 @@ GroundTruth computeGroundTruth(const RayTracer& tracer, const glm::dmat4& clipFr
 Expected<GroundTruth> groundTruthFor(const Scene& scene, const GBuffer& gbuffer, const Settings& settings) {
   auto tracer = RayTracer::create(scene, gbuffer.viewFromWorld());
   if (!tracer) return Status::error(tracer.error());
+  return groundTruthFor(*tracer.value(), gbuffer, settings);
+}
+
+GroundTruth groundTruthFor(const RayTracer& tracer, const GBuffer& gbuffer, const Settings& settings) {
   const auto mask = reflectiveMask(gbuffer.readDepth(), gbuffer.readNormalPacked(), gbuffer.frameInputs(), settings);
-  return computeGroundTruth(*tracer.value(), gbuffer.clipFromView(), gbuffer.width(), gbuffer.height(), mask);
+  return computeGroundTruth(tracer, gbuffer.clipFromView(), gbuffer.width(), gbuffer.height(), mask);
 }
 
 HitMetrics compareHits(const GroundTruth& truth, const Image& hit, float threshold, const Image* color) {

@@ -2,6 +2,7 @@
 // compare a screen-space trace against it. Same triangles, same camera, pixel centres.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -81,6 +82,25 @@ struct PrimaryRays {
   }
 };
 
+// Where a secondary ray leaves a primary hit: a hair off the surface along its normal, relative to
+// the distance (against self-intersection).
+inline glm::vec3 offsetFromSurface(const RayTracer::Hit& primary) {
+  return primary.vsPosition + primary.vsNormal * (1e-5f * std::max(1.0f, glm::length(primary.vsPosition)));
+}
+
+// The exact reflection of a primary hit seen along `viewDir`: the ray reflected about the hit's
+// interpolated normal, and what it meets.
+struct Reflection {
+  glm::vec3 direction{0.0f};
+  RayTracer::Hit hit;
+};
+inline Reflection traceReflection(const RayTracer& tracer, const RayTracer::Hit& primary, glm::vec3 viewDir) {
+  Reflection r;
+  r.direction = glm::normalize(glm::reflect(viewDir, primary.vsNormal));
+  r.hit = tracer.intersect(offsetFromSurface(primary), r.direction);
+  return r;
+}
+
 // Which pixels the SSR pass traces (sslrShouldTrace on the read-back G-buffer).
 std::vector<std::uint8_t> reflectiveMask(const Image& depth, const Image& normalPacked, const FrameInputs& in,
                                          const Settings& settings);
@@ -93,6 +113,8 @@ GroundTruth computeGroundTruth(const RayTracer& tracer, const glm::dmat4& clipFr
 // The whole protocol for what `gbuffer` last rendered of `scene`: Embree over the same triangles
 // in the same view space, restricted to the pixels `settings` traces.
 Expected<GroundTruth> groundTruthFor(const Scene& scene, const GBuffer& gbuffer, const Settings& settings);
+// The same over a tracer already built for that frame's scene and view (the reference image reuses it).
+GroundTruth groundTruthFor(const RayTracer& tracer, const GBuffer& gbuffer, const Settings& settings);
 
 // A hit counts as reported when its confidence exceeds this (the measuring protocol's 0.5).
 inline constexpr float kReportedConfidence = 0.5f;
