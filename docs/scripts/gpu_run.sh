@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The scripted GPU run behind docs/results.md's GPU section: one command on a lent GPU machine,
 # from a checkout of the measured commit with `docs/scripts/bundle.sh`'s archive at
-# .gpu/bundle.tar.xz. Order: the benchmark grids first (960x540 with the cost curves, 1920x1080,
-# then the default and the tutorial's demo configuration at 3840x2160), the GL tests on the GPU's
-# driver last; each step has its own time limit so a slow step cannot take the others' results.
+# .gpu/bundle.tar.xz. Order: the benchmark grids first (960x540 in two halves, the first with the
+# cost curves), per-pass times with the ray-work model (sslr-render --stats), the main
+# configurations at 1920x1080, the GL tests on the GPU's driver last; each step has its own time limit so a slow step cannot take the others' results.
 # Results go to $OUT (default gpu-out): one archive of the CSV/JSON/plots and the logs.
 # Usage: docs/scripts/gpu_run.sh [SECONDS_FOR_ALL]   (default 520)
 set -u
@@ -45,16 +45,33 @@ bench() {  # NAME LIMIT ARGS...: one grid, its log beside its results
   mv "bench-$name.log" "bench/$name/" 2>/dev/null || true
 }
 mkdir -p bench
-bench 960x540 200 --grid full --no-temporal --no-glossy
-bench 1920x1080 130 --grid full --size 1920x1080 --no-curves --no-temporal --no-glossy
-bench 3840x2160 90 --grid full --size 3840x2160 --no-curves --no-temporal --no-glossy \
-  --scenes mirror-room,grazing-plane,thin-objects,glossy,sky-heavy \
-  --configs "adaptive-l/high,adaptive-l/high-half,adaptive-l/high-no-fallback,hiz/steps128,dda/stride4-thick0.5,position-buffer/tutorial (res0.3-steps5-dist8)"
+# The eight scenes of earlier GPU runs first (with the cost curves), then the scenes nobody here
+# made and the sphere scenes: two grids, so one that runs out of time keeps the other's results.
+bench 960x540 150 --grid full --no-temporal --no-glossy \
+  --scenes mirror-room,grazing-plane,thin-objects,glossy,sky-heavy,facing-mirror,mirror-walls,curved-mirror
+bench 960x540-more 110 --grid full --no-curves --no-temporal --no-glossy \
+  --scenes turned-mirror,mirror-corridor,mirrors-from-above,spider-on-mirror,wuson-as-mirror,sphere-over-mirror-32,sphere-over-mirror-128
+
+# Per-pass GPU times (GL_TIMESTAMP) beside the modelled ray work of the same run: the data that
+# calibrates the cost model of docs/results/ray-work.md. Default, 0.4's verified order, traversal alone.
+t0=$(date +%s)
+for scene in mirror-room glossy facing-mirror mirror-walls thin-objects sky-heavy; do
+  for mode in "" "--order adaptive-l-first --hiz-verify" "--method hiz"; do
+    [ "$(left)" -gt 150 ] || break 2
+    echo "== $scene ${mode:-default}"
+    timeout 30 "$bin/sslr-render" --scene "$scene" --size 960x540 --stats --frames 100 $mode --out "render/$scene" 2>&1 |
+      grep -E "traced pixels|ray work|pass times|frame times|commands"
+  done
+done >"$out/passes.log" 2>&1
+echo "passes: in $(($(date +%s) - t0)) s" >>"$out/steps.txt"
+
+bench 1920x1080 80 --grid full --size 1920x1080 --no-curves --no-temporal --no-glossy \
+  --configs "adaptive-l/high,adaptive-l/high-verify,adaptive-l/high-no-verify,adaptive-l/high-no-fallback,adaptive-l/high-half,adaptive-l/high-gpu-profile,adaptive-l/high-software-profile,hiz/steps128,dda/stride2-thick0.5,dda/stride4-thick0.5,ffx-sssr/thick0.015,ffx-sssr/thick0.5,position-buffer/tutorial (res0.3-steps5-dist8)"
 
 t0=$(date +%s)
 limit=$(left)
 [ "$limit" -gt 10 ] || limit=10
-SSLR_REQUIRE_GL=1 timeout "$limit" ctest --test-dir build/portable -L gpu -j8 --timeout 300 --output-on-failure \
+SSLR_REQUIRE_GL=1 timeout "$limit" ctest --test-dir build/portable -L gpu -j12 --timeout 300 --output-on-failure \
   >"$out/gl-tests.log" 2>&1
 echo "gl-tests: exit $? in $(($(date +%s) - t0)) s" >>"$out/steps.txt"
 
