@@ -301,7 +301,7 @@ struct Settings {
                            // hit, keeping an earlier crossing it finds (a ray adaptive L carried
                            // behind something): then never less than the traversal alone. Needs
                            // fallback; off in Preset::Low/Medium
-    int maxSteps = 128;    // 1..1024 pyramid cells visited per ray, each one fetch
+    int maxSteps = 112;    // 1..1024 pyramid cells visited per ray, each one fetch
     TraversalPass pass = TraversalPass::Auto;  // inline or in a pass of its own (same hits)
     float objectDepthRelative = 0.075f;  // >= 0, fraction of the view depth: how deep what a
                                          // pixel shows is assumed to be (without a back-face
