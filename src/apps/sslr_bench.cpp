@@ -86,6 +86,9 @@ cxxopts::Options benchOptions() {
       ("curve-fractions", "reflective percentages of the fraction curve, N,N,... (implies --curves)", cxxopts::value<std::string>())
       ("out", "output directory", cxxopts::value<std::string>()->default_value("bench-out"))
       ("device", "EGL device: auto, hardware, software, surfaceless or an index", cxxopts::value<std::string>()->default_value(""))
+      ("device-profile", "sslr's pass shapes for the configurations that name none: auto (software on a CPU "
+                         "rasterizer, else gpu), gpu or software; gpu on a CPU rasterizer counts a GPU's ray work and "
+                         "predicts its H100 time (predictedH100Ms)", cxxopts::value<std::string>()->default_value("auto"))
       ("h,help", "show this help");
   return options;
 }
@@ -129,6 +132,10 @@ void parseGrid(const cxxopts::ParseResult& args, BenchOptions& bo) {
     bo.frames = 15;
     bo.warmup = 2;
   }
+  const std::string profile = args["device-profile"].as<std::string>();
+  if (profile == "gpu") bo.device = DeviceProfile::Gpu;
+  else if (profile == "software") bo.device = DeviceProfile::Software;
+  else if (profile != "auto") throw std::runtime_error("--device-profile must be auto, gpu or software (got '" + profile + "')");
   if (args.count("configs")) {
     bo.configs = listItems(args["configs"].as<std::string>());
     if (auto check = selectConfigs(benchGrid(bo.grid), bo.configs); !check) throw std::runtime_error(check.error());

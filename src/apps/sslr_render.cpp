@@ -16,6 +16,7 @@
 #include <optional>
 #include <sstream>
 
+#include "sslr_host/cost_model.hpp"
 #include "sslr_host/egl_context.hpp"
 #include "sslr_host/frame_renderer.hpp"
 #include "sslr_host/gbuffer.hpp"
@@ -423,7 +424,7 @@ Status writeImages(const NamedImages& files, const fs::path& outDir) {
 
 // --stats: tiles, traced pixels, fetches, the commands per pass, and the pass times.
 void printStats(const FrameStats& st, const std::vector<FrameStats>& laterStats, int frames, bool software,
-                DeviceProfile profile) {
+                DeviceProfile profile, const Settings& settings) {
   std::cout << "  tiles " << st.tiles << " (blurred " << st.blurTiles << "), traced pixels " << st.tracedPixels << ", fetches "
             << st.fetches << " (" << (st.tracedPixels ? double(st.fetches) / st.tracedPixels : 0.0)
             << " per traced pixel), hierarchical traversal on " << st.hierarchicalPixels << " ("
@@ -452,6 +453,14 @@ void printStats(const FrameStats& st, const std::vector<FrameStats>& laterStats,
               static_cast<unsigned long long>(frameWork.laneSteps), static_cast<unsigned long long>(frameWork.simt32),
               static_cast<unsigned long long>(frameWork.simt64), frameWork.longestChain,
               st.tracedPixels ? double(frameWork.laneSteps) / st.tracedPixels : 0.0);
+  // What that work would cost an H100 (the model fitted to one; sslr_host/cost_model.hpp).
+  const FrameShape shape{settings.method, settings.traversal.fallback, profile, settings.halfResolution,
+                         st.traversalDeferred};
+  if (const std::optional<double> ms = predictedH100FrameMs(shape, frameWork))
+    std::printf("  predicted on an NVIDIA H100 (ray-work model, docs/results/gpu-h100.md): %.3f ms a frame\n", *ms);
+  else
+    std::printf("  predicted on an NVIDIA H100: not for this frame's shape (the model is fitted to the gpu profile, "
+                "full resolution, the traversal inline; --device-profile gpu)\n");
   // The texture memory each pass touched (FrameStats::*Traffic: a model from the counts and formats).
   std::printf("  texture traffic (MB read / written, modelled):");
   printPassTraffic(st);
@@ -628,7 +637,8 @@ int render(const RenderJob& job) {
             << toString(job.gopt.depth) << " depth, " << job.scene.triangleCount() << " triangles) -> "
             << (job.outDir / "final.png").string() << (job.dump ? " + buffers" : "") << "\n";
   if (stats) {
-    printStats(r.sslr().waitForStats(), laterStats, job.frames, gl.value()->isSoftware(), r.sslr().device());
+    printStats(r.sslr().waitForStats(), laterStats, job.frames, gl.value()->isSoftware(), r.sslr().device(),
+               job.settings);
     printFrameTimes(times);
   }
   printScores(scores);

@@ -124,6 +124,7 @@ json runJson(const RunRecord& r) {
           {"reflectionPsnr", traced ? num(m.reflectionPsnr) : json(nullptr)},
           {"compositeRmse", traced ? num(r.compositeRmse) : json(nullptr)},
           {"compositePsnr", traced ? num(r.compositePsnr) : json(nullptr)},
+          {"predictedH100Ms", num(r.predictedH100Ms)},
           {"nonFiniteHitPixels", m.nonFinite},
           {"nonFiniteOutputPixels", r.nonFiniteOutputs},
           {"tracedPixels", r.tracedPixels},
@@ -393,7 +394,7 @@ std::string resultsCsv(const BenchResult& result) {
          "visible,occluded,offScreen,escaped,recall1px,recall2px,recall4px,medianErrorPx,p95ErrorPx,falseHitRate,"
          "reflectionRmse,reflectionPsnr,nonFiniteHitPixels,nonFiniteOutputPixels,tracedPixels,fetches,"
          "fetchesPerTracedPixel,dispatches,indirectDispatches,barriers,programs,bytesRead,bytesWritten,laneSteps,simt32,"
-         "simt64,longestChain,gbufferBytesPerPixel,extraBytesPerPixel,compositeRmse,compositePsnr,parameters\n";
+         "simt64,longestChain,gbufferBytesPerPixel,extraBytesPerPixel,compositeRmse,compositePsnr,predictedH100Ms,parameters\n";
   for (const RunRecord& r : result.runs) {
     const json rj = runJson(r);
     const RayWork work = r.frameStats.totalRayWork();
@@ -413,7 +414,7 @@ std::string resultsCsv(const BenchResult& result) {
         << r.commands.programs << "," << r.traffic.bytesRead << "," << r.traffic.bytesWritten << ","
         << work.laneSteps << "," << work.simt32 << "," << work.simt64 << "," << work.longestChain
         << "," << r.gbufferBytesPerPixel << "," << r.extraBytesPerPixel << "," << v("compositeRmse") << ","
-        << v("compositePsnr") << "," << quoted << "\n";
+        << v("compositePsnr") << "," << v("predictedH100Ms") << "," << quoted << "\n";
   }
   return out.str();
 }

@@ -14,6 +14,7 @@
 #include "bench_contexts.hpp"
 #include "bench_timer.hpp"
 #include "glossy_study.hpp"
+#include "sslr_host/cost_model.hpp"
 #include "temporal_study.hpp"
 #include "sslr_host/embedded_shaders.hpp"
 #include "sslr_host/cpu_tracer.hpp"
@@ -316,6 +317,9 @@ Expected<RunRecord> qualityRun(const BenchConfig& c, size_t i, const std::string
     r.traffic = stats.totalTraffic();
     r.frameStats = stats;
     r.fetchesPerTracedPixel = stats.tracedPixels ? double(stats.fetches) / stats.tracedPixels : 0.0;
+    const FrameShape shape{c.settings.method, c.settings.traversal.fallback, ctx->device(), c.settings.halfResolution,
+                           stats.traversalDeferred};
+    r.predictedH100Ms = predictedH100FrameMs(shape, stats.totalRayWork()).value_or(NAN);
     r.nonFiniteOutputs = countNonFinite(readTexture(ctx->reflectionTexture(), options.width, options.height, 4)) +
                          countNonFinite(readTexture(ctx->resolvedTexture(), options.width, options.height, 4));
     if (c.isDefault) {
@@ -374,6 +378,9 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
     scenes = defaultBenchScenes();
   auto selected = selectConfigs(benchGrid(options.grid), options.configs);
   if (!selected) return Status::error(selected.error());
+  // --device-profile: the pass shapes of every configuration that names none of its own.
+  for (BenchConfig& c : selected.value())
+    if (c.device == DeviceProfile::Auto) c.device = options.device;
   const std::vector<BenchConfig>& grid = selected.value();
   // The back-face depth pass only when a configuration reads it.
   const bool anyBackDepth = std::any_of(grid.begin(), grid.end(), [](const BenchConfig& c) { return c.backDepth; });

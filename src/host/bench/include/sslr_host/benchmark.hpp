@@ -39,6 +39,9 @@ struct BenchOptions {
   std::vector<std::string> glossyScenes;
   int glossyWidth = 480, glossyHeight = 270;
   int glossySamples = 256;
+  // Pass shapes of the configurations that name none (ContextDesc::device); Auto: the renderer's.
+  // DeviceProfile::Gpu on a CPU rasterizer counts a GPU's ray work there (predictedH100Ms).
+  DeviceProfile device = DeviceProfile::Auto;
 };
 
 struct BenchConfig {
@@ -69,6 +72,9 @@ struct RunRecord {
   // The composite (over the fallback) against the ray-traced reference, over the mirror pixels
   // (reference_image.hpp): what the user sees. NaN where not measured (the baseline).
   double compositeRmse = NAN, compositePsnr = NAN;
+  // The frame's time on an NVIDIA H100 as the ray-work model predicts it (cost_model.hpp); NaN
+  // where the model does not apply (a frame not shaped as the fitted ones, the baseline).
+  double predictedH100Ms = NAN;
 };
 
 struct SceneRecord {

@@ -1,0 +1,27 @@
+// A GPU frame time predicted from a frame's ray work, on any machine.
+#pragma once
+
+#include <optional>
+
+#include "sslr/sslr.hpp"
+
+namespace sslr::host {
+
+// What decides which fit applies: the tracer and the frame's shape.
+struct FrameShape {
+  Method method = Method::AdaptiveL;
+  bool traversal = true;         // AdaptiveL: Settings::traversal.fallback (else adaptive L alone)
+  DeviceProfile device = DeviceProfile::Gpu;  // the profile the frame ran (Context::device())
+  bool halfResolution = false;
+  bool traversalDeferred = false;  // FrameStats::traversalDeferred
+};
+
+// The frame's time on an NVIDIA H100 (ms, GL_TIME_ELAPSED), predicted per tracer as
+// a + b x longest chain + c x SIMT work (RayWork::simt32): the least-squares fit to that GPU's
+// times of 15 scenes x 49 configurations at 960x540 (commit 869d7fc; docs/results/gpu-h100.md,
+// "The cost model"). Fitted without a scene, it predicted that scene to a median 11% (largest
+// 125%: a longest chain of cheap steps). Only for frames shaped as the fitted ones were: the Gpu
+// profile, full resolution, the traversal inline; none otherwise.
+std::optional<double> predictedH100FrameMs(const FrameShape& shape, const RayWork& work);
+
+}  // namespace sslr::host
