@@ -31,6 +31,8 @@ struct SslrHit {
   int status;        // SSLR_STATUS_*
   float fade;        // extra weight of the method (position buffer: the tutorial's fades), else 1
   int hierarchical;  // 1 when the hierarchical traversal ran for this pixel (alone or as fallback)
+  vec2 uvGuess;      // where the traversal first passed behind what the screen shows
+  float LGuess;      // ... and the ray's length there (0: it never did)
 };
 
 // A hit record that says "nothing": the starting state of every tracer.
@@ -43,6 +45,8 @@ SSLR_FN SslrHit sslrNoHit(int status) {
   hit.status = status;
   hit.fade = 1.0f;  // the depth-only tracers' weight; the tutorial's method sets its own
   hit.hierarchical = 0;
+  hit.uvGuess = vec2(0.0f);
+  hit.LGuess = 0.0f;
   return hit;
 }
 
@@ -424,7 +428,10 @@ SSLR_FN SslrWeights sslrReflectionWeights(SslrProjection p, SslrSurface s, SslrT
   SslrWeights w;
   w.coverage = sslrSaturate(hit.confidence * hit.fade * errorWeight * sslrEdgeFade(hit.uvHit, t.edgeFade) *
                             sslrCameraFacingFade(vsR, vsV, t.cameraFadeStart, t.cameraFadeEnd));
+  // A surface rebuilt from a poisoned depth can make a fade NaN: then no reflection, not NaN.
+  if (isnan(w.coverage) || isinf(w.coverage)) w.coverage = 0.0f;
   w.reflection = (t.outputRadiance != 0 ? 1.0f : fresnel) * w.coverage;
+  if (isnan(w.reflection) || isinf(w.reflection)) w.reflection = 0.0f;
   w.blurWeight = t.blurMaxRadiusPx > 0.0f ? sslrSaturate(radius / t.blurMaxRadiusPx) : 0.0f;
   return w;
 }

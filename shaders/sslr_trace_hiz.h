@@ -234,6 +234,10 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
         behindSkip = skip;
       }
       if (behindSkip) {
+        if (t.hiddenGuessWeight > 0.0f && hit.LGuess == 0.0f) {
+          hit.uvGuess = vec2(pos.x, pos.y) / sizePx;
+          hit.LGuess = sslrRayLengthAt(p, sizePx, keySign, o, d, tRay, vsP, vsR);
+        }
         hiddenPx += tExit - tRay;
         if (hiddenPx > t.hiddenPassageLimitPx) {
           hit.status = SSLR_STATUS_HIDDEN;
@@ -241,6 +245,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
           return hit;
         }
       }
+      if (skip && !behindSkip) hit.LGuess = 0.0f;  // in front again (or over background): not hidden
       if (skip) {
         // Look coarser only on entering a new parent cell: the parent of this one was (or will
         // be) looked at already, and going up into it again costs a step just to come back down.
@@ -328,7 +333,12 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
       }
     }
     if (!(behind > 0.0f) || behindNear >= slab) tRun = -1.0f;
+    if (!(behind > 0.0f)) hit.LGuess = 0.0f;
     if (behind > 0.0f && behindNear >= slab && !ownPixel) {  // passed behind what the pixel shows
+      if (t.hiddenGuessWeight > 0.0f && hit.LGuess == 0.0f) {
+        hit.uvGuess = (vec2(px) + 0.5f) / sizePx;
+        hit.LGuess = sslrRayLengthAt(p, sizePx, keySign, o, d, tRay, vsP, vsR);
+      }
       hiddenPx += tExit - tRay;
       if (hiddenPx > t.hiddenPassageLimitPx) {
         hit.status = SSLR_STATUS_HIDDEN;
@@ -413,6 +423,31 @@ SSLR_FN SslrHit sslrProbeAfterWalk(SslrProjection p, SslrSurface s, SslrTracePar
   return answer;
 }
 
+// Settings::traversal.hiddenGuess: a final answer without a hit whose traversal ended behind what
+// the screen shows (off the screen, out of steps) takes the colour where the ray last went behind,
+// at confidence hiddenGuessWeight: the occluder's visible side for its hidden one, fading towards
+// the fallback. Not where the ray went behind a curved surface (curved solids, level 0's extra
+// depth): a convex object's back faces away from what its front shows. The hit metrics count hits
+// above 0.5 confidence, so a weight up to 0.5 changes the image, not recall or false hits.
+SSLR_FN SslrHit sslrHiddenGuess(SslrSurface s, SslrTraceParams t, SslrHit answer) {
+  if (!(t.hiddenGuessWeight > 0.0f) || answer.status == SSLR_STATUS_HIT) return answer;
+  // Finite, on the screen and within the reflection's reach (a poisoned depth buffer can make
+  // neither: then no guess, as no hit). isnan/isinf explicitly: shader compilers may assume that
+  // comparisons never see a NaN.
+  vec2 uv = answer.uvGuess;
+  float L = answer.LGuess;
+  if (isnan(uv.x) || isnan(uv.y) || isnan(L) || isinf(uv.x) || isinf(uv.y) || isinf(L)) return answer;
+  if (!(L > 0.0f && L <= t.maxDistance)) return answer;
+  if (!(uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f)) return answer;
+  ivec2 px = min(ivec2(uv * vec2(float(s.width), float(s.height))), ivec2(s.width - 1, s.height - 1));
+  if (sslrCurvedSolids(t) && !sslrBackDepth(s) && sslrLoadPyramidTexel(0, px).y > 0.0f) return answer;
+  answer.status = SSLR_STATUS_HIT;
+  answer.uvHit = answer.uvGuess;
+  answer.L = answer.LGuess;
+  answer.confidence = t.hiddenGuessWeight;
+  return answer;
+}
+
 // Whether the second stage ran for this answer (the pixels a deferred pass lists).
 SSLR_FN bool sslrRanSecondStage(SslrTraceParams t, SslrHit h) {
   return sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST ? h.hierarchical == 2 : h.hierarchical != 0;
@@ -426,7 +461,7 @@ SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTracePa
   if (sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST) {  // the traversal first; the second stage probes
     SslrHit walked = sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
     needsTraversal = sslrWalkedNeedsProbes(p, t, vsP, vsR, walked);
-    return walked;
+    return needsTraversal ? walked : sslrHiddenGuess(s, t, walked);
   }
   if (sslrTraversalOnly(p, t, vsP, vsR)) return sslrNoHit(SSLR_STATUS_MISS);
   SslrHit first = sslrTraceAdaptiveL(p, s, t, pxOrigin, vsP, vsR);
@@ -439,9 +474,10 @@ SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTracePa
 // `first` for a pixel that needs it.
 SSLR_FN SslrHit sslrTraceSecondStage(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
                                      vec3 vsR, SslrHit first) {
-  if (sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST) return sslrProbeAfterWalk(p, s, t, pxOrigin, vsP, vsR, first);
+  if (sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST)
+    return sslrHiddenGuess(s, t, sslrProbeAfterWalk(p, s, t, pxOrigin, vsP, vsR, first));
   SslrHit second = sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
-  if (sslrTraversalOnly(p, t, vsP, vsR)) return second;
+  if (sslrTraversalOnly(p, t, vsP, vsR)) return sslrHiddenGuess(s, t, second);
   second.iterations += first.iterations;
   if (sslrConfidentHit(first)) {  // verification (SSLR_HIZ_VERIFY)
     if (sslrConfidentHit(second) && second.L < 0.97f * first.L) return second;

@@ -101,7 +101,7 @@ struct SslrTraceParams {
   float stochasticFrom;       // GlossyMode::Stochastic: pixels this rough or more draw their ray (> 1: none)
   float maxHitLuminance;      // Settings::radianceClamp: a hit colour's luminance at most this
                               // (colour-texture units; 0 = no clamp)
-  int tracePad1;
+  float hiddenGuessWeight;    // Settings::traversal.hiddenGuess: a hidden ray's guess, its weight (0 = none)
   int tracePad2;
 };
 

@@ -55,6 +55,8 @@ TEST(Settings, EveryInvalidFieldIsNamed) {
       {"adaptiveL.maxIterations", [](Settings& s) { s.adaptiveL.maxIterations = 100000; }},
       {"traversal.verify", [](Settings& s) { s.traversal.verify = true; s.traversal.fallback = false; }},
       {"traversal.hiddenPassageLimitPx", [](Settings& s) { s.traversal.hiddenPassageLimitPx = -1.0f; }},
+      {"traversal.hiddenGuess", [](Settings& s) { s.traversal.hiddenGuess = 1.5f; }},
+      {"traversal.hiddenGuess", [](Settings& s) { s.traversal.hiddenGuess = NAN; }},
       {"ffx.depthBufferThickness", [](Settings& s) { s.ffx.depthBufferThickness = 0.0f; }},
       {"ffx.maxTraversalIntersections", [](Settings& s) { s.ffx.maxTraversalIntersections = 0; }},
       {"traversal.hiddenPassageLimitPx", [](Settings& s) { s.traversal.hiddenPassageLimitPx = NAN; }},

@@ -64,6 +64,7 @@ TEST(RenderCliNoGl, BadArgumentsExitTwoWithAMessageAndWriteNothing) {
       {"--iterations 0", "adaptiveL.maxIterations"},
       {"--iterations abc", "iterations"},
       {"--hiz-steps 0", "traversal.maxSteps"},
+      {"--hidden-guess 2", "traversal.hiddenGuess"},
       {"--hiz-steps many", "--hiz-steps expects an integer"},
       {"--traversal-pass sideways", "--traversal-pass must be"},
       {"--hiz-verify --no-hiz-fallback", "exclude each other"},

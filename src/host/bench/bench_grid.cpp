@@ -39,6 +39,12 @@ void highVariants(std::vector<BenchConfig>& configs) {
   // Measured thickness (a back-face depth input), and the hidden-passage rule with and without it.
   BenchConfig measured{"adaptive-l", "high-back-depth", Settings::preset(preset), false, true};
   configs.push_back(measured);
+  // A hidden ray's guess (the occluder's colour; the default weighs it 0.5): none, and at full weight.
+  for (float weight : {0.0f, 1.0f}) {
+    BenchConfig guess{"adaptive-l", weight < 1.0f ? "high-no-guess" : "high-guess1", Settings::preset(preset), false};
+    guess.settings.traversal.hiddenGuess = weight;
+    configs.push_back(guess);
+  }
   for (float limit : {16.0f, 8.0f}) {
     for (bool back : {false, true}) {
       BenchConfig hidden{"adaptive-l", std::string(back ? "high-back-depth" : "high") + "-hidden" +

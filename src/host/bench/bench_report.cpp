@@ -44,6 +44,7 @@ json settingsJson(const BenchConfig& c) {
           {"traversal.outlineThinning", s.traversal.outlineThinning},   {"traversal.curvedSolids", s.traversal.curvedSolids},
           {"backDepth", c.backDepth},
           {"device", c.device == DeviceProfile::Gpu ? "gpu" : c.device == DeviceProfile::Software ? "software" : "auto"},
+          {"traversal.hiddenGuess", s.traversal.hiddenGuess},
           {"traversal.hiddenPassageLimitPx", s.traversal.hiddenPassageLimitPx < 1e29f ? json(s.traversal.hiddenPassageLimitPx) : json("off")},
           {"adaptiveL.convergenceEps", s.adaptiveL.convergenceEps},
           {"adaptiveL.initialLengthScreen", s.adaptiveL.initialLengthScreen}, {"hitTolerance.relative", s.hitTolerance.relative},

@@ -114,6 +114,7 @@ void traceConstants(const FrameInputs& in, const Settings& s, int width, int hei
   t.hizMaxSteps = s.traversal.maxSteps;
   t.objectDepthRelative = s.traversal.objectDepthRelative;
   t.hiddenPassageLimitPx = s.traversal.hiddenPassageLimitPx;
+  t.hiddenGuessWeight = s.traversal.hiddenGuess;
   t.ffxDepthBufferThickness = s.ffx.depthBufferThickness;
   t.ffxMaxIntersections = s.ffx.maxTraversalIntersections;
   t.hizLevels = shared::sslrHiZLevelCount(width, height);

@@ -17,6 +17,7 @@ Settings Settings::preset(Preset preset) {
       s.traversal.fallback = false;
       s.traversal.order = TraversalOrder::AdaptiveLFirst;
       s.traversal.verify = false;
+      s.traversal.hiddenGuess = 0.0f;
       s.blur.maxRadiusPx = 4.0f;
       s.selection.roughnessCutoff = 0.3f;
       break;
@@ -26,6 +27,7 @@ Settings Settings::preset(Preset preset) {
       s.traversal.maxSteps = 96;
       s.traversal.order = TraversalOrder::AdaptiveLFirst;
       s.traversal.verify = false;  // adaptive L's hits unchecked: cheaper, below the traversal alone
+      s.traversal.hiddenGuess = 0.0f;
       s.blur.maxRadiusPx = 6.0f;
       s.selection.roughnessCutoff = 0.4f;
       break;
@@ -60,6 +62,8 @@ void checkTracer(const Settings& s, std::ostringstream& why) {
     why << "traversal.pass = " << static_cast<int>(s.traversal.pass) << " (not a TraversalPass); ";
   if (s.traversal.maxSteps < 1 || s.traversal.maxSteps > 1024)
     why << "traversal.maxSteps = " << s.traversal.maxSteps << " (must be 1..1024); ";
+  if (!(s.traversal.hiddenGuess >= 0.0f && s.traversal.hiddenGuess <= 1.0f))
+    why << "traversal.hiddenGuess = " << s.traversal.hiddenGuess << " (must be 0..1); ";
   if (std::isnan(s.traversal.hiddenPassageLimitPx) || s.traversal.hiddenPassageLimitPx < 0.0f)
     why << "traversal.hiddenPassageLimitPx = " << s.traversal.hiddenPassageLimitPx << " (must be >= 0; 1e30 = off); ";
   if (!finite(s.traversal.objectDepthRelative) || s.traversal.objectDepthRelative < 0.0f)

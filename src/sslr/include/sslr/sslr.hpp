@@ -314,6 +314,12 @@ struct Settings {
     float hiddenPassageLimitPx = 1.0e30f;  // >= 0 pixels: a ray that travels further behind what
                                            // the screen shows (where hidden geometry may stop it,
                                            // unseen) reports no hit; 1e30 = off (the default)
+    float hiddenGuess = 0.5f;  // 0..1. A ray that ends without a hit (off the screen, out of steps)
+                               // while behind what the screen shows gets, weighted by this, the
+                               // colour where it went behind (not where it went behind a curved
+                               // surface): an occluder's visible side standing in for its hidden
+                               // one, half faded to the fallback. 0 = a miss (Preset::Low/Medium;
+                               // results/composite.md)
   } traversal;
 
   // When a crossing counts as a hit (all depth-only tracers): the ray point Q and the surface
