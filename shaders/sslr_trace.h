@@ -31,8 +31,8 @@ struct SslrHit {
   int status;        // SSLR_STATUS_*
   float fade;        // extra weight of the method (position buffer: the tutorial's fades), else 1
   int hierarchical;  // 1 when the hierarchical traversal ran for this pixel (alone or as fallback)
-  vec2 uvGuess;      // where the traversal first passed behind what the screen shows
-  float LGuess;      // ... and the ray's length there (0: it never did)
+  vec2 uvGuess;      // the traversal: where the ray's current passage behind what the screen
+  float LGuess;      // shows began, and its length there (0: in front; sslrHiddenGuess)
 };
 
 // A hit record that says "nothing": the starting state of every tracer.
