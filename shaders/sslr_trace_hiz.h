@@ -142,220 +142,288 @@ SSLR_FN float sslrRayLengthAt(SslrProjection p, vec2 sizePx, float keySign, vec3
   return dot(sslrViewFromUvDepth(p, vec2(w.x, w.y) / sizePx, keySign * w.z) - vsP, vsR);
 }
 
+// The traversal's state between its steps: the ray in window space (x, y in pixels, z the depth
+// key; t counts pixels along the major axis) and where the walk stands.
+struct SslrWalk {
+  vec3 o, d;
+  vec2 invD;          // 1 / d.xy, huge but finite on an axis the ray does not move along
+  vec2 boundaryStep;  // 1 on an axis the ray moves up, 0 down: the cell boundary it leaves by
+  vec2 sizePx;
+  float keySign;      // -1 with reversed depth: keySign x depth grows away from the camera
+  float tRay;         // where the ray is
+  int level, topLevel;
+  int i;              // steps taken
+  // Where the ray entered the first pixel of the pixels it has been behind since it was last in
+  // front of (or deeper than the slab behind) what the screen shows: the outline it may have
+  // crossed onto an object's side (sslrCornerHit, tried once, if the ray ends in the slab).
+  float tRun;
+  bool inSlab;
+  bool measuredSlab;  // ... inside a solid whose depth the back-face depth measured
+  // Pixels travelled behind what the screen shows (Settings::traversal.hiddenPassageLimitPx): there
+  // hidden geometry may stop the ray unseen, and a hit found after a long passage is a guess.
+  float hiddenPx;
+  // The pixel sslrWalkToPixel reached: its cell, where the ray leaves it, the ray's nearest and
+  // farthest depth keys in it, the cell's nearest key and the pixel's extra depth (level 0's .y).
+  vec2 cell;
+  float tExit, segNear, segFar, keyNear, extra;
+};
+
+// How a step ended: at a pixel to test, with the walk over (out of steps, or inside a slab), or
+// with the hit record answered (a hit, off the screen, hidden).
+#define SSLR_WALK_PIXEL 0
+#define SSLR_WALK_ENDED 1
+#define SSLR_WALK_ANSWERED 2
+// Past a cell boundary, in pixels (exact in float up to 2^15 px).
+#define SSLR_HIZ_NUDGE (1.0f / 256.0f)
+
+// The ray from vsP along vsR in window space, just out of its own pixel. False for a ray along the
+// view direction: it stays in its own pixel, and nothing on screen can answer it.
+SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsP, vec3 vsR,
+                           SSLR_OUT(SslrWalk) w) {
+  w.sizePx = vec2(s.width, s.height);
+  w.keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
+  w.invD = vec2(0.0f);
+  w.boundaryStep = vec2(0.0f);
+  w.tRay = 0.0f;
+  w.level = 0;
+  w.topLevel = t.hizLevels;
+  w.i = 0;
+  w.tRun = -1.0f;
+  w.inSlab = false;
+  w.measuredSlab = false;
+  w.hiddenPx = 0.0f;
+  w.cell = vec2(0.0f);
+  w.tExit = 0.0f;
+  w.segNear = 0.0f;
+  w.segFar = 0.0f;
+  w.keyNear = 0.0f;
+  w.extra = 0.0f;
+  w.o = sslrWindowFromView(p, w.sizePx, w.keySign, vsP);
+  w.d = sslrWindowDirection(p, s, w.keySign, vsP, vsR, w.o);
+  float majorPx = max(abs(w.d.x), abs(w.d.y));
+  if (!(majorPx > 1e-3f)) return false;
+  w.d /= majorPx;
+  w.invD = vec2(abs(w.d.x) > 1e-12f ? 1.0f / w.d.x : 1e12f, abs(w.d.y) > 1e-12f ? 1.0f / w.d.y : 1e12f);
+  w.boundaryStep = vec2(w.d.x >= 0.0f ? 1.0f : 0.0f, w.d.y >= 0.0f ? 1.0f : 0.0f);
+  // Leave the reflecting pixel first.
+  vec2 cell0 = floor(vec2(w.o.x, w.o.y));
+  vec2 tBound0 = ((cell0 + w.boundaryStep) - vec2(w.o.x, w.o.y)) * w.invD;
+  w.tRay = min(tBound0.x, tBound0.y) + SSLR_HIZ_NUDGE;
+  // Level 0 is read only inside a 2x2 quad whose level-1 cell holds geometry (classification
+  // writes no level-0 texels under a cell of background alone): the walk enters a new quad at
+  // level 1, here and after each pixel it tested, as after a skip.
+  w.level = sslrHiZNextLevel(w.o, w.d, w.tRay, cell0, 0, w.topLevel);
+  return true;
+}
+
+// Whether a ray whose segment in a cell lies segNear deep, beyond the cell's farthest key keyFar,
+// passes behind everything the cell shows: deeper than any tolerance and than the objects'
+// assumed thickness. (The slope term of the tolerance is unknown before a pixel is looked at: the
+// largest one, tan = 16, is assumed.)
+SSLR_FN bool sslrPassesBehindCell(SslrProjection p, SslrSurface s, SslrTraceParams t, float keySign, float segNear,
+                                  float keyFar, float extra) {
+  float farDepth = keySign * keyFar;
+  if (!(segNear > keyFar && sslrIsGeometryDepth(s, farDepth))) return false;
+  float distFar = sslrViewDepthFromDepth(p, farDepth);
+  float distRay = sslrViewDepthFromDepth(p, keySign * segNear);
+  float tolerance16 = sslrHitTolerance(p, s, t, distFar, 16.0f);
+  float passBehind = sslrBackDepth(s) ? max(tolerance16, t.objectDepthRelative * distFar + extra)
+                                      : max(tolerance16, t.objectDepthRelative * distFar) + extra;
+  return distRay - distFar > passBehind;
+}
+
+// A hidden passage begins (Settings::traversal.hiddenGuess): where, and the ray's length there.
+SSLR_FN void sslrNoteHiddenStart(SslrProjection p, SslrTraceParams t, SslrWalk w, vec2 uv, vec3 vsP, vec3 vsR,
+                                 SSLR_INOUT(SslrHit) hit) {
+  if (!(t.hiddenGuessWeight > 0.0f) || hit.LGuess != 0.0f) return;
+  hit.uvGuess = uv;
+  hit.LGuess = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRay, vsP, vsR);
+}
+
+// The walk over pyramid cells (skip, descend) until the ray reaches a pixel it does not pass in
+// front of or far behind (SSLR_WALK_PIXEL: w.cell and the segment fields are that pixel's).
+SSLR_FN int sslrWalkToPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsP, vec3 vsR,
+                            SSLR_INOUT(SslrWalk) w, SSLR_INOUT(SslrHit) hit) {
+  for (; w.i < t.hizMaxSteps; ++w.i) {
+    vec3 pos = w.o + w.d * w.tRay;
+    bool onScreen = pos.x >= 0.0f && pos.y >= 0.0f && pos.x < w.sizePx.x && pos.y < w.sizePx.y;
+    float depthPos = w.keySign * pos.z;  // behind the near plane or beyond the far one: off too
+    if (!onScreen || !(depthPos >= 0.0f && depthPos <= 1.0f)) {
+      hit.status = SSLR_STATUS_OFF_SCREEN;
+      return SSLR_WALK_ANSWERED;
+    }
+    float cellSize = float(1 << w.level);
+    w.cell = floor(vec2(pos.x, pos.y) / cellSize);
+    vec2 texel = sslrLoadPyramidTexel(w.level, ivec2(w.cell));
+    vec2 minMax = sslrHiZMinMax(w.level, texel);
+    hit.iterations = w.i + 1;
+    w.keyNear = min(w.keySign * minMax.x, w.keySign * minMax.y);
+    float keyFar = max(w.keySign * minMax.x, w.keySign * minMax.y);
+    vec2 tBound = ((w.cell + w.boundaryStep) * cellSize - vec2(w.o.x, w.o.y)) * w.invD;
+    w.tExit = min(tBound.x, tBound.y);
+    float keyExit = w.o.z + w.d.z * w.tExit;
+    w.segNear = min(pos.z, keyExit);
+    w.segFar = max(pos.z, keyExit);
+#ifdef SSLR_HIZ_DEBUG_HOOK
+    SSLR_HIZ_DEBUG_HOOK(w.i, w.level, w.cell, w.tRay, w.tExit, pos, keyExit, w.keyNear, keyFar);
+#endif
+    // In front of everything the cell shows, or a cell of background alone (nothing in it can
+    // stop a ray; classification writes no level-0 texels under such a level-1 cell): skip it.
+    bool skip = w.segFar < w.keyNear || (w.level > 0 && !sslrHiZCellHoldsGeometry(s, minMax));
+    // A pixel on a curved surface reaches deeper than the slab (coarse cells' far keys hold it).
+    // With a back-face depth, the pixel's measured extra depth over the slab (either sign).
+    w.extra = w.level == 0 && (sslrCurvedSolids(t) || sslrBackDepth(s)) ? texel.y : 0.0f;
+    bool behindSkip = !skip && sslrPassesBehindCell(p, s, t, w.keySign, w.segNear, keyFar, w.extra);
+    if (behindSkip) {
+      sslrNoteHiddenStart(p, t, w, vec2(pos.x, pos.y) / w.sizePx, vsP, vsR, hit);
+      w.hiddenPx += w.tExit - w.tRay;
+      if (w.hiddenPx > t.hiddenPassageLimitPx) {
+        hit.status = SSLR_STATUS_HIDDEN;
+        hit.L = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRay, vsP, vsR);
+        return SSLR_WALK_ANSWERED;
+      }
+    } else if (skip) {
+      hit.LGuess = 0.0f;  // in front again (or over background): not hidden
+    }
+    if (skip || behindSkip) {
+      // Look coarser only on entering a new parent cell: the parent of this one was (or will
+      // be) looked at already, and going up into it again costs a step just to come back down.
+      w.tRun = -1.0f;
+      w.tRay = w.tExit + SSLR_HIZ_NUDGE;
+      w.level = sslrHiZNextLevel(w.o, w.d, w.tRay, w.cell, w.level, w.topLevel);
+      continue;
+    }
+    if (w.level > 0) {
+      // Move to where the ray reaches the cell's nearest depth (nothing in the cell is nearer),
+      // then look finer.
+      if (w.d.z > 0.0f && pos.z < w.keyNear) w.tRay = max(w.tRay, (w.keyNear - w.o.z) / w.d.z);
+      --w.level;
+      continue;
+    }
+    return SSLR_WALK_PIXEL;
+  }
+  return SSLR_WALK_ENDED;
+}
+
+// The hit on pixel px, whose surface vsSurface the ray reaches inside the pixel: where the ray
+// meets the pixel's tangent plane (validity in [0, 1], L its length). A pixel holds one depth
+// sample, so a ray running along a surface seen at a grazing angle shows its crossing a few pixels
+// late: the plane's hit is then checked against the pixel it lands in (re-planed once there). A
+// silhouette the ray passes behind meets its plane far away: no hit. Nearly edge-on planes say
+// little: there the point where the ray reaches the pixel's depth is used.
+SSLR_FN float sslrCrossingInPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
+                                  vec3 vsR, SslrWalk w, ivec2 px, vec3 vsSurface, vec3 vsSurfaceNormal,
+                                  SSLR_OUT(float) L) {
+  L = 0.0f;
+  float denom = dot(vsR, vsSurfaceNormal);
+  if (denom < -0.05f) return sslrPlaneHit(p, s, t, pxOrigin, vsP, vsR, px, vsSurface, vsSurfaceNormal, L);
+  if (!(denom < 0.0f)) return 0.0f;
+  float tCross = w.d.z != 0.0f ? clamp((w.keyNear - w.o.z) / w.d.z, w.tRay - SSLR_HIZ_NUDGE, w.tExit) : w.tRay;
+  vec3 wCross = w.o + w.d * tCross;
+  vec3 vsCross = sslrViewFromUvDepth(p, vec2(wCross.x, wCross.y) / w.sizePx, w.keySign * wCross.z);
+  L = dot(vsCross - vsP, vsR);
+  return L > 0.0f ? sslrHitValidation(p, s, t, vsP + vsR * L, vsSurface, vsSurfaceNormal, vsR) : 0.0f;
+}
+
+// The test of the pixel the walk reached (level 0): a hit (SSLR_WALK_ANSWERED), the ray inside
+// what the pixel shows (SSLR_WALK_ENDED, w.inSlab), or on past it (SSLR_WALK_PIXEL: walk on).
+SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP, vec3 vsR,
+                          SSLR_INOUT(SslrWalk) w, SSLR_INOUT(SslrHit) hit) {
+  ivec2 px = ivec2(w.cell);
+  vec3 vsSurface;
+  if (!sslrLoadSurface(px, vsSurface)) {  // background: only a ray beyond the far plane gets here
+    w.tRun = -1.0f;
+    w.tRay = w.tExit + SSLR_HIZ_NUDGE;
+    w.level = sslrHiZNextLevel(w.o, w.d, w.tRay, w.cell, 0, w.topLevel);
+    return SSLR_WALK_PIXEL;
+  }
+  vec3 vsSurfaceNormal;
+  bool normalOk = sslrDecodeNormal(s, sslrLoadNormal(px), vsSurfaceNormal);
+  bool ownPixel = px.x == pxOrigin.x && px.y == pxOrigin.y;
+  float L = 0.0f;
+  float valid = normalOk && !ownPixel
+                    ? sslrCrossingInPixel(p, s, t, pxOrigin, vsP, vsR, w, px, vsSurface, vsSurfaceNormal, L)
+                    : 0.0f;
+  if (valid >= 0.5f) {
+    if (!(L > t.maxDistance)) hit = sslrFinishHit(p, hit, vsP, vsR, L, valid);
+    return SSLR_WALK_ANSWERED;
+  }
+  // No hit here. How deep behind the pixel's surface does the ray get inside the pixel?
+  float distSurface = -vsSurface.z;  // view depth, as sslrViewDepthFromDepth measures it
+  float behind = sslrViewDepthFromDepth(p, w.keySign * w.segFar) - distSurface;
+  float tolerance =
+      sslrHitTolerance(p, s, t, distSurface, normalOk ? sslrSlopeTan(p, vsSurface, vsSurfaceNormal) : 16.0f);
+  // What the pixel shows is taken to fill [surface, surface + slab] along the view: the slab is
+  // objectDepthRelative x distance, thinner near the object's outline (sslrSlabNearOutline). A ray
+  // inside it (deeper than the hit tolerance: pixel snapping) ran into the hidden part of the
+  // object, from the front or from behind: nothing on screen is its reflection. Deeper than the
+  // slab it passes behind; within the tolerance it goes on. Inside the slab just past an outline
+  // it may have met the object's side, narrower than a pixel (sslrCornerHit).
+  float slab = t.objectDepthRelative * distSurface;
+  // A measured solid (back-face depth) holds the ray when any part of its segment in the pixel
+  // lies inside [surface + tolerance, back]: a ray running along the view direction crosses a
+  // box's depth within one pixel, its far end already behind the back.
+  bool measured = sslrBackDepth(s) && w.extra != 0.0f;
+  float behindNear = measured ? sslrViewDepthFromDepth(p, w.keySign * w.segNear) - distSurface : behind;
+  if (behind > 0.0f && !ownPixel) {
+    // A curved surface's solid reaches deeper; a flat face's gets thinner near its outline (the
+    // outline rule reads the pyramid's far keys, which on curved surfaces hold their backs).
+    if (measured) slab = max(slab + w.extra, 0.0f);
+    else if (w.extra > 0.0f) slab += w.extra;
+    else if (t.outlineThinning != 0 && normalOk && behind > tolerance && behind < slab)
+      slab = sslrSlabNearOutline(p, s, t, px, vsSurface, vsSurfaceNormal, w.segFar, w.keySign, slab);
+    if (w.tRun < 0.0f) w.tRun = w.tRay;
+    // A measured solid thinner than twice the tolerance (a face seen at a grazing angle has a
+    // wide one) holds the ray once it is half the solid deep: the measurement says it is inside.
+    float into = measured ? min(tolerance, 0.5f * slab) : tolerance;
+    if (behind > into && behindNear < slab) {
+      w.inSlab = true;
+      w.measuredSlab = measured;
+      return SSLR_WALK_ENDED;
+    }
+  }
+  if (!(behind > 0.0f) || behindNear >= slab) w.tRun = -1.0f;
+  if (!(behind > 0.0f)) hit.LGuess = 0.0f;
+  if (behind > 0.0f && behindNear >= slab && !ownPixel) {  // passed behind what the pixel shows
+    sslrNoteHiddenStart(p, t, w, (vec2(px) + 0.5f) / w.sizePx, vsP, vsR, hit);
+    w.hiddenPx += w.tExit - w.tRay;
+    if (w.hiddenPx > t.hiddenPassageLimitPx) {
+      hit.status = SSLR_STATUS_HIDDEN;
+      hit.L = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRay, vsP, vsR);
+      return SSLR_WALK_ANSWERED;
+    }
+  }
+  w.tRay = w.tExit + SSLR_HIZ_NUDGE;
+  w.level = sslrHiZNextLevel(w.o, w.d, w.tRay, w.cell, 0, w.topLevel);
+  return SSLR_WALK_PIXEL;
+}
+
 SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin,
                                       vec3 vsP, vec3 vsR) {
   SslrHit hit = sslrNoHit(SSLR_STATUS_MISS);
   hit.hierarchical = 1;
-  vec2 sizePx = vec2(s.width, s.height);
-  float keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
-
-  vec3 o = sslrWindowFromView(p, sizePx, keySign, vsP);
-  vec3 d = sslrWindowDirection(p, s, keySign, vsP, vsR, o);
-  float majorPx = max(abs(d.x), abs(d.y));
-  // A ray along the view direction stays in its own pixel: nothing on screen can answer it.
-  if (!(majorPx > 1e-3f)) return hit;
-  d /= majorPx;  // t counts pixels along the major axis
-  // An axis the ray does not move along has no boundary to reach: 1/d huge but finite.
-  vec2 invD = vec2(abs(d.x) > 1e-12f ? 1.0f / d.x : 1e12f, abs(d.y) > 1e-12f ? 1.0f / d.y : 1e12f);
-  vec2 boundaryStep = vec2(d.x >= 0.0f ? 1.0f : 0.0f, d.y >= 0.0f ? 1.0f : 0.0f);
-  float nudge = 1.0f / 256.0f;  // past a cell boundary, in pixels (exact in float up to 2^15 px)
-
-  // Leave the reflecting pixel first.
-  vec2 cell0 = floor(vec2(o.x, o.y));
-  vec2 tBound0 = ((cell0 + boundaryStep) - vec2(o.x, o.y)) * invD;
-  float tRay = min(tBound0.x, tBound0.y) + nudge;
-  int topLevel = t.hizLevels;
-  // Level 0 is read only inside a 2x2 quad whose level-1 cell holds geometry (classification
-  // writes no level-0 texels under a cell of background alone): the walk enters a new quad at
-  // level 1, here and after each pixel it tested, as after a skip.
-  int level = sslrHiZNextLevel(o, d, tRay, cell0, 0, topLevel);
-  // Where the ray entered the first pixel of the pixels it has been behind since it was last in
-  // front of (or deeper than the slab behind) what the screen shows: the outline it may have
-  // crossed onto an object's side (sslrCornerHit, tried once, if the ray ends in the slab).
-  float tRun = -1.0f;
-  bool inSlab = false;
-  bool measuredSlab = false;  // ... inside a solid whose depth the back-face depth measured
-  // Pixels travelled behind what the screen shows (Settings::traversal.hiddenPassageLimitPx): there hidden
-  // geometry may stop the ray unseen, and a hit found after a long passage is a guess.
-  float hiddenPx = 0.0f;
+  SslrWalk w;
+  if (!sslrWalkBegin(p, s, t, vsP, vsR, w)) return hit;
   // Two phases per pixel the ray reaches: the walk (skip, descend) over cells until the ray
   // reaches a pixel it does not pass in front of or far behind, then that pixel's test. In SIMD
   // lanes that run in step (CPU rasterizers run every instruction of a loop body under lane
   // masks) the test then runs once for the lanes' pixels together instead of in every step.
-  int i = 0;
-  while (i < t.hizMaxSteps) {
-    bool reached = false;  // a pixel to test: cell, tExit, segFar, keyNear, extra are its
-    vec2 cell = vec2(0.0f);
-    float tExit = 0.0f, segNear = 0.0f, segFar = 0.0f, keyNear = 0.0f, extra = 0.0f;
-    for (; i < t.hizMaxSteps; ++i) {
-      vec3 pos = o + d * tRay;
-      if (!(pos.x >= 0.0f && pos.y >= 0.0f && pos.x < sizePx.x && pos.y < sizePx.y)) {
-        hit.status = SSLR_STATUS_OFF_SCREEN;
-        return hit;
-      }
-      float depthPos = keySign * pos.z;
-      if (!(depthPos >= 0.0f && depthPos <= 1.0f)) {  // behind the near plane or beyond the far one
-        hit.status = SSLR_STATUS_OFF_SCREEN;
-        return hit;
-      }
-      float cellSize = float(1 << level);
-      cell = floor(vec2(pos.x, pos.y) / cellSize);
-      vec2 texel = sslrLoadPyramidTexel(level, ivec2(cell));
-      vec2 minMax = sslrHiZMinMax(level, texel);
-      hit.iterations = i + 1;
-      keyNear = min(keySign * minMax.x, keySign * minMax.y);
-      float keyFar = max(keySign * minMax.x, keySign * minMax.y);
-      vec2 tBound = ((cell + boundaryStep) * cellSize - vec2(o.x, o.y)) * invD;
-      tExit = min(tBound.x, tBound.y);
-      float keyExit = o.z + d.z * tExit;
-      segNear = min(pos.z, keyExit);
-      segFar = max(pos.z, keyExit);
-#ifdef SSLR_HIZ_DEBUG_HOOK
-      SSLR_HIZ_DEBUG_HOOK(i, level, cell, tRay, tExit, pos, keyExit, keyNear, keyFar);
-#endif
-      // In front of everything the cell shows, or a cell of background alone (nothing in it can
-      // stop a ray; classification writes no level-0 texels under such a level-1 cell): skip it.
-      bool skip = segFar < keyNear || (level > 0 && !sslrHiZCellHoldsGeometry(s, minMax));
-      // A pixel on a curved surface reaches deeper than the slab (coarse cells' far keys hold it).
-      // With a back-face depth, the pixel's measured extra depth over the slab (either sign).
-      extra = level == 0 && (sslrCurvedSolids(t) || sslrBackDepth(s)) ? texel.y : 0.0f;
-      // Behind everything the cell shows, deeper than any tolerance and than the objects' assumed
-      // thickness: the ray passes behind what the cell shows. (The slope term of the tolerance is
-      // unknown before a pixel is looked at: the largest one, tan = 16, is assumed.)
-      float farDepth = keySign * keyFar;
-      bool behindSkip = false;
-      if (!skip && segNear > keyFar && sslrIsGeometryDepth(s, farDepth)) {
-        float distFar = sslrViewDepthFromDepth(p, farDepth);
-        float distRay = sslrViewDepthFromDepth(p, keySign * segNear);
-        float tolerance16 = sslrHitTolerance(p, s, t, distFar, 16.0f);
-        float passBehind = sslrBackDepth(s) ? max(tolerance16, t.objectDepthRelative * distFar + extra)
-                                            : max(tolerance16, t.objectDepthRelative * distFar) + extra;
-        skip = distRay - distFar > passBehind;
-        behindSkip = skip;
-      }
-      if (behindSkip) {
-        if (t.hiddenGuessWeight > 0.0f && hit.LGuess == 0.0f) {
-          hit.uvGuess = vec2(pos.x, pos.y) / sizePx;
-          hit.LGuess = sslrRayLengthAt(p, sizePx, keySign, o, d, tRay, vsP, vsR);
-        }
-        hiddenPx += tExit - tRay;
-        if (hiddenPx > t.hiddenPassageLimitPx) {
-          hit.status = SSLR_STATUS_HIDDEN;
-          hit.L = sslrRayLengthAt(p, sizePx, keySign, o, d, tRay, vsP, vsR);
-          return hit;
-        }
-      }
-      if (skip && !behindSkip) hit.LGuess = 0.0f;  // in front again (or over background): not hidden
-      if (skip) {
-        // Look coarser only on entering a new parent cell: the parent of this one was (or will
-        // be) looked at already, and going up into it again costs a step just to come back down.
-        tRun = -1.0f;
-        tRay = tExit + nudge;
-        level = sslrHiZNextLevel(o, d, tRay, cell, level, topLevel);
-        continue;
-      }
-      if (level > 0) {
-        // Move to where the ray reaches the cell's nearest depth (nothing in the cell is nearer),
-        // then look finer.
-        if (d.z > 0.0f && pos.z < keyNear) tRay = max(tRay, (keyNear - o.z) / d.z);
-        --level;
-        continue;
-      }
-      reached = true;
-      break;
-    }
-    if (!reached) break;
-    ++i;  // the test is the step that reached the pixel
-    // Level 0: one pixel, whose surface the ray reaches or is behind inside the pixel.
-    ivec2 px = ivec2(cell);
-    vec3 vsSurface;
-    if (!sslrLoadSurface(px, vsSurface)) {  // background: only a ray beyond the far plane gets here
-      tRun = -1.0f;
-      tRay = tExit + nudge;
-      level = sslrHiZNextLevel(o, d, tRay, cell, 0, topLevel);
-      continue;
-    }
-    vec3 vsSurfaceNormal;
-    bool normalOk = sslrDecodeNormal(s, sslrLoadNormal(px), vsSurfaceNormal);
-    bool ownPixel = px.x == pxOrigin.x && px.y == pxOrigin.y;
-    // The hit on this pixel: where the ray meets the pixel's tangent plane. A pixel holds one
-    // depth sample, so a ray running along a surface seen at a grazing angle shows its crossing a
-    // few pixels late: the plane's hit is then checked against the pixel it lands in (re-planed
-    // once there). A silhouette the ray passes behind meets its plane far away: no hit. Nearly
-    // edge-on planes say little: there the point where the ray reaches the pixel's depth is used.
-    float valid = 0.0f;
-    float L = 0.0f;
-    if (normalOk && !ownPixel) {
-      float denom = dot(vsR, vsSurfaceNormal);
-      if (denom < -0.05f) {
-        valid = sslrPlaneHit(p, s, t, pxOrigin, vsP, vsR, px, vsSurface, vsSurfaceNormal, L);
-      } else if (denom < 0.0f) {
-        float tCross = d.z != 0.0f ? clamp((keyNear - o.z) / d.z, tRay - nudge, tExit) : tRay;
-        vec3 wCross = o + d * tCross;
-        vec3 vsCross = sslrViewFromUvDepth(p, vec2(wCross.x, wCross.y) / sizePx, keySign * wCross.z);
-        L = dot(vsCross - vsP, vsR);
-        if (L > 0.0f) valid = sslrHitValidation(p, s, t, vsP + vsR * L, vsSurface, vsSurfaceNormal, vsR);
-      }
-    }
-    if (valid >= 0.5f) return L > t.maxDistance ? hit : sslrFinishHit(p, hit, vsP, vsR, L, valid);
-    // No hit here. How deep behind the pixel's surface does the ray get inside the pixel?
-    float distSurface = -vsSurface.z;  // view depth, as sslrViewDepthFromDepth measures it
-    float behind = sslrViewDepthFromDepth(p, keySign * segFar) - distSurface;
-    float tolerance =
-        sslrHitTolerance(p, s, t, distSurface, normalOk ? sslrSlopeTan(p, vsSurface, vsSurfaceNormal) : 16.0f);
-    // What the pixel shows is taken to fill [surface, surface + slab] along the view: the slab is
-    // objectDepthRelative x distance, thinner near the object's outline (sslrSlabNearOutline). A ray
-    // inside it (deeper than the hit tolerance: pixel snapping) ran into the hidden part of the
-    // object, from the front or from behind: nothing on screen is its reflection. Deeper than the
-    // slab it passes behind; within the tolerance it goes on. Inside the slab just past an outline
-    // it may have met the object's side, narrower than a pixel (sslrCornerHit).
-    float slab = t.objectDepthRelative * distSurface;
-    // A measured solid (back-face depth) holds the ray when any part of its segment in the pixel
-    // lies inside [surface + tolerance, back]: a ray running along the view direction crosses a
-    // box's depth within one pixel, its far end already behind the back.
-    bool measured = sslrBackDepth(s) && extra != 0.0f;
-    float behindNear = measured ? sslrViewDepthFromDepth(p, keySign * segNear) - distSurface : behind;
-    if (behind > 0.0f && !ownPixel) {
-      // A curved surface's solid reaches deeper; a flat face's gets thinner near its outline (the
-      // outline rule reads the pyramid's far keys, which on curved surfaces hold their backs).
-      if (measured) slab = max(slab + extra, 0.0f);
-      else if (extra > 0.0f) slab += extra;
-      else if (t.outlineThinning != 0 && normalOk && behind > tolerance && behind < slab)
-        slab = sslrSlabNearOutline(p, s, t, px, vsSurface, vsSurfaceNormal, segFar, keySign, slab);
-      if (tRun < 0.0f) tRun = tRay;
-      // A measured solid thinner than twice the tolerance (a face seen at a grazing angle has a
-      // wide one) holds the ray once it is half the solid deep: the measurement says it is inside.
-      float into = measured ? min(tolerance, 0.5f * slab) : tolerance;
-      if (behind > into && behindNear < slab) {
-        inSlab = true;
-        measuredSlab = measured;
-        break;
-      }
-    }
-    if (!(behind > 0.0f) || behindNear >= slab) tRun = -1.0f;
-    if (!(behind > 0.0f)) hit.LGuess = 0.0f;
-    if (behind > 0.0f && behindNear >= slab && !ownPixel) {  // passed behind what the pixel shows
-      if (t.hiddenGuessWeight > 0.0f && hit.LGuess == 0.0f) {
-        hit.uvGuess = (vec2(px) + 0.5f) / sizePx;
-        hit.LGuess = sslrRayLengthAt(p, sizePx, keySign, o, d, tRay, vsP, vsR);
-      }
-      hiddenPx += tExit - tRay;
-      if (hiddenPx > t.hiddenPassageLimitPx) {
-        hit.status = SSLR_STATUS_HIDDEN;
-        hit.L = sslrRayLengthAt(p, sizePx, keySign, o, d, tRay, vsP, vsR);
-        return hit;
-      }
-    }
-    tRay = tExit + nudge;
-    level = sslrHiZNextLevel(o, d, tRay, cell, 0, topLevel);
+  while (w.i < t.hizMaxSteps) {
+    int walked = sslrWalkToPixel(p, s, t, vsP, vsR, w, hit);
+    if (walked == SSLR_WALK_ANSWERED) return hit;
+    if (walked == SSLR_WALK_ENDED) break;
+    ++w.i;  // the test is the step that reached the pixel
+    int tested = sslrTestPixel(p, s, t, pxOrigin, vsP, vsR, w, hit);
+    if (tested == SSLR_WALK_ANSWERED) return hit;
+    if (tested == SSLR_WALK_ENDED) break;
   }
   // Ended inside an object's slab: its side, if the ray crossed an outline onto it.
   float Lc = 0.0f;
-  if (inSlab && sslrCornerHit(p, s, t, o + d * tRun, d, vsP, vsR, Lc) && Lc <= t.maxDistance)
+  if (w.inSlab && sslrCornerHit(p, s, t, w.o + w.d * w.tRun, w.d, vsP, vsR, Lc) && Lc <= t.maxDistance)
     return sslrFinishHit(p, hit, vsP, vsR, Lc, 1.0f);
-  if (measuredSlab) {  // known hidden: where the ray entered the solid's pixels, for verification
+  if (w.measuredSlab) {  // known hidden: where the ray entered the solid's pixels, for verification
     hit.status = SSLR_STATUS_HIDDEN;
-    hit.L = sslrRayLengthAt(p, sizePx, keySign, o, d, tRun, vsP, vsR);
+    hit.L = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRun, vsP, vsR);
   }
   return hit;
 }
