@@ -241,6 +241,115 @@ SSLR_FN SslrHit sslrFinishHit(SslrProjection p, SslrHit hit, vec3 vsP, vec3 vsR,
   return hit;
 }
 
+// Adaptive L's first length: long enough to move the probe initialLengthPixels on screen. A ray
+// heading away from (or towards) the camera moves slowly on screen, so its first step is longer in
+// view units (capped at 4x the surface's distance).
+SSLR_FN float sslrAdaptiveLFirstLength(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsP, vec3 vsR) {
+  vec2 sizePx = vec2(s.width, s.height);
+  float distP = p.orthographic != 0 ? 1.0f : sslrViewDistance(p, vsP);
+  float footprintP = sslrPixelFootprint(p, s.height, distP);
+  float delta = 0.01f * max(distP, footprintP);
+  vec3 ndcP0 = sslrNdcFromView(p, vsP);
+  vec3 vsP1 = vsP + vsR * delta;
+  float pxPerUnit = 0.0f;
+  if (sslrClipW(p, vsP1) > 0.0f) {
+    vec3 ndcP1 = sslrNdcFromView(p, vsP1);
+    pxPerUnit = length((vec2(ndcP1.x, ndcP1.y) - vec2(ndcP0.x, ndcP0.y)) * 0.5f * sizePx) / delta;
+  }
+  return max(t.initialLengthPixels, 0.5f) *
+         (pxPerUnit > 0.0f ? min(1.0f / pxPerUnit, 4.0f * max(distP, footprintP) / max(t.initialLengthPixels, 0.5f))
+                           : footprintP);
+}
+
+// What adaptive L knows of the ray: the lengths that bracket the hit, and the gaps measured there.
+struct SslrBracket {
+  float lo;                 // longest L seen in front of the depth surface
+  float hi;                 // shortest L seen behind it (< 0: none yet)
+  float gapLo, gapHi;       // signed view gaps measured at lo and hi
+  float prevLo, prevGapLo;  // the free sample before lo, for the secant
+  float limit;              // a length known to leave the screen or to look at the sky
+  int retreats;
+};
+
+// A probe that left the screen or looked at the sky right after a long step from free space may
+// have jumped over the hit: step back towards lo (SSLR_MAX_RETREATS times) instead of giving up.
+SSLR_FN bool sslrRetreat(SSLR_INOUT(SslrBracket) b, SSLR_INOUT(float) L) {
+  if (!(b.lo > 0.0f && b.hi < 0.0f && L > 1.05f * b.lo && b.retreats < SSLR_MAX_RETREATS)) return false;
+  ++b.retreats;
+  b.limit = L;
+  L = 0.5f * (b.lo + L);
+  return true;
+}
+
+// The probe at L found the signed gap `gap` (> 0: behind what its pixel shows). The reflecting
+// pixel itself says nothing (it shows P): it never closes the bracket.
+SSLR_FN void sslrBracketSample(SSLR_INOUT(SslrBracket) b, float L, float gap, bool ownPixel) {
+  if (gap > 0.0f && !ownPixel) {
+    if (b.hi < 0.0f || L < b.hi) {
+      b.hi = L;
+      b.gapHi = gap;
+    }
+  } else if (gap <= 0.0f && L > b.lo) {
+    b.prevLo = b.lo;
+    b.prevGapLo = b.gapLo;
+    b.lo = L;
+    b.gapLo = gap;
+  }
+}
+
+// The next L after a probe at L whose pixel shows a surface at distance articleL from P (< 0: the
+// article's update is stuck at a spurious fixed point and says nothing).
+SSLR_FN float sslrAdaptiveLNext(SslrBracket b, float L, float articleL) {
+  float newL;
+  if (b.hi < 0.0f) {
+    // No upper end yet. Two estimates of the hit, each capped at SSLR_MAX_GROWTH x L (a jump
+    // to whatever far surface the probe's pixel shows overshoots nearer hits): the article's
+    // step, and a secant on the gap of the last two free samples (it closes in on a surface
+    // the article only crawls towards). Neither usable: double L.
+    float grow = SSLR_MAX_GROWTH * L;
+    float article = articleL > b.lo ? min(articleL, grow) : -1.0f;
+    float secant = -1.0f;
+    if (b.prevLo > 0.0f && b.gapLo > b.prevGapLo)
+      secant = min(b.lo - b.gapLo * (b.lo - b.prevLo) / (b.gapLo - b.prevGapLo), grow);
+    // The article's step first; the secant only where the article is stuck or crawls
+    // (less than 25% growth), and then at most 1.5 x the article's step.
+    newL = article > 0.0f ? ((article < 1.25f * L && secant > article) ? min(secant, 1.5f * article) : article)
+                          : secant;
+    if (!(newL > L)) newL = 2.0f * L;
+    if (newL >= b.limit) newL = 0.5f * (L + b.limit);
+  } else if (articleL > b.lo && articleL < b.hi) {
+    newL = articleL;
+  } else {
+    // Regula falsi on the signed gap inside the bracket (midpoint if the gaps are degenerate).
+    float denom = b.gapHi - b.gapLo;
+    float f = denom > 0.0f ? clamp(-b.gapLo / denom, 0.1f, 0.9f) : 0.5f;
+    newL = mix(b.lo, b.hi, f);
+  }
+  return newL;
+}
+
+// Adaptive L's answer for its last probe at L on pixel pxSurface (showing vsSurface): validated,
+// and refined on the surface's plane (with the traversal behind it, a hit must also pass the plane
+// check: a rejected one gets its second chance there).
+SSLR_FN SslrHit sslrAdaptiveLAnswer(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
+                                    vec3 vsR, SslrHit hit, float L, vec3 vsSurface, ivec2 pxSurface) {
+  vec3 vsQ = vsP + vsR * L;
+  vec3 vsSurfaceNormal;
+  bool normalOk = sslrDecodeNormal(s, sslrLoadNormal(pxSurface), vsSurfaceNormal);
+  bool selfHit = pxSurface.x == pxOrigin.x && pxSurface.y == pxOrigin.y;
+  float valid = (normalOk && !selfHit && L <= t.maxDistance)
+                    ? sslrHitValidation(p, s, t, vsQ, vsSurface, vsSurfaceNormal, vsR)
+                    : 0.0f;
+  if (valid > 0.0f && sslrHasHiZFallback(t) && dot(vsR, vsSurfaceNormal) < -0.05f) {
+    float planeL;
+    valid = sslrPlaneHitOrDepthPlane(p, s, t, pxOrigin, vsP, vsR, pxSurface, vsSurface, vsSurfaceNormal, planeL);
+    if (valid > 0.0f) L = planeL;
+  } else if (valid > 0.0f) {
+    L = sslrRefineOnPlane(vsP, vsR, vsSurface, vsSurfaceNormal, L);
+  }
+  return sslrFinishHit(p, hit, vsP, vsR, L, valid);
+}
+
 // The article's adaptive-L iteration: Q = P + R L, project Q, read the depth there, rebuild P',
 // L = |P' - P|. It is a fixed-point iteration that settles where the ray meets the depth surface.
 // Guards added (docs/design-notes.md): off-screen / behind-near-plane / background exits, a
@@ -262,30 +371,17 @@ SSLR_FN SslrHit sslrFinishHit(SslrProjection p, SslrHit hit, vec3 vsP, vec3 vsR,
 SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTraceParams t,
                                    ivec2 pxOrigin, vec3 vsP, vec3 vsR) {
   SslrHit hit = sslrNoHit(SSLR_STATUS_MISS);
-
   vec2 sizePx = vec2(s.width, s.height);
-  float distP = p.orthographic != 0 ? 1.0f : sslrViewDistance(p, vsP);
-  // First L: long enough to move the probe initialLengthPixels on screen. A ray heading away
-  // from (or towards) the camera moves slowly on screen, so its first step is longer in view
-  // units (capped at 4x the surface's distance).
-  float footprintP = sslrPixelFootprint(p, s.height, distP);
-  float delta = 0.01f * max(distP, footprintP);
-  vec3 ndcP0 = sslrNdcFromView(p, vsP);
-  vec3 vsP1 = vsP + vsR * delta;
-  float pxPerUnit = 0.0f;
-  if (sslrClipW(p, vsP1) > 0.0f) {
-    vec3 ndcP1 = sslrNdcFromView(p, vsP1);
-    pxPerUnit = length((vec2(ndcP1.x, ndcP1.y) - vec2(ndcP0.x, ndcP0.y)) * 0.5f * sizePx) / delta;
-  }
-  float L = max(t.initialLengthPixels, 0.5f) *
-            (pxPerUnit > 0.0f ? min(1.0f / pxPerUnit, 4.0f * max(distP, footprintP) / max(t.initialLengthPixels, 0.5f))
-                              : footprintP);
-  float lo = 0.0f;   // longest L seen in front of the depth surface
-  float hi = -1.0f;  // shortest L seen behind it (< 0: none yet)
-  float gapLo = 0.0f, gapHi = 0.0f;  // signed view gaps measured at lo and hi
-  float prevLo = 0.0f, prevGapLo = 0.0f;  // the free sample before lo, for the secant
-  float limit = 1e30f;  // a length known to leave the screen or to look at the sky
-  int retreats = 0;
+  float L = sslrAdaptiveLFirstLength(p, s, t, vsP, vsR);
+  SslrBracket b;
+  b.lo = 0.0f;
+  b.hi = -1.0f;
+  b.gapLo = 0.0f;
+  b.gapHi = 0.0f;
+  b.prevLo = 0.0f;
+  b.prevGapLo = 0.0f;
+  b.limit = 1e30f;
+  b.retreats = 0;
   vec3 vsSurface = vsP;
   ivec2 pxSurface = pxOrigin;
   for (int i = 0; i < t.maxIterations; ++i) {
@@ -298,109 +394,40 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
     // Written so that NaN fails: a probe outside the screen or the depth range (behind the
     // near plane, beyond a finite far plane) has nothing to read.
     if (!(sslrInsideUv(uvQ) && depthQ >= 0.0f && depthQ <= 1.0f)) {
-      // A step that overshot the screen from free space may have jumped over the hit: step
-      // back towards lo a few times (SSLR_MAX_RETREATS) before giving up.
-      if (lo > 0.0f && hi < 0.0f && L > 1.05f * lo && retreats < SSLR_MAX_RETREATS) {
-        ++retreats;
-        limit = L;
-        L = 0.5f * (lo + L);
-        continue;
-      }
+      if (sslrRetreat(b, L)) continue;
       hit.status = SSLR_STATUS_OFF_SCREEN;
       return hit;
     }
     ivec2 px = sslrPixelFromUv(uvQ, sizePx);
     hit.iterations = i + 1;
-    if (!sslrLoadSurface(px, vsSurface)) {
-      // The probe looks at the sky. Right after a long step from free space it may have jumped
-      // over the hit (like leaving the screen); otherwise there is nothing to reflect.
-      if (lo > 0.0f && hi < 0.0f && L > 1.05f * lo && retreats < SSLR_MAX_RETREATS) {
-        ++retreats;
-        limit = L;
-        L = 0.5f * (lo + L);
-        continue;
-      }
+    if (!sslrLoadSurface(px, vsSurface)) {  // the sky: nothing to reflect, unless a retreat finds it
+      if (sslrRetreat(b, L)) continue;
       hit.status = SSLR_STATUS_SKY;
       return hit;
     }
     pxSurface = px;
     // Signed gap along the view: > 0 when Q is farther from the camera than what its pixel shows.
-    // The reflecting pixel itself says nothing (it shows P): it never closes the bracket.
     float gap = vsSurface.z - vsQ.z;
-    bool ownPixel = px.x == pxOrigin.x && px.y == pxOrigin.y;
-    if (gap > 0.0f && !ownPixel) {
-      if (hi < 0.0f || L < hi) {
-        hi = L;
-        gapHi = gap;
-      }
-    } else if (gap <= 0.0f && L > lo) {
-      prevLo = lo;
-      prevGapLo = gapLo;
-      lo = L;
-      gapLo = gap;
-    }
+    sslrBracketSample(b, L, gap, px.x == pxOrigin.x && px.y == pxOrigin.y);
     float articleL = length(vsSurface - vsP);
     // Done when Q lies on the surface its pixel shows (within the hit tolerance, without the
-    // slope term; the final validation and the plane refinement below do the rest).
+    // slope term; the final validation and the plane refinement do the rest).
     float distS = p.orthographic != 0 ? abs(vsSurface.z) : -vsSurface.z;
     if (length(vsQ - vsSurface) <= sslrHitTolerance(p, s, t, distS, 0.0f)) break;
     // The article's update has settled (|P' - P| = L) but Q is not on the surface: a spurious
     // fixed point (the sphere of radius L around P meets the surface elsewhere). Not a hit:
     // move on with the bracket instead.
-    bool articleStuck = abs(articleL - L) <= t.convergenceEps * L;
-    if (articleStuck) articleL = -1.0f;
-    float newL;
-    if (hi < 0.0f) {
-      // No upper end yet. Two estimates of the hit, each capped at SSLR_MAX_GROWTH x L (a jump
-      // to whatever far surface the probe's pixel shows overshoots nearer hits): the article's
-      // step, and a secant on the gap of the last two free samples (it closes in on a surface
-      // the article only crawls towards). Neither usable: double L.
-      float grow = SSLR_MAX_GROWTH * L;
-      float article = articleL > lo ? min(articleL, grow) : -1.0f;
-      float secant = -1.0f;
-      if (prevLo > 0.0f && gapLo > prevGapLo)
-        secant = min(lo - gapLo * (lo - prevLo) / (gapLo - prevGapLo), grow);
-      // The article's step first; the secant only where the article is stuck or crawls
-      // (less than 25% growth), and then at most 1.5 x the article's step.
-      newL = article > 0.0f
-                 ? ((article < 1.25f * L && secant > article) ? min(secant, 1.5f * article) : article)
-                 : secant;
-      if (!(newL > L)) newL = 2.0f * L;
-      if (newL >= limit) newL = 0.5f * (L + limit);
-    } else if (articleL > lo && articleL < hi) {
-      newL = articleL;
-    } else {
-      // Regula falsi on the signed gap inside the bracket (midpoint if the gaps are degenerate).
-      float denom = gapHi - gapLo;
-      float f = denom > 0.0f ? clamp(-gapLo / denom, 0.1f, 0.9f) : 0.5f;
-      newL = mix(lo, hi, f);
-    }
+    if (abs(articleL - L) <= t.convergenceEps * L) articleL = -1.0f;
+    float newL = sslrAdaptiveLNext(b, L, articleL);
 #ifdef SSLR_TRACE_DEBUG_HOOK
-    SSLR_TRACE_DEBUG_HOOK(i, L, lo, hi, articleL, newL, vsQ, vsSurface);
+    SSLR_TRACE_DEBUG_HOOK(i, L, b.lo, b.hi, articleL, newL, vsQ, vsSurface);
 #endif
-    bool bracketClosed = hi > 0.0f && hi - lo <= t.convergenceEps * hi;
+    bool bracketClosed = b.hi > 0.0f && b.hi - b.lo <= t.convergenceEps * b.hi;
     L = newL;
     if (bracketClosed) break;
   }
   if (hit.iterations == 0) return hit;
-
-  vec3 vsQ = vsP + vsR * L;
-  vec3 vsSurfaceNormal;
-  bool normalOk = sslrDecodeNormal(s, sslrLoadNormal(pxSurface), vsSurfaceNormal);
-  bool selfHit = pxSurface.x == pxOrigin.x && pxSurface.y == pxOrigin.y;
-  float valid = (normalOk && !selfHit && L <= t.maxDistance)
-                    ? sslrHitValidation(p, s, t, vsQ, vsSurface, vsSurfaceNormal, vsR)
-                    : 0.0f;
-  if (valid > 0.0f && sslrHasHiZFallback(t) && dot(vsR, vsSurfaceNormal) < -0.05f) {
-    // With the hierarchical traversal behind it, a hit must also pass the plane check: a
-    // rejected one gets its second chance there.
-    float planeL;
-    valid = sslrPlaneHitOrDepthPlane(p, s, t, pxOrigin, vsP, vsR, pxSurface, vsSurface, vsSurfaceNormal, planeL);
-    if (valid > 0.0f) L = planeL;
-  } else if (valid > 0.0f) {
-    L = sslrRefineOnPlane(vsP, vsR, vsSurface, vsSurfaceNormal, L);
-  }
-  return sslrFinishHit(p, hit, vsP, vsR, L, valid);
+  return sslrAdaptiveLAnswer(p, s, t, pxOrigin, vsP, vsR, hit, L, vsSurface, pxSurface);
 }
 
 // What a hit contributes to its pixel (everything the pass does per pixel besides fetching).
