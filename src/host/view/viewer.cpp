@@ -254,7 +254,8 @@ struct App {
     }
   }
 
-  void sidePanel(Side& s) {
+  // The method, its preset and the tracer order of one side.
+  void methodControls(Side& s) {
     ImGui::Combo("method", &s.method, kMethods, IM_ARRAYSIZE(kMethods));
     if (ImGui::Combo("preset", &s.preset, kPresets, IM_ARRAYSIZE(kPresets))) {
       const Settings keep = s.settings;
@@ -263,21 +264,24 @@ struct App {
       s.settings.temporal.enabled = keep.temporal.enabled;
     }
     Settings& t = s.settings;
-    if (s.method == 0) {
-      ImGui::Checkbox("hierarchical fallback", &t.traversal.fallback);
-      if (t.traversal.fallback) {
-        bool traversalFirst = t.traversal.order == TraversalOrder::TraversalFirst;
-        ImGui::SameLine();
-        if (ImGui::Checkbox("traversal first", &traversalFirst))
-          t.traversal.order = traversalFirst ? TraversalOrder::TraversalFirst : TraversalOrder::AdaptiveLFirst;
-        if (!traversalFirst) {
-          ImGui::SameLine();
-          ImGui::Checkbox("verify hits", &t.traversal.verify);
-        }
-      } else {
-        t.traversal.verify = false;  // verification runs the fallback's traversal
-      }
+    if (s.method != 0) return;
+    ImGui::Checkbox("hierarchical fallback", &t.traversal.fallback);
+    if (!t.traversal.fallback) {
+      t.traversal.verify = false;  // verification runs the fallback's traversal
+      return;
     }
+    bool traversalFirst = t.traversal.order == TraversalOrder::TraversalFirst;
+    ImGui::SameLine();
+    if (ImGui::Checkbox("traversal first", &traversalFirst))
+      t.traversal.order = traversalFirst ? TraversalOrder::TraversalFirst : TraversalOrder::AdaptiveLFirst;
+    if (!traversalFirst) {
+      ImGui::SameLine();
+      ImGui::Checkbox("verify hits", &t.traversal.verify);
+    }
+  }
+
+  // The modes: half resolution, temporal reuse, blur, Fresnel, rough surfaces.
+  static void modeControls(Settings& t) {
     ImGui::Checkbox("half resolution", &t.halfResolution);
     ImGui::SameLine();
     ImGui::Checkbox("temporal", &t.temporal.enabled);
@@ -295,24 +299,30 @@ struct App {
       if (glossy == 1) t.halfResolution = false;
     }
     if (t.halfResolution) t.glossy.mode = GlossyMode::ConeBlur;
-    if (ImGui::TreeNode("tracer")) {
-      ImGui::SliderInt("adaptiveL.maxIterations", &t.adaptiveL.maxIterations, 1, 64);
-      ImGui::SliderInt("traversal.maxSteps", &t.traversal.maxSteps, 1, 256);
-      ImGui::SliderFloat("traversal.objectDepthRelative", &t.traversal.objectDepthRelative, 0.0f, 0.5f);
-      ImGui::Checkbox("outline thinning", &t.traversal.outlineThinning);
-      ImGui::Checkbox("curved solids", &t.traversal.curvedSolids);
-      ImGui::SliderFloat("traversal.hiddenGuess", &t.traversal.hiddenGuess, 0.0f, 1.0f);
-      int pass = static_cast<int>(t.traversal.pass);
-      const char* passes[] = {"auto", "inline", "deferred"};
-      if (ImGui::Combo("traversal pass", &pass, passes, 3)) t.traversal.pass = static_cast<TraversalPass>(pass);
-      ImGui::SliderFloat("adaptiveL.convergenceEps", &t.adaptiveL.convergenceEps, 0.0001f, 0.05f, "%.4f");
-      ImGui::SliderFloat("adaptiveL.initialLengthScreen", &t.adaptiveL.initialLengthScreen, 0.005f, 0.2f);
-      ImGui::SliderFloat("hitTolerance.relative", &t.hitTolerance.relative, 0.0f, 0.02f, "%.4f");
-      ImGui::SliderFloat("hitTolerance.pixels", &t.hitTolerance.pixels, 0.0f, 8.0f);
-      ImGui::SliderFloat("fades.errorK", &t.fades.errorK, 0.0f, 1.0f);
-      ImGui::SliderFloat("fades.maxDistance", &t.fades.maxDistance, 0.1f, 1.0e30f, "%.3g", ImGuiSliderFlags_Logarithmic);
-      ImGui::TreePop();
-    }
+  }
+
+  static void tracerTree(Settings& t) {
+    if (!ImGui::TreeNode("tracer")) return;
+    ImGui::SliderInt("adaptiveL.maxIterations", &t.adaptiveL.maxIterations, 1, 64);
+    ImGui::SliderInt("traversal.maxSteps", &t.traversal.maxSteps, 1, 256);
+    ImGui::SliderFloat("traversal.objectDepthRelative", &t.traversal.objectDepthRelative, 0.0f, 0.5f);
+    ImGui::Checkbox("outline thinning", &t.traversal.outlineThinning);
+    ImGui::Checkbox("curved solids", &t.traversal.curvedSolids);
+    ImGui::SliderFloat("traversal.hiddenGuess", &t.traversal.hiddenGuess, 0.0f, 1.0f);
+    int pass = static_cast<int>(t.traversal.pass);
+    const char* passes[] = {"auto", "inline", "deferred"};
+    if (ImGui::Combo("traversal pass", &pass, passes, 3)) t.traversal.pass = static_cast<TraversalPass>(pass);
+    ImGui::SliderFloat("adaptiveL.convergenceEps", &t.adaptiveL.convergenceEps, 0.0001f, 0.05f, "%.4f");
+    ImGui::SliderFloat("adaptiveL.initialLengthScreen", &t.adaptiveL.initialLengthScreen, 0.005f, 0.2f);
+    ImGui::SliderFloat("hitTolerance.relative", &t.hitTolerance.relative, 0.0f, 0.02f, "%.4f");
+    ImGui::SliderFloat("hitTolerance.pixels", &t.hitTolerance.pixels, 0.0f, 8.0f);
+    ImGui::SliderFloat("fades.errorK", &t.fades.errorK, 0.0f, 1.0f);
+    ImGui::SliderFloat("fades.maxDistance", &t.fades.maxDistance, 0.1f, 1.0e30f, "%.3g", ImGuiSliderFlags_Logarithmic);
+    ImGui::TreePop();
+  }
+
+  // Fades, material selection, blur and temporal reuse, and the comparison methods' own settings.
+  static void otherTrees(int method, Settings& t) {
     if (ImGui::TreeNode("fades and material")) {
       ImGui::SliderFloat("fades.screenEdge", &t.fades.screenEdge, 0.0f, 0.5f);
       ImGui::SliderFloat("fades.cameraStart", &t.fades.cameraStart, -1.0f, 1.0f);
@@ -329,7 +339,7 @@ struct App {
       ImGui::SliderFloat("temporal.historyWeight", &t.temporal.historyWeight, 0.0f, 0.98f);
       ImGui::TreePop();
     }
-    if (s.method == 2 && ImGui::TreeNode("dda (McGuire-Mara)")) {
+    if (method == 2 && ImGui::TreeNode("dda (McGuire-Mara)")) {
       ImGui::SliderFloat("dda.stride", &t.dda.stride, 1.0f, 16.0f);
       ImGui::SliderFloat("dda.objectDepth", &t.dda.objectDepth, 0.0f, 2.0f);
       ImGui::SliderInt("dda.maxSteps", &t.dda.maxSteps, 1, 1024);
@@ -337,13 +347,20 @@ struct App {
       ImGui::Checkbox("dda.refine", &t.dda.refine);
       ImGui::TreePop();
     }
-    if (s.method == 3 && ImGui::TreeNode("position buffer (tutorial)")) {
+    if (method == 3 && ImGui::TreeNode("position buffer (tutorial)")) {
       ImGui::SliderFloat("positionBuffer.maxDistance", &t.positionBuffer.maxDistance, 0.5f, 64.0f);
       ImGui::SliderFloat("positionBuffer.resolution", &t.positionBuffer.resolution, 0.05f, 1.0f);
       ImGui::SliderInt("positionBuffer.steps", &t.positionBuffer.steps, 0, 32);
       ImGui::SliderFloat("positionBuffer.hitTolerance", &t.positionBuffer.hitTolerance, 0.0f, 2.0f);
       ImGui::TreePop();
     }
+  }
+
+  void sidePanel(Side& s) {
+    methodControls(s);
+    modeControls(s.settings);
+    tracerTree(s.settings);
+    otherTrees(s.method, s.settings);
     if (!s.error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", s.error.c_str());
     if (s.method != 4) {
       const FrameStats& f = s.stats;
