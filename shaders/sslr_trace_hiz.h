@@ -173,6 +173,7 @@ struct SslrWalk {
 #define SSLR_WALK_PIXEL 0
 #define SSLR_WALK_ENDED 1
 #define SSLR_WALK_ANSWERED 2
+#define SSLR_WALK_ON 3  // sslrWalkStep: a cell skipped or descended into, the walk goes on
 // Past a cell boundary, in pixels (exact in float up to 2^15 px).
 #define SSLR_HIZ_NUDGE (1.0f / 256.0f)
 
@@ -240,67 +241,76 @@ SSLR_FN void sslrNoteHiddenStart(SslrProjection p, SslrTraceParams t, SslrWalk w
   hit.LGuess = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRay, vsP, vsR);
 }
 
-// The walk over pyramid cells (skip, descend) until the ray reaches a pixel it does not pass in
-// front of or far behind (SSLR_WALK_PIXEL: w.cell and the segment fields are that pixel's).
+// One step of the walk over pyramid cells: a cell skipped or descended into (SSLR_WALK_ON), or a
+// pixel the ray does not pass in front of or far behind (SSLR_WALK_PIXEL: w.cell and the segment
+// fields are that pixel's).
+SSLR_FN int sslrWalkStep(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsP, vec3 vsR,
+                         SSLR_INOUT(SslrWalk) w, SSLR_INOUT(SslrHit) hit) {
+  vec3 pos = w.o + w.d * w.tRay;
+  bool onScreen = pos.x >= 0.0f && pos.y >= 0.0f && pos.x < w.sizePx.x && pos.y < w.sizePx.y;
+  float depthPos = w.keySign * pos.z;  // behind the near plane or beyond the far one: off too
+  if (!onScreen || !(depthPos >= 0.0f && depthPos <= 1.0f)) {
+    hit.status = SSLR_STATUS_OFF_SCREEN;
+    return SSLR_WALK_ANSWERED;
+  }
+  float cellSize = float(1 << w.level);
+  w.cell = floor(vec2(pos.x, pos.y) / cellSize);
+  vec2 texel = sslrLoadPyramidTexel(w.level, ivec2(w.cell));
+  vec2 minMax = sslrHiZMinMax(w.level, texel);
+  hit.iterations = w.i + 1;
+  w.keyNear = min(w.keySign * minMax.x, w.keySign * minMax.y);
+  float keyFar = max(w.keySign * minMax.x, w.keySign * minMax.y);
+  vec2 tBound = ((w.cell + w.boundaryStep) * cellSize - vec2(w.o.x, w.o.y)) * w.invD;
+  w.tExit = min(tBound.x, tBound.y);
+  float keyExit = w.o.z + w.d.z * w.tExit;
+  w.segNear = min(pos.z, keyExit);
+  w.segFar = max(pos.z, keyExit);
+#ifdef SSLR_HIZ_DEBUG_HOOK
+  SSLR_HIZ_DEBUG_HOOK(w.i, w.level, w.cell, w.tRay, w.tExit, pos, keyExit, w.keyNear, keyFar);
+#endif
+  // In front of everything the cell shows, or a cell of background alone (nothing in it can
+  // stop a ray; classification writes no level-0 texels under such a level-1 cell): skip it.
+  bool skip = w.segFar < w.keyNear || (w.level > 0 && !sslrHiZCellHoldsGeometry(s, minMax));
+  // A pixel on a curved surface reaches deeper than the slab (coarse cells' far keys hold it).
+  // With a back-face depth, the pixel's measured extra depth over the slab (either sign).
+  w.extra = w.level == 0 && (sslrCurvedSolids(t) || sslrBackDepth(s)) ? texel.y : 0.0f;
+  bool behindSkip = !skip && sslrPassesBehindCell(p, s, t, w.keySign, w.segNear, keyFar, w.extra);
+  if (behindSkip) {
+    sslrNoteHiddenStart(p, t, w, vec2(pos.x, pos.y) / w.sizePx, vsP, vsR, hit);
+    w.hiddenPx += w.tExit - w.tRay;
+    if (w.hiddenPx > t.hiddenPassageLimitPx) {
+      hit.status = SSLR_STATUS_HIDDEN;
+      hit.L = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRay, vsP, vsR);
+      return SSLR_WALK_ANSWERED;
+    }
+  } else if (skip) {
+    hit.LGuess = 0.0f;  // in front again (or over background): not hidden
+  }
+  if (skip || behindSkip) {
+    // Look coarser only on entering a new parent cell: the parent of this one was (or will
+    // be) looked at already, and going up into it again costs a step just to come back down.
+    w.tRun = -1.0f;
+    w.tRay = w.tExit + SSLR_HIZ_NUDGE;
+    w.level = sslrHiZNextLevel(w.o, w.d, w.tRay, w.cell, w.level, w.topLevel);
+    return SSLR_WALK_ON;
+  }
+  if (w.level > 0) {
+    // Move to where the ray reaches the cell's nearest depth (nothing in the cell is nearer),
+    // then look finer.
+    if (w.d.z > 0.0f && pos.z < w.keyNear) w.tRay = max(w.tRay, (w.keyNear - w.o.z) / w.d.z);
+    --w.level;
+    return SSLR_WALK_ON;
+  }
+  return SSLR_WALK_PIXEL;
+}
+
+// The walk until the ray reaches a pixel to test (SSLR_WALK_PIXEL), runs out of steps or is
+// answered.
 SSLR_FN int sslrWalkToPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsP, vec3 vsR,
                             SSLR_INOUT(SslrWalk) w, SSLR_INOUT(SslrHit) hit) {
   for (; w.i < t.hizMaxSteps; ++w.i) {
-    vec3 pos = w.o + w.d * w.tRay;
-    bool onScreen = pos.x >= 0.0f && pos.y >= 0.0f && pos.x < w.sizePx.x && pos.y < w.sizePx.y;
-    float depthPos = w.keySign * pos.z;  // behind the near plane or beyond the far one: off too
-    if (!onScreen || !(depthPos >= 0.0f && depthPos <= 1.0f)) {
-      hit.status = SSLR_STATUS_OFF_SCREEN;
-      return SSLR_WALK_ANSWERED;
-    }
-    float cellSize = float(1 << w.level);
-    w.cell = floor(vec2(pos.x, pos.y) / cellSize);
-    vec2 texel = sslrLoadPyramidTexel(w.level, ivec2(w.cell));
-    vec2 minMax = sslrHiZMinMax(w.level, texel);
-    hit.iterations = w.i + 1;
-    w.keyNear = min(w.keySign * minMax.x, w.keySign * minMax.y);
-    float keyFar = max(w.keySign * minMax.x, w.keySign * minMax.y);
-    vec2 tBound = ((w.cell + w.boundaryStep) * cellSize - vec2(w.o.x, w.o.y)) * w.invD;
-    w.tExit = min(tBound.x, tBound.y);
-    float keyExit = w.o.z + w.d.z * w.tExit;
-    w.segNear = min(pos.z, keyExit);
-    w.segFar = max(pos.z, keyExit);
-#ifdef SSLR_HIZ_DEBUG_HOOK
-    SSLR_HIZ_DEBUG_HOOK(w.i, w.level, w.cell, w.tRay, w.tExit, pos, keyExit, w.keyNear, keyFar);
-#endif
-    // In front of everything the cell shows, or a cell of background alone (nothing in it can
-    // stop a ray; classification writes no level-0 texels under such a level-1 cell): skip it.
-    bool skip = w.segFar < w.keyNear || (w.level > 0 && !sslrHiZCellHoldsGeometry(s, minMax));
-    // A pixel on a curved surface reaches deeper than the slab (coarse cells' far keys hold it).
-    // With a back-face depth, the pixel's measured extra depth over the slab (either sign).
-    w.extra = w.level == 0 && (sslrCurvedSolids(t) || sslrBackDepth(s)) ? texel.y : 0.0f;
-    bool behindSkip = !skip && sslrPassesBehindCell(p, s, t, w.keySign, w.segNear, keyFar, w.extra);
-    if (behindSkip) {
-      sslrNoteHiddenStart(p, t, w, vec2(pos.x, pos.y) / w.sizePx, vsP, vsR, hit);
-      w.hiddenPx += w.tExit - w.tRay;
-      if (w.hiddenPx > t.hiddenPassageLimitPx) {
-        hit.status = SSLR_STATUS_HIDDEN;
-        hit.L = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRay, vsP, vsR);
-        return SSLR_WALK_ANSWERED;
-      }
-    } else if (skip) {
-      hit.LGuess = 0.0f;  // in front again (or over background): not hidden
-    }
-    if (skip || behindSkip) {
-      // Look coarser only on entering a new parent cell: the parent of this one was (or will
-      // be) looked at already, and going up into it again costs a step just to come back down.
-      w.tRun = -1.0f;
-      w.tRay = w.tExit + SSLR_HIZ_NUDGE;
-      w.level = sslrHiZNextLevel(w.o, w.d, w.tRay, w.cell, w.level, w.topLevel);
-      continue;
-    }
-    if (w.level > 0) {
-      // Move to where the ray reaches the cell's nearest depth (nothing in the cell is nearer),
-      // then look finer.
-      if (w.d.z > 0.0f && pos.z < w.keyNear) w.tRay = max(w.tRay, (w.keyNear - w.o.z) / w.d.z);
-      --w.level;
-      continue;
-    }
-    return SSLR_WALK_PIXEL;
+    int step = sslrWalkStep(p, s, t, vsP, vsR, w, hit);
+    if (step != SSLR_WALK_ON) return step;
   }
   return SSLR_WALK_ENDED;
 }
@@ -408,8 +418,18 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   // reaches a pixel it does not pass in front of or far behind, then that pixel's test. In SIMD
   // lanes that run in step (CPU rasterizers run every instruction of a loop body under lane
   // masks) the test then runs once for the lanes' pixels together instead of in every step.
+  // SSLR_HIZ_ONE_BODY (Settings::debug.traversalLoop = OneBody) runs the same steps in one loop body
+  // instead: a lane tests its pixel as soon as it reaches one, without waiting for the others.
   while (w.i < t.hizMaxSteps) {
+#ifdef SSLR_HIZ_ONE_BODY
+    int walked = sslrWalkStep(p, s, t, vsP, vsR, w, hit);
+    if (walked == SSLR_WALK_ON) {
+      ++w.i;
+      continue;
+    }
+#else
     int walked = sslrWalkToPixel(p, s, t, vsP, vsR, w, hit);
+#endif
     if (walked == SSLR_WALK_ANSWERED) return hit;
     if (walked == SSLR_WALK_ENDED) break;
     ++w.i;  // the test is the step that reached the pixel

@@ -53,10 +53,11 @@ bench 960x540-more 110 --grid full --no-curves --no-temporal --no-glossy \
   --scenes turned-mirror,mirror-corridor,mirrors-from-above,spider-on-mirror,wuson-as-mirror,sphere-over-mirror-32,sphere-over-mirror-128
 
 # Per-pass GPU times (GL_TIMESTAMP) beside the modelled ray work of the same run: the data that
-# calibrates the cost model of docs/results/ray-work.md. Default, 0.4's verified order, traversal alone.
+# calibrates the cost model of docs/results/ray-work.md. Default, the default with the traversal in
+# one loop body (Settings::debug.oneBodyTraversal), 0.4's verified order, traversal alone.
 t0=$(date +%s)
 for scene in mirror-room glossy facing-mirror mirror-walls thin-objects sky-heavy; do
-  for mode in "" "--order adaptive-l-first --hiz-verify" "--method hiz"; do
+  for mode in "" "--one-body-traversal" "--order adaptive-l-first --hiz-verify" "--method hiz"; do
     [ "$(left)" -gt 150 ] || break 2
     echo "== $scene ${mode:-default}"
     timeout 30 "$bin/sslr-render" --scene "$scene" --size 960x540 --stats --frames 100 $mode --out "render/$scene" 2>&1 |
@@ -68,7 +69,7 @@ echo "passes: in $(($(date +%s) - t0)) s" >>"$out/steps.txt"
 # Five scenes: 15 with the Embree reference at this size did not finish in 80 s on an H100.
 bench 1920x1080 100 --grid full --size 1920x1080 --no-curves --no-temporal --no-glossy \
   --scenes mirror-room,thin-objects,sky-heavy,mirror-walls,spider-on-mirror \
-  --configs "adaptive-l/high,adaptive-l/high-verify,adaptive-l/high-no-verify,adaptive-l/high-no-fallback,adaptive-l/high-half,adaptive-l/high-gpu-profile,adaptive-l/high-software-profile,hiz/steps128,dda/stride2-thick0.5,dda/stride4-thick0.5,ffx-sssr/thick0.015,ffx-sssr/thick0.5,position-buffer/tutorial (res0.3-steps5-dist8)"
+  --configs "adaptive-l/high,adaptive-l/high-gpu-one-body,adaptive-l/high-verify,adaptive-l/high-no-verify,adaptive-l/high-no-fallback,adaptive-l/high-half,adaptive-l/high-gpu-profile,adaptive-l/high-software-profile,hiz/steps128,dda/stride2-thick0.5,dda/stride4-thick0.5,ffx-sssr/thick0.015,ffx-sssr/thick0.5,position-buffer/tutorial (res0.3-steps5-dist8)"
 
 t0=$(date +%s)
 limit=$(left)

@@ -209,6 +209,8 @@ cxxopts::Options renderOptions() {
       ("composite", "how the reflection enters final.png: blend (over the fallback specular, a sky/ground environment, by coverage) or add (on top of it)",
        cxxopts::value<std::string>()->default_value("blend"))
       ("half-res", "one ray per 2x2 quad, reused by the quad's pixels on the same surface")
+      ("one-body-traversal", "the traversal's walk and pixel tests in one loop body (for timing on a GPU; the "
+                             "same hits: Settings::debug.oneBodyTraversal)")
       ("error-k", "classic Fresnel's error term: weight 1 - saturate(L / distance x K) (default 0.15; 0 = off)",
        cxxopts::value<std::string>())
       ("hidden-passage", "refuse hits of rays that travelled more than this many pixels behind the depth buffer "
@@ -329,6 +331,7 @@ void parseTracing(const cxxopts::ParseResult& args, RenderJob& job) {
     settings.traversal.verify = false;
   }
   if (args.count("half-res")) settings.halfResolution = true;
+  if (args.count("one-body-traversal")) settings.debug.oneBodyTraversal = true;
   settings.debug.outputs = job.dump || job.score;
   settings.debug.collectStats = args.count("stats") > 0;
   if (args.count("temporal")) settings.temporal.enabled = true;
@@ -460,7 +463,7 @@ void printStats(const FrameStats& st, const std::vector<FrameStats>& laterStats,
               st.tracedPixels ? double(frameWork.laneSteps) / st.tracedPixels : 0.0);
   // What that work would cost an H100 (the model fitted to one; sslr_host/cost_model.hpp).
   const FrameShape shape{settings.method, settings.traversal.fallback, profile, settings.halfResolution,
-                         st.traversalDeferred};
+                         st.traversalDeferred, settings.debug.oneBodyTraversal};
   if (const std::optional<double> ms = predictedH100FrameMs(shape, frameWork))
     std::printf("  predicted on an NVIDIA H100 (ray-work model, docs/results/gpu-h100.md): %.3f ms a frame\n", *ms);
   else

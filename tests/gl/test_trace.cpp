@@ -857,6 +857,49 @@ INSTANTIATE_TEST_SUITE_P(Scenes, TraversalPasses,
                            return gtestName(std::string(info.param.scene) + (info.param.half ? "_half" : ""));
                          });
 
+// Settings::debug.oneBodyTraversal runs the traversal's walk steps and pixel tests in one loop
+// body: the same steps in the same order per ray, so the same hit images and reflections bit for
+// bit, inline (the Gpu profile) and deferred, at full and half resolution.
+class OneBodyTraversal : public sslr::test::GlTest, public ::testing::WithParamInterface<PassCase> {};
+
+TEST_P(OneBodyTraversal, GivesTheTwoPhasesHitsBitForBit) {
+  const PassCase c = GetParam();
+  auto scene = makeBuiltinScene(c.scene);
+  ASSERT_TRUE(scene);
+  GBufferOptions o;
+  o.width = 192;
+  o.height = 108;
+  for (TraversalPass pass : {TraversalPass::Inline, TraversalPass::Deferred}) {
+    Settings twoPhases;
+    twoPhases.halfResolution = c.half;
+    twoPhases.debug.outputs = true;
+    twoPhases.traversal.pass = pass;
+    Settings oneBody = twoPhases;
+    oneBody.debug.oneBodyTraversal = true;
+    Image hits[2], reflections[2];
+    for (int k = 0; k < 2; ++k) {
+      auto r = FrameRenderer::create(o);
+      ASSERT_TRUE(r) << r.error();
+      GpuScene gpu(scene.value());
+      ASSERT_TRUE(r.value()->render(gpu, *scene.value().camera, k == 0 ? &twoPhases : &oneBody));
+      hits[k] = r.value()->readHit();
+      reflections[k] = r.value()->readReflection();
+    }
+    size_t reported = 0;
+    for (size_t i = 2; i < hits[0].pixels.size(); i += 4) reported += hits[0].pixels[i] > 0.5f;
+    EXPECT_GT(reported, 500u);
+    EXPECT_EQ(hits[0].pixels, hits[1].pixels) << (pass == TraversalPass::Inline ? "inline" : "deferred");
+    EXPECT_EQ(reflections[0].pixels, reflections[1].pixels);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, OneBodyTraversal,
+                         ::testing::Values(PassCase{"facing-mirror", false}, PassCase{"mirror-walls", false},
+                                           PassCase{"thin-objects", false}, PassCase{"mirror-room", true}),
+                         [](const ::testing::TestParamInfo<PassCase>& info) {
+                           return gtestName(std::string(info.param.scene) + (info.param.half ? "_half" : ""));
+                         });
+
 // TraversalPass::Auto on a software renderer defers the traversal, and runs it inline while the
 // last frame had most of its traced tiles' pixels (at half resolution: quads) needing it
 // (facing-mirror: all of them; then mirror-room, ~5%: deferred again one frame later). On a GPU it

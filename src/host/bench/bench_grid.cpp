@@ -55,6 +55,12 @@ void highVariants(std::vector<BenchConfig>& configs) {
     }
   }
   // The pass shapes of each device profile (the Auto profile's is one of the two).
+  // The traversal's walk and pixel tests in one loop body, in the Gpu profile's shapes: the same
+  // hits; what a GPU's warps pay for the two phases (results/gpu-h100.md).
+  BenchConfig oneBody{"adaptive-l", "high-gpu-one-body", Settings::preset(preset), false};
+  oneBody.settings.debug.oneBodyTraversal = true;
+  oneBody.device = DeviceProfile::Gpu;
+  configs.push_back(oneBody);
   for (auto [label, device] : {std::pair{"high-gpu-profile", DeviceProfile::Gpu},
                                std::pair{"high-software-profile", DeviceProfile::Software}}) {
     BenchConfig shaped{"adaptive-l", label, Settings::preset(preset), false};

@@ -45,6 +45,7 @@ json settingsJson(const BenchConfig& c) {
           {"backDepth", c.backDepth},
           {"device", c.device == DeviceProfile::Gpu ? "gpu" : c.device == DeviceProfile::Software ? "software" : "auto"},
           {"traversal.hiddenGuess", s.traversal.hiddenGuess},
+          {"debug.oneBodyTraversal", s.debug.oneBodyTraversal},
           {"traversal.hiddenPassageLimitPx", s.traversal.hiddenPassageLimitPx < 1e29f ? json(s.traversal.hiddenPassageLimitPx) : json("off")},
           {"adaptiveL.convergenceEps", s.adaptiveL.convergenceEps},
           {"adaptiveL.initialLengthScreen", s.adaptiveL.initialLengthScreen}, {"hitTolerance.relative", s.hitTolerance.relative},

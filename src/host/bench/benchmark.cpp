@@ -318,7 +318,7 @@ Expected<RunRecord> qualityRun(const BenchConfig& c, size_t i, const std::string
     r.frameStats = stats;
     r.fetchesPerTracedPixel = stats.tracedPixels ? double(stats.fetches) / stats.tracedPixels : 0.0;
     const FrameShape shape{c.settings.method, c.settings.traversal.fallback, ctx->device(), c.settings.halfResolution,
-                           stats.traversalDeferred};
+                           stats.traversalDeferred, c.settings.debug.oneBodyTraversal};
     r.predictedH100Ms = predictedH100FrameMs(shape, stats.totalRayWork()).value_or(NAN);
     r.nonFiniteOutputs = countNonFinite(readTexture(ctx->reflectionTexture(), options.width, options.height, 4)) +
                          countNonFinite(readTexture(ctx->resolvedTexture(), options.width, options.height, 4));

@@ -29,7 +29,8 @@ const Fit& fitFor(const FrameShape& shape) {
 }  // namespace
 
 std::optional<double> predictedH100FrameMs(const FrameShape& shape, const RayWork& work) {
-  if (shape.device != DeviceProfile::Gpu || shape.halfResolution || shape.traversalDeferred) return std::nullopt;
+  if (shape.device != DeviceProfile::Gpu || shape.halfResolution || shape.traversalDeferred || shape.oneBodyTraversal)
+    return std::nullopt;
   const Fit& fit = fitFor(shape);
   return fit.a + fit.perChainStep * double(work.longestChain) + fit.perSimt32Step * double(work.simt32);
 }

@@ -282,6 +282,7 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
   std::string methodDefines = "#define SSLR_HIZ_MODE " + std::to_string(f.frame.trace.hizMode) + "\n";
   const std::string curvedDefine = std::string("#define SSLR_CURVED_SOLIDS ") + (f.curvedSolids ? "1\n" : "0\n");
   methodDefines += curvedDefine;
+  if (settings.debug.oneBodyTraversal) methodDefines += "#define SSLR_HIZ_ONE_BODY 1\n";
   if (settings.method == Method::PositionBuffer) methodDefines += "#define SSLR_METHOD_POSITION_BUFFER 1\n";
   if (settings.method == Method::ScreenSpaceDDA) methodDefines += "#define SSLR_METHOD_DDA 1\n";
   if (settings.method == Method::FidelityFxSssr) methodDefines += "#define SSLR_METHOD_FFX 1\n";

@@ -376,6 +376,9 @@ struct Settings {
     bool outputs = false;       // also write hitTexture() and iterationsTexture()
     bool collectStats = false;  // count tiles, traced pixels and fetches, time the passes (read a
                                 // few frames late: no stall; see lastStats)
+    bool oneBodyTraversal = false;  // for timing on GPUs: the traversal's walk and pixel tests in one
+                                    // loop body (a lane tests as soon as it reaches a pixel) instead
+                                    // of two phases; the same hits (results/gpu-h100.md)
   } debug;
 
   // The comparison methods' parameters (sslr/compare.hpp); sslr's own method reads none of them.

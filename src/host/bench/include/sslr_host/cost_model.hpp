@@ -14,6 +14,7 @@ struct FrameShape {
   DeviceProfile device = DeviceProfile::Gpu;  // the profile the frame ran (Context::device())
   bool halfResolution = false;
   bool traversalDeferred = false;  // FrameStats::traversalDeferred
+  bool oneBodyTraversal = false;   // Settings::debug.oneBodyTraversal (not in the fitted run)
 };
 
 // The frame's time on an NVIDIA H100 (ms, GL_TIME_ELAPSED), predicted per tracer as
@@ -21,7 +22,7 @@ struct FrameShape {
 // times of 15 scenes x 49 configurations at 960x540 (commit 869d7fc; docs/results/gpu-h100.md,
 // "The cost model"). Fitted without a scene, it predicted that scene to a median 11% (largest
 // 125%: a longest chain of cheap steps). Only for frames shaped as the fitted ones were: the Gpu
-// profile, full resolution, the traversal inline; none otherwise.
+// profile, full resolution, the traversal inline in two phases; none otherwise.
 std::optional<double> predictedH100FrameMs(const FrameShape& shape, const RayWork& work);
 
 }  // namespace sslr::host
