@@ -169,17 +169,9 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
 }
 
 // Every option, with its help.
-cxxopts::Options renderOptions() {
-  cxxopts::Options options("sslr-render", "Headless render with Screen Space Local Reflections (depth-only SSLR).");
-  std::string sceneHelp = "built-in scene (";
-  for (const auto& n : builtinSceneNames()) sceneHelp += n + (n == builtinSceneNames().back() ? "" : ", ");
-  for (const auto& n : assetSceneNames()) sceneHelp += ", " + n;
-  sceneHelp += ", reflective-N for N% of the screen reflecting) or a .gltf/.glb file";
+// The tracer's options: method, preset, order, caps, where the traversal runs, the thickness rules.
+void addTracerOptions(cxxopts::Options& options) {
   options.add_options()
-      ("scene", sceneHelp, cxxopts::value<std::string>()->default_value("mirror-room"))
-      ("size", "output size WxH", cxxopts::value<std::string>()->default_value("960x540"))
-      ("out", "output directory", cxxopts::value<std::string>()->default_value("out"))
-      ("dump", "also write every buffer as EXR (color, normal, depth, position, hit, reflection, iterations, resolved)")
       ("method", "tracer: adaptive-l (depth-only SSLR, hierarchical fallback), hiz (the depth pyramid traversal alone), dda (McGuire & Mara 2014's screen-space DDA), ffx-sssr (AMD FidelityFX SSSR's hierarchical raymarch) or position-buffer (the tutorial's), for comparison, or none", cxxopts::value<std::string>()->default_value("adaptive-l"))
       ("no-hiz-fallback", "adaptive-l alone, without the hierarchical traversal where it finds nothing")
       ("order", "adaptive-l: which tracer runs first: traversal-first (the traversal on every ray, adaptive L where "
@@ -221,7 +213,22 @@ cxxopts::Options renderOptions() {
        cxxopts::value<std::string>())
       ("ffx-thickness", "--method ffx-sssr: FidelityFX SSSR's depth buffer thickness, view units (default 0.015, "
                         "its sample's)", cxxopts::value<std::string>())
-      ("object-thickness", "assumed depth of what the screen shows, fraction of its view depth (hierarchical traversal)", cxxopts::value<std::string>())
+      ("object-thickness", "assumed depth of what the screen shows, fraction of its view depth (hierarchical traversal)", cxxopts::value<std::string>());
+}
+
+cxxopts::Options renderOptions() {
+  cxxopts::Options options("sslr-render", "Headless render with Screen Space Local Reflections (depth-only SSLR).");
+  std::string sceneHelp = "built-in scene (";
+  for (const auto& n : builtinSceneNames()) sceneHelp += n + (n == builtinSceneNames().back() ? "" : ", ");
+  for (const auto& n : assetSceneNames()) sceneHelp += ", " + n;
+  sceneHelp += ", reflective-N for N% of the screen reflecting) or a .gltf/.glb file";
+  options.add_options()
+      ("scene", sceneHelp, cxxopts::value<std::string>()->default_value("mirror-room"))
+      ("size", "output size WxH", cxxopts::value<std::string>()->default_value("960x540"))
+      ("out", "output directory", cxxopts::value<std::string>()->default_value("out"))
+      ("dump", "also write every buffer as EXR (color, normal, depth, position, hit, reflection, iterations, resolved)");
+  addTracerOptions(options);
+  options.add_options()
       ("depth", "depth convention: reversed, reversed-infinite, zero-to-one, gl-default",
        cxxopts::value<std::string>()->default_value("reversed"))
       ("normals", "normal packing: octahedral (RGBA16) or xyz (RGBA8, the article's)",

@@ -367,6 +367,20 @@ Status runStudies(const BenchOptions& options, const std::vector<BenchConfig>& g
 
 }  // namespace
 
+namespace {
+
+// The grid's configurations that --configs selects, each in the pass shapes --device-profile gives
+// where it names none of its own.
+Expected<std::vector<BenchConfig>> configsToRun(const BenchOptions& options) {
+  auto selected = selectConfigs(benchGrid(options.grid), options.configs);
+  if (!selected) return Status::error(selected.error());
+  for (BenchConfig& c : selected.value())
+    if (c.device == DeviceProfile::Auto) c.device = options.device;
+  return selected;
+}
+
+}  // namespace
+
 Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, const std::string& renderer,
                                    const std::string& reportDir,
                                    const std::function<void(int, int, const std::string&)>& progress) {
@@ -376,11 +390,8 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
   std::vector<std::string> scenes = options.scenes;
   if (scenes.empty())
     scenes = defaultBenchScenes();
-  auto selected = selectConfigs(benchGrid(options.grid), options.configs);
+  auto selected = configsToRun(options);
   if (!selected) return Status::error(selected.error());
-  // --device-profile: the pass shapes of every configuration that names none of its own.
-  for (BenchConfig& c : selected.value())
-    if (c.device == DeviceProfile::Auto) c.device = options.device;
   const std::vector<BenchConfig>& grid = selected.value();
   // The back-face depth pass only when a configuration reads it.
   const bool anyBackDepth = std::any_of(grid.begin(), grid.end(), [](const BenchConfig& c) { return c.backDepth; });
