@@ -469,9 +469,7 @@ void printStats(const FrameStats& st, const std::vector<FrameStats>& laterStats,
               static_cast<unsigned long long>(frameWork.simt64), frameWork.longestChain,
               st.tracedPixels ? double(frameWork.laneSteps) / st.tracedPixels : 0.0);
   // What that work would cost an H100 (the model fitted to one; sslr_host/cost_model.hpp).
-  const FrameShape shape{settings.method, settings.traversal.fallback, profile, settings.halfResolution,
-                         st.traversalDeferred, settings.debug.oneBodyTraversal};
-  if (const std::optional<double> ms = predictedH100FrameMs(shape, frameWork))
+  if (const std::optional<double> ms = predictedH100FrameMs(frameShapeOf(settings, profile, st), frameWork))
     std::printf("  predicted on an NVIDIA H100 (ray-work model, docs/results/gpu-h100.md): %.3f ms a frame\n", *ms);
   else
     std::printf("  predicted on an NVIDIA H100: not for this frame's shape (the model is fitted to the gpu profile, "

@@ -317,9 +317,8 @@ Expected<RunRecord> qualityRun(const BenchConfig& c, size_t i, const std::string
     r.traffic = stats.totalTraffic();
     r.frameStats = stats;
     r.fetchesPerTracedPixel = stats.tracedPixels ? double(stats.fetches) / stats.tracedPixels : 0.0;
-    const FrameShape shape{c.settings.method, c.settings.traversal.fallback, ctx->device(), c.settings.halfResolution,
-                           stats.traversalDeferred, c.settings.debug.oneBodyTraversal};
-    r.predictedH100Ms = predictedH100FrameMs(shape, stats.totalRayWork()).value_or(NAN);
+    r.predictedH100Ms =
+        predictedH100FrameMs(frameShapeOf(c.settings, ctx->device(), stats), stats.totalRayWork()).value_or(NAN);
     r.nonFiniteOutputs = countNonFinite(readTexture(ctx->reflectionTexture(), options.width, options.height, 4)) +
                          countNonFinite(readTexture(ctx->resolvedTexture(), options.width, options.height, 4));
     if (c.isDefault) {

@@ -28,6 +28,11 @@ const Fit& fitFor(const FrameShape& shape) {
 
 }  // namespace
 
+FrameShape frameShapeOf(const Settings& settings, DeviceProfile device, const FrameStats& stats) {
+  return {settings.method, settings.traversal.fallback, device, settings.halfResolution, stats.traversalDeferred,
+          settings.debug.oneBodyTraversal};
+}
+
 std::optional<double> predictedH100FrameMs(const FrameShape& shape, const RayWork& work) {
   if (shape.device != DeviceProfile::Gpu || shape.halfResolution || shape.traversalDeferred || shape.oneBodyTraversal)
     return std::nullopt;

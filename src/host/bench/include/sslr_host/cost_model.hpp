@@ -17,6 +17,9 @@ struct FrameShape {
   bool oneBodyTraversal = false;   // Settings::debug.oneBodyTraversal (not in the fitted run)
 };
 
+// The shape of a frame that ran with `settings` on a context of profile `device` (Context::device()).
+FrameShape frameShapeOf(const Settings& settings, DeviceProfile device, const FrameStats& stats);
+
 // The frame's time on an NVIDIA H100 (ms, GL_TIME_ELAPSED), predicted per tracer as
 // a + b x longest chain + c x SIMT work (RayWork::simt32): the least-squares fit to that GPU's
 // times of 15 scenes x 49 configurations at 960x540 (commit 869d7fc; docs/results/gpu-h100.md,
