@@ -49,11 +49,19 @@ SSLR_FN bool sslrDdaStepOverlaps(SslrProjection p, SslrSurface s, float Qz, floa
 // - refinement: after a hit with stride > 1 the last stride and the next are re-marched one pixel
 //   at a time (the paper suggests refining by a binary search or a finer re-march; the re-march
 //   keeps its exact overlap test). Without a finer hit the coarse one stands.
-SSLR_FN SslrHit sslrTraceDda(SslrProjection p, SslrSurface s, SslrDdaParams d, ivec2 pxOrigin, vec3 vsP,
-                             vec3 vsR) {
-  SslrHit hit = sslrNoHit(SSLR_STATUS_MISS);
-  vec2 sizePx = vec2(s.width, s.height);
+// The ray's segment as the DDA steps it: in pixels along the major axis (x after `permute`), with
+// Q = vs / w and k = 1 / w interpolated linearly (orthographic: w = 1).
+struct SslrDdaSegment {
+  vec2 P0, dP;   // start and step per pixel of the major axis, in (permuted) pixels
+  vec3 Q0, dQ;
+  float k0, dk;
+  float stepDir;  // +-1: the major axis' direction
+  float end;      // the end's major coordinate times stepDir
+  bool permute;   // y is the major axis
+};
 
+SSLR_FN SslrDdaSegment sslrDdaSegment(SslrProjection p, SslrSurface s, SslrDdaParams d, vec3 vsP, vec3 vsR) {
+  vec2 sizePx = vec2(s.width, s.height);
   // Ray length: clipped so that the end stays in front of the near plane (perspective).
   float nearZ = sslrViewFromUvDepth(p, vec2(0.5f), s.reversedZ != 0 ? 1.0f : 0.0f).z;
   float rayLength = min(d.maxDistance, 1.0e4f * max(length(vsP), 1.0e-6f));
@@ -61,9 +69,10 @@ SSLR_FN SslrHit sslrTraceDda(SslrProjection p, SslrSurface s, SslrDdaParams d, i
   vec3 vsEnd = vsP + vsR * rayLength;
 
   // Homogeneous end points: P in pixels, Q = vs / w, k = 1 / w (orthographic: w = 1).
-  float k0 = 1.0f / sslrClipW(p, vsP);
+  SslrDdaSegment g;
+  g.k0 = 1.0f / sslrClipW(p, vsP);
   float k1 = 1.0f / max(sslrClipW(p, vsEnd), 1.0e-30f);
-  vec3 Q0 = vsP * k0;
+  g.Q0 = vsP * g.k0;
   vec3 Q1 = vsEnd * k1;
   vec3 ndc0 = sslrNdcFromView(p, vsP);
   vec3 ndc1 = sslrNdcFromView(p, vsEnd);
@@ -75,27 +84,42 @@ SSLR_FN SslrHit sslrTraceDda(SslrProjection p, SslrSurface s, SslrDdaParams d, i
   vec2 delta = P1 - P0;
 
   // Step along the major axis: permute so that x is it.
-  bool permute = abs(delta.x) < abs(delta.y);
-  if (permute) {
+  g.permute = abs(delta.x) < abs(delta.y);
+  if (g.permute) {
     delta = vec2(delta.y, delta.x);
     P0 = vec2(P0.y, P0.x);
     P1 = vec2(P1.y, P1.x);
   }
-  float stepDir = delta.x < 0.0f ? -1.0f : 1.0f;
-  float invdx = stepDir / delta.x;
-  vec3 dQ = (Q1 - Q0) * invdx;
-  float dk = (k1 - k0) * invdx;
-  vec2 dP = vec2(stepDir, delta.y * invdx);
+  g.stepDir = delta.x < 0.0f ? -1.0f : 1.0f;
+  float invdx = g.stepDir / delta.x;
+  g.dQ = (Q1 - g.Q0) * invdx;
+  g.dk = (k1 - g.k0) * invdx;
+  g.dP = vec2(g.stepDir, delta.y * invdx);
+  g.P0 = P0;
+  g.end = P1.x * g.stepDir;
+  return g;
+}
+
+SSLR_FN SslrHit sslrTraceDda(SslrProjection p, SslrSurface s, SslrDdaParams d, ivec2 pxOrigin, vec3 vsP,
+                             vec3 vsR) {
+  SslrHit hit = sslrNoHit(SSLR_STATUS_MISS);
+  vec2 sizePx = vec2(s.width, s.height);
+  SslrDdaSegment g = sslrDdaSegment(p, s, d, vsP, vsR);
+  bool permute = g.permute;
+  float stepDir = g.stepDir;
+  vec2 dP = g.dP;
+  vec3 dQ = g.dQ;
+  float dk = g.dk;
 
   float stride = max(d.stride, 1.0f);
   // The paper's checkerboard jitter: half a stride on every other pixel hides the stride's
   // banding as noise (only meaningful with stride > 1).
   float jitter = (d.jitter != 0 && stride > 1.0f) ? float((pxOrigin.x + pxOrigin.y) & 1) * 0.5f : 0.0f;
   float start = 1.0f + jitter;  // in strides: the first sample is one stride out
-  vec2 P = P0 + dP * stride * start;
-  vec3 Q = Q0 + dQ * stride * start;
-  float k = k0 + dk * stride * start;
-  float end = P1.x * stepDir;
+  vec2 P = g.P0 + dP * stride * start;
+  vec3 Q = g.Q0 + dQ * stride * start;
+  float k = g.k0 + dk * stride * start;
+  float end = g.end;
 
   float prevZ = vsP.z;  // the ray's z where the last step ended
   bool found = false;

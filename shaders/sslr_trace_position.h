@@ -27,22 +27,27 @@ SSLR_FN float sslrRayDistanceAt(SslrProjection p, float startDist, float endDist
 // between the last miss and the hit. Guards not in the tutorial (they only stop it from reading
 // outside the screen or dividing by zero): the end point is pulled in front of the camera, the
 // march stops at the screen border, and its step count is capped.
+// The march's end point, maxDistance along the ray; an end point behind the camera would flip
+// when projected: the segment is clipped in front of it.
+SSLR_FN vec3 sslrPositionBufferEnd(SslrProjection p, vec3 startView, vec3 vsR, float maxDistance) {
+  vec3 endView = startView + vsR * maxDistance;
+  if (p.orthographic != 0) return endView;
+  float minDist = 1e-3f * max(sslrDepthAlongView(startView), 1e-6f);
+  if (sslrDepthAlongView(endView) < minDist) {
+    float tClip = (sslrDepthAlongView(startView) - minDist) /
+                  (sslrDepthAlongView(startView) - sslrDepthAlongView(endView));
+    endView = startView + (endView - startView) * tClip;
+  }
+  return endView;
+}
+
 SSLR_FN SslrHit sslrTracePositionBuffer(SslrProjection p, SslrSurface s, SslrPositionParams pb,
                                         vec3 vsP, vec3 vsV, vec3 vsR) {
   SslrHit hit = sslrNoHit(SSLR_STATUS_MISS);
 
   vec2 sizePx = vec2(s.width, s.height);
   vec3 startView = vsP;
-  vec3 endView = vsP + vsR * pb.maxDistance;
-  if (p.orthographic == 0) {
-    // An end point behind the camera would flip when projected: clip the segment.
-    float minDist = 1e-3f * max(sslrDepthAlongView(startView), 1e-6f);
-    if (sslrDepthAlongView(endView) < minDist) {
-      float tClip = (sslrDepthAlongView(startView) - minDist) /
-                    (sslrDepthAlongView(startView) - sslrDepthAlongView(endView));
-      endView = startView + (endView - startView) * tClip;
-    }
-  }
+  vec3 endView = sslrPositionBufferEnd(p, startView, vsR, pb.maxDistance);
   vec3 ndcStart = sslrNdcFromView(p, startView);
   vec3 ndcEnd = sslrNdcFromView(p, endView);
   vec2 startFrag = sslrUvFromNdc(vec2(ndcStart.x, ndcStart.y)) * sizePx;
