@@ -33,6 +33,8 @@ struct SslrHit {
   int hierarchical;  // 1 when the hierarchical traversal ran for this pixel (alone or as fallback)
   vec2 uvGuess;      // the traversal: where the ray's current passage behind what the screen
   float LGuess;      // shows began, and its length there (0: in front; sslrHiddenGuess)
+  float LResume;     // the traversal ran out of steps in front of what the screen shows: the
+                     // ray's length there, where adaptive L resumes (0: it did not)
 };
 
 // A hit record that says "nothing": the starting state of every tracer.
@@ -47,6 +49,7 @@ SSLR_FN SslrHit sslrNoHit(int status) {
   hit.hierarchical = 0;
   hit.uvGuess = vec2(0.0f);
   hit.LGuess = 0.0f;
+  hit.LResume = 0.0f;
   return hit;
 }
 
@@ -268,6 +271,7 @@ struct SslrBracket {
   float gapLo, gapHi;       // signed view gaps measured at lo and hi
   float prevLo, prevGapLo;  // the free sample before lo, for the secant
   float limit;              // a length known to leave the screen or to look at the sky
+  float from;               // where the iteration started (LFrom): growth is measured from there
   int retreats;
 };
 
@@ -306,7 +310,7 @@ SSLR_FN float sslrAdaptiveLNext(SslrBracket b, float L, float articleL) {
     // to whatever far surface the probe's pixel shows overshoots nearer hits): the article's
     // step, and a secant on the gap of the last two free samples (it closes in on a surface
     // the article only crawls towards). Neither usable: double L.
-    float grow = SSLR_MAX_GROWTH * L;
+    float grow = b.from + SSLR_MAX_GROWTH * (L - b.from);
     float article = articleL > b.lo ? min(articleL, grow) : -1.0f;
     float secant = -1.0f;
     if (b.prevLo > 0.0f && b.gapLo > b.prevGapLo)
@@ -315,7 +319,7 @@ SSLR_FN float sslrAdaptiveLNext(SslrBracket b, float L, float articleL) {
     // (less than 25% growth), and then at most 1.5 x the article's step.
     newL = article > 0.0f ? ((article < 1.25f * L && secant > article) ? min(secant, 1.5f * article) : article)
                           : secant;
-    if (!(newL > L)) newL = 2.0f * L;
+    if (!(newL > L)) newL = b.from + 2.0f * (L - b.from);
     if (newL >= b.limit) newL = 0.5f * (L + b.limit);
   } else if (articleL > b.lo && articleL < b.hi) {
     newL = articleL;
@@ -368,19 +372,24 @@ SSLR_FN SslrHit sslrAdaptiveLAnswer(SslrProjection p, SslrSurface s, SslrTracePa
 // - A probe that overshoots the screen from free space steps back before giving up.
 // This keeps the article's fast steps where they work and converges where they oscillate or
 // stall, e.g. for rays that come back towards the camera (docs/design-notes.md has the numbers).
-SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTraceParams t,
-                                   ivec2 pxOrigin, vec3 vsP, vec3 vsR) {
+//
+// sslrTraceAdaptiveLFrom resumes the iteration at LFrom > 0, where the hierarchical traversal ran
+// out of steps: the ray is known to be in front of what the screen shows up to there, so LFrom is
+// the bracket's lower end, and the first step and the growth cap count from there.
+SSLR_FN SslrHit sslrTraceAdaptiveLFrom(SslrProjection p, SslrSurface s, SslrTraceParams t,
+                                       ivec2 pxOrigin, vec3 vsP, vec3 vsR, float LFrom) {
   SslrHit hit = sslrNoHit(SSLR_STATUS_MISS);
   vec2 sizePx = vec2(s.width, s.height);
-  float L = sslrAdaptiveLFirstLength(p, s, t, vsP, vsR);
+  float L = LFrom + sslrAdaptiveLFirstLength(p, s, t, vsP + vsR * LFrom, vsR);
   SslrBracket b;
-  b.lo = 0.0f;
+  b.lo = LFrom;
   b.hi = -1.0f;
   b.gapLo = 0.0f;
   b.gapHi = 0.0f;
   b.prevLo = 0.0f;
   b.prevGapLo = 0.0f;
   b.limit = 1e30f;
+  b.from = LFrom;
   b.retreats = 0;
   vec3 vsSurface = vsP;
   ivec2 pxSurface = pxOrigin;
@@ -428,6 +437,11 @@ SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTracePar
   }
   if (hit.iterations == 0) return hit;
   return sslrAdaptiveLAnswer(p, s, t, pxOrigin, vsP, vsR, hit, L, vsSurface, pxSurface);
+}
+
+SSLR_FN SslrHit sslrTraceAdaptiveL(SslrProjection p, SslrSurface s, SslrTraceParams t,
+                                   ivec2 pxOrigin, vec3 vsP, vec3 vsR) {
+  return sslrTraceAdaptiveLFrom(p, s, t, pxOrigin, vsP, vsR, 0.0f);
 }
 
 // What a hit contributes to its pixel (everything the pass does per pixel besides fetching).

@@ -162,6 +162,7 @@ struct SslrWalk {
   // Pixels travelled behind what the screen shows (Settings::traversal.hiddenPassageLimitPx): there
   // hidden geometry may stop the ray unseen, and a hit found after a long passage is a guess.
   float hiddenPx;
+  bool hidden;  // the ray is behind what the screen shows now (its last pixel or cell)
   // The pixel sslrWalkToPixel reached: its cell, where the ray leaves it, the ray's nearest and
   // farthest depth keys in it, the cell's nearest key and the pixel's extra depth (level 0's .y).
   vec2 cell;
@@ -193,6 +194,7 @@ SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   w.inSlab = false;
   w.measuredSlab = false;
   w.hiddenPx = 0.0f;
+  w.hidden = false;
   w.cell = vec2(0.0f);
   w.tExit = 0.0f;
   w.segNear = 0.0f;
@@ -276,6 +278,7 @@ SSLR_FN int sslrWalkStep(SslrProjection p, SslrSurface s, SslrTraceParams t, vec
   w.extra = w.level == 0 && (sslrCurvedSolids(t) || sslrBackDepth(s)) ? texel.y : 0.0f;
   bool behindSkip = !skip && sslrPassesBehindCell(p, s, t, w.keySign, w.segNear, keyFar, w.extra);
   if (behindSkip) {
+    w.hidden = true;
     sslrNoteHiddenStart(p, t, w, vec2(pos.x, pos.y) / w.sizePx, vsP, vsR, hit);
     w.hiddenPx += w.tExit - w.tRay;
     if (w.hiddenPx > t.hiddenPassageLimitPx) {
@@ -285,6 +288,7 @@ SSLR_FN int sslrWalkStep(SslrProjection p, SslrSurface s, SslrTraceParams t, vec
     }
   } else if (skip) {
     hit.LGuess = 0.0f;  // in front again (or over background): not hidden
+    w.hidden = false;
   }
   if (skip || behindSkip) {
     // Look coarser only on entering a new parent cell: the parent of this one was (or will
@@ -393,8 +397,12 @@ SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, iv
     }
   }
   if (!(behind > 0.0f) || behindNear >= slab) w.tRun = -1.0f;
-  if (!(behind > 0.0f)) hit.LGuess = 0.0f;
+  if (!(behind > 0.0f)) {
+    hit.LGuess = 0.0f;
+    w.hidden = false;
+  }
   if (behind > 0.0f && behindNear >= slab && !ownPixel) {  // passed behind what the pixel shows
+    w.hidden = true;
     sslrNoteHiddenStart(p, t, w, (vec2(px) + 0.5f) / w.sizePx, vsP, vsR, hit);
     w.hiddenPx += w.tExit - w.tRay;
     if (w.hiddenPx > t.hiddenPassageLimitPx) {
@@ -437,6 +445,10 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
     if (tested == SSLR_WALK_ANSWERED) return hit;
     if (tested == SSLR_WALK_ENDED) break;
   }
+  // Out of steps in front of what the screen shows: adaptive L may resume there
+  // (sslrProbeAfterWalk), the segment before it walked.
+  if (t.resumeAtStepCap != 0 && w.i >= t.hizMaxSteps && !w.inSlab && !w.hidden)
+    hit.LResume = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRay, vsP, vsR);
   // Ended inside an object's slab: its side, if the ray crossed an outline onto it.
   float Lc = 0.0f;
   if (w.inSlab && sslrCornerHit(p, s, t, w.o + w.d * w.tRun, w.d, vsP, vsR, Lc) && Lc <= t.maxDistance)
@@ -489,16 +501,21 @@ SSLR_FN bool sslrConfidentHit(SslrHit h) { return h.status == SSLR_STATUS_HIT &&
 
 // A ray the traversal walked off the screen (or out of the depth range) crossed nothing it could
 // take: adaptive L there finds little and spends its whole iteration budget (design-notes.md,
-// "Traversal first").
+// "Traversal first"). A ray that ran out of steps in front of what the screen shows
+// (Settings::traversal.resumeAtStepCap) gets adaptive L from there, whatever its direction: the
+// segment before is walked, so its probes cannot jump over what stands there (the step cap's
+// graceful answer; results/ray-work.md).
 SSLR_FN bool sslrWalkedNeedsProbes(SslrProjection p, SslrTraceParams t, vec3 vsP, vec3 vsR, SslrHit walked) {
-  return !sslrConfidentHit(walked) && walked.status != SSLR_STATUS_OFF_SCREEN && !sslrTraversalOnly(p, t, vsP, vsR);
+  if (sslrConfidentHit(walked)) return false;
+  return walked.LResume > 0.0f || (walked.status != SSLR_STATUS_OFF_SCREEN && !sslrTraversalOnly(p, t, vsP, vsR));
 }
 
-// The answer for a ray the traversal left (`walked`): adaptive L's, or the traversal's. hierarchical
-// = 2 says both ran (the share TraversalPass::Auto follows).
+// The answer for a ray the traversal left (`walked`): adaptive L's (from walked.LResume, where the
+// traversal ran out of steps), or the traversal's. hierarchical = 2 says both ran (the share
+// TraversalPass::Auto follows).
 SSLR_FN SslrHit sslrProbeAfterWalk(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
                                    vec3 vsR, SslrHit walked) {
-  SslrHit probed = sslrTraceAdaptiveL(p, s, t, pxOrigin, vsP, vsR);
+  SslrHit probed = sslrTraceAdaptiveLFrom(p, s, t, pxOrigin, vsP, vsR, walked.LResume);
   bool useProbed = sslrConfidentHit(probed) ||
                    (probed.status == SSLR_STATUS_HIT && !(walked.status == SSLR_STATUS_HIT &&
                                                           walked.confidence >= probed.confidence));

@@ -102,7 +102,7 @@ struct SslrTraceParams {
   float maxHitLuminance;      // Settings::radianceClamp: a hit colour's luminance at most this
                               // (colour-texture units; 0 = no clamp)
   float hiddenGuessWeight;    // Settings::traversal.hiddenGuess: a hidden ray's guess, its weight (0 = none)
-  int tracePad2;
+  int resumeAtStepCap;        // Settings::traversal.resumeAtStepCap: 1 = adaptive L resumes where the traversal ran out of steps
 };
 
 // The position-buffer comparison method ("3D Game Shaders For Beginners", SSR chapter).

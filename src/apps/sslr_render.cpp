@@ -201,6 +201,8 @@ void addTracerOptions(cxxopts::Options& options) {
       ("composite", "how the reflection enters final.png: blend (over the fallback specular, a sky/ground environment, by coverage) or add (on top of it)",
        cxxopts::value<std::string>()->default_value("blend"))
       ("half-res", "one ray per 2x2 quad, reused by the quad's pixels on the same surface")
+      ("no-resume-at-step-cap", "a ray that runs out of traversal steps gets adaptive L from its start, not "
+                                "from where the traversal stopped (Settings::traversal.resumeAtStepCap = false)")
       ("one-body-traversal", "the traversal's walk and pixel tests in one loop body (for timing on a GPU; the "
                              "same hits: Settings::debug.oneBodyTraversal)")
       ("error-k", "classic Fresnel's error term: weight 1 - saturate(L / distance x K) (default 0.15; 0 = off)",
@@ -339,6 +341,7 @@ void parseTracing(const cxxopts::ParseResult& args, RenderJob& job) {
   }
   if (args.count("half-res")) settings.halfResolution = true;
   if (args.count("one-body-traversal")) settings.debug.oneBodyTraversal = true;
+  if (args.count("no-resume-at-step-cap")) settings.traversal.resumeAtStepCap = false;
   settings.debug.outputs = job.dump || job.score;
   settings.debug.collectStats = args.count("stats") > 0;
   if (args.count("temporal")) settings.temporal.enabled = true;

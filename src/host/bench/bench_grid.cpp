@@ -45,6 +45,10 @@ void highVariants(std::vector<BenchConfig>& configs) {
     guess.settings.traversal.hiddenGuess = weight;
     configs.push_back(guess);
   }
+  // The step cap's graceful answer (adaptive L resuming where the traversal ran out of steps): off.
+  BenchConfig noResume{"adaptive-l", "high-no-resume", Settings::preset(preset), false};
+  noResume.settings.traversal.resumeAtStepCap = false;
+  configs.push_back(noResume);
   for (float limit : {16.0f, 8.0f}) {
     for (bool back : {false, true}) {
       BenchConfig hidden{"adaptive-l", std::string(back ? "high-back-depth" : "high") + "-hidden" +

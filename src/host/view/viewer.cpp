@@ -305,6 +305,7 @@ struct App {
     if (!ImGui::TreeNode("tracer")) return;
     ImGui::SliderInt("adaptiveL.maxIterations", &t.adaptiveL.maxIterations, 1, 64);
     ImGui::SliderInt("traversal.maxSteps", &t.traversal.maxSteps, 1, 256);
+    ImGui::Checkbox("resume at step cap", &t.traversal.resumeAtStepCap);
     ImGui::SliderFloat("traversal.objectDepthRelative", &t.traversal.objectDepthRelative, 0.0f, 0.5f);
     ImGui::Checkbox("outline thinning", &t.traversal.outlineThinning);
     ImGui::Checkbox("curved solids", &t.traversal.curvedSolids);

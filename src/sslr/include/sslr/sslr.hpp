@@ -302,6 +302,9 @@ struct Settings {
                            // behind something): then never less than the traversal alone. Needs
                            // fallback; off in Preset::Low/Medium
     int maxSteps = 112;    // 1..1024 pyramid cells visited per ray, each one fetch
+    bool resumeAtStepCap = true;  // TraversalFirst: a ray that runs out of steps in front of what
+                                  // the screen shows gets adaptive L from there (the walked segment
+                                  // as its lower bound) instead of adaptive L from the start
     TraversalPass pass = TraversalPass::Auto;  // inline or in a pass of its own (same hits)
     float objectDepthRelative = 0.075f;  // >= 0, fraction of the view depth: how deep what a
                                          // pixel shows is assumed to be (without a back-face
