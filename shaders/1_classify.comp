@@ -1,4 +1,4 @@
-// Pass 1, classification (passes.cpp runClassify), DeviceProfile::Software's shape: one
+// Pass 1, classification (passes/classify.cpp runClassify), DeviceProfile::Software's shape: one
 // invocation per 2x2 quad, a group per tile (16 invocations along x: llvmpipe fills its SIMD lanes
 // along x), no shared memory and no barrier (on CPU rasterizers a barrier splits the shader). The
 // first quad of a tile found to need tracing appends the tile to the tile list (a per-tile stamp

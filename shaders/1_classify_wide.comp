@@ -1,4 +1,4 @@
-// Pass 1, classification (passes.cpp runClassify), DeviceProfile::Gpu's shape: the outputs of
+// Pass 1, classification (passes/classify.cpp runClassify), DeviceProfile::Gpu's shape: the outputs of
 // 1_classify.comp (the tile list; with SSLR_CLASSIFY_LEVEL1 the pyramid's levels 0 and 1), from a
 // group per 2x2 tiles (64 invocations: no half-empty warp). After a barrier each tile knows
 // whether it was listed, and a tile traced last frame and not now clears its pixels of the

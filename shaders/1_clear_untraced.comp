@@ -1,4 +1,4 @@
-// Pass 1, clean-up (passes.cpp runClassify, after classification): zeroes the reflection and the
+// Pass 1, clean-up (passes/classify.cpp runClassify, after classification): zeroes the reflection and the
 // resolved output in the tiles traced last frame and not listed in this one.
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"

@@ -1,4 +1,4 @@
-// Pass 2, the pyramid's arguments (passes.cpp runPyramid): one group. In a frame that lists a
+// Pass 2, the pyramid's arguments (passes/pyramid.cpp runPyramid): one group. In a frame that lists a
 // tile, the pyramid's indirect dispatches (and the curved pass's) get their real group counts;
 // otherwise they stay at zero groups. A pass of its own because llvmpipe runs every instruction
 // of a shader under lane masks: the copy inside classification cost every quad.

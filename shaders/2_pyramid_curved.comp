@@ -1,4 +1,4 @@
-// Pass 2, curved solids (passes.cpp runPyramid; sslr_shared.h, "Curved solids"): for each quad
+// Pass 2, curved solids (passes/pyramid.cpp runPyramid; sslr_shared.h, "Curved solids"): for each quad
 // listed because its normals turn, level 1's cell with the solids' backs (over the plain cell
 // already written) and its pixels' extra depths in level 0. A pass of its own so that the math
 // costs only the listed quads.

@@ -1,4 +1,4 @@
-// Pass 2, levels 0 and 1 alone (passes.cpp runPyramid): in a frame after one that listed no
+// Pass 2, levels 0 and 1 alone (passes/pyramid.cpp runPyramid): in a frame after one that listed no
 // tile, classification skips them; this pass, dispatched through the pyramid's arguments, writes
 // them only when this frame lists a tile. One invocation per level-1 cell.
 #include "common/gbuffer.glsl"

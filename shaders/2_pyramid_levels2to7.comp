@@ -1,4 +1,4 @@
-// Pass 2, the pyramid's levels 2 to 7 (passes.cpp runPyramid; sslr_shared.h, "Min-max depth
+// Pass 2, the pyramid's levels 2 to 7 (passes/pyramid.cpp runPyramid; sslr_shared.h, "Min-max depth
 // pyramid"): each cell is the (min, max) raw depth of its 2x2 children. One dispatch: each work
 // group takes one level-7 cell, a 64x64 block of level-1 cells (128x128 pixels). Each of its 8x8
 // invocations reduces an 8x8 block of level 1 into its level-4 cell, writing the 16 level-2 and

@@ -1,4 +1,4 @@
-// Pass 2, the pyramid's level 8 (passes.cpp runPyramid): only a screen 2048 pixels wide or high
+// Pass 2, the pyramid's level 8 (passes/pyramid.cpp runPyramid): only a screen 2048 pixels wide or high
 // or more has one; each cell reduces its 2x2 children in level 7.
 #include "common/gbuffer.glsl"
 

@@ -1,4 +1,4 @@
-// Pass 3, the retrace (passes.cpp runTrace): traces and shades, with the whole tracer, the pixels
+// Pass 3, the retrace (passes/trace.cpp runTrace): traces and shades, with the whole tracer, the pixels
 // listed by 3_trace.comp (deferred traversal) or 3_shade_from_quads.comp (half resolution).
 #include "passes/trace_common.glsl"
 #include "passes/retrace_list.glsl"

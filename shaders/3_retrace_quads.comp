@@ -1,4 +1,4 @@
-// Pass 3, the quad retrace (passes.cpp runQuads; a deferred traversal at half resolution): one
+// Pass 3, the quad retrace (passes/trace.cpp runQuads; a deferred traversal at half resolution): one
 // group per tile with a quad listed by 3_trace_quads.comp traces those quads with the whole
 // tracer, before the shading pass reads the quads.
 #include "passes/trace_common.glsl"

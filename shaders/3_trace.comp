@@ -1,4 +1,4 @@
-// Pass 3, the trace (passes.cpp runTrace): one invocation per pixel of a listed tile traces its
+// Pass 3, the trace (passes/trace.cpp runTrace): one invocation per pixel of a listed tile traces its
 // ray and writes the reflection (rgb = hit colour x weights, a = blur weight), the resolved output
 // (same rgb, a = coverage) and, with SSLR_DEBUG_OUTPUTS, the hit and iteration images.
 // With a deferred second stage (Settings::traversal.pass, SSLR_DEFER_TRAVERSAL) it runs the first

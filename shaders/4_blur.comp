@@ -1,4 +1,4 @@
-// Pass 4, blur (passes.cpp runBlur; run twice: SSLR_BLUR_AXIS = ivec2(1,0) then ivec2(0,1)): separable bilateral blur of
+// Pass 4, blur (passes/blur.cpp runBlur; run twice: SSLR_BLUR_AXIS = ivec2(1,0) then ivec2(0,1)): separable bilateral blur of
 // the resolved output (rgb = reflection, a = coverage: both blurred with the same weights, so the
 // reflection stays premultiplied by its coverage) over the tiles the trace listed for blurring
 // (tiles with a pixel whose radius is at least half a pixel). The radius comes from the reflection's

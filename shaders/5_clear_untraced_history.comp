@@ -1,4 +1,4 @@
-// Pass 5, history clean-up (passes.cpp runTemporal, after the history is stored): the tiles traced
+// Pass 5, history clean-up (passes/temporal.cpp runTemporal, after the history is stored): the tiles traced
 // last frame and not in this one lose their history keys, so the next frame finds history only
 // where this frame stored it.
 #include "common/gbuffer.glsl"

@@ -1,4 +1,4 @@
-// Pass 5, temporal blend (passes.cpp runTemporal; Settings::temporal), over the listed tiles:
+// Pass 5, temporal blend (passes/temporal.cpp runTemporal; Settings::temporal), over the listed tiles:
 // blends this frame's resolved output with the previous frame's, reprojected through
 // FrameInputs::previousClipFromView, into blurTemp (5_temporal_store.comp copies it back: this
 // pass reads history and resolved around each pixel, so it cannot write them).

@@ -1,4 +1,4 @@
-// Pass 5, temporal store (passes.cpp runTemporal; Settings::temporal), over the listed tiles: the
+// Pass 5, temporal store (passes/temporal.cpp runTemporal; Settings::temporal), over the listed tiles: the
 // blended value (5_temporal_blend.comp) becomes the resolved output and the next frame's history,
 // and this frame's keys (view depth where the pixel is traced) its history keys.
 #include "common/gbuffer.glsl"

@@ -1,5 +1,6 @@
 // sslr::Context: creation (GL 4.5 check, function table, samplers, buffers), the render targets
-// of a size, resize and the public entry points. The passes live in passes.cpp and composite.cpp.
+// of a size, resize and the public entry points. A frame is in frame.cpp and passes/*.cpp, the
+// composite in composite.cpp.
 #include <algorithm>
 #include <vector>
 
@@ -38,16 +39,16 @@ GLuint Context::Impl::makeTexture(GLenum format, const char* name) const {
 
 void Context::Impl::createTargets() {
   reflection = makeTexture(GL_RGBA16F, "sslr.reflection");
-  blurTemp = makeTexture(GL_RGBA16F, "sslr.blurTemp");
+  scratch = makeTexture(GL_RGBA16F, "sslr.scratch");
   resolved = makeTexture(GL_RGBA16F, "sslr.resolved");
-  hit = iterations = hitDistance = 0;  // created by the first dispatch that writes them
   const FrameArea whole = areaOf(Viewport{0, 0, width, height});  // the largest frame's pyramid
   pyramid.levels = whole.levels;
   pyramid.level1Width = whole.level1Width;
   pyramid.level1Height = whole.level1Height;
   area = whole;
   lastRect = whole.rect;
-  pyramid.texture = 0;  // created by the first dispatch that traces it (createPyramid)
+  // The passes' own resources are created by the first dispatch that needs them
+  // (createFrameResources).
   gl.CreateBuffers(1, &tileBuffer);
   const std::vector<GLuint> tiles = initialTileList();
   gl.NamedBufferStorage(tileBuffer, static_cast<GLsizeiptr>(tiles.size() * sizeof(GLuint)), tiles.data(),
@@ -70,13 +71,13 @@ void Context::Impl::resetFrameState(std::uint64_t dispatchesBefore, int frameInd
   const std::vector<GLuint> tiles = initialTileList();
   gl.NamedBufferSubData(tileBuffer, 0, static_cast<GLsizeiptr>(tiles.size() * sizeof(GLuint)), tiles.data());
   const float zero[4] = {0, 0, 0, 0};
-  for (GLuint t : {reflection, blurTemp, resolved, hit, iterations, hitDistance, halfRes.quadHit,
-                   halfRes.quadSurface, history.color, history.key, history.confidence})
+  for (GLuint t : {reflection, scratch, resolved, trace.hit, trace.iterations, trace.hitDistance, trace.quadHit,
+                   trace.quadSurface, temporal.color, temporal.key, temporal.confidence})
     if (t != 0) gl.ClearTexImage(t, 0, GL_RGBA, GL_FLOAT, zero);
   if (feedback.fence != nullptr) gl.DeleteSync(feedback.fence);
   feedback.fence = nullptr;
   feedback.traversalInline = feedback.hasTraversal = feedback.lastFrameListedNoTile = false;
-  history.valid = false;
+  temporal.valid = false;
   const FrameArea whole = areaOf(Viewport{0, 0, width, height});
   area = whole;
   lastRect = whole.rect;
@@ -105,34 +106,18 @@ Context::Impl::FrameArea Context::Impl::areaOf(const Viewport& rect) {
   return a;
 }
 
-// The depth pyramid (~10.7 B per pixel), on first use: a host that never traces it (the tutorial's
-// method, adaptive L alone) never pays for it.
-void Context::Impl::createPyramid() {
-  gl.CreateTextures(GL_TEXTURE_2D, 1, &pyramid.texture);
-  gl.TextureStorage2D(pyramid.texture, pyramid.levels + 1, GL_RG32F, 2 * pyramid.level1Width, 2 * pyramid.level1Height);
-  label(GL_TEXTURE, pyramid.texture, "sslr.depthPyramid");
-  // Levels 0 and 1 past the screen (padding) are never written: neutral once and for all (level
-  // 0's are never read either: the traversal stays on the screen).
-  const float hizEmpty[4] = {2.0f, -1.0f, 0.0f, 0.0f};  // sslrHiZEmpty
-  for (int mip = 0; mip <= 1; ++mip) gl.ClearTexImage(pyramid.texture, mip, GL_RG, GL_FLOAT, hizEmpty);
-}
-
 void Context::Impl::destroyTargets() {
-  GLuint textures[] = {reflection,      blurTemp,        resolved,            hit,           iterations,  hitDistance,
-                       pyramid.texture, halfRes.quadHit, halfRes.quadSurface, history.color, history.key, history.confidence};
-  gl.DeleteTextures(12, textures);
-  gl.DeleteBuffers(1, &retraceBuffer);
+  const GLuint textures[] = {reflection, scratch, resolved};
+  gl.DeleteTextures(3, textures);
+  pyramid.destroy(gl);
+  trace.destroy(gl);
+  temporal.destroy(gl);
   gl.DeleteBuffers(1, &feedback.buffer);
-  gl.DeleteBuffers(1, &pyramid.curvedQuads);
   if (feedback.fence != nullptr) gl.DeleteSync(feedback.fence);
   feedback.fence = nullptr;
   feedback.traversalInline = feedback.hasTraversal = feedback.lastFrameListedNoTile = false;
-  halfRes.quadHit = halfRes.quadSurface = retraceBuffer = feedback.buffer = history.color = history.key = pyramid.curvedQuads = 0;
-  history.confidence = 0;
-  history.valid = false;
-  GLuint buffers[] = {tileBuffer};
-  gl.DeleteBuffers(1, buffers);
-  reflection = blurTemp = resolved = hit = iterations = hitDistance = pyramid.texture = tileBuffer = 0;
+  gl.DeleteBuffers(1, &tileBuffer);
+  reflection = scratch = resolved = feedback.buffer = tileBuffer = 0;
 }
 
 void Context::Impl::destroy() {
@@ -263,10 +248,10 @@ Status Context::composite(GLName framebuffer, const CompositeOptions& options) {
 }
 GLName Context::reflectionTexture() const { return impl_->reflection; }
 GLName Context::resolvedTexture() const { return impl_->resolved; }
-GLName Context::hitTexture() const { return impl_->hit; }
-GLName Context::iterationsTexture() const { return impl_->iterations; }
-GLName Context::hitDistanceTexture() const { return impl_->hitDistance; }
-GLName Context::historyConfidenceTexture() const { return impl_->history.confidence; }
+GLName Context::hitTexture() const { return impl_->trace.hit; }
+GLName Context::iterationsTexture() const { return impl_->trace.iterations; }
+GLName Context::hitDistanceTexture() const { return impl_->trace.hitDistance; }
+GLName Context::historyConfidenceTexture() const { return impl_->temporal.confidence; }
 FrameStats Context::lastStats() const {
   impl_->harvestStats(false);
   return impl_->stats;

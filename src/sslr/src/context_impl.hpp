@@ -1,7 +1,8 @@
 // Context::Impl: sslr's GL objects and the steps of a frame, shared by the files that implement
 // them: context.cpp (lifetime, targets, the public Context), programs.cpp (shader programs),
-// inputs.cpp (checks of the host's textures), passes.cpp (classify -> pyramid -> trace -> blur)
-// and composite.cpp.
+// inputs.cpp (checks of the host's textures), frame.cpp (a frame's plan, its start and end) and
+// one file per pass in passes/ (classify -> pyramid -> trace -> blur -> temporal), each next to
+// the header of its state (resources and programs), and composite.cpp.
 #pragma once
 
 #include <algorithm>
@@ -13,6 +14,11 @@
 #include <vector>
 
 #include "gl_functions.hpp"
+#include "passes/blur.hpp"
+#include "passes/classify.hpp"
+#include "passes/pyramid.hpp"
+#include "passes/temporal.hpp"
+#include "passes/trace.hpp"
 #include "sslr/sslr.hpp"
 #include "sslr_shared.h"
 
@@ -85,25 +91,14 @@ struct Context::Impl {
   Viewport lastRect;  // the rectangle the last frame run wrote (its outputs and tile arrays)
   static FrameArea areaOf(const Viewport& rect);
 
-  // The outputs (reflection, resolved), the blur's scratch and the debug images.
-  GLuint reflection = 0, blurTemp = 0, resolved = 0, hit = 0, iterations = 0, hitDistance = 0;
-  // Min-max depth pyramid: mip m holds level m (sslr_shared.h; level 0 also holds the pixels'
-  // curved extra depths). Its base is padded so that every mip halves exactly: mip m has at least
-  // ceil(size / 2^m) cells per axis. Created by the first dispatch that traces it.
-  struct Pyramid {
-    GLuint texture = 0;
-    int levels = 0;                         // levels above level 0
-    int level1Width = 0, level1Height = 0;  // level 1's size (padded)
-    // Settings::traversal.curvedSolids: the list of quads whose normals turn, whose level-1 cells
-    // and level-0 texels the curved pass (2_pyramid_curved.comp) writes (created on first use).
-    GLuint curvedQuads = 0;
-  } pyramid;
-  // Half resolution: per 2x2 quad, its ray's hit and surfaces (created on first use).
-  struct HalfResolution {
-    GLuint quadHit = 0, quadSurface = 0;
-  } halfRes;
-  // The retrace list (passes/retrace_list.glsl): half resolution and the deferred traversal.
-  GLuint retraceBuffer = 0;
+  // The outputs, written by the trace and rewritten by the blur and temporal reuse, and the
+  // intermediate image those two write before their final pass.
+  GLuint reflection = 0, resolved = 0;
+  GLuint scratch = 0;
+  // Each pass's own resources (passes/*.hpp).
+  PyramidPass pyramid;
+  TracePass trace;
+  TemporalPass temporal;
   // The last frame's counts, fed back without a stall: `buffer` holds (listed tiles, 0, 0, pixels
   // that needed the traversal), fenced, read without waiting at the next dispatch (readFeedback).
   struct Feedback {
@@ -118,20 +113,13 @@ struct Context::Impl {
     // half resolution: quads) of the listed tiles that needed the traversal.
     bool traversalInline = false;
   } feedback;
-  // Temporal reuse: the previous frame's output and its keys (sslrHistoryKey; 0 = none), created
-  // on first use. valid: the last dispatch stored them.
-  struct TemporalHistory {
-    GLuint color = 0, key = 0;
-    GLuint confidence = 0;  // Settings::temporal.outputConfidence: history's share per pixel
-    bool valid = false;
-  } history;
   GLuint frameUbo = 0, tileBuffer = 0;
   // Stats without a stall: a ring of slots, each a counter buffer (traced pixels, fetches,
   // hierarchical pixels, pad, tiles, blur tiles), GL_TIMESTAMP queries (before classification,
   // after it, after the pyramid, after the trace, after the blur, after temporal reuse) and a fence.
   static constexpr int kTimestamps = 6;
   // The commands of the dispatch being recorded, by pass (FrameStats' order: classify, pyramid,
-  // trace, blur, temporal, finish); passes.cpp issues its GL commands through the wrappers below.
+  // trace, blur, temporal, finish); the passes issue their GL commands through the wrappers below.
   static constexpr int kPasses = 6;
   mutable std::array<PassCommands, kPasses> recording{};
   mutable int recordingPass = 0;
@@ -197,6 +185,10 @@ struct Context::Impl {
   void createTargets();
   void destroyTargets();
   void destroy();
+  // The targets' contents, the tile list, the feedback, the history and the counters as after
+  // create() or resize(), keeping every GL name (after prepare's warm-up frames).
+  void resetFrameState(std::uint64_t dispatchesBefore, int frameIndexBefore);
+  std::vector<GLuint> initialTileList() const;
   // programs.cpp: compiles one stage from an embedded entry with #defines prepended (logs name
   // the file); returns a linked program from the cache, building it on first use.
   Expected<GLuint> compileStage(GLenum stage, const char* entry, const std::string& defines) const;
@@ -208,8 +200,8 @@ struct Context::Impl {
   Status checkInputs(const FrameInputs& in, Method method, TrafficModel* formats = nullptr) const;
   Status checkSurfaceLayout(const FrameInputs& in, const FormatInfo& materialInfo, FormatInfo* baseColorInfo) const;
   Status checkNormalDecode(const SurfaceLayout& sl, const FormatInfo& info, GLName tex) const;
-  // passes.cpp: a frame's plan (which passes run, their switches and programs), then one function
-  // per pass, in the order they run.
+  // frame.cpp: a frame's plan (which passes run, their switches and programs), its start and end;
+  // passes/*.cpp: one function per pass, in the order they run.
   struct FramePlan {
     shared::SslrFrame frame{};  // the constants the passes read (frameConstants)
     Method method = Method::AdaptiveL;
@@ -230,42 +222,48 @@ struct Context::Impl {
     StatsSlot* slot = nullptr;     // Settings::debug.collectStats: this frame's ring slot
     TrafficModel traffic;          // for FrameStats' traffic (checkInputs fills the formats)
     struct {
-      GLuint classify = 0, level1 = 0, cleanup = 0, hizBuild = 0, hizSingle = 0, hizArgs = 0, curved = 0;
-      GLuint trace = 0, quads = 0, quadRetrace = 0, retrace = 0, blurH = 0, blurV = 0;
-      GLuint temporalBlend = 0, temporalStore = 0, historyCleanup = 0;
+      ClassifyPass::Programs classify;
+      PyramidPass::Programs pyramid;
+      TracePass::Programs trace;
+      BlurPass::Programs blur;
+      TemporalPass::Programs temporal;
     } programs;
   };
-  void bindInputs(const FrameInputs& in) const;
-  void createPyramid();
-  void bindPyramidLevels01() const;
-  void buildPyramid(GLuint blockProgram, GLuint singleProgram) const;
-  void readFeedback();
+  // frame.cpp
   Status dispatch(const FrameInputs& in, const Settings& settings);
   Status prepare(const FrameInputs& in, const Settings& settings, const PrepareOptions& options);
   void warmUp(FramePlan& plan, const FrameInputs& in);
   void recordFrame(FramePlan& plan, const FrameInputs& in, const char* debugGroup);
-  // The targets' contents, the tile list, the feedback, the history and the counters as after
-  // create() or resize(), keeping every GL name (after prepare's warm-up frames).
-  void resetFrameState(std::uint64_t dispatchesBefore, int frameIndexBefore);
-  std::vector<GLuint> initialTileList() const;
+  void readFeedback();
   FramePlan planFrame(const Settings& settings, const shared::SslrFrame& constants,
                       bool hadHistory);
-  Status buildPrograms(FramePlan& plan, const FrameInputs& in, const Settings& settings);
   TrafficModel trafficModel(const FramePlan& plan, TrafficModel formats, const Settings& settings) const;
+  Status buildPrograms(FramePlan& plan, const FrameInputs& in, const Settings& settings);
   Expected<GLuint> optionalProgram(bool wanted, const char* entry, const std::string& defines);
   void createFrameResources(const FramePlan& plan);
   void setArea(const FrameInputs& in);
+  void bindInputs(const FrameInputs& in) const;
   void beginFrame(FramePlan& plan);
   void writeTileHeader() const;
   void startNewArea();
   void beginPass(const FramePlan& plan, int pass) const;
+  void finishFrame(const FramePlan& plan);
+  // passes/classify.cpp
   void runClassify(const FramePlan& plan, const FrameInputs& in) const;
+  // passes/pyramid.cpp
+  void createPyramidResources(const FramePlan& plan);
+  void bindPyramidLevels01() const;
+  void buildPyramid(GLuint blockProgram, GLuint singleProgram) const;
   void runPyramid(const FramePlan& plan) const;
+  // passes/trace.cpp
+  void createTraceResources(const FramePlan& plan);
   void runTrace(const FramePlan& plan) const;
   void runQuads(const FramePlan& plan) const;
+  // passes/blur.cpp
   void runBlur(const FramePlan& plan) const;
+  // passes/temporal.cpp
+  void createTemporalResources(const FramePlan& plan);
   void runTemporal(const FramePlan& plan, const FrameInputs& in);
-  void finishFrame(const FramePlan& plan);
   // composite.cpp
   Status composite(GLName framebuffer, const CompositeOptions& options);
   Status checkCompositeOptions(const CompositeOptions& options) const;

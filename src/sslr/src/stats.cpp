@@ -1,4 +1,4 @@
-// FrameStats without a stall: the dispatch records into a ring slot (passes.cpp); this reads
+// FrameStats without a stall: the dispatch records into a ring slot (frame.cpp); this reads
 // back the slots whose fence has signalled, so a read never waits for the GPU unless asked to.
 #include <array>
 

@@ -1,7 +1,10 @@
-// The passes of a frame: classify (tile list) -> clean-up of last frame's tiles -> depth pyramid
-// (when a mode traces it) -> trace (deferred traversal: first stage -> retrace of the listed
-// pixels; half resolution: quads [-> quad retrace] -> reuse -> retrace) -> blur H -> blur V.
-// Everything after classification runs over the listed tiles (or listed pixels) only.
+// A frame: validation, its plan (which passes run, with which programs), the resources the plan
+// needs, the frame's start (constants, tile list header, stats slot) and end (feedback, stats),
+// and prepare()'s warm-up of every variant. The passes themselves are in passes/*.cpp:
+// classify -> pyramid (when a mode traces it) -> trace (deferred traversal: first stage ->
+// retrace of the listed pixels; half resolution: quads [-> quad retrace] -> reuse -> retrace) ->
+// blur H -> blur V -> temporal. Everything after classification runs over the listed tiles (or
+// listed pixels) only.
 #include <algorithm>
 #include <cmath>
 
@@ -11,76 +14,6 @@
 
 namespace sslr {
 
-void Context::Impl::bindInputs(const FrameInputs& in) const {
-  gl.bindTexture2D(SSLR_UNIT_DEPTH, in.depthTexture);
-  gl.BindSampler(SSLR_UNIT_DEPTH, nearestSampler);
-  gl.bindTexture2D(SSLR_UNIT_NORMAL, in.normalTexture);
-  gl.BindSampler(SSLR_UNIT_NORMAL, nearestSampler);
-  gl.bindTexture2D(SSLR_UNIT_COLOR, in.colorTexture);
-  gl.BindSampler(SSLR_UNIT_COLOR, linearSampler);
-  gl.bindTexture2D(SSLR_UNIT_MATERIAL, in.materialTexture);  // 0 unless the host keeps materials apart
-  gl.BindSampler(SSLR_UNIT_MATERIAL, nearestSampler);
-  gl.bindTexture2D(SSLR_UNIT_MASK, in.maskTexture);  // 0 unless the host limits where rays start
-  gl.BindSampler(SSLR_UNIT_MASK, nearestSampler);
-  gl.bindTexture2D(SSLR_UNIT_BACK_DEPTH, in.backDepthTexture);  // 0 unless the host measures thickness
-  gl.BindSampler(SSLR_UNIT_BACK_DEPTH, nearestSampler);
-  gl.bindTexture2D(SSLR_UNIT_BASE_COLOR, in.baseColorTexture);  // 0 unless the host gives coloured F0
-  gl.BindSampler(SSLR_UNIT_BASE_COLOR, nearestSampler);
-  gl.bindTexture2D(SSLR_UNIT_PYRAMID, pyramid.texture);  // read by the depth-only trace (built when a mode needs it)
-  gl.BindSampler(SSLR_UNIT_PYRAMID, nearestSampler);
-  gl.BindBufferBase(GL_UNIFORM_BUFFER, SSLR_BINDING_FRAME_UBO, frameUbo);
-  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_TILE_SSBO, tileBuffer);
-  gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
-}
-
-// Levels 0 and 1 of the pyramid, as classification, the level-1 pass and the curved pass write
-// them (passes/pyramid_levels01.glsl): image units 1 and 0.
-void Context::Impl::bindPyramidLevels01() const {
-  gl.BindImageTexture(SSLR_IMAGE_PYRAMID_LEVEL1, pyramid.texture, 1, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-  gl.BindImageTexture(SSLR_IMAGE_PYRAMID_LEVEL0, pyramid.texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-}
-
-// The min-max depth pyramid above level 1, indirect: the group counts are zero unless
-// classification listed a tile (common/tiles.glsl). One dispatch builds levels 2..7 (2_pyramid_levels2to7.comp, a
-// work group per level-7 cell), a second level 8 where the screen has one.
-void Context::Impl::buildPyramid(GLuint blockProgram, GLuint singleProgram) const {
-  const int blockTop = std::min(area.levels, kHizBlockTop);
-  useProgram(blockProgram);
-  gl.bindTexture2D(SSLR_UNIT_PYRAMID, pyramid.texture);
-  gl.BindSampler(SSLR_UNIT_PYRAMID, nearestSampler);
-  gl.ProgramUniform1i(blockProgram, 0, area.levels);  // uTopLevel
-  for (int level = 2; level <= kHizBlockTop; ++level)  // above the top: the top's image, never stored to
-    gl.BindImageTexture(static_cast<GLuint>(SSLR_IMAGE_PYRAMID_BLOCK + level - 2), pyramid.texture, std::min(level, blockTop), GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-  dispatchComputeIndirect(kHizDispatchOffset + 3 * 4 * 1);  // level 2's arguments: the blocks
-  memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  const int single = kHizBlockTop + 1;  // (SSLR_HIZ_MAX_LEVELS is 8: one level at most above the blocks)
-  if (area.levels < single) return;
-  useProgram(singleProgram);
-  gl.ProgramUniform1i(singleProgram, 0, single);
-  gl.BindImageTexture(SSLR_IMAGE_PYRAMID_BLOCK, pyramid.texture, single, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-  dispatchComputeIndirect(kHizDispatchOffset + 3 * 4 * (single - 1));  // its level's arguments
-  memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-}
-
-// The last fed-back frame's counts (without waiting: a frame still in flight leaves everything as
-// it is): whether it listed a tile (where level 1 is written), and Auto's choice on a software
-// renderer. Hysteresis keeps a scene near the threshold from switching every frame; the answers
-// are the same either way.
-void Context::Impl::readFeedback() {
-  if (feedback.fence == nullptr) return;
-  const GLenum r = gl.ClientWaitSync(feedback.fence, 0, 0);
-  if (r != GL_ALREADY_SIGNALED && r != GL_CONDITION_SATISFIED) return;
-  gl.DeleteSync(feedback.fence);
-  feedback.fence = nullptr;
-  GLuint counts[4] = {};
-  gl.GetNamedBufferSubData(feedback.buffer, 0, sizeof(counts), counts);
-  feedback.lastFrameListedNoTile = counts[0] == 0;
-  if (!feedback.hasTraversal) return;
-  const double tileCells = double(counts[0]) * feedback.cellsPerTile;  // pixels, or quads
-  const double share = tileCells > 0.0 ? double(counts[3]) / tileCells : 0.0;
-  feedback.traversalInline = share > (feedback.traversalInline ? kInlineTraversalShare - 0.05 : kInlineTraversalShare + 0.05);
-}
-
 // A frame: validate, plan (which passes run and with which programs, before any GL state is
 // touched), create what the plan needs, then the passes in order. Each pass function issues its
 // GL commands through the counting wrappers (FrameStats' per-pass commands).
@@ -89,8 +22,8 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   // Temporal history is the previous dispatch's only if that one stored it: a failed or
   // non-temporal dispatch in between breaks the chain (the host's "previous" matrices would not
   // describe the stored frame).
-  bool hadHistory = history.valid && !in.historyReset;
-  history.valid = false;
+  bool hadHistory = temporal.valid && !in.historyReset;
+  temporal.valid = false;
   if (Status s = checkCurrentContext("dispatch()"); !s) return s;
   auto constants = frameConstants(in, settings, width, height);  // validates settings + projection
   if (!constants) return constants.status();
@@ -172,7 +105,7 @@ Status Context::Impl::prepare(const FrameInputs& in, const Settings& settings, c
 // One frame of plan `f` on the host's inputs, its outputs discarded (prepare).
 void Context::Impl::warmUp(FramePlan& f, const FrameInputs& in) {
   recordFrame(f, in, "sslr.prepare");
-  history.valid = false;
+  temporal.valid = false;
 }
 
 // The frame's passes in order, under the state guard and a debug group of that name.
@@ -188,6 +121,25 @@ void Context::Impl::recordFrame(FramePlan& f, const FrameInputs& in, const char*
   runTemporal(f, in);
   finishFrame(f);
   gl.PopDebugGroup();
+}
+
+// The last fed-back frame's counts (without waiting: a frame still in flight leaves everything as
+// it is): whether it listed a tile (where level 1 is written), and Auto's choice on a software
+// renderer. Hysteresis keeps a scene near the threshold from switching every frame; the answers
+// are the same either way.
+void Context::Impl::readFeedback() {
+  if (feedback.fence == nullptr) return;
+  const GLenum r = gl.ClientWaitSync(feedback.fence, 0, 0);
+  if (r != GL_ALREADY_SIGNALED && r != GL_CONDITION_SATISFIED) return;
+  gl.DeleteSync(feedback.fence);
+  feedback.fence = nullptr;
+  GLuint counts[4] = {};
+  gl.GetNamedBufferSubData(feedback.buffer, 0, sizeof(counts), counts);
+  feedback.lastFrameListedNoTile = counts[0] == 0;
+  if (!feedback.hasTraversal) return;
+  const double tileCells = double(counts[0]) * feedback.cellsPerTile;  // pixels, or quads
+  const double share = tileCells > 0.0 ? double(counts[3]) / tileCells : 0.0;
+  feedback.traversalInline = share > (feedback.traversalInline ? kInlineTraversalShare - 0.05 : kInlineTraversalShare + 0.05);
 }
 
 // Which passes this frame runs. Reads the last frame's feedback (readFeedback), which decides
@@ -305,26 +257,26 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
   std::string classifyDefines = f.pyramid && !f.level1Pass ? "#define SSLR_CLASSIFY_LEVEL1 1\n" + curvedDefine : "";
   if (f.wideClassify && f.pyramid) classifyDefines += "#define SSLR_CLASSIFY_ARGS 1\n";
   const std::pair<GLuint*, Expected<GLuint>> built[] = {
-      {&f.programs.classify, computeProgram(f.wideClassify ? "1_classify_wide.comp" : "1_classify.comp", classifyDefines)},
-      {&f.programs.cleanup, optionalProgram(!f.wideClassify, "1_clear_untraced.comp", "")},
-      {&f.programs.hizArgs, optionalProgram(f.pyramid && !f.wideClassify, "2_pyramid_arguments.comp", curvedDefine)},
-      {&f.programs.level1, optionalProgram(f.level1Pass, "2_pyramid_levels01.comp", curvedDefine)},
-      {&f.programs.curved, optionalProgram(f.curvedSolids, "2_pyramid_curved.comp", curvedDefine)},
-      {&f.programs.hizBuild, optionalProgram(f.pyramid, "2_pyramid_levels2to7.comp", "")},
-      {&f.programs.hizSingle, optionalProgram(f.pyramid && area.levels > kHizBlockTop, "2_pyramid_top_level.comp", "")},
-      {&f.programs.trace, computeProgram(traceEntry, traceDefines)},
-      {&f.programs.quads, optionalProgram(settings.halfResolution, "3_trace_quads.comp",
+      {&f.programs.classify.classify, computeProgram(f.wideClassify ? "1_classify_wide.comp" : "1_classify.comp", classifyDefines)},
+      {&f.programs.classify.cleanup, optionalProgram(!f.wideClassify, "1_clear_untraced.comp", "")},
+      {&f.programs.pyramid.arguments, optionalProgram(f.pyramid && !f.wideClassify, "2_pyramid_arguments.comp", curvedDefine)},
+      {&f.programs.pyramid.level1, optionalProgram(f.level1Pass, "2_pyramid_levels01.comp", curvedDefine)},
+      {&f.programs.pyramid.curved, optionalProgram(f.curvedSolids, "2_pyramid_curved.comp", curvedDefine)},
+      {&f.programs.pyramid.block, optionalProgram(f.pyramid, "2_pyramid_levels2to7.comp", "")},
+      {&f.programs.pyramid.single, optionalProgram(f.pyramid && area.levels > kHizBlockTop, "2_pyramid_top_level.comp", "")},
+      {&f.programs.trace.trace, computeProgram(traceEntry, traceDefines)},
+      {&f.programs.trace.quads, optionalProgram(settings.halfResolution, "3_trace_quads.comp",
                                           quadDefines + deferDefine + (f.countQuads ? countDefine : "") +
                                               (f.wideClassify ? "#define SSLR_QUADS_WIDE 1\n" : ""))},
-      {&f.programs.quadRetrace, optionalProgram(f.quadRetracePass, "3_retrace_quads.comp", quadDefines)},
-      {&f.programs.retrace, optionalProgram(f.retracePass, "3_retrace.comp", retraceDefines)},
-      {&f.programs.blurH, optionalProgram(f.blur, "4_blur.comp", "#define SSLR_BLUR_AXIS ivec2(1, 0)\n")},
-      {&f.programs.blurV, optionalProgram(f.blur, "4_blur.comp", "#define SSLR_BLUR_AXIS ivec2(0, 1)\n#define SSLR_BLUR_VERTICAL 1\n")},
-      {&f.programs.temporalBlend,
+      {&f.programs.trace.quadRetrace, optionalProgram(f.quadRetracePass, "3_retrace_quads.comp", quadDefines)},
+      {&f.programs.trace.retrace, optionalProgram(f.retracePass, "3_retrace.comp", retraceDefines)},
+      {&f.programs.blur.horizontal, optionalProgram(f.blur, "4_blur.comp", "#define SSLR_BLUR_AXIS ivec2(1, 0)\n")},
+      {&f.programs.blur.vertical, optionalProgram(f.blur, "4_blur.comp", "#define SSLR_BLUR_AXIS ivec2(0, 1)\n#define SSLR_BLUR_VERTICAL 1\n")},
+      {&f.programs.temporal.blend,
        optionalProgram(settings.temporal.enabled, "5_temporal_blend.comp",
                        f.historyConfidence ? "#define SSLR_HISTORY_CONFIDENCE 1\n" : "")},
-      {&f.programs.temporalStore, optionalProgram(settings.temporal.enabled, "5_temporal_store.comp", "")},
-      {&f.programs.historyCleanup, optionalProgram(settings.temporal.enabled, "5_clear_untraced_history.comp", "")}};
+      {&f.programs.temporal.store, optionalProgram(settings.temporal.enabled, "5_temporal_store.comp", "")},
+      {&f.programs.temporal.cleanup, optionalProgram(settings.temporal.enabled, "5_clear_untraced_history.comp", "")}};
   for (const auto& [slot, program] : built) {
     if (!program) return program.status();
     *slot = program.value();
@@ -338,52 +290,42 @@ Expected<GLuint> Context::Impl::optionalProgram(bool wanted, const char* entry, 
 
 // The textures and buffers the plan needs that no earlier frame created.
 void Context::Impl::createFrameResources(const FramePlan& f) {
-  if (f.halfResolution && halfRes.quadHit == 0) {
-    const int qw = (width + 1) / 2, qh = (height + 1) / 2;
-    gl.CreateTextures(GL_TEXTURE_2D, 1, &halfRes.quadHit);
-    gl.TextureStorage2D(halfRes.quadHit, 1, GL_RGBA32F, qw, qh);
-    label(GL_TEXTURE, halfRes.quadHit, "sslr.quadHit");
-    gl.CreateTextures(GL_TEXTURE_2D, 1, &halfRes.quadSurface);
-    gl.TextureStorage2D(halfRes.quadSurface, 1, GL_RGBA16F, qw, qh);
-    label(GL_TEXTURE, halfRes.quadSurface, "sslr.quadSurface");
-  }
-  if (f.curvedSolids && pyramid.curvedQuads == 0) {
-    gl.CreateBuffers(1, &pyramid.curvedQuads);  // header (passes/curved_quads.glsl) + one entry per quad
-    gl.NamedBufferStorage(pyramid.curvedQuads, static_cast<GLsizeiptr>((8 + static_cast<size_t>(pyramid.level1Width) * pyramid.level1Height) * sizeof(GLuint)),
-                          nullptr, GL_DYNAMIC_STORAGE_BIT);
-    label(GL_BUFFER, pyramid.curvedQuads, "sslr.curvedQuads");
-  }
-  if (f.pyramid && pyramid.texture == 0) createPyramid();
   if (f.pyramid && feedback.buffer == 0) {
     gl.CreateBuffers(1, &feedback.buffer);
     gl.NamedBufferStorage(feedback.buffer, 4 * sizeof(GLuint), nullptr, 0);
     label(GL_BUFFER, feedback.buffer, "sslr.feedback");
   }
-  if ((f.retracePass || f.countTraversal) && retraceBuffer == 0) {
-    gl.CreateBuffers(1, &retraceBuffer);
-    // Header, then a pixel list (at most every pixel of the traced tiles) or the quad list (a slot
-    // and a tile's quads per tile; passes/retrace_list.glsl).
-    const size_t tileCount = static_cast<size_t>(tilesX()) * tilesY();
-    gl.NamedBufferStorage(retraceBuffer,
-                          static_cast<GLsizeiptr>((4 + tileCount * SSLR_TILE_SIZE * SSLR_TILE_SIZE) * sizeof(GLuint)),
-                          nullptr, GL_DYNAMIC_STORAGE_BIT);
-    label(GL_BUFFER, retraceBuffer, "sslr.retrace");
-  }
-  // The hit record and iteration images only for the frames that write them (20 B per pixel).
-  if ((f.debugOutputs || f.temporal) && hit == 0) hit = makeTexture(GL_RGBA32F, "sslr.hit");
-  if (f.hitDistance && hitDistance == 0) hitDistance = makeTexture(GL_R32F, "sslr.hitDistance");
-  if (f.historyConfidence && history.confidence == 0) history.confidence = makeTexture(GL_R8, "sslr.historyConfidence");
-  if (f.debugOutputs && iterations == 0) iterations = makeTexture(GL_R32F, "sslr.iterations");
-  if (f.temporal && history.color == 0) {
-    history.color = makeTexture(GL_RGBA16F, "sslr.history");
-    history.key = makeTexture(GL_R32F, "sslr.historyKey");
-  }
+  createPyramidResources(f);
+  createTraceResources(f);
+  createTemporalResources(f);
+}
+
+void Context::Impl::bindInputs(const FrameInputs& in) const {
+  gl.bindTexture2D(SSLR_UNIT_DEPTH, in.depthTexture);
+  gl.BindSampler(SSLR_UNIT_DEPTH, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_NORMAL, in.normalTexture);
+  gl.BindSampler(SSLR_UNIT_NORMAL, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_COLOR, in.colorTexture);
+  gl.BindSampler(SSLR_UNIT_COLOR, linearSampler);
+  gl.bindTexture2D(SSLR_UNIT_MATERIAL, in.materialTexture);  // 0 unless the host keeps materials apart
+  gl.BindSampler(SSLR_UNIT_MATERIAL, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_MASK, in.maskTexture);  // 0 unless the host limits where rays start
+  gl.BindSampler(SSLR_UNIT_MASK, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_BACK_DEPTH, in.backDepthTexture);  // 0 unless the host measures thickness
+  gl.BindSampler(SSLR_UNIT_BACK_DEPTH, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_BASE_COLOR, in.baseColorTexture);  // 0 unless the host gives coloured F0
+  gl.BindSampler(SSLR_UNIT_BASE_COLOR, nearestSampler);
+  gl.bindTexture2D(SSLR_UNIT_PYRAMID, pyramid.texture);  // read by the depth-only trace (built when a mode needs it)
+  gl.BindSampler(SSLR_UNIT_PYRAMID, nearestSampler);
+  gl.BindBufferBase(GL_UNIFORM_BUFFER, SSLR_BINDING_FRAME_UBO, frameUbo);
+  gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_TILE_SSBO, tileBuffer);
+  gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
 }
 
 // The frame's constants, the tile list's header, the debug images and the stats slot.
 void Context::Impl::beginFrame(FramePlan& f) {
   const float zero[4] = {0, 0, 0, 0};
-  if (f.temporal && !f.useHistory) clearTexImage(history.key, GL_RED, GL_FLOAT, zero);
+  if (f.temporal && !f.useHistory) clearTexImage(temporal.key, GL_RED, GL_FLOAT, zero);
   f.frame.temporal.history = f.useHistory ? 1 : 0;
   frameIndex = frameIndex == 0x7fffffff ? 1 : frameIndex + 1;
   f.frame.trace.frameIndex = frameIndex;
@@ -394,12 +336,12 @@ void Context::Impl::beginFrame(FramePlan& f) {
   // zeroes the tiles the previous frame traced and this one does not. The debug images are
   // cleared whole (debug only).
   if (f.debugOutputs) {
-    clearTexImage(hit, GL_RGBA, GL_FLOAT, zero);
-    clearTexImage(iterations, GL_RED, GL_FLOAT, zero);
+    clearTexImage(trace.hit, GL_RGBA, GL_FLOAT, zero);
+    clearTexImage(trace.iterations, GL_RED, GL_FLOAT, zero);
   }
   // The hit distance is cleared whole too (0: no hit), so that tiles not traced read 0.
-  if (f.hitDistance) clearTexImage(hitDistance, GL_RED, GL_FLOAT, zero);
-  if (f.historyConfidence) clearTexImage(history.confidence, GL_RED, GL_FLOAT, zero);
+  if (f.hitDistance) clearTexImage(trace.hitDistance, GL_RED, GL_FLOAT, zero);
+  if (f.historyConfidence) clearTexImage(temporal.confidence, GL_RED, GL_FLOAT, zero);
   // Stats go to the ring slot of this dispatch (the oldest; a slot still unread is overwritten:
   // lastStats then reports a later frame).
   ++dispatches;
@@ -472,183 +414,6 @@ void Context::Impl::beginPass(const FramePlan& f, int pass) const {
   recordingPass = pass;
 }
 
-// Pass 1: classification over the screen (the tile list; with the pyramid, its levels 0 and 1),
-// then the clean-up of the tiles the previous frame traced and this one does not (DeviceProfile::Gpu:
-// inside classification).
-void Context::Impl::runClassify(const FramePlan& f, const FrameInputs& in) const {
-  beginPass(f, 0);
-  bindInputs(in);
-  if (f.method == Method::PositionBuffer) {
-    gl.bindTexture2D(SSLR_UNIT_POSITION, in.positionTexture);
-    gl.BindSampler(SSLR_UNIT_POSITION, nearestSampler);
-  }
-  useProgram(f.programs.classify);
-  if (f.pyramid) bindPyramidLevels01();
-  if (f.curvedSolids) {
-    // The curved pass's dispatch (0, 1, 1) until the pyramid-args pass sets it; no quad listed.
-    const GLuint curvedHeader[8] = {0, 1, 1, 0, 0, 0, 0, 0};
-    bufferSubData(pyramid.curvedQuads, 0, sizeof(curvedHeader), curvedHeader);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_CURVED_SSBO, pyramid.curvedQuads);
-  }
-  if (f.wideClassify) {  // 2x2 tiles a group, the clean-up inside
-    gl.BindImageTexture(SSLR_IMAGE_CLASSIFY_REFLECTION, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    gl.BindImageTexture(SSLR_IMAGE_CLASSIFY_RESOLVED, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    dispatchCompute(static_cast<GLuint>((area.tilesX + 1) / 2), static_cast<GLuint>((area.tilesY + 1) / 2), 1);
-  } else {
-    dispatchCompute(static_cast<GLuint>(area.tilesX), static_cast<GLuint>(area.tilesY), 1);
-  }
-  memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
-                GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  if (f.wideClassify) return;
-  useProgram(f.programs.cleanup);
-  gl.BindImageTexture(SSLR_IMAGE_REFLECTION, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  gl.BindImageTexture(SSLR_IMAGE_RESOLVED, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  dispatchComputeIndirect(kCleanupDispatchOffset);
-  memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-}
-
-// Pass 2: the depth pyramid, when the trace reads it: its dispatch arguments (zero groups unless a
-// tile was listed), level 1 where classification left it, the curved quads' cells, levels 2+.
-void Context::Impl::runPyramid(const FramePlan& f) const {
-  beginPass(f, 1);
-  if (!f.pyramid) return;
-  if (!f.wideClassify) {  // (Gpu: classification set the arguments)
-    useProgram(f.programs.hizArgs);
-    dispatchCompute(1, 1, 1);
-    memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-  }
-  if (f.level1Pass) {  // level 1 (2_pyramid_levels01.comp) through level 1's pyramid arguments
-    useProgram(f.programs.level1);
-    bindPyramidLevels01();  // (the clean-up pass took image unit 0)
-    dispatchComputeIndirect(kHizDispatchOffset);
-    memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
-                  GL_COMMAND_BARRIER_BIT);
-  }
-  if (f.curvedSolids) {  // the listed quads' cells with their solids (2_pyramid_curved.comp)
-    useProgram(f.programs.curved);
-    bindPyramidLevels01();
-    gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, pyramid.curvedQuads);
-    dispatchComputeIndirect(0);
-    gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
-    memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-  }
-  buildPyramid(f.programs.hizBuild, f.programs.hizSingle);
-}
-
-// Pass 3: the trace over the listed tiles (half resolution: the quad pass first; a deferred
-// traversal or half resolution: the retrace pass after).
-void Context::Impl::runTrace(const FramePlan& f) const {
-  beginPass(f, 2);
-  const GLuint retraceHeader[4] = {0, 1, 1, 0};  // dispatch (0, 1, 1), count 0
-  if (f.retracePass || f.countTraversal) {
-    bufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
-    gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_RETRACE_SSBO, retraceBuffer);
-  }
-  if (f.halfResolution) runQuads(f);
-  useProgram(f.programs.trace);
-  gl.BindImageTexture(SSLR_IMAGE_REFLECTION, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  gl.BindImageTexture(SSLR_IMAGE_RESOLVED, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  if (f.debugOutputs || f.temporal) gl.BindImageTexture(SSLR_IMAGE_HIT, hit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  if (f.debugOutputs) gl.BindImageTexture(SSLR_IMAGE_ITERATIONS, iterations, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-  if (f.hitDistance)
-    gl.BindImageTexture(SSLR_IMAGE_HIT_DISTANCE, hitDistance, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-  dispatchComputeIndirect(0);
-  if (f.retracePass) {  // the pixels whose quad's ray did not answer them, or that need the traversal
-    memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-    useProgram(f.programs.retrace);
-    gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, retraceBuffer);
-    dispatchComputeIndirect(0);
-    gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
-  }
-  memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
-                GL_COMMAND_BARRIER_BIT);
-}
-
-// Half resolution's quad pass (one ray per 2x2 quad), its retrace of the quads that need the
-// traversal, and the retrace list handed on to the pixels.
-void Context::Impl::runQuads(const FramePlan& f) const {
-  const GLuint retraceHeader[4] = {0, 1, 1, 0};
-  useProgram(f.programs.quads);
-  gl.BindImageTexture(SSLR_IMAGE_QUAD_HIT, halfRes.quadHit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  gl.BindImageTexture(SSLR_IMAGE_QUAD_SURFACE, halfRes.quadSurface, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  // One group per listed tile (Software: 16 invocations), or per 4 of them (Gpu: 64).
-  dispatchComputeIndirect(f.wideClassify ? kQuadDispatchOffset : 0);
-  if (f.quadRetracePass) {  // the quads whose ray needs the traversal
-    memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-    useProgram(f.programs.quadRetrace);
-    gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, retraceBuffer);
-    dispatchComputeIndirect(0);
-    gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);
-  }
-  if (f.quadRetracePass || f.countQuads) {
-    // The quads that needed the traversal (Auto's feedback), then the list is the pixels'.
-    memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    if (f.countQuads && f.feedbackWritten)
-      copyBufferSubData(retraceBuffer, feedback.buffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
-    bufferSubData(retraceBuffer, 0, sizeof(retraceHeader), retraceHeader);
-  }
-  memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-  gl.bindTexture2D(SSLR_UNIT_QUAD_HIT, halfRes.quadHit);
-  gl.BindSampler(SSLR_UNIT_QUAD_HIT, nearestSampler);
-  gl.bindTexture2D(SSLR_UNIT_QUAD_SURFACE, halfRes.quadSurface);
-  gl.BindSampler(SSLR_UNIT_QUAD_SURFACE, nearestSampler);
-}
-
-// Pass 4: the separable blur (resolved -> blurTemp -> resolved, radii from the reflection's alpha)
-// over the tiles the trace listed as having a pixel to blur.
-void Context::Impl::runBlur(const FramePlan& f) const {
-  beginPass(f, 3);
-  if (!f.blur) return;
-  for (GLuint unit : {SSLR_UNIT_BLUR_INPUT, SSLR_UNIT_BLUR_REFLECTION, SSLR_UNIT_BLUR_UNBLURRED})
-    gl.BindSampler(unit, nearestSampler);
-  useProgram(f.programs.blurH);
-  gl.bindTexture2D(SSLR_UNIT_BLUR_INPUT, resolved);
-  gl.bindTexture2D(SSLR_UNIT_BLUR_REFLECTION, reflection);
-  gl.BindImageTexture(SSLR_IMAGE_BLUR_OUTPUT, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  dispatchComputeIndirect(kBlurDispatchOffset);
-  memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  useProgram(f.programs.blurV);
-  gl.bindTexture2D(SSLR_UNIT_BLUR_INPUT, blurTemp);
-  gl.bindTexture2D(SSLR_UNIT_BLUR_UNBLURRED, resolved);  // read where blurTemp is not written (see 4_blur.comp)
-  gl.BindImageTexture(SSLR_IMAGE_BLUR_OUTPUT, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  dispatchComputeIndirect(kBlurDispatchOffset);
-}
-
-// Pass 5 (Settings::temporal): blend with the reprojected history, store this frame's output and
-// keys, forget the tiles traced last frame and not now.
-void Context::Impl::runTemporal(const FramePlan& f, const FrameInputs& in) {
-  beginPass(f, 4);
-  if (!f.temporal) return;
-  memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
-  for (GLuint unit : {SSLR_UNIT_TEMPORAL_CURRENT, SSLR_UNIT_HISTORY, SSLR_UNIT_HISTORY_KEY})
-    gl.BindSampler(unit, nearestSampler);
-  useProgram(f.programs.temporalBlend);
-  gl.bindTexture2D(SSLR_UNIT_MOTION, in.motionTexture);  // the pyramid's unit: free after the trace
-  gl.BindSampler(SSLR_UNIT_MOTION, nearestSampler);
-  gl.bindTexture2D(SSLR_UNIT_HIT_RECORD, hit);  // written by the trace on the listed tiles (SSLR_TEMPORAL_HITS)
-  gl.BindSampler(SSLR_UNIT_HIT_RECORD, nearestSampler);
-  gl.bindTexture2D(SSLR_UNIT_TEMPORAL_CURRENT, resolved);
-  gl.bindTexture2D(SSLR_UNIT_HISTORY, history.color);
-  gl.bindTexture2D(SSLR_UNIT_HISTORY_KEY, history.key);
-  gl.BindImageTexture(SSLR_IMAGE_TEMPORAL_OUTPUT, blurTemp, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  if (f.historyConfidence)
-    gl.BindImageTexture(SSLR_IMAGE_HISTORY_CONFIDENCE, history.confidence, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8);
-  dispatchComputeIndirect(0);
-  memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  useProgram(f.programs.temporalStore);
-  gl.bindTexture2D(SSLR_UNIT_TEMPORAL_CURRENT, blurTemp);
-  gl.bindTexture2D(SSLR_UNIT_HISTORY, 0);
-  gl.bindTexture2D(SSLR_UNIT_HISTORY_KEY, 0);
-  gl.BindImageTexture(SSLR_IMAGE_TEMPORAL_OUTPUT, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  gl.BindImageTexture(SSLR_IMAGE_HISTORY, history.color, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  gl.BindImageTexture(SSLR_IMAGE_HISTORY_KEY, history.key, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-  dispatchComputeIndirect(0);
-  memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  useProgram(f.programs.historyCleanup);
-  dispatchComputeIndirect(kCleanupDispatchOffset);
-  history.valid = true;
-}
-
 // The end of a frame: every write made visible to the host, the feedback and the stats copied on
 // the GPU (no read-back) and fenced.
 void Context::Impl::finishFrame(const FramePlan& f) {
@@ -657,7 +422,7 @@ void Context::Impl::finishFrame(const FramePlan& f) {
   if (f.feedbackWritten) {  // (listed tiles, -, -, pixels or quads that needed the traversal)
     copyBufferSubData(tileBuffer, feedback.buffer, 0, 0, sizeof(GLuint));
     if (f.feedback && !f.halfResolution)  // (half resolution copied its quads' count in runQuads)
-      copyBufferSubData(retraceBuffer, feedback.buffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
+      copyBufferSubData(trace.retraceList, feedback.buffer, 3 * sizeof(GLuint), 3 * sizeof(GLuint), sizeof(GLuint));
     feedback.hasTraversal = f.feedback;
     feedback.cellsPerTile = f.halfResolution ? SSLR_TILE_QUADS : SSLR_TILE_SIZE * SSLR_TILE_SIZE;
     feedback.fence = gl.FenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
