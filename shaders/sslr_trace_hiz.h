@@ -178,6 +178,44 @@ struct SslrWalk {
 // Past a cell boundary, in pixels (exact in float up to 2^15 px).
 #define SSLR_HIZ_NUDGE (1.0f / 256.0f)
 
+// Where a ray that ended inside a curved surface's solid entered it (w.tRun, window space wEntry;
+// the pixel there is px): a hit if it entered through the surface the pixel shows. A faceted mesh
+// with interpolated normals holds flat facets in depth while its shading normals tilt away from
+// them, so the pixel tests' tangent planes refuse such crossings, and a crease between facets,
+// seen at an angle, steps in depth from one pixel to the next. Two cases:
+// - the ray crossed into px from a neighbour whose surface lies beyond it there, and is behind
+//   px's: it crossed the surface between the two samples, at the boundary, if the two are one
+//   surface (their depths differ by no more than the steepest slope's hit tolerance; an outline
+//   steps further);
+// - otherwise it went behind inside px: a hit where it did, if that point lies on px's surface
+//   within the hit tolerance (adaptive L's convergence test).
+SSLR_FN bool sslrCurvedEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 wEntry, vec3 d, vec3 vsP,
+                                vec3 vsR, SSLR_OUT(float) L) {
+  L = 0.0f;
+  if (!sslrCurvedSolids(t) || sslrBackDepth(s)) return false;
+  ivec2 px = ivec2(floor(vec2(wEntry.x, wEntry.y)));
+  vec3 vsSurface;
+  if (!(sslrLoadPyramidTexel(0, px).y > 0.0f) || !sslrLoadSurface(px, vsSurface)) return false;
+  float keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
+  float keyIn = keySign * sslrLoadDepth(px);
+  L = sslrRayLengthAt(p, vec2(s.width, s.height), keySign, wEntry, d, 0.0f, vsP, vsR);
+  if (!(L > 0.0f)) return false;
+  // The pixel the ray came from: just before the boundary it crossed (2 nudges back along the
+  // major axis; a corner's other boundary, crossed earlier, stays crossed).
+  ivec2 npx = ivec2(floor(vec2(wEntry.x, wEntry.y) - vec2(d.x, d.y) * (2.0f * SSLR_HIZ_NUDGE)));
+  bool crossedIn = (npx.x != px.x || npx.y != px.y) && wEntry.z > keyIn && npx.x >= 0 && npx.y >= 0 &&
+                   npx.x < s.width && npx.y < s.height;
+  if (!crossedIn) {
+    vec3 vsQ = vsP + vsR * L;
+    float distS = p.orthographic != 0 ? abs(vsSurface.z) : -vsSurface.z;
+    return length(vsQ - vsSurface) <= sslrHitTolerance(p, s, t, distS, 0.0f);
+  }
+  float depthOut = sslrLoadDepth(npx);
+  if (!sslrIsGeometryDepth(s, depthOut) || !(wEntry.z <= keySign * depthOut)) return false;
+  float distIn = sslrViewDepthFromDepth(p, keySign * keyIn);
+  return abs(sslrViewDepthFromDepth(p, depthOut) - distIn) <= sslrHitTolerance(p, s, t, distIn, 16.0f);
+}
+
 // The ray from vsP along vsR in window space, just out of its own pixel. False for a ray along the
 // view direction: it stays in its own pixel, and nothing on screen can answer it.
 SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsP, vec3 vsR,
@@ -452,6 +490,8 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   // Ended inside an object's slab: its side, if the ray crossed an outline onto it.
   float Lc = 0.0f;
   if (w.inSlab && sslrCornerHit(p, s, t, w.o + w.d * w.tRun, w.d, vsP, vsR, Lc) && Lc <= t.maxDistance)
+    return sslrFinishHit(p, hit, vsP, vsR, Lc, 1.0f);
+  if (w.inSlab && sslrCurvedEntryHit(p, s, t, w.o + w.d * w.tRun, w.d, vsP, vsR, Lc) && Lc <= t.maxDistance)
     return sslrFinishHit(p, hit, vsP, vsR, Lc, 1.0f);
   if (w.measuredSlab) {  // known hidden: where the ray entered the solid's pixels, for verification
     hit.status = SSLR_STATUS_HIDDEN;

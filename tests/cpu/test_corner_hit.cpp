@@ -3,7 +3,10 @@
 // crosses the outline a little behind the front face meets the box's side there, exactly where a
 // right-angled corner puts it. Every condition of the rule has a case that must refuse the hit:
 // a hidden side, a side seen nearly edge-on, a hit the outer pixel would have shown, a hit deeper
-// than the slab, no outline, and a ray that did not cross the outline there. Its own executable:
+// than the slab, no outline, and a ray that did not cross the outline there. On the same buffer,
+// with the far surface moved close behind the front one and level 0 holding curved solids' extra
+// depth, the curved entry hit (sslrCurvedEntryHit): a crease between two samples of one curved
+// surface, and the cases it must refuse. Its own executable:
 // it defines the loaders the tracer headers call, which sslr_host also defines for its CPU run.
 #include <gtest/gtest.h>
 
@@ -18,6 +21,8 @@ namespace sslr::shared {
 namespace {
 constexpr int kWidth = 320, kHeight = 180;
 constexpr float kFrontZ = -10.0f, kWallZ = -50.0f;
+float gWallZ = kWallZ;
+float gCurvedExtra = 0.0f;  // level 0's extra depth on every pixel (0: flat surfaces)
 
 SslrProjection gProj{};
 SslrSurface gSurf{};
@@ -30,7 +35,7 @@ bool showsBox(ivec2 px) {
   const float xc = float(px.x) + 0.5f;
   return gBoxOnLeft ? xc < gEdgePx : xc >= gEdgePx;
 }
-float viewZAt(ivec2 px) { return showsBox(px) ? kFrontZ : kWallZ; }
+float viewZAt(ivec2 px) { return showsBox(px) ? kFrontZ : gWallZ; }
 }  // namespace
 
 // The window depth a pixel's surface writes (the inverse of the reconstruction).
@@ -41,10 +46,10 @@ vec4 sslrLoadNormal(ivec2 px) {
   return vec4(e.x, e.y, 0.0f, 0.0f);
 }
 bool sslrLoadSurface(ivec2 px, vec3& vsPos) { return sslrSurfaceFromDepth(gProj, gSurf, px, sslrLoadDepth(px), vsPos); }
-// sslrCornerHit reads level 0 alone (flat surfaces: no extra depth).
+// sslrCornerHit and sslrCurvedEntryHit read level 0 alone.
 vec2 sslrLoadPyramidTexel(int level, ivec2 cell) {
   EXPECT_EQ(level, 0);
-  return sslrHiZLevel0Texel(gSurf, sslrLoadDepth(cell), 0.0f);
+  return sslrHiZLevel0Texel(gSurf, sslrLoadDepth(cell), gCurvedExtra);
 }
 }  // namespace sslr::shared
 
@@ -73,6 +78,8 @@ class CornerHit : public ::testing::Test {
     gSurf.reversedZ = 1;
     gEdgePx = 130.0f;
     gBoxOnLeft = true;
+    gWallZ = kWallZ;
+    gCurvedExtra = 0.0f;
   }
 
   // The view point at window (x, y) on the plane z = viewZ.
@@ -234,6 +241,75 @@ TEST_F(CornerHit, FfxMipsRoundDownAndReadBackgroundPastTheirSize) {
   EXPECT_EQ(sslrFfxNearKey(gSurf, 6, vec2(0.0f, 2.0f), keySign, 5), 0.0f);
   // Level 0 is the depth buffer itself: every pixel is in range.
   EXPECT_EQ(sslrFfxNearKey(gSurf, 0, vec2(319.0f, 179.0f), keySign, 5), keySign * sslrLoadDepth(ivec2(319, 179)));
+}
+
+// A faceted curved surface seen at an angle steps in depth from pixel to pixel: here the pixels
+// left of the edge at view depth 10, those right of it at 10.05, both on a curved solid (level 0's
+// extra depth). A ray from the right, in front of the farther samples, crosses the edge at depth
+// 10.02, behind the nearer ones: it crossed the surface between the two samples, at the edge.
+class CurvedEntryHit : public CornerHit {
+ protected:
+  void SetUp() override {
+    CornerHit::SetUp();
+    gWallZ = kFrontZ - 0.05f;
+    gCurvedExtra = 0.5f;
+  }
+  static SslrTraceParams curvedParams() {
+    SslrTraceParams t = params(0.75f);
+    t.curvedSolids = 1;
+    t.hitToleranceRelative = 0.002f;  // Settings{}'s hit tolerance
+    t.hitTolerancePixels = 1.5f;
+    return t;
+  }
+  // The rule for a ray from vsP towards vsTarget, entering the edge's pixel column through the edge
+  // (or, with inside > 0, moved on that far into it).
+  static bool entryHit(vec3 vsP, vec3 vsTarget, float& L, float inside = 0.0f) {
+    const vec3 vsR = normalize(vsTarget - vsP);
+    const Entry e = entryAt(vsP, vsR, gEdgePx - inside, 1.0f / 256.0f);
+    EXPECT_EQ(int(std::floor(e.wEntry.x)), int(gEdgePx) - 1);
+    return sslrCurvedEntryHit(gProj, gSurf, curvedParams(), e.wEntry, e.d, vsP, vsR, L);
+  }
+};
+
+TEST_F(CurvedEntryHit, HitsACreaseBetweenTwoSamplesOfOneSurfaceAtTheEdge) {
+  const vec3 vsQ = viewAt(gEdgePx, 90.5f, kFrontZ - 0.02f);
+  const vec3 vsP = vsQ + vec3(4.0f, 0.3f, 1.5f);
+  float L = 0.0f;
+  ASSERT_TRUE(entryHit(vsP, vsQ, L));
+  // At the edge, moved on by the traversal's nudge (1/256 px: ~1e-4 of the ray's length here).
+  EXPECT_NEAR(L, length(vsQ - vsP), 2e-3f * length(vsQ - vsP));
+}
+
+TEST_F(CurvedEntryHit, RefusesAnOutline) {
+  // The far samples 40 units behind: no one surface, the ray passes behind the near ones' outline.
+  gWallZ = kWallZ;
+  const vec3 vsQ = viewAt(gEdgePx, 90.5f, kFrontZ - 0.02f);
+  float L = 0.0f;
+  EXPECT_FALSE(entryHit(vsQ + vec3(4.0f, 0.3f, 1.5f), vsQ, L));
+}
+
+TEST_F(CurvedEntryHit, LeavesFlatSurfacesToTheirPlanes) {
+  gCurvedExtra = 0.0f;
+  const vec3 vsQ = viewAt(gEdgePx, 90.5f, kFrontZ - 0.02f);
+  float L = 0.0f;
+  EXPECT_FALSE(entryHit(vsQ + vec3(4.0f, 0.3f, 1.5f), vsQ, L));
+}
+
+TEST_F(CurvedEntryHit, RefusesARayBehindBothSamples) {
+  // At depth 10.3 the ray is behind the far samples too: it did not come from in front of them.
+  const vec3 vsQ = viewAt(gEdgePx, 90.5f, kFrontZ - 0.3f);
+  float L = 0.0f;
+  EXPECT_FALSE(entryHit(vsQ + vec3(4.0f, 0.3f, 1.5f), vsQ, L));
+}
+
+TEST_F(CurvedEntryHit, InsideAPixelHitsOnlyOnItsSurface) {
+  // Moved on 0.3 px into the pixel: a hit if the ray there lies on the pixel's surface within the
+  // hit tolerance (0.02 + 1.5 footprints, ~0.1 at depth 10), not 0.5 behind it.
+  const vec3 vsNear = viewAt(gEdgePx - 0.3f, 90.5f, kFrontZ - 0.01f);
+  float L = 0.0f;
+  EXPECT_TRUE(entryHit(vsNear + vec3(4.0f, 0.3f, 1.5f), vsNear, L, 0.3f));
+  const vec3 vsFar = viewAt(gEdgePx - 0.3f, 90.5f, kFrontZ - 0.5f);
+  EXPECT_FALSE(entryHit(vsFar + vec3(4.0f, 0.3f, 1.5f), vsFar, L, 0.3f));
 }
 
 }  // namespace
