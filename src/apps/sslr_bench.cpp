@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <cstdio>
 #include <iostream>
@@ -81,6 +82,8 @@ cxxopts::Options benchOptions() {
                         "rough; implies --glossy)", cxxopts::value<std::string>())
       ("glossy-size", "size of the glossy study's frames, WxH", cxxopts::value<std::string>()->default_value("480x270"))
       ("glossy-samples", "reference rays per glossy pixel (2..65536)", cxxopts::value<std::string>()->default_value("256"))
+      ("glossy-clamp", "Settings::radianceClamp.maxLuminance of the glossy study's \"clamp\" configurations (display "
+                       "units, > 0)", cxxopts::value<std::string>()->default_value("256"))
       ("no-glossy", "skip the glossy study")
       ("curve-sizes", "resolutions of the resolution curve, WxH,WxH,... (implies --curves)", cxxopts::value<std::string>())
       ("curve-fractions", "reflective percentages of the fraction curve, N,N,... (implies --curves)", cxxopts::value<std::string>())
@@ -192,8 +195,13 @@ void parseStudies(const cxxopts::ParseResult& args, BenchOptions& bo) {
   std::istringstream samplesIn(samples);
   if (!(samplesIn >> glossySamples) || !samplesIn.eof() || glossySamples < 2 || glossySamples > 65536)
     throw std::runtime_error("--glossy-samples expects an integer 2..65536 (got '" + samples + "')");
+  const std::string clampText = args["glossy-clamp"].as<std::string>();
+  float glossyClamp = 0.0f;
+  std::istringstream clampIn(clampText);
+  if (!(clampIn >> glossyClamp) || !clampIn.eof() || !(glossyClamp > 0.0f) || !std::isfinite(glossyClamp))
+    throw std::runtime_error("--glossy-clamp expects a finite luminance > 0 (got '" + clampText + "')");
   std::vector<std::string> glossyScenes = {"glossy", "mirror-room@rough0.25", "curved-mirror@rough0.3",
-                                           "facing-mirror@rough0.3"};
+                                           "facing-mirror@rough0.3", "bright-emitter"};
   if (args.count("glossy-scenes")) {
     glossyScenes = uniqueItems(args["glossy-scenes"].as<std::string>(), "glossy-scenes");
     for (const std::string& s : glossyScenes)
@@ -204,6 +212,7 @@ void parseStudies(const cxxopts::ParseResult& args, BenchOptions& bo) {
   if (glossy) {
     std::tie(bo.glossyWidth, bo.glossyHeight) = glossySize;
     bo.glossySamples = glossySamples;
+    bo.glossyClampLuminance = glossyClamp;
     bo.glossyScenes = glossyScenes;
   }
 
@@ -299,11 +308,12 @@ void printStudies(const BenchResult& result, const BenchOptions& bo) {
   if (!result.glossy.empty()) {
     std::printf("\nglossy study (%dx%d, %d reference rays a pixel; Radiance output against the GGX lobe's radiance):\n",
                 bo.glossyWidth, bo.glossyHeight, bo.glossySamples);
-    std::printf("  %-24s %-20s %8s %8s %9s %9s %10s %8s %9s\n", "scene", "configuration", "ms", "rmse", "> noise",
-                "relative", "no estim.", "scored", "ref noise");
+    std::printf("  %-24s %-27s %8s %8s %9s %9s %8s %10s %8s %9s\n", "scene", "configuration", "ms", "rmse", "> noise",
+                "relative", "display", "no estim.", "scored", "ref noise");
     for (const GlossyPoint& p : result.glossy)
-      std::printf("  %-24s %-20s %8.2f %8.4f %9.4f %9.3f %10.3f %8zu %9.4f\n", p.scene.c_str(), p.config.c_str(),
-                  p.timeMedianMs, p.rmse, p.rmseAboveNoise, p.relativeRmse, p.uncovered, p.scored, p.referenceNoise);
+      std::printf("  %-24s %-27s %8.2f %8.4f %9.4f %9.3f %8.4f %10.3f %8zu %9.4f\n", p.scene.c_str(), p.config.c_str(),
+                  p.timeMedianMs, p.rmse, p.rmseAboveNoise, p.relativeRmse, p.displayRmse, p.uncovered, p.scored,
+                  p.referenceNoise);
   }
   if (result.temporal.empty()) return;
   std::printf("\ntemporal study (%dx%d; RMSE against the ideal reflection; still = its last 4 frames):\n",

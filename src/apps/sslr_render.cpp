@@ -152,6 +152,7 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
   numberOption(args, "object-thickness", "a number", s.traversal.objectDepthRelative);
   numberOption(args, "hidden-passage", "a number", s.traversal.hiddenPassageLimitPx);
   numberOption(args, "hidden-guess", "a number in 0..1", s.traversal.hiddenGuess);
+  numberOption(args, "max-luminance", "a number >= 0", s.radianceClamp.maxLuminance);
   numberOption(args, "ffx-thickness", "a number", s.ffx.depthBufferThickness);
   numberOption(args, "error-k", "a number", s.fades.errorK);
   numberOption(args, "iterations", "an integer", s.adaptiveL.maxIterations);
@@ -212,6 +213,9 @@ void addTracerOptions(cxxopts::Options& options) {
       ("hidden-guess", "a ray that ends behind what the screen shows gets the colour where it went behind, "
                        "at this weight 0..1 (Settings::traversal.hiddenGuess; 0.5 in the high and ultra presets, "
                        "0 = a miss)",
+       cxxopts::value<std::string>())
+      ("max-luminance", "HDR-safe radiance: hit colours brighter than this luminance (display units) are scaled "
+                        "down to it before the blur and temporal reuse (Settings::radianceClamp; default 0 = off)",
        cxxopts::value<std::string>())
       ("ffx-thickness", "--method ffx-sssr: FidelityFX SSSR's depth buffer thickness, view units (default 0.015, "
                         "its sample's)", cxxopts::value<std::string>())

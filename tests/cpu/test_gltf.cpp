@@ -349,6 +349,27 @@ TEST_F(Gltf, EmissiveFactorIsLoaded) {
   EXPECT_FLOAT_EQ(s.value().materials[0].emissiveColor.g, 0.25f);
 }
 
+// KHR_materials_emissive_strength scales the factor past 1 (HDR emitters: bright-emitter's glTF
+// file), and is used, not reported as ignored; a strength that is no number in [0, 65000] (the
+// G-buffer colour's range) is refused, naming the material.
+TEST_F(Gltf, EmissiveStrengthScalesTheFactor) {
+  const std::string used = "\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_materials_emissive_strength\"],";
+  auto withStrength = [&](const std::string& strength) {
+    return patched("\"roughnessFactor\":0.2}", "\"roughnessFactor\":0.2},\"emissiveFactor\":[1,0.5,0],"
+                                             "\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":" +
+                                                 strength + "}}");
+  };
+  std::string text = withStrength("1000");
+  text.replace(text.find("\"asset\":{\"version\":\"2.0\"},"), std::string("\"asset\":{\"version\":\"2.0\"},").size(), used);
+  auto s = loadGltf(write("strength.gltf", text));
+  ASSERT_TRUE(s) << s.error();
+  EXPECT_FLOAT_EQ(s.value().materials[0].emissiveColor.r, 1000.0f);
+  EXPECT_FLOAT_EQ(s.value().materials[0].emissiveColor.g, 500.0f);
+  EXPECT_TRUE(s.value().warnings.empty()) << s.value().warnings.front();
+  for (const char* bad : {"-1", "1e9", "\"bright\""})
+    expectError(write("bad-strength.gltf", withStrength(bad)), "material 0: KHR_materials_emissive_strength");
+}
+
 TEST_F(Gltf, UnsupportedRequiredExtensionIsNamed) {
   expectError(write("draco.gltf", patched("\"asset\":{\"version\":\"2.0\"},",
                                           "\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_draco_mesh_compression\"],"

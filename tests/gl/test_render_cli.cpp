@@ -65,6 +65,8 @@ TEST(RenderCliNoGl, BadArgumentsExitTwoWithAMessageAndWriteNothing) {
       {"--iterations abc", "iterations"},
       {"--hiz-steps 0", "traversal.maxSteps"},
       {"--hidden-guess 2", "traversal.hiddenGuess"},
+      {"--max-luminance -1", "radianceClamp.maxLuminance"},
+      {"--max-luminance bright", "--max-luminance expects a number"},
       {"--hiz-steps many", "--hiz-steps expects an integer"},
       {"--traversal-pass sideways", "--traversal-pass must be"},
       {"--hiz-verify --no-hiz-fallback", "exclude each other"},

@@ -385,6 +385,7 @@ json resultsJson(const BenchResult& result) {
                            {"uncovered", num(p.uncovered)},
                            {"referenceNoise", num(p.referenceNoise)},
                            {"rmseAboveNoise", num(p.rmseAboveNoise)},
+                           {"displayRmse", num(p.displayRmse)},
                            {"scored", p.scored},
                            {"timeMedianMs", num(p.timeMedianMs)}});
   return j;
@@ -562,10 +563,11 @@ Status reportStudies(std::ostringstream& h, const BenchResult& result, const std
         return st;
       h << "<h3>" << esc(scene) << "</h3>" << svg
         << "<table><tr><th>configuration</th><th>ms</th><th>RMSE</th><th>above the reference's noise</th>"
-           "<th>relative RMSE</th><th>no estimate</th><th>scored px</th><th>reference noise</th></tr>";
+           "<th>relative RMSE</th><th>display RMSE</th><th>no estimate</th><th>scored px</th><th>reference noise</th></tr>";
       for (const GlossyPoint* p : points)
         h << "<tr><td>" << esc(p->config) << "</td><td>" << fmt(p->timeMedianMs, 2) << "</td><td>" << fmt(p->rmse, 4)
           << "</td><td>" << fmt(p->rmseAboveNoise, 4) << "</td><td>" << fmt(p->relativeRmse, 3) << "</td><td>"
+          << fmt(p->displayRmse, 4) << "</td><td>"
           << fmt(p->uncovered, 3) << "</td><td>" << p->scored << "</td><td>" << fmt(p->referenceNoise, 4) << "</td></tr>";
       h << "</table><div class='strip'><figure><img src='" << fileSlug(scene) << "-glossy-truth.png'><figcaption>reference"
            "</figcaption></figure>";

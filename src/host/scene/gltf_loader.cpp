@@ -131,6 +131,20 @@ bool finiteMatrix(const glm::dmat4& m) {
 // Features the tools do not render, each reported once per file.
 using Ignored = std::set<std::string>;
 
+// KHR_materials_emissive_strength: the factor that scales emissiveFactor past 1 (HDR emitters); 1
+// without the extension.
+float emissiveStrength(const tinygltf::Material& material, size_t index) {
+  const auto ext = material.extensions.find("KHR_materials_emissive_strength");
+  if (ext == material.extensions.end() || !ext->second.Has("emissiveStrength")) return 1.0f;
+  const tinygltf::Value& v = ext->second.Get("emissiveStrength");
+  const double strength = v.IsNumber() ? v.GetNumberAsDouble() : -1.0;
+  // Bounded so that emission stays finite in the G-buffer's R11G11B10F colour (at most 65,000).
+  if (!(strength >= 0.0 && strength <= 65000.0))
+    throw LoadError{"material " + std::to_string(index) +
+                    ": KHR_materials_emissive_strength's emissiveStrength must be a number in [0, 65000]"};
+  return static_cast<float>(strength);
+}
+
 void loadMaterials(const tinygltf::Model& model, Scene& scene, Ignored& ignored) {
   std::map<int, int> textureOfImage;
   for (size_t i = 0; i < model.materials.size(); ++i) {
@@ -146,7 +160,7 @@ void loadMaterials(const tinygltf::Model& model, Scene& scene, Ignored& ignored)
     if (e.size() >= 3) m.emissiveColor = glm::vec3(e[0], e[1], e[2]);
     if (!std::isfinite(m.emissiveColor.r + m.emissiveColor.g + m.emissiveColor.b))
       throw LoadError{"material " + std::to_string(i) + ": emissiveFactor is not finite"};
-    m.emissiveColor = glm::clamp(m.emissiveColor, 0.0f, 1.0f);
+    m.emissiveColor = glm::clamp(m.emissiveColor, 0.0f, 1.0f) * emissiveStrength(model.materials[i], i);
     if (model.materials[i].emissiveTexture.index >= 0) ignored.insert("emissive textures (the emissive factor is used)");
     if (model.materials[i].normalTexture.index >= 0) ignored.insert("normal maps");
     if (pbr.metallicRoughnessTexture.index >= 0)
@@ -494,8 +508,9 @@ Expected<Scene> loadGltf(const std::string& path) {
     if (!model.skins.empty()) ignored.insert("skins (meshes drawn in their bind pose)");
     if (!model.animations.empty()) ignored.insert("animations (the scene is drawn at rest)");
     for (const std::string& ext : model.extensionsUsed)
-      if (std::find(model.extensionsRequired.begin(), model.extensionsRequired.end(), ext) ==
-          model.extensionsRequired.end())
+      if (ext != "KHR_materials_emissive_strength" &&
+          std::find(model.extensionsRequired.begin(), model.extensionsRequired.end(), ext) ==
+              model.extensionsRequired.end())
         ignored.insert("extension " + printable(ext, 80));
     const std::vector<int> roots = sceneRoots(model);
     std::optional<Camera> camera;

@@ -336,6 +336,18 @@ Scene glossy() {
   return s;
 }
 
+// The glossy scene with two small emitters at 1,000x the scene's average luminance in front of the
+// box row, over the panels of roughness 0.1 and 0.3: HDR radiance that the blur and temporal reuse
+// would spread into fireflies (Settings::radianceClamp; docs/results/glossy.md, "HDR").
+Scene brightEmitter() {
+  Scene s = glossy();
+  s.name = "bright-emitter";
+  const int emitter = addMaterial(s, glm::vec3(1.0f, 0.95f, 0.85f), 0.0f, 0.9f, 1000.0f);
+  s.meshes.push_back(makeBox({-3.0, 0.2, -2.2}, {0.3, 0.4, 0.3}, emitter, 0.0));
+  s.meshes.push_back(makeBox({1.0, 0.2, -2.2}, {0.3, 0.4, 0.3}, emitter, 0.0));
+  return s;
+}
+
 }  // namespace
 
 // The cost-curve scene: a floor with boxes and a back wall that together fill the screen, seen
@@ -391,7 +403,8 @@ Scene reflectiveFraction(int percent) {
 std::vector<std::string> builtinSceneNames() {
   return {"mirror-room",   "grazing-plane", "thin-objects",  "sky-heavy",       "mirror-box",
           "tilted-mirror", "facing-mirror", "mirror-walls",  "curved-mirror",   "glossy",
-          "turned-mirror", "mirror-corridor", "mirrors-from-above", "sphere-over-mirror-32", "sphere-over-mirror-128"};
+          "turned-mirror", "mirror-corridor", "mirrors-from-above", "sphere-over-mirror-32", "sphere-over-mirror-128",
+          "bright-emitter"};
 }
 
 std::vector<std::string> assetSceneNames() { return {"spider-on-mirror", "wuson-as-mirror"}; }
@@ -412,6 +425,7 @@ Expected<Scene> makeBuiltinScene(const std::string& name) {
   if (name == "mirror-walls") return mirrorWalls();
   if (name == "curved-mirror") return curvedMirror();
   if (name == "glossy") return glossy();
+  if (name == "bright-emitter") return brightEmitter();
   if (name == "turned-mirror") return turnedMirror();
   if (name == "mirror-corridor") return mirrorCorridor();
   if (name == "mirrors-from-above") return mirrorsFromAbove();

@@ -161,20 +161,25 @@ glm::vec3 estimateAt(const Image& resolved, size_t p, bool* covered) {
 
 GlossyMetrics compareGlossy(const GlossyTruth& truth, const Image& resolved, float minRoughness, float minVisibleShare) {
   GlossyMetrics m;
-  double sq = 0.0, ref = 0.0, noise = 0.0;
+  double sq = 0.0, ref = 0.0, noise = 0.0, display = 0.0;
+  auto toDisplay = [](glm::vec3 c) { return c / (glm::vec3(1.0f) + glm::max(c, glm::vec3(0.0f))); };
   size_t uncovered = 0;
   for (size_t p = 0; p < truth.radiance.size(); ++p) {
     if (!scoredPixel(truth, p, minRoughness, minVisibleShare)) continue;
     bool covered = false;
-    const glm::vec3 d = estimateAt(resolved, p, &covered) - truth.radiance[p];
+    const glm::vec3 e = estimateAt(resolved, p, &covered);
+    const glm::vec3 d = e - truth.radiance[p];
     uncovered += covered ? 0 : 1;
     sq += (std::isfinite(glm::dot(d, d)) ? glm::dot(d, d) : 1e6) / 3.0;
+    const glm::vec3 dd = toDisplay(e) - toDisplay(truth.radiance[p]);
+    display += (std::isfinite(glm::dot(dd, dd)) ? glm::dot(dd, dd) : 1.0) / 3.0;
     ref += glm::dot(truth.radiance[p], truth.radiance[p]) / 3.0;
     noise += glm::dot(truth.halfSpread[p], truth.halfSpread[p]) / 3.0;
     ++m.scored;
   }
   if (m.scored == 0) return m;
   m.rmse = std::sqrt(sq / m.scored);
+  m.displayRmse = std::sqrt(display / m.scored);
   m.relativeRmse = ref > 0.0 ? m.rmse / std::sqrt(ref / m.scored) : 0.0;
   m.referenceNoise = std::sqrt(noise / m.scored);
   m.rmseAboveNoise = std::sqrt(std::max(0.0, m.rmse * m.rmse - m.referenceNoise * m.referenceNoise));

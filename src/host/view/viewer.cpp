@@ -299,6 +299,9 @@ struct App {
       if (glossy == 1) t.halfResolution = false;
     }
     if (t.halfResolution) t.glossy.mode = GlossyMode::ConeBlur;
+    // HDR-safe radiance: 0 = off; bright emitters' hits scaled down to this luminance.
+    ImGui::SliderFloat("radianceClamp.maxLuminance", &t.radianceClamp.maxLuminance, 0.0f, 1000.0f, "%.1f",
+                       ImGuiSliderFlags_Logarithmic);
   }
 
   static void tracerTree(Settings& t) {

@@ -39,6 +39,8 @@ struct BenchOptions {
   std::vector<std::string> glossyScenes;
   int glossyWidth = 480, glossyHeight = 270;
   int glossySamples = 256;
+  // The "clamp" configurations' Settings::radianceClamp.maxLuminance (display units, > 0).
+  float glossyClampLuminance = 256.0f;
   // Pass shapes of the configurations that name none (ContextDesc::device); Auto: the renderer's.
   // DeviceProfile::Gpu on a CPU rasterizer counts a GPU's ray work there (predictedH100Ms).
   DeviceProfile device = DeviceProfile::Auto;
@@ -122,6 +124,7 @@ struct GlossyPoint {
   double uncovered = 0;      // share of the scored pixels with no estimate
   double referenceNoise = 0; // the reference's own noise (RMS), the floor of any rmse
   double rmseAboveNoise = 0; // sqrt(rmse^2 - referenceNoise^2)
+  double displayRmse = 0;    // after x / (1 + x) per channel: what a viewer sees of HDR radiance
   size_t scored = 0;
   double timeMedianMs = 0;   // dispatch, configurations interleaved
 };

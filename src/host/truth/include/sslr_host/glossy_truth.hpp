@@ -48,6 +48,9 @@ struct GlossyMetrics {
   double rmseAboveNoise = 0.0;  // sqrt(max(0, rmse^2 - referenceNoise^2)): the error itself, the
                                 // reference's noise (independent of it) taken out
   double uncovered = 0.0;    // share of them with no estimate (a < 1e-3)
+  // RMSE after the display transform x / (1 + x) per channel (Reinhard, at the colour texture's
+  // exposure): what a viewer sees of HDR radiance, where a linear RMSE is all the brightest pixels'.
+  double displayRmse = 0.0;
 };
 GlossyMetrics compareGlossy(const GlossyTruth& truth, const Image& resolved, float minRoughness = 0.1f,
                             float minVisibleShare = 0.9f);
