@@ -35,6 +35,20 @@ json matrixJson(const glm::dmat4& m) {
 
 json vec3Json(glm::vec3 v) { return json::array({v.x, v.y, v.z}); }
 
+// A material; emission above 1 (HDR emitters) as a factor in [0, 1] times
+// KHR_materials_emissive_strength.
+json materialJson(const Material& m) {
+  const glm::vec3 emission = glm::max(m.baseColor * m.emissive + m.emissiveColor, glm::vec3(0.0f));
+  const float strength = std::max(std::max(emission.r, emission.g), emission.b);
+  json material = {{"pbrMetallicRoughness",
+                    {{"baseColorFactor", {m.baseColor.r, m.baseColor.g, m.baseColor.b, 1.0f}},
+                     {"metallicFactor", m.metallic},
+                     {"roughnessFactor", m.roughness}}},
+                   {"emissiveFactor", vec3Json(strength > 1.0f ? emission / strength : emission)}};
+  if (strength > 1.0f) material["extensions"] = {{"KHR_materials_emissive_strength", {{"emissiveStrength", strength}}}};
+  return material;
+}
+
 }  // namespace
 
 Expected<std::string> gltfFromScene(const Scene& scene) {
@@ -58,19 +72,9 @@ Expected<std::string> gltfFromScene(const Scene& scene) {
     return static_cast<int>(j["accessors"].size() - 1);
   };
   for (const Material& m : scene.materials) {
-    // Emission above 1 (HDR emitters) as a factor in [0, 1] times KHR_materials_emissive_strength.
-    const glm::vec3 emission = glm::max(m.baseColor * m.emissive + m.emissiveColor, glm::vec3(0.0f));
-    const float strength = std::max(std::max(emission.r, emission.g), emission.b);
-    json material = {{"pbrMetallicRoughness",
-                      {{"baseColorFactor", {m.baseColor.r, m.baseColor.g, m.baseColor.b, 1.0f}},
-                       {"metallicFactor", m.metallic},
-                       {"roughnessFactor", m.roughness}}},
-                     {"emissiveFactor", vec3Json(strength > 1.0f ? emission / strength : emission)}};
-    if (strength > 1.0f) {
-      material["extensions"] = {{"KHR_materials_emissive_strength", {{"emissiveStrength", strength}}}};
+    j["materials"].push_back(materialJson(m));
+    if (j["materials"].back().contains("extensions"))
       j["extensionsUsed"] = json::array({"KHR_materials_emissive_strength"});
-    }
-    j["materials"].push_back(material);
   }
   json roots = json::array();
   for (size_t i = 0; i < scene.meshes.size(); ++i) {
