@@ -6,7 +6,7 @@
 // on a similar surface (sslrBlurTapWeight: depth and normal terms), so reflections do not bleed
 // across edges.
 //
-// H pass: unblurred resolved -> blurTemp. V pass: blurTemp -> resolved. The V pass reads a
+// H pass: unblurred resolved -> scratch. V pass: scratch -> resolved. The V pass reads a
 // neighbour's unblurred value from resolved itself where the neighbour's radius is below half a
 // pixel: such a texel, if it lies in a blur tile, is rewritten by this pass with the very value it
 // holds (both passes pass a sub-half-pixel radius through unchanged), so read-before-write and
@@ -23,7 +23,7 @@
 
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 
-layout(binding = SSLR_UNIT_BLUR_INPUT) uniform sampler2D uBlurInput;   // unblurred resolved (H pass) or blurTemp (V pass)
+layout(binding = SSLR_UNIT_BLUR_INPUT) uniform sampler2D uBlurInput;   // unblurred resolved (H pass) or the scratch image (V pass)
 layout(binding = SSLR_UNIT_BLUR_REFLECTION) uniform sampler2D uReflectionIn;  // the reflection: its alpha is the blur radius
 #ifdef SSLR_BLUR_VERTICAL
 layout(binding = SSLR_UNIT_BLUR_UNBLURRED) uniform sampler2D uUnblurred;     // V pass: resolved before this pass
@@ -74,7 +74,7 @@ void main() {
         sslrDecodeNormal(frame.surface, normalTexel, guide.xyz);
         guide.w = abs(sslrViewAtPixel(q, depth).z);
 #ifdef SSLR_BLUR_VERTICAL
-        // blurTemp exists only in blur tiles; a pixel with a sub-half-pixel radius is its own value.
+        // the scratch image is written only in blur tiles; a pixel with a sub-half-pixel radius is its own value.
         value = sslrBlurRadiusAt(q) >= 0.5f ? texelFetch(uBlurInput, sslrTexel(q), 0) : texelFetch(uUnblurred, sslrTexel(q), 0);
 #else
         value = texelFetch(uBlurInput, sslrTexel(q), 0);

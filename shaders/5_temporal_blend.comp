@@ -1,6 +1,6 @@
 // Pass 5, temporal blend (passes/temporal.cpp runTemporal; Settings::temporal), over the listed tiles:
 // blends this frame's resolved output with the previous frame's, reprojected through
-// FrameInputs::previousClipFromView, into blurTemp (5_temporal_store.comp copies it back: this
+// FrameInputs::previousClipFromView, into the scratch image (5_temporal_store.comp copies it back: this
 // pass reads history and resolved around each pixel, so it cannot write them).
 // History is used where the reprojected point lands on the same surface (its key, the view depth,
 // within keyTolerance on one of the four texels around it; only those texels are interpolated),

@@ -53,7 +53,7 @@ namespace sslr::shared {
 #define SSLR_UNIT_COLOR 2
 #define SSLR_UNIT_QUAD_HIT 3          // trace at half resolution: the quads' hits
 #define SSLR_UNIT_QUAD_SURFACE 4      // ... and surfaces
-#define SSLR_UNIT_BLUR_INPUT 3        // blur: the pass's input (resolved, then blurTemp)
+#define SSLR_UNIT_BLUR_INPUT 3        // blur: the pass's input (resolved, then the scratch image)
 #define SSLR_UNIT_BLUR_REFLECTION 4   // ... the reflection (its alpha: the radius)
 #define SSLR_UNIT_BLUR_UNBLURRED 5    // ... vertical pass: resolved before it
 #define SSLR_UNIT_TEMPORAL_CURRENT 3  // temporal reuse: this frame's resolved (store: the blend)
