@@ -57,6 +57,7 @@ void main() {
   vec4 history = vec4(0.0f);
   bool found = false;
   bool planar = false;  // the surface is flat here (see below); else it is curved
+  bool still = false;   // it reprojects onto its own texel centre (see below)
   if (frame.temporal.history != 0 && sslrShouldTracePixel(px, depth, packedNormal, sslrMaterialAt(px, packedNormal))) {
     vec3 vsP = sslrViewAtPixel(px, depth);
     // Where the surface point was: through the matrices, or the host's motion vectors when given
@@ -94,7 +95,12 @@ void main() {
     // 2. Else the surface point itself. On a curved mirror only where this frame found a hit (a
     //    neighbour's old hit there is another reflection: with it curved-mirror's error on pixels
     //    with nothing to reflect doubled).
-    if (!found && surfaceOnScreen && (planar || current.a > 0.0f))
+    // A surface point that reprojects onto its own texel's centre (a camera and surface standing
+    // still) reads its own history unresampled: there a curved mirror's history is its own
+    // reflection too.
+    still = surfaceOnScreen && staticSurface &&
+            length((uvSurface - sslrUvFromPixel(px, sslrSizePx())) * sslrSizePx()) < 1.0f / 64.0f;
+    if (!found && surfaceOnScreen && (planar || still || current.a > 0.0f))
       found = sslrHistoryAt(uvSurface, keySurface, history);
   }
   if (found) {
@@ -114,7 +120,7 @@ void main() {
     vec4 lo = min(mean - sigma, current), hi = max(mean + sigma, current);
     // A curved mirror's reflection changes within a pixel, and resampled history blurs it: there
     // history gets a quarter of the weight (docs/design-notes.md, "Temporal reuse").
-    historyShare = frame.temporal.historyWeight * (planar ? 1.0f : 0.25f);
+    historyShare = frame.temporal.historyWeight * (planar || still ? 1.0f : 0.25f);
     blended = mix(current, clamp(history, lo, hi), historyShare);
   }
   imageStore(uBlended, sslrTexel(px), blended);
