@@ -119,7 +119,8 @@ void main() {
     vec4 sigma = sqrt(max(m2 / 9.0f - mean * mean, vec4(0.0f)));
     vec4 lo = min(mean - sigma, current), hi = max(mean + sigma, current);
     // A curved mirror's reflection changes within a pixel, and resampled history blurs it: there
-    // history gets a quarter of the weight (docs/design-notes.md, "Temporal reuse").
+    // history gets a quarter of the weight, unless the pixel stands still and nothing was
+    // resampled (docs/design-notes.md, "Temporal reuse").
     historyShare = frame.temporal.historyWeight * (planar || still ? 1.0f : 0.25f);
     blended = mix(current, clamp(history, lo, hi), historyShare);
   }
