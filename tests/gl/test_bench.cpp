@@ -26,7 +26,18 @@ int runCommand(const std::string& cmd, std::string* output = nullptr) {
   return r.exitCode;
 }
 
-class Bench : public sslr::test::GlTest {};
+class Bench : public sslr::test::GlTest {
+ protected:
+  // sslr-bench with `args` into a fresh folder SSLR_TEST_TMP/name; its results.json (null when the
+  // run failed: `log` says why).
+  static nlohmann::json runBench(const std::string& name, const std::string& args, std::string& log) {
+    const fs::path out = fs::path(SSLR_TEST_TMP) / name;
+    fs::remove_all(out);
+    if (runCommand(std::string(SSLR_BENCH_EXE) + " " + args + " --out " + out.string(), &log) != 0) return nullptr;
+    std::ifstream in(out / "results.json");
+    return nlohmann::json::parse(in, nullptr, false);
+  }
+};
 
 TEST_F(Bench, QuickGridWritesCompleteResultsAndReport) {
   const fs::path out = fs::path(SSLR_TEST_TMP) / "bench";
@@ -194,16 +205,12 @@ TEST_F(Bench, ConfigsSelectsConfigurations) {
 // draw from it holds: with half resolution on a still camera temporal reuse brings the error
 // down (measured at 160x90 on mirror-room: 0.0248 -> 0.0185 RMSE; full resolution 0.0177).
 TEST_F(Bench, TemporalStudyScoresEveryFrame) {
-  const fs::path out = fs::path(SSLR_TEST_TMP) / "bench-temporal";
-  fs::remove_all(out);
   std::string log;
-  const int rc = runCommand(std::string(SSLR_BENCH_EXE) +
-                                " --grid quick --size 64x36 --frames 1 --scenes sky-heavy --no-curves"
-                                " --temporal-scenes mirror-room --temporal-size 160x90 --out " + out.string(),
-                            &log);
-  ASSERT_EQ(rc, 0) << log;
-  std::ifstream in(out / "results.json");
-  const nlohmann::json j = nlohmann::json::parse(in);
+  const nlohmann::json j = runBench("bench-temporal",
+                                    "--grid quick --size 64x36 --frames 1 --scenes sky-heavy --no-curves"
+                                    " --temporal-scenes mirror-room --temporal-size 160x90",
+                                    log);
+  ASSERT_TRUE(j.is_object()) << log;
   ASSERT_EQ(j["temporal"].size(), 5u * 24u);
   std::map<std::string, double> stillRmse;  // configuration -> mean over the still segment's last 4
   for (const auto& p : j["temporal"]) {
@@ -279,17 +286,12 @@ TEST_F(Bench, GlossyStudyScoresEachModeAgainstTheGgxReference) {
 // stochastic 0.0747, stochastic+temporal 0.0129 (0.0955 at 160x90 before: a quarter weight and
 // only where this frame hit), the cone blur 0.0208.
 TEST_F(Bench, StochasticRaysConvergeOnACurvedMirrorFromAStillCamera) {
-  const fs::path out = fs::path(SSLR_TEST_TMP) / "bench-glossy-curved";
-  fs::remove_all(out);
   std::string log;
-  const int rc = runCommand(std::string(SSLR_BENCH_EXE) +
-                                " --grid quick --size 64x36 --frames 3 --scenes sky-heavy --no-curves --no-temporal"
-                                " --glossy-scenes curved-mirror@rough0.3 --glossy-size 320x180 --glossy-samples 256"
-                                " --out " + out.string(),
-                            &log);
-  ASSERT_EQ(rc, 0) << log;
-  std::ifstream in(out / "results.json");
-  const nlohmann::json j = nlohmann::json::parse(in);
+  const nlohmann::json j = runBench("bench-glossy-curved",
+                                    "--grid quick --size 64x36 --frames 3 --scenes sky-heavy --no-curves --no-temporal"
+                                    " --glossy-scenes curved-mirror@rough0.3 --glossy-size 320x180 --glossy-samples 256",
+                                    log);
+  ASSERT_TRUE(j.is_object()) << log;
   std::map<std::string, double> rmse;
   for (const auto& p : j["glossy"]) rmse[p["config"].get<std::string>()] = p["rmse"].get<double>();
   ASSERT_TRUE(rmse.count("stochastic+temporal") && rmse.count("cone blur")) << log;
