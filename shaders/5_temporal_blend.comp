@@ -46,6 +46,80 @@ bool sslrHistoryAt(vec2 uvPrevious, float keyPrevious, out vec4 history) {
   return weightSum > 1e-3f;
 }
 
+// The history of pixel px (a traced surface; `current` this frame's value there), looked up where
+// the point was last frame. fullWeight: it may take the whole historyWeight (a plane, or a pixel
+// that reprojects onto itself); else a quarter.
+bool sslrFindHistory(ivec2 px, vec4 current, float depth, vec4 packedNormal, out vec4 history, out bool fullWeight) {
+  history = vec4(0.0f);
+  fullWeight = false;
+  vec3 vsP = sslrViewAtPixel(px, depth);
+  // Where the surface point was: through the matrices, or the host's motion vectors when given
+  // (the matrices still give the depth a static point would have had there: an object that
+  // also moved in depth starts afresh).
+  vec2 uvSurface;
+  float keySurface;
+  bool surfaceOnScreen = sslrReproject(frame.proj, frame.temporal.previousClipFromView, vsP, uvSurface, keySurface);
+  bool staticSurface = true;
+  if (frame.temporal.hasMotion != 0) {
+    vec2 uvMoved = sslrUvFromPixel(px, sslrSizePx()) - texelFetch(uMotion, sslrTexel(px), 0).xy;
+    staticSurface = length((uvMoved - uvSurface) * sslrSizePx()) < 0.5f;
+    uvSurface = uvMoved;
+    surfaceOnScreen = keySurface > 0.0f && sslrInsideUv(uvSurface);
+  }
+  // 1. A reflection in a static plane moves with its virtual point (behind the mirror), not with
+  //    the mirror: look where the previous camera saw that point through the mirror plane. Only
+  //    on planes (the normal one pixel right and up agrees): on a curved mirror the tangent
+  //    plane sends the lookup astray.
+  vec3 vsN;
+  bool planar = false;
+  if (sslrDecodeNormal(frame.surface, packedNormal, vsN)) {
+    ivec2 maxPx = ivec2(sslrSizePx()) - 1;
+    vec3 nRight, nUp;
+    planar = sslrDecodeNormal(frame.surface, texelFetch(uNormal, sslrTexel(min(px + ivec2(1, 0), maxPx)), 0), nRight) &&
+             sslrDecodeNormal(frame.surface, texelFetch(uNormal, sslrTexel(min(px + ivec2(0, 1), maxPx)), 0), nUp) &&
+             dot(nRight, vsN) > 0.9999f && dot(nUp, vsN) > 0.9999f;
+  }
+  vec3 vsX;
+  vec2 uvVirtual;
+  float keyVirtual;
+  bool found = false;
+  if (current.a > 0.0f && staticSurface && planar &&
+      sslrVirtualPointOnMirror(frame.temporal.previousEye, vsP, vsN, texelFetch(uHitRecord, sslrTexel(px), 0).a, vsX) &&
+      sslrReproject(frame.proj, frame.temporal.previousClipFromView, vsX, uvVirtual, keyVirtual))
+    found = sslrHistoryAt(uvVirtual, keyVirtual, history);
+  // 2. Else the surface point itself. On a curved mirror only where this frame found a hit (a
+  //    neighbour's old hit there is another reflection), or where the point reprojects onto its
+  //    own texel's centre (a camera and surface standing still): that history is unresampled, the
+  //    pixel's own reflection.
+  bool still = surfaceOnScreen && staticSurface &&
+               length((uvSurface - sslrUvFromPixel(px, sslrSizePx())) * sslrSizePx()) < 1.0f / 64.0f;
+  if (!found && surfaceOnScreen && (planar || still || current.a > 0.0f))
+    found = sslrHistoryAt(uvSurface, keySurface, history);
+  // A curved mirror's reflection changes within a pixel, and resampled history blurs it: there
+  // history gets a quarter of the weight, unless nothing was resampled (docs/design-notes.md,
+  // "Temporal reuse").
+  fullWeight = planar || still;
+  return found;
+}
+
+// Variance clipping (Salvi 2016): history clamped to the 3x3 neighbourhood's mean +- one standard
+// deviation, a tighter box than its min-max where the reflection has detail; widened to hold this
+// pixel's own value (a history equal to it must pass unchanged).
+vec4 sslrClipToNeighbourhood(ivec2 px, vec4 current, vec4 history) {
+  ivec2 maxPx = ivec2(sslrSizePx()) - 1;
+  vec4 m1 = vec4(0.0f), m2 = vec4(0.0f);
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      vec4 v = texelFetch(uCurrent, sslrTexel(clamp(px + ivec2(dx, dy), ivec2(0), maxPx)), 0);
+      m1 += v;
+      m2 += v * v;
+    }
+  vec4 mean = m1 / 9.0f;
+  vec4 sigma = sqrt(max(m2 / 9.0f - mean * mean, vec4(0.0f)));
+  vec4 lo = min(mean - sigma, current), hi = max(mean + sigma, current);
+  return clamp(history, lo, hi);
+}
+
 void main() {
   ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
   if (!sslrInside(px)) return;
@@ -54,75 +128,12 @@ void main() {
   float historyShare = 0.0f;  // how much of `blended` is history
   float depth = texelFetch(uDepth, sslrTexel(px), 0).r;
   vec4 packedNormal = texelFetch(uNormal, sslrTexel(px), 0);
-  vec4 history = vec4(0.0f);
-  bool found = false;
-  bool planar = false;  // the surface is flat here (see below); else it is curved
-  bool still = false;   // it reprojects onto its own texel centre (see below)
-  if (frame.temporal.history != 0 && sslrShouldTracePixel(px, depth, packedNormal, sslrMaterialAt(px, packedNormal))) {
-    vec3 vsP = sslrViewAtPixel(px, depth);
-    // Where the surface point was: through the matrices, or the host's motion vectors when given
-    // (the matrices still give the depth a static point would have had there: an object that
-    // also moved in depth starts afresh).
-    vec2 uvSurface;
-    float keySurface;
-    bool surfaceOnScreen = sslrReproject(frame.proj, frame.temporal.previousClipFromView, vsP, uvSurface, keySurface);
-    bool staticSurface = true;
-    if (frame.temporal.hasMotion != 0) {
-      vec2 uvMoved = sslrUvFromPixel(px, sslrSizePx()) - texelFetch(uMotion, sslrTexel(px), 0).xy;
-      staticSurface = length((uvMoved - uvSurface) * sslrSizePx()) < 0.5f;
-      uvSurface = uvMoved;
-      surfaceOnScreen = keySurface > 0.0f && sslrInsideUv(uvSurface);
-    }
-    // 1. A reflection in a static plane moves with its virtual point (behind the mirror), not with
-    //    the mirror: look where the previous camera saw that point through the mirror plane. Only
-    //    on planes (the normal one pixel right and up agrees): on a curved mirror the tangent
-    //    plane sends the lookup astray.
-    vec3 vsN;
-    if (sslrDecodeNormal(frame.surface, packedNormal, vsN)) {
-      ivec2 maxPx = ivec2(sslrSizePx()) - 1;
-      vec3 nRight, nUp;
-      planar = sslrDecodeNormal(frame.surface, texelFetch(uNormal, sslrTexel(min(px + ivec2(1, 0), maxPx)), 0), nRight) &&
-               sslrDecodeNormal(frame.surface, texelFetch(uNormal, sslrTexel(min(px + ivec2(0, 1), maxPx)), 0), nUp) &&
-               dot(nRight, vsN) > 0.9999f && dot(nUp, vsN) > 0.9999f;
-    }
-    vec3 vsX;
-    vec2 uvVirtual;
-    float keyVirtual;
-    if (current.a > 0.0f && staticSurface && planar &&
-        sslrVirtualPointOnMirror(frame.temporal.previousEye, vsP, vsN, texelFetch(uHitRecord, sslrTexel(px), 0).a, vsX) &&
-        sslrReproject(frame.proj, frame.temporal.previousClipFromView, vsX, uvVirtual, keyVirtual))
-      found = sslrHistoryAt(uvVirtual, keyVirtual, history);
-    // 2. Else the surface point itself. On a curved mirror only where this frame found a hit (a
-    //    neighbour's old hit there is another reflection: with it curved-mirror's error on pixels
-    //    with nothing to reflect doubled).
-    // A surface point that reprojects onto its own texel's centre (a camera and surface standing
-    // still) reads its own history unresampled: there a curved mirror's history is its own
-    // reflection too.
-    still = surfaceOnScreen && staticSurface &&
-            length((uvSurface - sslrUvFromPixel(px, sslrSizePx())) * sslrSizePx()) < 1.0f / 64.0f;
-    if (!found && surfaceOnScreen && (planar || still || current.a > 0.0f))
-      found = sslrHistoryAt(uvSurface, keySurface, history);
-  }
-  if (found) {
-    // Variance clipping (Salvi 2016): the neighbourhood's mean +- one standard deviation, a
-    // tighter box than its min-max where the reflection has detail; widened to hold this
-    // pixel's own value (a history equal to it must pass unchanged).
-    ivec2 maxPx = ivec2(sslrSizePx()) - 1;
-    vec4 m1 = vec4(0.0f), m2 = vec4(0.0f);
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        vec4 v = texelFetch(uCurrent, sslrTexel(clamp(px + ivec2(dx, dy), ivec2(0), maxPx)), 0);
-        m1 += v;
-        m2 += v * v;
-      }
-    vec4 mean = m1 / 9.0f;
-    vec4 sigma = sqrt(max(m2 / 9.0f - mean * mean, vec4(0.0f)));
-    vec4 lo = min(mean - sigma, current), hi = max(mean + sigma, current);
-    // A curved mirror's reflection changes within a pixel, and resampled history blurs it: there
-    // history gets a quarter of the weight, unless the pixel stands still and nothing was
-    // resampled (docs/design-notes.md, "Temporal reuse").
-    historyShare = frame.temporal.historyWeight * (planar || still ? 1.0f : 0.25f);
-    blended = mix(current, clamp(history, lo, hi), historyShare);
+  vec4 history;
+  bool fullWeight;
+  if (frame.temporal.history != 0 && sslrShouldTracePixel(px, depth, packedNormal, sslrMaterialAt(px, packedNormal)) &&
+      sslrFindHistory(px, current, depth, packedNormal, history, fullWeight)) {
+    historyShare = frame.temporal.historyWeight * (fullWeight ? 1.0f : 0.25f);
+    blended = mix(current, sslrClipToNeighbourhood(px, current, history), historyShare);
   }
   imageStore(uBlended, sslrTexel(px), blended);
 #ifdef SSLR_HISTORY_CONFIDENCE

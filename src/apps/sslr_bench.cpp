@@ -114,6 +114,13 @@ std::vector<std::string> uniqueItems(const std::string& text, const std::string&
   return items;
 }
 
+// Whether all of `text` reads as one number of T (into value).
+template <typename T>
+bool wholeNumber(const std::string& text, T& value) {
+  std::istringstream in(text);
+  return (in >> value) && in.eof();
+}
+
 // WxH with each side in [lo, hi], or an error naming the option.
 std::pair<int, int> parseSizeOption(const std::string& text, const std::string& option, int lo, int hi) {
   std::istringstream in(text);
@@ -145,8 +152,7 @@ void parseGrid(const cxxopts::ParseResult& args, BenchOptions& bo) {
   }
   auto positiveInt = [&](const char* name, int& value, int lo, int hi) {
     if (!args.count(name)) return;
-    std::istringstream in(args[name].as<std::string>());
-    if (!(in >> value) || !in.eof() || value < lo || value > hi)
+    if (!wholeNumber(args[name].as<std::string>(), value) || value < lo || value > hi)
       throw std::runtime_error(std::string("--") + name + " expects an integer in " + std::to_string(lo) + ".." +
                                std::to_string(hi));
   };
@@ -175,9 +181,8 @@ void parseStudies(const cxxopts::ParseResult& args, BenchOptions& bo) {
   if (args.count("curve-fractions")) {
     fractions.clear();
     for (const std::string& item : listItems(args["curve-fractions"].as<std::string>())) {
-      std::istringstream in(item);
       int n = -1;
-      if (!(in >> n) || !in.eof() || n < 0 || n > 100)
+      if (!wholeNumber(item, n) || n < 0 || n > 100)
         throw std::runtime_error("--curve-fractions expects percentages 0..100 (got '" + item + "')");
       fractions.push_back(n);
     }
@@ -192,13 +197,11 @@ void parseStudies(const cxxopts::ParseResult& args, BenchOptions& bo) {
   const auto glossySize = parseSizeOption(args["glossy-size"].as<std::string>(), "glossy-size", 8, 4096);
   const std::string samples = args["glossy-samples"].as<std::string>();
   int glossySamples = 0;
-  std::istringstream samplesIn(samples);
-  if (!(samplesIn >> glossySamples) || !samplesIn.eof() || glossySamples < 2 || glossySamples > 65536)
+  if (!wholeNumber(samples, glossySamples) || glossySamples < 2 || glossySamples > 65536)
     throw std::runtime_error("--glossy-samples expects an integer 2..65536 (got '" + samples + "')");
   const std::string clampText = args["glossy-clamp"].as<std::string>();
   float glossyClamp = 0.0f;
-  std::istringstream clampIn(clampText);
-  if (!(clampIn >> glossyClamp) || !clampIn.eof() || !(glossyClamp > 0.0f) || !std::isfinite(glossyClamp))
+  if (!wholeNumber(clampText, glossyClamp) || !(glossyClamp > 0.0f) || !std::isfinite(glossyClamp))
     throw std::runtime_error("--glossy-clamp expects a finite luminance > 0 (got '" + clampText + "')");
   std::vector<std::string> glossyScenes = {"glossy", "mirror-room@rough0.25", "curved-mirror@rough0.3",
                                            "facing-mirror@rough0.3", "bright-emitter"};

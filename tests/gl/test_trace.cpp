@@ -828,6 +828,16 @@ struct PassCase {
   bool half;
 };
 void PrintTo(const PassCase& c, std::ostream* os) { *os << c.scene << (c.half ? " half resolution" : ""); }
+std::string passCaseName(const ::testing::TestParamInfo<PassCase>& info) {
+  return gtestName(std::string(info.param.scene) + (info.param.half ? "_half" : ""));
+}
+// The frame both pass-case tests render: 192x108.
+GBufferOptions passCaseFrame() {
+  GBufferOptions o;
+  o.width = 192;
+  o.height = 108;
+  return o;
+}
 class TraversalPasses : public sslr::test::GlTest, public ::testing::WithParamInterface<PassCase> {};
 
 // One frame of the two contexts (inline, deferred): the same hits, reflections and counts.
@@ -857,9 +867,7 @@ TEST_P(TraversalPasses, DeferredAndInlineGiveTheSameHits) {
   const PassCase c = GetParam();
   auto scene = makeBuiltinScene(c.scene);
   ASSERT_TRUE(scene);
-  GBufferOptions o;
-  o.width = 192;
-  o.height = 108;
+  const GBufferOptions o = passCaseFrame();
   Settings inlined = std::string(c.scene) == "thin-objects" ? Settings::preset(Preset::Ultra) : Settings{};
   inlined.halfResolution = c.half;
   inlined.debug.outputs = true;
@@ -897,9 +905,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, TraversalPasses,
                          ::testing::Values(PassCase{"facing-mirror", false}, PassCase{"mirror-room", false},
                                            PassCase{"thin-objects", false}, PassCase{"mirror-room", true},
                                            PassCase{"facing-mirror", true}),
-                         [](const ::testing::TestParamInfo<PassCase>& info) {
-                           return gtestName(std::string(info.param.scene) + (info.param.half ? "_half" : ""));
-                         });
+                         passCaseName);
 
 // Settings::debug.oneBodyTraversal runs the traversal's walk steps and pixel tests in one loop
 // body: the same steps in the same order per ray, so the same hit images and reflections bit for
@@ -910,9 +916,7 @@ TEST_P(OneBodyTraversal, GivesTheTwoPhasesHitsBitForBit) {
   const PassCase c = GetParam();
   auto scene = makeBuiltinScene(c.scene);
   ASSERT_TRUE(scene);
-  GBufferOptions o;
-  o.width = 192;
-  o.height = 108;
+  const GBufferOptions o = passCaseFrame();
   for (TraversalPass pass : {TraversalPass::Inline, TraversalPass::Deferred}) {
     Settings twoPhases;
     twoPhases.halfResolution = c.half;
@@ -940,9 +944,7 @@ TEST_P(OneBodyTraversal, GivesTheTwoPhasesHitsBitForBit) {
 INSTANTIATE_TEST_SUITE_P(Scenes, OneBodyTraversal,
                          ::testing::Values(PassCase{"facing-mirror", false}, PassCase{"mirror-walls", false},
                                            PassCase{"thin-objects", false}, PassCase{"mirror-room", true}),
-                         [](const ::testing::TestParamInfo<PassCase>& info) {
-                           return gtestName(std::string(info.param.scene) + (info.param.half ? "_half" : ""));
-                         });
+                         passCaseName);
 
 // TraversalPass::Auto on a software renderer defers the traversal, and runs it inline while the
 // last frame had most of its traced tiles' pixels (at half resolution: quads) needing it
