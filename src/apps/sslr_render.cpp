@@ -567,7 +567,9 @@ void printScores(const Scores& scores) {
               "%.4f (%.4f beyond 1 px of the true hit)  reflection RMSE %.4f  non-finite %zu\n",
               m.recall1px, m.recallShown1px, m.recall2px, m.recall4px, m.medianErrorPx, m.p95ErrorPx, m.falseHitRate,
               m.falseHitRateBeyond1px, m.reflectionRmse, m.nonFinite);
-  if (scores.composite)
+  if (scores.composite && scores.composite->pixels == 0)
+    std::printf("  composite against the ray-traced reference: no mirror pixel to score\n");
+  else if (scores.composite)
     std::printf("  composite against the ray-traced reference: RMSE %.4f, PSNR %.1f dB over %zu mirror pixels\n",
                 scores.composite->rmse, scores.composite->psnr, scores.composite->pixels);
   if (!scores.breakdown) return;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "sslr_host/ground_truth.hpp"
+#include "sslr_host/reference_image.hpp"
 
 using namespace sslr;
 using namespace sslr::host;
@@ -156,6 +157,28 @@ TEST(HitMetrics, KnownAnswers) {
   EXPECT_EQ(u.unshown, 1u);
   EXPECT_DOUBLE_EQ(u.recall1px, 0.5) << "recall still counts every visible pixel";
   EXPECT_DOUBLE_EQ(u.recallShown1px, 1.0 / 3.0);
+}
+
+// The composite's image error: an analytic RMSE over the scored pixels only, and no number at all
+// (NaN, not a perfect 0) where a frame has no mirror pixel to score.
+TEST(CompositeImageError, ScoresOnlyMirrorPixelsAndNothingWithoutThem) {
+  ReferenceImage reference;
+  reference.composite = Image{2, 1, 3, {0.5f, 0.5f, 0.5f, 0.0f, 0.0f, 0.0f}};
+  reference.scored = {1, 0};
+  reference.scoredCount = 1;
+  // The scored pixel off by (0.1, 0.2, 0.2): RMSE sqrt(0.09 / 3); the unscored one off by 1.
+  const Image composite{2, 1, 3, {0.6f, 0.7f, 0.3f, 1.0f, 1.0f, 1.0f}};
+  const ImageError e = compositeError(reference, composite);
+  EXPECT_EQ(e.pixels, 1u);
+  EXPECT_NEAR(e.rmse, std::sqrt(0.09 / 3.0), 1e-6);
+  EXPECT_NEAR(e.psnr, 20.0 * std::log10(1.0 / std::sqrt(0.03)), 1e-4);
+
+  reference.scored = {0, 0};
+  reference.scoredCount = 0;
+  const ImageError none = compositeError(reference, composite);
+  EXPECT_EQ(none.pixels, 0u);
+  EXPECT_FALSE(std::isfinite(none.rmse));
+  EXPECT_FALSE(std::isfinite(none.psnr));
 }
 
 }  // namespace

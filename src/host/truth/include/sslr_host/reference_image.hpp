@@ -4,6 +4,7 @@
 // method's composite against it (docs/results.md, "How these numbers were obtained").
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -38,9 +39,10 @@ Expected<ReferenceImage> referenceFor(const Scene& scene, const GBuffer& gbuffer
 glm::vec3 shadeAsGBuffer(const Scene& scene, const RayTracer::Hit& hit, const glm::dmat4& viewFromWorld,
                          bool orthographic);
 
+// NaN where no pixel was scored (a scene without mirrors): no error is not a perfect score.
 struct ImageError {
-  double rmse = 0.0;  // over the scored pixels' RGB channels
-  double psnr = 0.0;  // dB, peak 1
+  double rmse = NAN;  // over the scored pixels' RGB channels
+  double psnr = NAN;  // dB, peak 1
   size_t pixels = 0;
 };
 ImageError compositeError(const ReferenceImage& reference, const Image& composite);
