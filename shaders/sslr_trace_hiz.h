@@ -22,7 +22,9 @@
 //     the adaptive-L validation. A crossing that fails them ends the ray when it went less deep
 //     behind the surface than the thickness (it hit the hidden side of what the pixel shows, or,
 //     just past an outline, a visible side narrower than a pixel: sslrCornerHit), and lets it pass
-//     behind when it went deeper (a silhouette the ray passes behind).
+//     behind when it went deeper (a silhouette the ray passes behind). A ray that ends inside a
+//     curved surface's solid hits where it went behind, across a crease between two samples or
+//     at the rim the outline's pixel hides (sslrCurvedEntryHit, sslrRimEntryHit).
 
 #ifndef SSLR_TRACE_HIZ_H
 #define SSLR_TRACE_HIZ_H
@@ -214,6 +216,62 @@ SSLR_FN bool sslrCurvedEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams
   if (!sslrIsGeometryDepth(s, depthOut) || !(wEntry.z <= keySign * depthOut)) return false;
   float distIn = sslrViewDepthFromDepth(p, keySign * keyIn);
   return abs(sslrViewDepthFromDepth(p, depthOut) - distIn) <= sslrHitTolerance(p, s, t, distIn, 16.0f);
+}
+
+#ifndef SSLR_RIM_MAX_NORMAL_DOT
+#define SSLR_RIM_MAX_NORMAL_DOT 0.9995f
+#endif
+#ifndef SSLR_RIM_MIN_NORMAL_DOT
+#define SSLR_RIM_MIN_NORMAL_DOT 0.9f
+#endif
+// A ray that ended in the solid of a pixel on a curved surface that has no curved extra depth (near
+// an object's outline, where the radius estimate gives none) met the surface where it went behind:
+// - across a crease: it came from a neighbour of the same surface whose sample lies beyond it (the
+//   crossing lies between the two samples, where neither pixel's tangent plane holds it);
+// - at the rim: it came from beyond the outline and is behind the rim's sample by less than the
+//   surface recedes from the pixel inwards to the rim (the part that turns away within the pixel).
+// Curved means the shading normals of the two pixels differ: a flat face ends at its outline.
+SSLR_FN bool sslrRimEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 wEntry, vec3 d, vec3 vsP,
+                             vec3 vsR, SSLR_OUT(float) L) {
+  L = 0.0f;
+  if (!sslrCurvedSolids(t) || sslrBackDepth(s)) return false;
+  ivec2 px = ivec2(floor(vec2(wEntry.x, wEntry.y)));
+  ivec2 npx = ivec2(floor(vec2(wEntry.x, wEntry.y) - vec2(d.x, d.y) * (2.0f * SSLR_HIZ_NUDGE)));
+  if ((npx.x == px.x && npx.y == px.y) || min(npx.x, npx.y) < 0 || npx.x >= s.width || npx.y >= s.height)
+    return false;
+  if (sslrLoadPyramidTexel(0, px).y > 0.0f) return false;  // curved: sslrCurvedEntryHit's
+  float keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
+  float keyIn = keySign * sslrLoadDepth(px), depthOut = sslrLoadDepth(npx);
+  bool outGeometry = sslrIsGeometryDepth(s, depthOut);
+  if (!(wEntry.z > keyIn) || (outGeometry && !(wEntry.z <= keySign * depthOut))) return false;
+  float distIn = sslrViewDepthFromDepth(p, keySign * keyIn);
+  float tolerance = sslrHitTolerance(p, s, t, distIn, 16.0f);
+  bool crease = outGeometry && abs(sslrViewDepthFromDepth(p, depthOut) - distIn) <= tolerance;
+  ivec2 other = npx;
+  if (!crease) {  // the rim: the pixel inwards, the same surface and nearer
+    other = px + (px - npx);
+    if (min(other.x, other.y) < 0 || other.x >= s.width || other.y >= s.height) return false;
+    float keyInward = keySign * sslrLoadDepth(other);
+    if (!sslrIsGeometryDepth(s, keySign * keyInward) || !(keyInward < keyIn) ||
+        !(abs(sslrViewDepthFromDepth(p, keySign * keyInward) - distIn) <= tolerance) ||
+        !(wEntry.z - keyIn <= keyIn - keyInward))
+      return false;
+  }
+  vec3 nIn, nOther;
+  if (!sslrDecodeNormal(s, sslrLoadNormal(px), nIn) || !sslrDecodeNormal(s, sslrLoadNormal(other), nOther) ||
+      !(dot(nIn, nOther) < SSLR_RIM_MAX_NORMAL_DOT && dot(nIn, nOther) > SSLR_RIM_MIN_NORMAL_DOT))
+    return false;
+  // A rim hit is reported halfway to where the ray leaves the rim pixel: its colour, not a blend
+  // with what lies beyond the outline.
+  float tIn = 0.0f;
+  if (!crease) {
+    vec2 stepOut = vec2(d.x >= 0.0f ? 1.0f : 0.0f, d.y >= 0.0f ? 1.0f : 0.0f);
+    vec2 tOut = (vec2(px) + stepOut - vec2(wEntry.x, wEntry.y)) /
+                vec2(abs(d.x) > 1e-12f ? d.x : 1e-12f, abs(d.y) > 1e-12f ? d.y : 1e-12f);
+    tIn = clamp(0.5f * min(tOut.x, tOut.y), 0.0f, 0.5f);
+  }
+  L = sslrRayLengthAt(p, vec2(s.width, s.height), keySign, wEntry, d, tIn, vsP, vsR);
+  return L > 0.0f;
 }
 
 // The ray from vsP along vsR in window space, just out of its own pixel. False for a ray along the
@@ -492,6 +550,8 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   if (w.inSlab && sslrCornerHit(p, s, t, w.o + w.d * w.tRun, w.d, vsP, vsR, Lc) && Lc <= t.maxDistance)
     return sslrFinishHit(p, hit, vsP, vsR, Lc, 1.0f);
   if (w.inSlab && sslrCurvedEntryHit(p, s, t, w.o + w.d * w.tRun, w.d, vsP, vsR, Lc) && Lc <= t.maxDistance)
+    return sslrFinishHit(p, hit, vsP, vsR, Lc, 1.0f);
+  if (w.inSlab && sslrRimEntryHit(p, s, t, w.o + w.d * w.tRun, w.d, vsP, vsR, Lc) && Lc <= t.maxDistance)
     return sslrFinishHit(p, hit, vsP, vsR, Lc, 1.0f);
   if (w.measuredSlab) {  // known hidden: where the ray entered the solid's pixels, for verification
     hit.status = SSLR_STATUS_HIDDEN;

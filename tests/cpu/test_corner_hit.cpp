@@ -6,7 +6,10 @@
 // than the slab, no outline, and a ray that did not cross the outline there. On the same buffer,
 // with the far surface moved close behind the front one and level 0 holding curved solids' extra
 // depth, the curved entry hit (sslrCurvedEntryHit): a crease between two samples of one curved
-// surface, and the cases it must refuse. Its own executable:
+// surface, and the cases it must refuse. With the box's samples receding and its normals turning
+// towards the edge and no extra depth, the rim entry hit (sslrRimEntryHit): the rim and a crease
+// of a curved surface near its outline, and the flat faces and box edges it must refuse. Its own
+// executable:
 // it defines the loaders the tracer headers call, which sslr_host also defines for its CPU run.
 #include <gtest/gtest.h>
 
@@ -35,18 +38,23 @@ bool showsBox(ivec2 px) {
   const float xc = float(px.x) + 0.5f;
   return gBoxOnLeft ? xc < gEdgePx : xc >= gEdgePx;
 }
-float viewZAt(ivec2 px) { return showsBox(px) ? kFrontZ : gWallZ; }
+// The box's surface recedes towards its edge by gRimRecede view units a pixel column (the outline
+// column at depth 10), and the shading normals turn towards +x by gNormalTurn radians a column.
+float gRimRecede = 0.0f, gNormalTurn = 0.0f;
+float columnsFromEdge(ivec2 px) { return (gEdgePx - 0.5f) - (float(px.x) + 0.5f); }
+float viewZAt(ivec2 px) { return showsBox(px) ? kFrontZ + gRimRecede * columnsFromEdge(px) : gWallZ; }
 }  // namespace
 
 // The window depth a pixel's surface writes (the inverse of the reconstruction).
 float sslrLoadDepth(ivec2 px) { return sslrDepthFromViewDepth(gProj, -viewZAt(px)); }
 vec4 sslrLoadNormal(ivec2 px) {
-  (void)px;
-  const vec2 e = sslrOctEncode(vec3(0.0f, 0.0f, 1.0f));  // both surfaces face the camera
+  // Facing the camera at the box's outline column, turned by gNormalTurn a column towards +x.
+  const float a = -gNormalTurn * columnsFromEdge(px);
+  const vec2 e = sslrOctEncode(vec3(std::sin(a), 0.0f, std::cos(a)));
   return vec4(e.x, e.y, 0.0f, 0.0f);
 }
 bool sslrLoadSurface(ivec2 px, vec3& vsPos) { return sslrSurfaceFromDepth(gProj, gSurf, px, sslrLoadDepth(px), vsPos); }
-// sslrCornerHit and sslrCurvedEntryHit read level 0 alone.
+// sslrCornerHit, sslrCurvedEntryHit and sslrRimEntryHit read level 0 alone.
 vec2 sslrLoadPyramidTexel(int level, ivec2 cell) {
   EXPECT_EQ(level, 0);
   return sslrHiZLevel0Texel(gSurf, sslrLoadDepth(cell), gCurvedExtra);
@@ -80,6 +88,8 @@ class CornerHit : public ::testing::Test {
     gBoxOnLeft = true;
     gWallZ = kWallZ;
     gCurvedExtra = 0.0f;
+    gRimRecede = 0.0f;
+    gNormalTurn = 0.0f;
   }
 
   // The view point at window (x, y) on the plane z = viewZ.
@@ -310,6 +320,80 @@ TEST_F(CurvedEntryHit, InsideAPixelHitsOnlyOnItsSurface) {
   EXPECT_TRUE(entryHit(vsNear + vec3(4.0f, 0.3f, 1.5f), vsNear, L, 0.3f));
   const vec3 vsFar = viewAt(gEdgePx - 0.3f, 90.5f, kFrontZ - 0.5f);
   EXPECT_FALSE(entryHit(vsFar + vec3(4.0f, 0.3f, 1.5f), vsFar, L, 0.3f));
+}
+
+// sslrRimEntryHit: the box is a curved surface near its outline without curved extra depth (level
+// 0 holds none). Its columns recede by 0.05 a column towards the edge and the normals turn by 3
+// degrees a column. A ray from the right crosses the edge from the far wall (the rim) or, with the
+// wall moved close behind, from a sample of the same surface (a crease).
+class RimEntryHit : public CurvedEntryHit {
+ protected:
+  void SetUp() override {
+    CurvedEntryHit::SetUp();
+    gCurvedExtra = 0.0f;
+    gWallZ = kWallZ;
+    gRimRecede = 0.05f;
+    gNormalTurn = 3.0f * 3.14159265f / 180.0f;
+  }
+  static bool rimHit(vec3 vsP, vec3 vsTarget, float& L, vec3& wHit) {
+    const vec3 vsR = normalize(vsTarget - vsP);
+    const Entry e = entryAt(vsP, vsR, gEdgePx, 1.0f / 256.0f);
+    EXPECT_EQ(int(std::floor(e.wEntry.x)), int(gEdgePx) - 1);
+    const bool hit = sslrRimEntryHit(gProj, gSurf, curvedParams(), e.wEntry, e.d, vsP, vsR, L);
+    wHit = sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP + vsR * L);
+    return hit;
+  }
+  static vec3 rayFrom(vec3 vsQ) { return vsQ + vec3(4.0f, 0.3f, 1.5f); }
+};
+
+TEST_F(RimEntryHit, HitsARayBehindTheRimsSampleByLessThanTheSurfaceRecedes) {
+  // Across the edge 0.03 behind the rim's sample (the column inwards is 0.05 nearer).
+  const vec3 vsQ = viewAt(gEdgePx, 90.5f, kFrontZ - 0.03f);
+  float L = 0.0f;
+  vec3 wHit;
+  ASSERT_TRUE(rimHit(rayFrom(vsQ), vsQ, L, wHit));
+  // Reported halfway across the rim pixel (its colour, not the wall's): x = edge - 0.5.
+  EXPECT_NEAR(wHit.x, gEdgePx - 0.5f, 0.02f);
+  EXPECT_GT(L, length(vsQ - rayFrom(vsQ)));
+}
+
+TEST_F(RimEntryHit, RefusesARayBehindTheRimByMoreThanItRecedes) {
+  const vec3 vsQ = viewAt(gEdgePx, 90.5f, kFrontZ - 0.08f);
+  float L = 0.0f;
+  vec3 wHit;
+  EXPECT_FALSE(rimHit(rayFrom(vsQ), vsQ, L, wHit));
+}
+
+TEST_F(RimEntryHit, RefusesAFlatFacesEdgeAndASurfaceNotReceding) {
+  const vec3 vsQ = viewAt(gEdgePx, 90.5f, kFrontZ - 0.03f);
+  float L = 0.0f;
+  vec3 wHit;
+  gNormalTurn = 0.0f;  // one normal: a flat face ends at its outline
+  EXPECT_FALSE(rimHit(rayFrom(vsQ), vsQ, L, wHit));
+  gNormalTurn = 3.0f * 3.14159265f / 180.0f;
+  gRimRecede = -0.05f;  // nearer towards the edge: no rim turning away
+  EXPECT_FALSE(rimHit(rayFrom(vsQ), vsQ, L, wHit));
+}
+
+TEST_F(RimEntryHit, LeavesCurvedPixelsToTheCurvedEntryRule) {
+  gCurvedExtra = 0.5f;
+  const vec3 vsQ = viewAt(gEdgePx, 90.5f, kFrontZ - 0.03f);
+  float L = 0.0f;
+  vec3 wHit;
+  EXPECT_FALSE(rimHit(rayFrom(vsQ), vsQ, L, wHit));
+}
+
+TEST_F(RimEntryHit, HitsACreaseOfOneCurvedSurfaceButNotABoxsEdge) {
+  // The wall 0.05 behind the rim's sample: the same surface, its normal turned 3 degrees further.
+  gWallZ = kFrontZ - 0.05f;
+  const vec3 vsQ = viewAt(gEdgePx, 90.5f, kFrontZ - 0.02f);
+  float L = 0.0f;
+  vec3 wHit;
+  ASSERT_TRUE(rimHit(rayFrom(vsQ), vsQ, L, wHit));
+  EXPECT_NEAR(L, length(vsQ - rayFrom(vsQ)), 2e-3f * length(vsQ - rayFrom(vsQ)));  // at the edge
+  // Normals 60 degrees apart: two faces meeting at an edge, not one curved surface.
+  gNormalTurn = 60.0f * 3.14159265f / 180.0f;
+  EXPECT_FALSE(rimHit(rayFrom(vsQ), vsQ, L, wHit));
 }
 
 }  // namespace
