@@ -218,12 +218,10 @@ SSLR_FN bool sslrCurvedEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams
   return abs(sslrViewDepthFromDepth(p, depthOut) - distIn) <= sslrHitTolerance(p, s, t, distIn, 16.0f);
 }
 
-#ifndef SSLR_RIM_MAX_NORMAL_DOT
+// sslrRimEntryHit's curved surface: two pixels' shading normals more than 1.8 degrees apart (a flat
+// face's are one normal) and less than 26 (two faces meeting at an edge).
 #define SSLR_RIM_MAX_NORMAL_DOT 0.9995f
-#endif
-#ifndef SSLR_RIM_MIN_NORMAL_DOT
 #define SSLR_RIM_MIN_NORMAL_DOT 0.9f
-#endif
 // A ray that ended in the solid of a pixel on a curved surface that has no curved extra depth (near
 // an object's outline, where the radius estimate gives none) met the surface where it went behind:
 // - across a crease: it came from a neighbour of the same surface whose sample lies beyond it (the
