@@ -184,9 +184,14 @@ SSLR_FN float sslrPlaneHitWith(SslrProjection p, SslrSurface s, SslrTraceParams 
     // A contact line: another surface meets the reflecting one inside the reflecting pixel (a box
     // standing on a mirror). The hit lies on that surface's plane, a pixel away; refusing it left
     // a one-pixel row without reflection along every contact. Its length tells it from the
-    // reflecting surface itself (whose own plane the ray leaves at L = 0).
+    // reflecting surface itself (whose own plane the ray leaves at L = 0). The plane's pixel must
+    // touch the reflecting one: a plane from farther away reaches it only by extension (the
+    // pixels between show something else).
     if (pxQ.x == pxOrigin.x && pxQ.y == pxOrigin.y) {
-      if (L > 0.05f * sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : sslrViewDistance(p, vsP))) break;
+      ivec2 fromOrigin = abs(pxPlane - pxOrigin);
+      if (max(fromOrigin.x, fromOrigin.y) <= 1 &&
+          L > 0.05f * sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : sslrViewDistance(p, vsP)))
+        break;
       return 0.0f;
     }
     // Re-planed once and still not landing in its own pixel: the surfaces disagree.

@@ -8,8 +8,9 @@
 // depth, the curved entry hit (sslrCurvedEntryHit): a crease between two samples of one curved
 // surface, and the cases it must refuse. With the box's samples receding and its normals turning
 // towards the edge and no extra depth, the rim entry hit (sslrRimEntryHit): the rim and a crease
-// of a curved surface near its outline, and the flat faces and box edges it must refuse. Its own
-// executable:
+// of a curved surface near its outline, and the flat faces and box edges it must refuse. And
+// sslrPlaneHit's contact line, whose plane must come from a pixel touching the mirror pixel. Its
+// own executable:
 // it defines the loaders the tracer headers call, which sslr_host also defines for its CPU run.
 #include <gtest/gtest.h>
 
@@ -394,6 +395,28 @@ TEST_F(RimEntryHit, HitsACreaseOfOneCurvedSurfaceButNotABoxsEdge) {
   // Normals 60 degrees apart: two faces meeting at an edge, not one curved surface.
   gNormalTurn = 60.0f * 3.14159265f / 180.0f;
   EXPECT_FALSE(rimHit(rayFrom(vsQ), vsQ, L, wHit));
+}
+
+// sslrPlaneHit's contact line: a ray from a mirror pixel meets the plane of the surface standing on
+// the mirror inside the mirror pixel itself. That holds when the plane's pixel touches the mirror
+// pixel; from four pixels away the plane reaches the mirror pixel only by extension (the pixels
+// between show something else: a thin leg's tangent plane, not a foot).
+TEST_F(CornerHit, AContactLinesPlaneMustComeFromANeighbouringPixel) {
+  const ivec2 pxOrigin(200, 90);
+  const vec3 vsP = viewAt(200.5f, 90.5f, kFrontZ);
+  const float footprint = sslrPixelFootprint(gProj, float(kHeight), -kFrontZ);
+  // A wall facing the ray 0.3 footprints to the right of vsP: the ray meets it inside the mirror
+  // pixel. The same wall point is given as the plane's surface sample for either pixel, so only
+  // where the plane comes from differs.
+  const vec3 vsWall = vsP + vec3(0.3f * footprint, 0.0f, 0.0f), vsWallNormal(-1.0f, 0.0f, 0.0f);
+  const vec3 vsR = normalize(vec3(1.0f, 0.0f, -1.0f));
+  SslrTraceParams t = params(0.75f);
+  t.hitToleranceRelative = 0.002f;
+  t.hitTolerancePixels = 1.5f;
+  float L = 0.0f;
+  EXPECT_GE(sslrPlaneHit(gProj, gSurf, t, pxOrigin, vsP, vsR, ivec2(201, 90), vsWall, vsWallNormal, L), 0.5f);
+  EXPECT_NEAR(L, 0.3f * footprint * std::sqrt(2.0f), 0.01f * footprint);
+  EXPECT_EQ(sslrPlaneHit(gProj, gSurf, t, pxOrigin, vsP, vsR, ivec2(204, 90), vsWall, vsWallNormal, L), 0.0f);
 }
 
 }  // namespace
