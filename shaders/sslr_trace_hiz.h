@@ -218,17 +218,14 @@ SSLR_FN bool sslrCurvedEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams
   return abs(sslrViewDepthFromDepth(p, depthOut) - distIn) <= sslrHitTolerance(p, s, t, distIn, 16.0f);
 }
 
-// sslrRimEntryHit's curved surface: two pixels' shading normals more than 1.8 degrees apart (a flat
-// face's are one normal) and less than 26 (two faces meeting at an edge).
-#define SSLR_RIM_MAX_NORMAL_DOT 0.9995f
-#define SSLR_RIM_MIN_NORMAL_DOT 0.9f
 // A ray that ended in the solid of a pixel on a curved surface that has no curved extra depth (near
 // an object's outline, where the radius estimate gives none) met the surface where it went behind:
 // - across a crease: it came from a neighbour of the same surface whose sample lies beyond it (the
 //   crossing lies between the two samples, where neither pixel's tangent plane holds it);
 // - at the rim: it came from beyond the outline and is behind the rim's sample by less than the
 //   surface recedes from the pixel inwards to the rim (the part that turns away within the pixel).
-// Curved means the shading normals of the two pixels differ: a flat face ends at its outline.
+// Curved: the two pixels' shading normals turn as on one curved surface (sslrNormalsTurnAsCurved),
+// not as on a flat face (one normal), which ends at its outline, or at an edge between two faces.
 SSLR_FN bool sslrRimEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 wEntry, vec3 d, vec3 vsP,
                              vec3 vsR, SSLR_OUT(float) L) {
   L = 0.0f;
@@ -257,7 +254,7 @@ SSLR_FN bool sslrRimEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t,
   }
   vec3 nIn, nOther;
   if (!sslrDecodeNormal(s, sslrLoadNormal(px), nIn) || !sslrDecodeNormal(s, sslrLoadNormal(other), nOther) ||
-      !(dot(nIn, nOther) < SSLR_RIM_MAX_NORMAL_DOT && dot(nIn, nOther) > SSLR_RIM_MIN_NORMAL_DOT))
+      !sslrNormalsTurnAsCurved(s, nIn, nOther))
     return false;
   // A rim hit is reported halfway to where the ray leaves the rim pixel: its colour, not a blend
   // with what lies beyond the outline.

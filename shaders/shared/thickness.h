@@ -29,14 +29,10 @@ SSLR_FN bool sslrCurvedSolids(SslrTraceParams t) {
 #endif
 }
 
-// The radius of curvature between two neighbouring pixels, or 0 where they do not look like one
-// convex curved surface. On a sphere P_a - P_b = r (N_a - N_b) exactly; the two differences must
-// point the same way (convex, within ~18 deg) and the normals turn by more than their encoding's
-// noise (8-bit xyz: ~0.5 deg per component) and less than an edge's ~20 deg; a step of more than
-// 8 footprints (footprintA: pixel A's) is a depth jump (a silhouette), not a surface. Squared
-// forms: every listed quad runs this four times, and on a CPU rasterizer each square root and
-// division shows.
-SSLR_FN float sslrConvexRadius(SslrSurface s, vec3 vsA, vec3 vsNa, vec3 vsB, vec3 vsNb, float footprintA) {
+// Whether two neighbouring pixels' unit shading normals turn as on one curved surface: by more than
+// their encoding's noise (8-bit xyz: ~0.5 deg per component; octahedral much less) and less than
+// an edge's ~20 deg. |N_a - N_b|^2 is the squared chord of the turn.
+SSLR_FN bool sslrNormalsTurnAsCurved(SslrSurface s, vec3 vsNa, vec3 vsNb) {
 #ifdef SSLR_NORMAL_ENCODING
   const bool octahedral = SSLR_NORMAL_ENCODING == SSLR_NORMALS_OCTAHEDRAL;
 #else
@@ -45,10 +41,22 @@ SSLR_FN float sslrConvexRadius(SslrSurface s, vec3 vsA, vec3 vsNa, vec3 vsB, vec
   float minTurn2 = octahedral ? 3e-5f : 1.2e-3f;  // (0.3 deg)^2, (2 deg)^2 in radians^2
   vec3 dN = vsNa - vsNb;
   float dn2 = dot(dN, dN);
+  return dn2 > minTurn2 && dn2 < 0.12f;
+}
+
+// The radius of curvature between two neighbouring pixels, or 0 where they do not look like one
+// convex curved surface. On a sphere P_a - P_b = r (N_a - N_b) exactly; the two differences must
+// point the same way (convex, within ~18 deg) and the normals turn as on a curved surface
+// (sslrNormalsTurnAsCurved); a step of more than 8 footprints (footprintA: pixel A's) is a depth
+// jump (a silhouette), not a surface. Squared forms: every listed quad runs this four times, and
+// on a CPU rasterizer each square root and division shows.
+SSLR_FN float sslrConvexRadius(SslrSurface s, vec3 vsA, vec3 vsNa, vec3 vsB, vec3 vsNb, float footprintA) {
+  vec3 dN = vsNa - vsNb;
+  float dn2 = dot(dN, dN);
   vec3 dP = vsA - vsB;
   float along = dot(dP, dN);
   float dp2 = dot(dP, dP);
-  bool curved = dn2 > minTurn2 && dn2 < 0.12f && along > 0.0f && along * along > 0.9025f * dp2 * dn2 &&
+  bool curved = sslrNormalsTurnAsCurved(s, vsNa, vsNb) && along > 0.0f && along * along > 0.9025f * dp2 * dn2 &&
                 dp2 <= 64.0f * footprintA * footprintA;
   return curved ? along / dn2 : 0.0f;
 }
