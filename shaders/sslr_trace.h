@@ -35,6 +35,10 @@ struct SslrHit {
   float LGuess;      // shows began, and its length there (0: in front; sslrHiddenGuess)
   float LResume;     // the traversal ran out of steps in front of what the screen shows: the
                      // ray's length there, where adaptive L resumes (0: it did not)
+  float LSlab;       // the traversal ended inside what a pixel shows (an assumed slab): the ray's
+                     // length where it went in (0: it did not)
+  float LBlend;      // a hit found past such a slab: the slab's entry, whose colour the hit's is
+                     // blended with (Settings::traversal.slabBlend; 0: none)
 };
 
 // A hit record that says "nothing": the starting state of every tracer.
@@ -50,6 +54,8 @@ SSLR_FN SslrHit sslrNoHit(int status) {
   hit.uvGuess = vec2(0.0f);
   hit.LGuess = 0.0f;
   hit.LResume = 0.0f;
+  hit.LSlab = 0.0f;
+  hit.LBlend = 0.0f;
   return hit;
 }
 

@@ -551,6 +551,8 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   if (w.measuredSlab) {  // known hidden: where the ray entered the solid's pixels, for verification
     hit.status = SSLR_STATUS_HIDDEN;
     hit.L = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRun, vsP, vsR);
+  } else if (w.inSlab) {
+    hit.LSlab = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRun, vsP, vsR);
   }
   return hit;
 }
@@ -618,6 +620,9 @@ SSLR_FN SslrHit sslrProbeAfterWalk(SslrProjection p, SslrSurface s, SslrTracePar
   // (by verification's 3%) lies behind what hid the ray.
   if (walked.status == SSLR_STATUS_HIDDEN && walked.L < 0.97f * probed.L) useProbed = false;
   SslrHit answer = useProbed ? probed : walked;
+  // Past an assumed slab the ray either went behind a thinner object (the hit) or met its hidden
+  // side (the slab's colour): the image takes both (Settings::traversal.slabBlend).
+  if (useProbed && sslrConfidentHit(probed) && walked.LSlab > 0.0f) answer.LBlend = walked.LSlab;
   answer.iterations = walked.iterations + probed.iterations;
   answer.hierarchical = 2;
   return answer;

@@ -26,6 +26,12 @@ uint sslrShadePixel(ivec2 px) {
       SslrWeights w = sslrReflectionWeights(frame.proj, frame.surface, frame.trace, hit, q.vsP, q.vsV, q.vsR,
                                             q.cosVN, reflectance, sslrRoughness(frame.surface, q.material));
       vec3 color = textureLod(uColor, sslrTextureUv(hit.uvHit), 0.0f).rgb;
+      if (hit.LBlend > 0.0f && frame.trace.slabBlend > 0.0f) {  // a hit past an assumed slab: also the slab's colour
+        vec2 sizePx = vec2(frame.surface.width, frame.surface.height);
+        vec3 wSlab = sslrWindowFromView(frame.proj, sizePx, 1.0f, q.vsP + q.vsR * hit.LBlend);
+        vec3 slabColor = textureLod(uColor, sslrTextureUv(vec2(wSlab.x, wSlab.y) / sizePx), 0.0f).rgb;
+        color = mix(color, slabColor, frame.trace.slabBlend);
+      }
       // Poisoned colour must not spread through the blur: NaN/Inf become 0, and the value is
       // kept inside RGBA16F's range.
       if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0f);

@@ -103,6 +103,10 @@ struct SslrTraceParams {
                               // (colour-texture units; 0 = no clamp)
   float hiddenGuessWeight;    // Settings::traversal.hiddenGuess: a hidden ray's guess, its weight (0 = none)
   int resumeAtStepCap;        // Settings::traversal.resumeAtStepCap: 1 = adaptive L resumes where the traversal ran out of steps
+  float slabBlend;            // Settings::traversal.slabBlend: a hit past an assumed slab takes this much of the slab's colour
+  int tracePad0;
+  int tracePad1;
+  int tracePad2;
 };
 
 // The position-buffer comparison method ("3D Game Shaders For Beginners", SSR chapter).
@@ -227,16 +231,16 @@ inline SslrProjection sslrProjectionFromMatrix(const glm::dmat4& clipFromView, b
 }
 static_assert(sizeof(SslrProjection) == 48, "std140 mirror");
 static_assert(sizeof(SslrSurface) == 128, "std140 mirror");
-static_assert(sizeof(SslrTraceParams) == 128, "std140 mirror");
+static_assert(sizeof(SslrTraceParams) == 144, "std140 mirror");
 static_assert(offsetof(SslrFrame, surface) == 48, "std140 mirror");
 static_assert(offsetof(SslrFrame, trace) == 176, "std140 mirror");
 static_assert(sizeof(SslrPositionParams) == 16, "std140 mirror");
-static_assert(offsetof(SslrFrame, positionBuffer) == 304, "std140 mirror");
+static_assert(offsetof(SslrFrame, positionBuffer) == 320, "std140 mirror");
 static_assert(sizeof(SslrDdaParams) == 32, "std140 mirror");
-static_assert(offsetof(SslrFrame, dda) == 320, "std140 mirror");
+static_assert(offsetof(SslrFrame, dda) == 336, "std140 mirror");
 static_assert(sizeof(SslrTemporalParams) == 96, "std140 mirror");
-static_assert(offsetof(SslrFrame, temporal) == 352, "std140 mirror");
-static_assert(sizeof(SslrFrame) == 448, "std140 mirror");
+static_assert(offsetof(SslrFrame, temporal) == 368, "std140 mirror");
+static_assert(sizeof(SslrFrame) == 464, "std140 mirror");
 #endif
 
 #ifdef __cplusplus

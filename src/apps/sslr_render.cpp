@@ -152,6 +152,7 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
   numberOption(args, "object-thickness", "a number", s.traversal.objectDepthRelative);
   numberOption(args, "hidden-passage", "a number", s.traversal.hiddenPassageLimitPx);
   numberOption(args, "hidden-guess", "a number in 0..1", s.traversal.hiddenGuess);
+  numberOption(args, "slab-blend", "a number in 0..1", s.traversal.slabBlend);
   numberOption(args, "max-luminance", "a number >= 0", s.radianceClamp.maxLuminance);
   numberOption(args, "ffx-thickness", "a number", s.ffx.depthBufferThickness);
   numberOption(args, "error-k", "a number", s.fades.errorK);
@@ -213,6 +214,10 @@ void addTracerOptions(cxxopts::Options& options) {
       ("hidden-guess", "a ray that ends behind what the screen shows gets the colour where it went behind, "
                        "at this weight 0..1 (Settings::traversal.hiddenGuess; 0.5 in the high and ultra presets, "
                        "0 = a miss)",
+       cxxopts::value<std::string>())
+      ("slab-blend", "traversal first: a hit adaptive L finds past an object's assumed slab takes this share "
+                     "0..1 of the colour where the ray went into the slab (Settings::traversal.slabBlend; "
+                     "default 0.25, 0 = the hit's colour alone)",
        cxxopts::value<std::string>())
       ("max-luminance", "HDR-safe radiance: hit colours brighter than this luminance (display units) are scaled "
                         "down to it before the blur and temporal reuse (Settings::radianceClamp; default 0 = off)",

@@ -65,6 +65,8 @@ TEST(RenderCliNoGl, BadArgumentsExitTwoWithAMessageAndWriteNothing) {
       {"--iterations abc", "iterations"},
       {"--hiz-steps 0", "traversal.maxSteps"},
       {"--hidden-guess 2", "traversal.hiddenGuess"},
+      {"--slab-blend 1.5", "traversal.slabBlend"},
+      {"--slab-blend half", "--slab-blend expects a number"},
       {"--max-luminance -1", "radianceClamp.maxLuminance"},
       {"--max-luminance bright", "--max-luminance expects a number"},
       {"--hiz-steps many", "--hiz-steps expects an integer"},

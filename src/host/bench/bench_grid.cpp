@@ -47,6 +47,10 @@ void highVariants(std::vector<BenchConfig>& configs) {
     guess.settings.traversal.hiddenGuess = weight;
     configs.push_back(guess);
   }
+  // A hit past an assumed slab in the hit's colour alone (traversal.slabBlend 0).
+  BenchConfig noSlabBlend{"adaptive-l", "high-no-slab-blend", Settings::preset(preset), false};
+  noSlabBlend.settings.traversal.slabBlend = 0.0f;
+  configs.push_back(noSlabBlend);
   // The step cap's graceful answer (adaptive L resuming where the traversal ran out of steps): off.
   BenchConfig noResume{"adaptive-l", "high-no-resume", Settings::preset(preset), false};
   noResume.settings.traversal.resumeAtStepCap = false;

@@ -45,6 +45,7 @@ json settingsJson(const BenchConfig& c) {
           {"backDepth", c.backDepth},
           {"device", c.device == DeviceProfile::Gpu ? "gpu" : c.device == DeviceProfile::Software ? "software" : "auto"},
           {"traversal.hiddenGuess", s.traversal.hiddenGuess},
+          {"traversal.slabBlend", s.traversal.slabBlend},
           {"traversal.resumeAtStepCap", s.traversal.resumeAtStepCap},
           {"debug.oneBodyTraversal", s.debug.oneBodyTraversal},
           {"traversal.hiddenPassageLimitPx", s.traversal.hiddenPassageLimitPx < 1e29f ? json(s.traversal.hiddenPassageLimitPx) : json("off")},

@@ -313,6 +313,7 @@ struct App {
     ImGui::Checkbox("outline thinning", &t.traversal.outlineThinning);
     ImGui::Checkbox("curved solids", &t.traversal.curvedSolids);
     ImGui::SliderFloat("traversal.hiddenGuess", &t.traversal.hiddenGuess, 0.0f, 1.0f);
+    ImGui::SliderFloat("traversal.slabBlend", &t.traversal.slabBlend, 0.0f, 1.0f);
     int pass = static_cast<int>(t.traversal.pass);
     const char* passes[] = {"auto", "inline", "deferred"};
     if (ImGui::Combo("traversal pass", &pass, passes, 3)) t.traversal.pass = static_cast<TraversalPass>(pass);

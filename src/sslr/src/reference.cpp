@@ -115,6 +115,7 @@ void traceConstants(const FrameInputs& in, const Settings& s, int width, int hei
   t.objectDepthRelative = s.traversal.objectDepthRelative;
   t.hiddenPassageLimitPx = s.traversal.hiddenPassageLimitPx;
   t.hiddenGuessWeight = s.traversal.hiddenGuess;
+  t.slabBlend = s.traversal.slabBlend;
   t.resumeAtStepCap = s.traversal.resumeAtStepCap ? 1 : 0;
   t.ffxDepthBufferThickness = s.ffx.depthBufferThickness;
   t.ffxMaxIntersections = s.ffx.maxTraversalIntersections;

@@ -323,6 +323,12 @@ struct Settings {
                                // surface): an occluder's visible side standing in for its hidden
                                // one, half faded to the fallback. 0 = a miss (Preset::Low/Medium;
                                // results/composite.md)
+    float slabBlend = 0.25f;   // 0..1, traversal first. Where the traversal ended inside an object's
+                               // assumed slab (a pole thinner than objectDepthRelative assumes) and
+                               // adaptive L then hit beyond it, the ray either passed behind the
+                               // object (the hit) or met its hidden side: the reflection takes this
+                               // share of the colour where the ray went into the slab. 0 = the
+                               // hit's colour alone (results/composite.md, "0.8")
   } traversal;
 
   // When a crossing counts as a hit (all depth-only tracers): the ray point Q and the surface
