@@ -57,6 +57,8 @@ TEST(Settings, EveryInvalidFieldIsNamed) {
       {"traversal.hiddenPassageLimitPx", [](Settings& s) { s.traversal.hiddenPassageLimitPx = -1.0f; }},
       {"traversal.hiddenGuess", [](Settings& s) { s.traversal.hiddenGuess = 1.5f; }},
       {"traversal.hiddenGuess", [](Settings& s) { s.traversal.hiddenGuess = NAN; }},
+      {"traversal.slabBlend", [](Settings& s) { s.traversal.slabBlend = -0.1f; }},
+      {"traversal.slabBlend", [](Settings& s) { s.traversal.slabBlend = NAN; }},
       {"ffx.depthBufferThickness", [](Settings& s) { s.ffx.depthBufferThickness = 0.0f; }},
       {"ffx.maxTraversalIntersections", [](Settings& s) { s.ffx.maxTraversalIntersections = 0; }},
       {"traversal.hiddenPassageLimitPx", [](Settings& s) { s.traversal.hiddenPassageLimitPx = NAN; }},
