@@ -327,7 +327,8 @@ struct Settings {
                                // assumed slab (a pole thinner than objectDepthRelative assumes) and
                                // adaptive L then hit beyond it, the ray either passed behind the
                                // object (the hit) or met its hidden side: the reflection takes this
-                               // share of the colour where the ray went into the slab. 0 = the
+                               // share of the colour where the ray went into the slab (at half
+                               // resolution: on the pixels that trace their own ray). 0 = the
                                // hit's colour alone (results/composite.md, "0.8")
   } traversal;
 
