@@ -24,7 +24,7 @@
 //     just past an outline, a visible side narrower than a pixel: sslrCornerHit), and lets it pass
 //     behind when it went deeper (a silhouette the ray passes behind). A ray that ends inside a
 //     curved surface's solid hits where it went behind, across a crease between two samples or
-//     at the rim the outline's pixel hides (sslrCurvedEntryHit, sslrRimEntryHit).
+//     at the rim the outline's pixel hides (sslrCurvedEntryHit and its sslrRimEntryHit).
 
 #ifndef SSLR_TRACE_HIZ_H
 #define SSLR_TRACE_HIZ_H
@@ -180,65 +180,22 @@ struct SslrWalk {
 // Past a cell boundary, in pixels (exact in float up to 2^15 px).
 #define SSLR_HIZ_NUDGE (1.0f / 256.0f)
 
-// Where a ray that ended inside a curved surface's solid entered it (w.tRun, window space wEntry;
-// the pixel there is px): a hit if it entered through the surface the pixel shows. A faceted mesh
-// with interpolated normals holds flat facets in depth while its shading normals tilt away from
-// them, so the pixel tests' tangent planes refuse such crossings, and a crease between facets,
-// seen at an angle, steps in depth from one pixel to the next. Two cases:
-// - the ray crossed into px from a neighbour whose surface lies beyond it there, and is behind
-//   px's: it crossed the surface between the two samples, at the boundary, if the two are one
-//   surface (their depths differ by no more than the steepest slope's hit tolerance; an outline
-//   steps further);
-// - otherwise it went behind inside px: a hit where it did, if that point lies on px's surface
-//   within the hit tolerance (adaptive L's convergence test).
-SSLR_FN bool sslrCurvedEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 wEntry, vec3 d, vec3 vsP,
-                                vec3 vsR, SSLR_OUT(float) L) {
-  L = 0.0f;
-  if (!sslrCurvedSolids(t) || sslrBackDepth(s)) return false;
-  ivec2 px = ivec2(floor(vec2(wEntry.x, wEntry.y)));
-  vec3 vsSurface;
-  if (!(sslrLoadPyramidTexel(0, px).y > 0.0f) || !sslrLoadSurface(px, vsSurface)) return false;
-  float keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
-  float keyIn = keySign * sslrLoadDepth(px);
-  L = sslrRayLengthAt(p, vec2(s.width, s.height), keySign, wEntry, d, 0.0f, vsP, vsR);
-  if (!(L > 0.0f)) return false;
-  // The pixel the ray came from: just before the boundary it crossed (2 nudges back along the
-  // major axis; a corner's other boundary, crossed earlier, stays crossed).
-  ivec2 npx = ivec2(floor(vec2(wEntry.x, wEntry.y) - vec2(d.x, d.y) * (2.0f * SSLR_HIZ_NUDGE)));
-  bool crossedIn = (npx.x != px.x || npx.y != px.y) && wEntry.z > keyIn && npx.x >= 0 && npx.y >= 0 &&
-                   npx.x < s.width && npx.y < s.height;
-  if (!crossedIn) {
-    vec3 vsQ = vsP + vsR * L;
-    float distS = p.orthographic != 0 ? abs(vsSurface.z) : -vsSurface.z;
-    return length(vsQ - vsSurface) <= sslrHitTolerance(p, s, t, distS, 0.0f);
-  }
-  float depthOut = sslrLoadDepth(npx);
-  if (!sslrIsGeometryDepth(s, depthOut) || !(wEntry.z <= keySign * depthOut)) return false;
-  float distIn = sslrViewDepthFromDepth(p, keySign * keyIn);
-  return abs(sslrViewDepthFromDepth(p, depthOut) - distIn) <= sslrHitTolerance(p, s, t, distIn, 16.0f);
-}
-
-// A ray that ended in the solid of a pixel on a curved surface that has no curved extra depth (near
-// an object's outline, where the radius estimate gives none) met the surface where it went behind:
-// - across a crease: it came from a neighbour of the same surface whose sample lies beyond it (the
-//   crossing lies between the two samples, where neither pixel's tangent plane holds it);
+// sslrCurvedEntryHit's branch for a pixel px with no curved extra depth, on a curved surface near
+// an object's outline (where the radius estimate gives none): the ray crossed into px from npx
+// (keyIn: px's depth key, depthOut: npx's raw depth) and went behind px's sample there. It met the
+// surface where it went behind:
+// - across a crease: npx is the same surface with its sample beyond the ray (the crossing lies
+//   between the two samples, where neither pixel's tangent plane holds it);
 // - at the rim: it came from beyond the outline and is behind the rim's sample by less than the
 //   surface recedes from the pixel inwards to the rim (the part that turns away within the pixel).
 // Curved: the two pixels' shading normals turn as on one curved surface (sslrNormalsTurnAsCurved),
 // not as on a flat face (one normal), which ends at its outline, or at an edge between two faces.
 SSLR_FN bool sslrRimEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 wEntry, vec3 d, vec3 vsP,
-                             vec3 vsR, SSLR_OUT(float) L) {
+                             vec3 vsR, ivec2 px, ivec2 npx, float keyIn, float depthOut, SSLR_OUT(float) L) {
   L = 0.0f;
-  if (!sslrCurvedSolids(t) || sslrBackDepth(s)) return false;
-  ivec2 px = ivec2(floor(vec2(wEntry.x, wEntry.y)));
-  ivec2 npx = ivec2(floor(vec2(wEntry.x, wEntry.y) - vec2(d.x, d.y) * (2.0f * SSLR_HIZ_NUDGE)));
-  if ((npx.x == px.x && npx.y == px.y) || min(npx.x, npx.y) < 0 || npx.x >= s.width || npx.y >= s.height)
-    return false;
-  if (sslrLoadPyramidTexel(0, px).y > 0.0f) return false;  // curved: sslrCurvedEntryHit's
   float keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
-  float keyIn = keySign * sslrLoadDepth(px), depthOut = sslrLoadDepth(npx);
   bool outGeometry = sslrIsGeometryDepth(s, depthOut);
-  if (!(wEntry.z > keyIn) || (outGeometry && !(wEntry.z <= keySign * depthOut))) return false;
+  if (outGeometry && !(wEntry.z <= keySign * depthOut)) return false;
   float distIn = sslrViewDepthFromDepth(p, keySign * keyIn);
   float tolerance = sslrHitTolerance(p, s, t, distIn, 16.0f);
   bool crease = outGeometry && abs(sslrViewDepthFromDepth(p, depthOut) - distIn) <= tolerance;
@@ -267,6 +224,48 @@ SSLR_FN bool sslrRimEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t,
   }
   L = sslrRayLengthAt(p, vec2(s.width, s.height), keySign, wEntry, d, tIn, vsP, vsR);
   return L > 0.0f;
+}
+
+// Where a ray that ended inside a curved surface's solid entered it (w.tRun, window space wEntry;
+// the pixel there is px): a hit if it entered through the surface the pixel shows. A faceted mesh
+// with interpolated normals holds flat facets in depth while its shading normals tilt away from
+// them, so the pixel tests' tangent planes refuse such crossings, and a crease between facets,
+// seen at an angle, steps in depth from one pixel to the next. Where px has a curved extra depth,
+// two cases:
+// - the ray crossed into px from a neighbour whose surface lies beyond it there, and is behind
+//   px's: it crossed the surface between the two samples, at the boundary, if the two are one
+//   surface (their depths differ by no more than the steepest slope's hit tolerance; an outline
+//   steps further);
+// - otherwise it went behind inside px: a hit where it did, if that point lies on px's surface
+//   within the hit tolerance (adaptive L's convergence test).
+// Where it has none (near an outline), sslrRimEntryHit.
+SSLR_FN bool sslrCurvedEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 wEntry, vec3 d, vec3 vsP,
+                                vec3 vsR, SSLR_OUT(float) L) {
+  L = 0.0f;
+  if (!sslrCurvedSolids(t) || sslrBackDepth(s)) return false;
+  ivec2 px = ivec2(floor(vec2(wEntry.x, wEntry.y)));
+  float keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
+  float keyIn = keySign * sslrLoadDepth(px);
+  // The pixel the ray came from: just before the boundary it crossed (2 nudges back along the
+  // major axis; a corner's other boundary, crossed earlier, stays crossed).
+  ivec2 npx = ivec2(floor(vec2(wEntry.x, wEntry.y) - vec2(d.x, d.y) * (2.0f * SSLR_HIZ_NUDGE)));
+  bool crossedIn = (npx.x != px.x || npx.y != px.y) && wEntry.z > keyIn && npx.x >= 0 && npx.y >= 0 &&
+                   npx.x < s.width && npx.y < s.height;
+  if (!(sslrLoadPyramidTexel(0, px).y > 0.0f))
+    return crossedIn && sslrRimEntryHit(p, s, t, wEntry, d, vsP, vsR, px, npx, keyIn, sslrLoadDepth(npx), L);
+  vec3 vsSurface;
+  if (!sslrLoadSurface(px, vsSurface)) return false;
+  L = sslrRayLengthAt(p, vec2(s.width, s.height), keySign, wEntry, d, 0.0f, vsP, vsR);
+  if (!(L > 0.0f)) return false;
+  if (!crossedIn) {
+    vec3 vsQ = vsP + vsR * L;
+    float distS = p.orthographic != 0 ? abs(vsSurface.z) : -vsSurface.z;
+    return length(vsQ - vsSurface) <= sslrHitTolerance(p, s, t, distS, 0.0f);
+  }
+  float depthOut = sslrLoadDepth(npx);
+  if (!sslrIsGeometryDepth(s, depthOut) || !(wEntry.z <= keySign * depthOut)) return false;
+  float distIn = sslrViewDepthFromDepth(p, keySign * keyIn);
+  return abs(sslrViewDepthFromDepth(p, depthOut) - distIn) <= sslrHitTolerance(p, s, t, distIn, 16.0f);
 }
 
 // The ray from vsP along vsR in window space, just out of its own pixel. False for a ray along the
@@ -545,8 +544,6 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   if (w.inSlab && sslrCornerHit(p, s, t, w.o + w.d * w.tRun, w.d, vsP, vsR, Lc) && Lc <= t.maxDistance)
     return sslrFinishHit(p, hit, vsP, vsR, Lc, 1.0f);
   if (w.inSlab && sslrCurvedEntryHit(p, s, t, w.o + w.d * w.tRun, w.d, vsP, vsR, Lc) && Lc <= t.maxDistance)
-    return sslrFinishHit(p, hit, vsP, vsR, Lc, 1.0f);
-  if (w.inSlab && sslrRimEntryHit(p, s, t, w.o + w.d * w.tRun, w.d, vsP, vsR, Lc) && Lc <= t.maxDistance)
     return sslrFinishHit(p, hit, vsP, vsR, Lc, 1.0f);
   if (w.measuredSlab) {  // known hidden: where the ray entered the solid's pixels, for verification
     hit.status = SSLR_STATUS_HIDDEN;

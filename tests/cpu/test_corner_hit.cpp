@@ -323,8 +323,8 @@ TEST_F(CurvedEntryHit, InsideAPixelHitsOnlyOnItsSurface) {
   EXPECT_FALSE(entryHit(vsFar + vec3(4.0f, 0.3f, 1.5f), vsFar, L, 0.3f));
 }
 
-// sslrRimEntryHit: the box is a curved surface near its outline without curved extra depth (level
-// 0 holds none). Its columns recede by 0.05 a column towards the edge and the normals turn by 3
+// sslrCurvedEntryHit's branch without curved extra depth (sslrRimEntryHit): the box is a curved
+// surface near its outline, and level 0 holds no extra depth. Its columns recede by 0.05 a column towards the edge and the normals turn by 3
 // degrees a column. A ray from the right crosses the edge from the far wall (the rim) or, with the
 // wall moved close behind, from a sample of the same surface (a crease).
 class RimEntryHit : public CurvedEntryHit {
@@ -340,7 +340,7 @@ class RimEntryHit : public CurvedEntryHit {
     const vec3 vsR = normalize(vsTarget - vsP);
     const Entry e = entryAt(vsP, vsR, gEdgePx, 1.0f / 256.0f);
     EXPECT_EQ(int(std::floor(e.wEntry.x)), int(gEdgePx) - 1);
-    const bool hit = sslrRimEntryHit(gProj, gSurf, curvedParams(), e.wEntry, e.d, vsP, vsR, L);
+    const bool hit = sslrCurvedEntryHit(gProj, gSurf, curvedParams(), e.wEntry, e.d, vsP, vsR, L);
     wHit = sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP + vsR * L);
     return hit;
   }
@@ -376,6 +376,7 @@ TEST_F(RimEntryHit, RefusesAFlatFacesEdgeAndASurfaceNotReceding) {
   EXPECT_FALSE(rimHit(rayFrom(vsQ), vsQ, L, wHit));
 }
 
+// With extra depth the pixel takes the curved branch, where an outline is no crossing of one surface.
 TEST_F(RimEntryHit, LeavesCurvedPixelsToTheCurvedEntryRule) {
   gCurvedExtra = 0.5f;
   const vec3 vsQ = viewAt(gEdgePx, 90.5f, kFrontZ - 0.03f);
