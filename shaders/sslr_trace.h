@@ -255,6 +255,22 @@ SSLR_FN SslrHit sslrFinishHit(SslrProjection p, SslrHit hit, vec3 vsP, vec3 vsR,
   return hit;
 }
 
+// Where a hit's colour is read: its uv, except for a contact line's hit (sslrPlaneHitWith), which
+// lies inside the reflecting pixel itself. That pixel shows the mirror, not the surface standing on
+// it (a box's foot, a sphere just above the floor), so its colour is read from the neighbouring
+// pixel the ray heads into on screen (the larger axis of its window direction), at its centre.
+SSLR_FN vec2 sslrColorUv(SslrProjection p, SslrSurface s, vec3 vsP, vec3 vsR, vec2 uvHit) {
+  vec2 sizePx = vec2(s.width, s.height);
+  vec3 wP = sslrWindowFromView(p, sizePx, 1.0f, vsP);
+  ivec2 pxP = ivec2(floor(vec2(wP.x, wP.y)));
+  ivec2 pxHit = ivec2(floor(uvHit * sizePx));
+  if (pxHit.x != pxP.x || pxHit.y != pxP.y) return uvHit;
+  vec3 wDir = sslrWindowDirection(p, s, 1.0f, vsP, vsR, wP);
+  ivec2 step = abs(wDir.x) >= abs(wDir.y) ? ivec2(wDir.x >= 0.0f ? 1 : -1, 0) : ivec2(0, wDir.y >= 0.0f ? 1 : -1);
+  ivec2 pxColor = clamp(pxP + step, ivec2(0), ivec2(int(s.width) - 1, int(s.height) - 1));
+  return (vec2(pxColor) + 0.5f) / sizePx;
+}
+
 // Adaptive L's first length: long enough to move the probe initialLengthPixels on screen. A ray
 // heading away from (or towards) the camera moves slowly on screen, so its first step is longer in
 // view units (capped at 4x the surface's distance).

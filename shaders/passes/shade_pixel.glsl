@@ -25,7 +25,8 @@ uint sslrShadePixel(ivec2 px) {
       float reflectance = sslrReflectance(frame.surface, q.material);
       SslrWeights w = sslrReflectionWeights(frame.proj, frame.surface, frame.trace, hit, q.vsP, q.vsV, q.vsR,
                                             q.cosVN, reflectance, sslrRoughness(frame.surface, q.material));
-      vec3 color = textureLod(uColor, sslrTextureUv(hit.uvHit), 0.0f).rgb;
+      vec2 uvColor = sslrColorUv(frame.proj, frame.surface, q.vsP, q.vsR, hit.uvHit);
+      vec3 color = textureLod(uColor, sslrTextureUv(uvColor), 0.0f).rgb;
       if (hit.LBlend > 0.0f && frame.trace.slabBlend > 0.0f) {  // a hit past an assumed slab: also the slab's colour
         vec2 sizePx = vec2(frame.surface.width, frame.surface.height);
         vec3 wSlab = sslrWindowFromView(frame.proj, sizePx, 1.0f, q.vsP + q.vsR * hit.LBlend);

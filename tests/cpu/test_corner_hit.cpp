@@ -9,8 +9,8 @@
 // surface, and the cases it must refuse. With the box's samples receding and its normals turning
 // towards the edge and no extra depth, the rim entry hit (sslrRimEntryHit): the rim and a crease
 // of a curved surface near its outline, and the flat faces and box edges it must refuse. And
-// sslrPlaneHit's contact line, whose plane must come from a pixel touching the mirror pixel. Its
-// own executable:
+// sslrPlaneHit's contact line, whose plane must come from a pixel touching the mirror pixel, and
+// whose colour comes from the pixel beside it (sslrColorUv). Its own executable:
 // it defines the loaders the tracer headers call, which sslr_host also defines for its CPU run.
 #include <gtest/gtest.h>
 
@@ -418,6 +418,36 @@ TEST_F(CornerHit, AContactLinesPlaneMustComeFromANeighbouringPixel) {
   EXPECT_GE(sslrPlaneHit(gProj, gSurf, t, pxOrigin, vsP, vsR, ivec2(201, 90), vsWall, vsWallNormal, L), 0.5f);
   EXPECT_NEAR(L, 0.3f * footprint * std::sqrt(2.0f), 0.01f * footprint);
   EXPECT_EQ(sslrPlaneHit(gProj, gSurf, t, pxOrigin, vsP, vsR, ivec2(204, 90), vsWall, vsWallNormal, L), 0.0f);
+}
+
+// A contact line's hit lies inside the mirror pixel, which shows the mirror: its colour comes from
+// the pixel the ray heads into on screen (sslrColorUv). Any other hit's colour is read where it is.
+TEST_F(CornerHit, AContactLinesColourComesFromThePixelTheRayHeadsInto) {
+  const vec3 vsP = viewAt(200.5f, 90.5f, kFrontZ);
+  const vec2 size{float(kWidth), float(kHeight)};
+  const float footprint = sslrPixelFootprint(gProj, float(kHeight), -kFrontZ);
+  struct Case {
+    vec3 vsR;
+    ivec2 pxColor;
+  };
+  // Rays leaning mostly right, left, up and down on screen (and a little away from the camera).
+  for (const Case& c : {Case{normalize(vec3(1.0f, 0.3f, -1.0f)), ivec2(201, 90)},
+                        Case{normalize(vec3(-1.0f, 0.3f, -1.0f)), ivec2(199, 90)},
+                        Case{normalize(vec3(0.3f, 1.0f, -1.0f)), ivec2(200, 91)},
+                        Case{normalize(vec3(-0.3f, -1.0f, -1.0f)), ivec2(200, 89)}}) {
+    // The hit 0.3 footprints along the ray: still inside the mirror pixel.
+    const vec3 wHit = sslrWindowFromView(gProj, size, 1.0f, vsP + c.vsR * (0.3f * footprint));
+    const vec2 uvHit = vec2(wHit.x, wHit.y) / size;
+    ASSERT_EQ(ivec2(floor(uvHit * size)), ivec2(200, 90));
+    const vec2 uvColor = sslrColorUv(gProj, gSurf, vsP, c.vsR, uvHit);
+    EXPECT_EQ(ivec2(floor(uvColor * size)), c.pxColor);
+    EXPECT_NEAR(uvColor.x * size.x - std::floor(uvColor.x * size.x), 0.5f, 1e-3f) << "at the pixel's centre";
+    EXPECT_NEAR(uvColor.y * size.y - std::floor(uvColor.y * size.y), 0.5f, 1e-3f);
+    // Three footprints along: a hit in another pixel, read where it is.
+    const vec3 wFar = sslrWindowFromView(gProj, size, 1.0f, vsP + c.vsR * (3.0f * footprint));
+    const vec2 uvFar = vec2(wFar.x, wFar.y) / size;
+    EXPECT_EQ(sslrColorUv(gProj, gSurf, vsP, c.vsR, uvFar), uvFar);
+  }
 }
 
 }  // namespace
