@@ -238,11 +238,13 @@ SSLR_FN bool sslrRimEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t,
 //   steps further);
 // - otherwise it went behind inside px: a hit where it did, if that point lies on px's surface
 //   within the hit tolerance (adaptive L's convergence test).
-// Where it has none (near an outline), sslrRimEntryHit.
+// Where it has none (near an outline), sslrRimEntryHit. With the back-face depth, level 0 holds
+// the measured extra depth instead, and the same two rules run on it: a measured solid thicker
+// than the slab, or the rim where it is thinner (a ray that ended inside it entered somewhere).
 SSLR_FN bool sslrCurvedEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 wEntry, vec3 d, vec3 vsP,
                                 vec3 vsR, SSLR_OUT(float) L) {
   L = 0.0f;
-  if (!sslrCurvedSolids(t) || sslrBackDepth(s)) return false;
+  if (!sslrCurvedSolids(t) && !sslrBackDepth(s)) return false;
   ivec2 px = ivec2(floor(vec2(wEntry.x, wEntry.y)));
   float keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
   float keyIn = keySign * sslrLoadDepth(px);

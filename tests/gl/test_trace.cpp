@@ -741,28 +741,40 @@ int isolatedRejections(const GroundTruth& truth, const Image& hit) {
   return count;
 }
 
-class IsolatedRejections : public sslr::test::GlTest, public ::testing::WithParamInterface<const char*> {};
+// With the back-face depth given (FrameInputs::backDepthTexture) the solids are measured instead of
+// estimated, and the same entry rules apply (sslrCurvedEntryHit, sslrRimEntryHit): until 0.9 they
+// were off there, and a host that gave the better input got more sparkles: 14 and 2 isolated
+// rejections at 256x144, 113 and 83 at 960x540 (now 2 and 2, and 11 and 14).
+class IsolatedRejections : public sslr::test::GlTest,
+                           public ::testing::WithParamInterface<std::tuple<const char*, bool>> {};
 
 TEST_P(IsolatedRejections, FacetedSphereOverAMirror) {
-  auto scene = makeBuiltinScene(GetParam());
+  const auto [name, backDepth] = GetParam();
+  auto scene = makeBuiltinScene(name);
   ASSERT_TRUE(scene);
   GBufferOptions o;
   o.width = 256;
   o.height = 144;
+  o.withBackDepth = backDepth;
   const ScoredFrame f = renderScored(scene.value(), *scene.value().camera, o, Settings{});
   ASSERT_TRUE(f.renderer);
   const HitMetrics m = compareHits(f.truth, f.hit, kReportedConfidence);
   ASSERT_GT(m.visible, 2000u) << "the floor must show the sphere";
   const int isolated = isolatedRejections(f.truth, f.hit);
-  std::printf("%s 256x144: recall@1px %.4f, false hits %.4f, isolated rejections %d\n", GetParam(), m.recall1px,
-              m.falseHitRate, isolated);
-  EXPECT_LE(isolated, 5);  // the target (measured: 2 and 2)
+  std::printf("%s%s 256x144: recall@1px %.4f, false hits %.4f, isolated rejections %d\n", name,
+              backDepth ? " (back depth)" : "", m.recall1px, m.falseHitRate, isolated);
+  EXPECT_LE(isolated, 5);  // the target (measured: 2 and 2, with back depth too)
   EXPECT_GE(m.recall1px, 0.97);
   EXPECT_LE(m.falseHitRate, 0.01);
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, IsolatedRejections, ::testing::Values("sphere-over-mirror-32", "sphere-over-mirror-128"),
-                         sceneParamName);
+INSTANTIATE_TEST_SUITE_P(Scenes, IsolatedRejections,
+                         ::testing::Combine(::testing::Values("sphere-over-mirror-32", "sphere-over-mirror-128"),
+                                            ::testing::Bool()),
+                         [](const ::testing::TestParamInfo<std::tuple<const char*, bool>>& info) {
+                           return gtestName(std::string(std::get<0>(info.param)) +
+                                            (std::get<1>(info.param) ? "_BackDepth" : ""));
+                         });
 
 // Method::FidelityFxSssr (shaders/sslr_trace_ffx.h), the comparison with AMD's reference tracer:
 // the GPU pass and the CPU run of the same header agree, its one tolerance (the depth buffer
