@@ -11,14 +11,16 @@ layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 layout(binding = SSLR_UNIT_QUAD_HIT) uniform sampler2D uQuadHit;          // xyz: view-space hit point; w: sslrPackQuadCode
 layout(binding = SSLR_UNIT_QUAD_SURFACE) uniform sampler2D uQuadSurface;  // xy: traced pixel's octahedral normal; zw: hit surface's
 
-// Whether the ray of a quad (of a tile traced this frame: the others hold older frames' records) hit.
+// Whether the ray of a quad (of a tile traced this frame: the others hold older frames' records) hit
+// (a guess is not a hit: SSLR_QUAD_MISS).
 bool sslrQuadRayHit(ivec2 quad) {
   ivec2 px = quad * 2;
   if (!sslrInside(px)) return false;
   if (tiles.tileCoords[sslrTileListedStamp(uvec2(px) / uint(SSLR_TILE_SIZE))] != uint(frame.trace.frameIndex))
     return false;
   gFetches += 1u;
-  return sslrUnpackQuadCode(texelFetch(uQuadHit, quad, 0).w).confidence > 0.0f;
+  SslrQuadCode code = sslrUnpackQuadCode(texelFetch(uQuadHit, quad, 0).w);
+  return code.kind == SSLR_QUAD_HIT && code.confidence > 0.0f;
 }
 
 // The quad's ray answers for this pixel when the pixel lies on the traced pixel's surface: its hit

@@ -39,6 +39,8 @@ struct SslrHit {
                      // length where it went in (0: it did not)
   float LBlend;      // a hit found past such a slab: the slab's entry, whose colour the hit's is
                      // blended with (Settings::traversal.slabBlend; 0: none)
+  int guessed;       // 1: the answer is a guess where the ray went out of sight (sslrHiddenGuess,
+                     // sslrSlabGuess), not a crossing: half resolution's other pixels do not reuse it
 };
 
 // A hit record that says "nothing": the starting state of every tracer.
@@ -56,6 +58,7 @@ SSLR_FN SslrHit sslrNoHit(int status) {
   hit.LResume = 0.0f;
   hit.LSlab = 0.0f;
   hit.LBlend = 0.0f;
+  hit.guessed = 0;
   return hit;
 }
 

@@ -622,6 +622,8 @@ SSLR_FN SslrHit sslrProbeAfterWalk(SslrProjection p, SslrSurface s, SslrTracePar
   // Past an assumed slab the ray either went behind a thinner object (the hit) or met its hidden
   // side (the slab's colour): the image takes both (Settings::traversal.slabBlend).
   if (useProbed && sslrConfidentHit(probed) && walked.LSlab > 0.0f) answer.LBlend = walked.LSlab;
+  // ... and where it found nothing beyond, the slab's colour at that share (sslrSlabGuess).
+  if (answer.status != SSLR_STATUS_HIT) answer.LSlab = walked.LSlab;
   answer.iterations = walked.iterations + probed.iterations;
   answer.hierarchical = 2;
   return answer;
@@ -649,7 +651,22 @@ SSLR_FN SslrHit sslrHiddenGuess(SslrSurface s, SslrTraceParams t, SslrHit answer
   answer.uvHit = answer.uvGuess;
   answer.L = answer.LGuess;
   answer.confidence = t.hiddenGuessWeight;
+  answer.guessed = 1;
   return answer;
+}
+
+// Settings::traversal.slabBlend for a ray the traversal stopped inside an object's assumed slab and
+// adaptive L carried nowhere: it passed behind the object (a miss: the fallback) or met its hidden
+// side (the slab's colour), so the answer is the slab's entry at confidence slabBlend, as a hit
+// past the slab takes that share of its colour. After sslrHiddenGuess: where the ray went behind
+// something before, that guess stands.
+SSLR_FN SslrHit sslrSlabGuess(SslrProjection p, SslrTraceParams t, vec3 vsP, vec3 vsR, SslrHit answer) {
+  if (answer.status == SSLR_STATUS_HIT || !(answer.LSlab > 0.0f) || !(t.slabBlend > 0.0f) ||
+      !(answer.LSlab <= t.maxDistance))
+    return answer;
+  SslrHit guess = sslrFinishHit(p, answer, vsP, vsR, answer.LSlab, t.slabBlend);
+  guess.guessed = 1;
+  return guess.status == SSLR_STATUS_HIT ? guess : answer;
 }
 
 // Whether the second stage ran for this answer (the pixels a deferred pass lists).
@@ -679,7 +696,7 @@ SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTracePa
 SSLR_FN SslrHit sslrTraceSecondStage(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
                                      vec3 vsR, SslrHit first) {
   if (sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST)
-    return sslrHiddenGuess(s, t, sslrProbeAfterWalk(p, s, t, pxOrigin, vsP, vsR, first));
+    return sslrSlabGuess(p, t, vsP, vsR, sslrHiddenGuess(s, t, sslrProbeAfterWalk(p, s, t, pxOrigin, vsP, vsR, first)));
   SslrHit second = sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
   if (sslrTraversalOnly(p, t, vsP, vsR)) return sslrHiddenGuess(s, t, second);
   second.iterations += first.iterations;

@@ -27,6 +27,8 @@ SSLR_FN ivec2 sslrQuadOffset(int index) {
 //                     a miss for them too, unless a neighbouring quad's ray hit. There the miss may
 //                     be a band along an edge (rays passing behind a box, beyond a mirror's end,
 //                     leaving the screen just past its border) that a pixel's own ray escapes.
+//                     A guess (SslrHit::guessed) is this kind with its confidence: the traced
+//                     pixel shows it, the others take it as a miss's band rule allows.
 #define SSLR_QUAD_HIT 0
 #define SSLR_QUAD_OWN_RAYS 1
 #define SSLR_QUAD_MISS 2

@@ -216,8 +216,9 @@ void addTracerOptions(cxxopts::Options& options) {
                        "0 = a miss)",
        cxxopts::value<std::string>())
       ("slab-blend", "traversal first: a hit adaptive L finds past an object's assumed slab takes this share "
-                     "0..1 of the colour where the ray went into the slab (Settings::traversal.slabBlend; "
-                     "default 0.25, 0 = the hit's colour alone)",
+                     "0..1 of the colour where the ray went into the slab, and one with nothing beyond shows "
+                     "the slab at that confidence (Settings::traversal.slabBlend; default 0.25, 0 = the hit's "
+                     "colour alone, a miss)",
        cxxopts::value<std::string>())
       ("max-luminance", "HDR-safe radiance: hit colours brighter than this luminance (display units) are scaled "
                         "down to it before the blur and temporal reuse (Settings::radianceClamp; default 0 = off)",

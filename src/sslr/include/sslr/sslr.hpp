@@ -328,8 +328,10 @@ struct Settings {
                                // adaptive L then hit beyond it, the ray either passed behind the
                                // object (the hit) or met its hidden side: the reflection takes this
                                // share of the colour where the ray went into the slab (at half
-                               // resolution: on the pixels that trace their own ray). 0 = the
-                               // hit's colour alone (results/composite.md, "0.8")
+                               // resolution: on the pixels that trace their own ray). Where adaptive
+                               // L finds nothing beyond, the slab's colour at this confidence (the
+                               // rest the fallback). 0 = the hit's colour alone, a miss
+                               // (results/composite.md, "0.8", "0.9")
   } traversal;
 
   // When a crossing counts as a hit (all depth-only tracers): the ray point Q and the surface
