@@ -226,6 +226,36 @@ SSLR_FN bool sslrRimEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t,
   return L > 0.0f;
 }
 
+// sslrCurvedEntryHit's last branch for a pixel px with no curved extra depth: the ray went behind
+// inside px at wEntry (not across a boundary the rim rule takes) on a curved surface, its shading
+// normal turning against a neighbour's on the same surface (the quad's radius estimate found none:
+// a facet edge, a rim). A hit there if that point lies on px's surface within the hit tolerance
+// at the surface's slope, counted up to 45 degrees (steeper, near the silhouette, the tolerance
+// would take rays that pass just behind a thin curved object: a leg).
+SSLR_FN bool sslrCurvedSurfaceEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 wEntry, vec3 d,
+                                       vec3 vsP, vec3 vsR, ivec2 px, SSLR_OUT(float) L) {
+  L = 0.0f;
+  vec3 vsSurface, nSurface;
+  if (!sslrLoadSurface(px, vsSurface) || !sslrDecodeNormal(s, sslrLoadNormal(px), nSurface)) return false;
+  float distS = p.orthographic != 0 ? abs(vsSurface.z) : -vsSurface.z;
+  float sameSurface = sslrHitTolerance(p, s, t, distS, 16.0f);
+  bool curved = false;
+  for (int k = 0; k < 4; ++k) {
+    ivec2 q = px + (k == 0 ? ivec2(1, 0) : k == 1 ? ivec2(-1, 0) : k == 2 ? ivec2(0, 1) : ivec2(0, -1));
+    vec3 vsQ, nQ;
+    if (q.x < 0 || q.y < 0 || q.x >= int(s.width) || q.y >= int(s.height) || !sslrLoadSurface(q, vsQ) ||
+        !sslrDecodeNormal(s, sslrLoadNormal(q), nQ))
+      continue;
+    float distQ = p.orthographic != 0 ? abs(vsQ.z) : -vsQ.z;
+    curved = curved || (abs(distQ - distS) <= sameSurface && sslrNormalsTurnAsCurved(s, nSurface, nQ));
+  }
+  if (!curved) return false;
+  L = sslrRayLengthAt(p, vec2(s.width, s.height), s.reversedZ != 0 ? -1.0f : 1.0f, wEntry, d, 0.0f, vsP, vsR);
+  if (!(L > 0.0f)) return false;
+  vec3 vsQ = vsP + vsR * L;
+  return length(vsQ - vsSurface) <= sslrHitTolerance(p, s, t, distS, min(sslrSlopeTan(p, vsSurface, nSurface), 1.0f));
+}
+
 // Where a ray that ended inside a curved surface's solid entered it (w.tRun, window space wEntry;
 // the pixel there is px): a hit if it entered through the surface the pixel shows. A faceted mesh
 // with interpolated normals holds flat facets in depth while its shading normals tilt away from
@@ -238,7 +268,8 @@ SSLR_FN bool sslrRimEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t,
 //   steps further);
 // - otherwise it went behind inside px: a hit where it did, if that point lies on px's surface
 //   within the hit tolerance (adaptive L's convergence test).
-// Where it has none (near an outline), sslrRimEntryHit. With the back-face depth, level 0 holds
+// Where it has none (near an outline), sslrRimEntryHit; where the ray went behind inside px and
+// the tests above refuse it, sslrCurvedSurfaceEntryHit. With the back-face depth, level 0 holds
 // the measured extra depth instead, and the same two rules run on it: a measured solid thicker
 // than the slab, or the rim where it is thinner (a ray that ended inside it entered somewhere).
 SSLR_FN bool sslrCurvedEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 wEntry, vec3 d, vec3 vsP,
@@ -254,7 +285,8 @@ SSLR_FN bool sslrCurvedEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams
   bool crossedIn = (npx.x != px.x || npx.y != px.y) && wEntry.z > keyIn && npx.x >= 0 && npx.y >= 0 &&
                    npx.x < s.width && npx.y < s.height;
   if (!(sslrLoadPyramidTexel(0, px).y > 0.0f))
-    return crossedIn && sslrRimEntryHit(p, s, t, wEntry, d, vsP, vsR, px, npx, keyIn, sslrLoadDepth(npx), L);
+    return crossedIn ? sslrRimEntryHit(p, s, t, wEntry, d, vsP, vsR, px, npx, keyIn, sslrLoadDepth(npx), L)
+                     : sslrCurvedSurfaceEntryHit(p, s, t, wEntry, d, vsP, vsR, px, L);
   vec3 vsSurface;
   if (!sslrLoadSurface(px, vsSurface)) return false;
   L = sslrRayLengthAt(p, vec2(s.width, s.height), keySign, wEntry, d, 0.0f, vsP, vsR);
@@ -262,7 +294,8 @@ SSLR_FN bool sslrCurvedEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams
   if (!crossedIn) {
     vec3 vsQ = vsP + vsR * L;
     float distS = p.orthographic != 0 ? abs(vsSurface.z) : -vsSurface.z;
-    return length(vsQ - vsSurface) <= sslrHitTolerance(p, s, t, distS, 0.0f);
+    return length(vsQ - vsSurface) <= sslrHitTolerance(p, s, t, distS, 0.0f) ||
+           sslrCurvedSurfaceEntryHit(p, s, t, wEntry, d, vsP, vsR, px, L);
   }
   float depthOut = sslrLoadDepth(npx);
   if (!sslrIsGeometryDepth(s, depthOut) || !(wEntry.z <= keySign * depthOut)) return false;

@@ -385,6 +385,21 @@ TEST_F(RimEntryHit, LeavesCurvedPixelsToTheCurvedEntryRule) {
   EXPECT_FALSE(rimHit(rayFrom(vsQ), vsQ, L, wHit));
 }
 
+// A ray that went behind inside the rim pixel (no boundary crossed) on a curved surface, whose
+// normals turn against the neighbour's: a hit where it went behind if that point lies on the
+// pixel's surface within the hit tolerance (sslrCurvedSurfaceEntryHit, ~0.12 here), not 0.5 behind
+// it, and not on a flat face (one normal: the plane tests' case).
+TEST_F(RimEntryHit, InsideACurvedPixelHitsOnlyOnItsSurface) {
+  const vec3 vsNear = viewAt(gEdgePx - 0.3f, 90.5f, kFrontZ - 0.01f);
+  float L = 0.0f;
+  ASSERT_TRUE(entryHit(rayFrom(vsNear), vsNear, L, 0.3f));
+  EXPECT_NEAR(L, length(vsNear - rayFrom(vsNear)), 2e-3f * length(vsNear - rayFrom(vsNear)));
+  const vec3 vsFar = viewAt(gEdgePx - 0.3f, 90.5f, kFrontZ - 0.5f);
+  EXPECT_FALSE(entryHit(rayFrom(vsFar), vsFar, L, 0.3f));
+  gNormalTurn = 0.0f;
+  EXPECT_FALSE(entryHit(rayFrom(vsNear), vsNear, L, 0.3f));
+}
+
 TEST_F(RimEntryHit, HitsACreaseOfOneCurvedSurfaceButNotABoxsEdge) {
   // The wall 0.05 behind the rim's sample: the same surface, its normal turned 3 degrees further.
   gWallZ = kFrontZ - 0.05f;

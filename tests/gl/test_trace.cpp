@@ -772,7 +772,8 @@ INSTANTIATE_TEST_SUITE_P(Resolution, HitDistance, ::testing::Values(false, true)
 // crossings at the creases between facets, where the depth steps from pixel to pixel: a ray that
 // ends inside a curved surface's solid now hits where it entered it through the surface
 // (sslrCurvedEntryHit). Counted on the GPU pass at 256x144: 24 -> 14 -> 2 at 32 segments, 2 -> 2
-// -> 2 at 128 (results/curved-objects.md has 320x180 to 960x540).
+// -> 2 at 128 (results/curved-objects.md has 320x180 to 960x540; 0.9's sslrCurvedSurfaceEntryHit
+// took 960x540 from 9 and 5 to 2 and 2).
 int isolatedRejections(const GroundTruth& truth, const Image& hit) {
   auto hits = [&](int x, int y) { return hit.at(x, y, 2) >= kReportedConfidence; };
   int count = 0;
