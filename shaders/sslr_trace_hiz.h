@@ -226,12 +226,13 @@ SSLR_FN bool sslrRimEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t,
   return L > 0.0f;
 }
 
-// sslrCurvedEntryHit's last branch for a pixel px with no curved extra depth: the ray went behind
-// inside px at wEntry (not across a boundary the rim rule takes) on a curved surface, its shading
-// normal turning against a neighbour's on the same surface (the quad's radius estimate found none:
-// a facet edge, a rim). A hit there if that point lies on px's surface within the hit tolerance
-// at the surface's slope, counted up to 45 degrees (steeper, near the silhouette, the tolerance
-// would take rays that pass just behind a thin curved object: a leg).
+// sslrCurvedEntryHit's last branch for a ray that went behind inside px at wEntry (no boundary
+// crossed: a crossing is the rim and crease rules' case) where its other tests refuse it: px has no
+// curved extra depth (the quad's radius estimate found none: a facet edge, near a rim), or the
+// slope-free tolerance was too tight. On a curved surface (px's shading normal turning against a
+// same-surface neighbour's) a hit there if that point lies on px's surface within the hit
+// tolerance at the surface's slope, counted up to 45 degrees (steeper, near the silhouette, the
+// tolerance would take rays that pass just behind a thin curved object: a leg).
 SSLR_FN bool sslrCurvedSurfaceEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 wEntry, vec3 d,
                                        vec3 vsP, vec3 vsR, ivec2 px, SSLR_OUT(float) L) {
   L = 0.0f;

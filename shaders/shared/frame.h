@@ -103,7 +103,7 @@ struct SslrTraceParams {
                               // (colour-texture units; 0 = no clamp)
   float hiddenGuessWeight;    // Settings::traversal.hiddenGuess: a hidden ray's guess, its weight (0 = none)
   int resumeAtStepCap;        // Settings::traversal.resumeAtStepCap: 1 = adaptive L resumes where the traversal ran out of steps
-  float slabBlend;            // Settings::traversal.slabBlend: a hit past an assumed slab takes this much of the slab's colour; a ray with none beyond, the slab's colour at this confidence
+  float slabBlend;            // Settings::traversal.slabBlend: the slab's share of a hit past it (none: its confidence)
   int tracePad0;
   int tracePad1;
   int tracePad2;
