@@ -226,35 +226,31 @@ SSLR_FN bool sslrRimEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t,
   return L > 0.0f;
 }
 
-// sslrCurvedEntryHit's last branch for a ray that went behind inside px at wEntry (no boundary
-// crossed: a crossing is the rim and crease rules' case) where its other tests refuse it: px has no
+// sslrCurvedEntryHit's last test for a ray that went behind inside px (no boundary crossed: a
+// crossing is the rim and crease rules' case) at vsQ, where its other tests refuse it: px has no
 // curved extra depth (the quad's radius estimate found none: a facet edge, near a rim), or the
 // slope-free tolerance was too tight. On a curved surface (px's shading normal turning against a
-// same-surface neighbour's) a hit there if that point lies on px's surface within the hit
+// same-surface neighbour's) a hit there if vsQ lies on px's surface vsSurface within the hit
 // tolerance at the surface's slope, counted up to 45 degrees (steeper, near the silhouette, the
 // tolerance would take rays that pass just behind a thin curved object: a leg).
-SSLR_FN bool sslrCurvedSurfaceEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 wEntry, vec3 d,
-                                       vec3 vsP, vec3 vsR, ivec2 px, SSLR_OUT(float) L) {
-  L = 0.0f;
-  vec3 vsSurface, nSurface;
-  if (!sslrLoadSurface(px, vsSurface) || !sslrDecodeNormal(s, sslrLoadNormal(px), nSurface)) return false;
+SSLR_FN bool sslrCurvedSurfaceEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 px, vec3 vsSurface,
+                                       vec3 vsQ) {
+  vec3 nSurface;
+  if (!sslrDecodeNormal(s, sslrLoadNormal(px), nSurface)) return false;
   float distS = p.orthographic != 0 ? abs(vsSurface.z) : -vsSurface.z;
   float sameSurface = sslrHitTolerance(p, s, t, distS, 16.0f);
   bool curved = false;
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < 4 && !curved; ++k) {
     ivec2 q = px + (k == 0 ? ivec2(1, 0) : k == 1 ? ivec2(-1, 0) : k == 2 ? ivec2(0, 1) : ivec2(0, -1));
-    vec3 vsQ, nQ;
-    if (q.x < 0 || q.y < 0 || q.x >= int(s.width) || q.y >= int(s.height) || !sslrLoadSurface(q, vsQ) ||
-        !sslrDecodeNormal(s, sslrLoadNormal(q), nQ))
+    vec3 vsN, nN;
+    if (q.x < 0 || q.y < 0 || q.x >= int(s.width) || q.y >= int(s.height) || !sslrLoadSurface(q, vsN) ||
+        !sslrDecodeNormal(s, sslrLoadNormal(q), nN))
       continue;
-    float distQ = p.orthographic != 0 ? abs(vsQ.z) : -vsQ.z;
-    curved = curved || (abs(distQ - distS) <= sameSurface && sslrNormalsTurnAsCurved(s, nSurface, nQ));
+    float distN = p.orthographic != 0 ? abs(vsN.z) : -vsN.z;
+    curved = abs(distN - distS) <= sameSurface && sslrNormalsTurnAsCurved(s, nSurface, nN);
   }
-  if (!curved) return false;
-  L = sslrRayLengthAt(p, vec2(s.width, s.height), s.reversedZ != 0 ? -1.0f : 1.0f, wEntry, d, 0.0f, vsP, vsR);
-  if (!(L > 0.0f)) return false;
-  vec3 vsQ = vsP + vsR * L;
-  return length(vsQ - vsSurface) <= sslrHitTolerance(p, s, t, distS, min(sslrSlopeTan(p, vsSurface, nSurface), 1.0f));
+  return curved &&
+         length(vsQ - vsSurface) <= sslrHitTolerance(p, s, t, distS, min(sslrSlopeTan(p, vsSurface, nSurface), 1.0f));
 }
 
 // Where a ray that ended inside a curved surface's solid entered it (w.tRun, window space wEntry;
@@ -285,9 +281,9 @@ SSLR_FN bool sslrCurvedEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams
   ivec2 npx = ivec2(floor(vec2(wEntry.x, wEntry.y) - vec2(d.x, d.y) * (2.0f * SSLR_HIZ_NUDGE)));
   bool crossedIn = (npx.x != px.x || npx.y != px.y) && wEntry.z > keyIn && npx.x >= 0 && npx.y >= 0 &&
                    npx.x < s.width && npx.y < s.height;
-  if (!(sslrLoadPyramidTexel(0, px).y > 0.0f))
-    return crossedIn ? sslrRimEntryHit(p, s, t, wEntry, d, vsP, vsR, px, npx, keyIn, sslrLoadDepth(npx), L)
-                     : sslrCurvedSurfaceEntryHit(p, s, t, wEntry, d, vsP, vsR, px, L);
+  bool curvedPixel = sslrLoadPyramidTexel(0, px).y > 0.0f;
+  if (!curvedPixel && crossedIn)
+    return sslrRimEntryHit(p, s, t, wEntry, d, vsP, vsR, px, npx, keyIn, sslrLoadDepth(npx), L);
   vec3 vsSurface;
   if (!sslrLoadSurface(px, vsSurface)) return false;
   L = sslrRayLengthAt(p, vec2(s.width, s.height), keySign, wEntry, d, 0.0f, vsP, vsR);
@@ -295,8 +291,8 @@ SSLR_FN bool sslrCurvedEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams
   if (!crossedIn) {
     vec3 vsQ = vsP + vsR * L;
     float distS = p.orthographic != 0 ? abs(vsSurface.z) : -vsSurface.z;
-    return length(vsQ - vsSurface) <= sslrHitTolerance(p, s, t, distS, 0.0f) ||
-           sslrCurvedSurfaceEntryHit(p, s, t, wEntry, d, vsP, vsR, px, L);
+    return (curvedPixel && length(vsQ - vsSurface) <= sslrHitTolerance(p, s, t, distS, 0.0f)) ||
+           sslrCurvedSurfaceEntryHit(p, s, t, px, vsSurface, vsQ);
   }
   float depthOut = sslrLoadDepth(npx);
   if (!sslrIsGeometryDepth(s, depthOut) || !(wEntry.z <= keySign * depthOut)) return false;
@@ -692,8 +688,8 @@ SSLR_FN SslrHit sslrHiddenGuess(SslrSurface s, SslrTraceParams t, SslrHit answer
 // Settings::traversal.slabBlend for a ray the traversal stopped inside an object's assumed slab and
 // adaptive L carried nowhere: it passed behind the object (a miss: the fallback) or met its hidden
 // side (the slab's colour), so the answer is the slab's entry at confidence slabBlend, as a hit
-// past the slab takes that share of its colour. After sslrHiddenGuess: where the ray went behind
-// something before, that guess stands.
+// past the slab takes that share of its colour. It runs after sslrHiddenGuess, whose guess (where
+// the ray first went behind something) takes precedence.
 SSLR_FN SslrHit sslrSlabGuess(SslrProjection p, SslrTraceParams t, vec3 vsP, vec3 vsR, SslrHit answer) {
   if (answer.status == SSLR_STATUS_HIT || !(answer.LSlab > 0.0f) || !(t.slabBlend > 0.0f) ||
       !(answer.LSlab <= t.maxDistance))
