@@ -57,6 +57,11 @@ json settingsJson(const BenchConfig& c) {
 
 // NaN/Inf are not JSON: write null for "not applicable".
 json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+json nums(const std::vector<double>& v) {
+  json a = json::array();
+  for (double x : v) a.push_back(num(x));
+  return a;
+}
 
 // Each pass's commands and texture traffic (FrameStats' per-pass fields) of the scored frame.
 json passesJson(const FrameStats& st) {
@@ -388,6 +393,8 @@ json resultsJson(const BenchResult& result) {
                            {"rmseAboveNoise", num(p.rmseAboveNoise)},
                            {"displayRmse", num(p.displayRmse)},
                            {"scored", p.scored},
+                           {"frames", p.rmseByFrame.size()},
+                           {"rmseByFrame", nums(p.rmseByFrame)},
                            {"timeMedianMs", num(p.timeMedianMs)}});
   return j;
 }
@@ -549,8 +556,8 @@ Status reportStudies(std::ostringstream& h, const BenchResult& result, const std
     h << "<h2>Glossy reflections against a GGX reference</h2><p>Radiance output (no Fresnel term): rgb / a against "
          "the GGX lobe's mean radiance gathered by Embree from what the screen shows ("
       << result.options.glossySamples << " rays a pixel, " << result.options.glossyWidth << "x"
-      << result.options.glossyHeight
-      << "), over the pixels of roughness &ge; 0.1 whose lobe lies at least 90% on visible geometry. Reference noise: "
+      << result.options.glossyHeight << ", scored after " << result.options.glossyFrames
+      << " still frames), over the pixels of roughness &ge; 0.1 whose lobe lies at least 90% on visible geometry. Reference noise: "
          "the reference's own RMS noise (half the difference of its two halves).</p>";
     std::vector<std::string> scenes;
     for (const GlossyPoint& p : result.glossy)

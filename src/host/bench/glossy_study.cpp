@@ -24,7 +24,7 @@ struct GlossyConfig {
   bool blur;
   float coneScale;  // x Settings' default
   GlossyMode mode;
-  bool temporal;    // temporal reuse over the still frames the timing runs (the last one scored)
+  bool temporal;    // temporal reuse over the still frames before the score (BenchOptions::glossyFrames)
   bool clamp = false;  // Settings::radianceClamp at BenchOptions::glossyClampLuminance
 };
 constexpr GlossyConfig kConfigs[] = {{"cone blur", true, 1.0f, GlossyMode::ConeBlur, false},
@@ -78,13 +78,15 @@ Status runGlossyStudy(const std::string& sceneSpec, const BenchOptions& options,
   const std::string prefix = fileSlug(sceneSpec) + "-glossy";
   if (Status s = writeImage((fs::path(reportDir) / (prefix + "-truth.png")).string(), glossyTruthImage(truth.value())); !s)
     return s;
-  // Each configuration its own context, timed in interleaved rounds after one untimed frame. The
-  // camera stands still (temporal reuse accumulates over the rounds).
+  // Each configuration its own context. Scored first: exactly glossyFrames still frames (temporal
+  // reuse accumulates over them), the error after each kept. Then timed in interleaved rounds,
+  // whose frame count is the timer's (repeats per sample) and so changes no score.
   FrameInputs inputs = fr.inputs();
   inputs.previousClipFromView = inputs.clipFromView;
   const size_t n = std::size(kConfigs);
   ConfigContexts contexts(g.width, g.height);
   std::vector<Settings> settings;
+  const size_t first = out.size();
   for (size_t i = 0; i < n; ++i) {
     const GlossyConfig& c = kConfigs[i];
     auto ctx = contexts.get(i);
@@ -96,8 +98,28 @@ Status runGlossyStudy(const std::string& sceneSpec, const BenchOptions& options,
     s.glossy.mode = c.mode;
     s.temporal.enabled = c.temporal;
     s.radianceClamp.maxLuminance = c.clamp ? options.glossyClampLuminance : 0.0f;
-    if (Status st = ctx.value()->dispatch(inputs, s); !st) return st;
     settings.push_back(s);
+    GlossyPoint point;
+    point.scene = sceneSpec;
+    point.config = c.name;
+    Image resolved;
+    for (int frame = 0; frame < options.glossyFrames; ++frame) {
+      if (Status st = ctx.value()->dispatch(inputs, s); !st) return st;
+      resolved = readTexture(ctx.value()->resolvedTexture(), g.width, g.height, 4);
+      point.rmseByFrame.push_back(compareGlossy(truth.value(), resolved).rmse);
+    }
+    const GlossyMetrics m = compareGlossy(truth.value(), resolved);
+    point.rmse = m.rmse;
+    point.relativeRmse = m.relativeRmse;
+    point.uncovered = m.uncovered;
+    point.referenceNoise = m.referenceNoise;
+    point.rmseAboveNoise = m.rmseAboveNoise;
+    point.displayRmse = m.displayRmse;
+    point.scored = m.scored;
+    out.push_back(std::move(point));
+    const std::string file = prefix + "-" + fileSlug(c.name) + "-error.png";
+    if (Status st = writeImage((fs::path(reportDir) / file).string(), glossyErrorImage(truth.value(), resolved)); !st)
+      return st;
   }
   std::vector<std::vector<double>> times(n);
   for (int round = 0; round < options.warmup + options.frames; ++round)
@@ -109,15 +131,7 @@ Status runGlossyStudy(const std::string& sceneSpec, const BenchOptions& options,
       if (!st) return st;
       if (round >= options.warmup) times[i].push_back(ms);
     }
-  for (size_t i = 0; i < n; ++i) {
-    const Image resolved = readTexture(contexts.get(i).value()->resolvedTexture(), g.width, g.height, 4);
-    const GlossyMetrics m = compareGlossy(truth.value(), resolved);
-    out.push_back({sceneSpec, kConfigs[i].name, m.rmse, m.relativeRmse, m.uncovered, m.referenceNoise,
-                   m.rmseAboveNoise, m.displayRmse, m.scored, median(times[i])});
-    const std::string file = prefix + "-" + fileSlug(kConfigs[i].name) + "-error.png";
-    if (Status s = writeImage((fs::path(reportDir) / file).string(), glossyErrorImage(truth.value(), resolved)); !s)
-      return s;
-  }
+  for (size_t i = 0; i < n; ++i) out[first + i].timeMedianMs = median(times[i]);
   return {};
 }
 

@@ -39,6 +39,10 @@ struct BenchOptions {
   std::vector<std::string> glossyScenes;
   int glossyWidth = 480, glossyHeight = 270;
   int glossySamples = 256;
+  // Still frames each configuration runs before it is scored (temporal reuse accumulates over
+  // them); the error after every one of them is kept (GlossyPoint::rmseByFrame). Fixed, so that
+  // the score does not depend on how many frames the timer runs.
+  int glossyFrames = 8;
   // The "clamp" configurations' Settings::radianceClamp.maxLuminance (display units, > 0).
   float glossyClampLuminance = 256.0f;
   // Pass shapes of the configurations that name none (ContextDesc::device); Auto: the renderer's.
@@ -127,6 +131,9 @@ struct GlossyPoint {
   double displayRmse = 0;    // after x / (1 + x) per channel: what a viewer sees of HDR radiance
   size_t scored = 0;
   double timeMedianMs = 0;   // dispatch, configurations interleaved
+  // rmse after each of BenchOptions::glossyFrames still frames (the last one is `rmse`): the
+  // convergence curve of temporal reuse, a single frame's noise elsewhere.
+  std::vector<double> rmseByFrame;
 };
 
 struct BenchResult {
