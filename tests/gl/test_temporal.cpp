@@ -20,12 +20,12 @@ struct Sequence {
   std::unique_ptr<Context> ctx;
   Camera camera;
   glm::dmat4 previousClipFromWorld{0.0};
-  Sequence() {
+  explicit Sequence(const char* sceneName = "mirror-room") {
     GBufferOptions o;
     o.width = W;
     o.height = H;
     gbuffer = std::move(GBuffer::create(o).value());
-    auto s = makeBuiltinScene("mirror-room");
+    auto s = makeBuiltinScene(sceneName);
     camera = *s.value().camera;
     gpu = std::make_unique<GpuScene>(s.value());
     ContextDesc d{W, H, HeadlessContext::getProcAddress(), {}};
@@ -266,6 +266,37 @@ TEST_F(Temporal, HistoryConfidenceSaysWhereHistoryWasUsed) {
   temporalOnly.temporal.enabled = true;
   ASSERT_TRUE(off.frame(temporalOnly, {0.0, 0.0}));
   EXPECT_EQ(off.ctx->historyConfidenceTexture(), 0u);
+}
+
+// A curved mirror seen by a camera standing still: each surface point reprojects onto its own
+// texel, so its history is its own reflection, not resampled, and takes the full historyWeight
+// (sslrFindHistory's `still`), as a plane's does. Under the camera's motion of a resampled
+// history, a curved pixel gets a quarter of it (docs/design-notes.md, "Temporal reuse").
+TEST_F(Temporal, AStillCurvedMirrorTrustsItsOwnHistoryFully) {
+  Settings s;
+  s.temporal.enabled = true;
+  s.temporal.outputConfidence = true;
+  auto trustedShare = [](const Image& c, float level) {
+    size_t used = 0, atLevel = 0;
+    for (float v : c.pixels) {
+      used += v > 0.0f;
+      atLevel += v > 0.0f && std::abs(v - level) < 0.01f;
+    }
+    EXPECT_GT(used, 100u);
+    return used ? double(atLevel) / double(used) : 0.0;
+  };
+  const float weight = s.temporal.historyWeight;
+  Sequence still("curved-mirror");
+  for (int i = 0; i < 2; ++i) ASSERT_TRUE(still.frame(s, {0.0, 0.0}));
+  // (r8: the share is stored in steps of 1/255)
+  EXPECT_GT(trustedShare(readTexture(still.ctx->historyConfidenceTexture(), W, H, 1), weight), 0.95) << "still";
+  // The camera moved by a fraction of a pixel: resampled, a quarter on the curved mirror.
+  Sequence moved("curved-mirror");
+  ASSERT_TRUE(moved.frame(s, {0.0, 0.0}));
+  moved.camera.eye += glm::dvec3(0.004, 0.0, 0.0);
+  moved.camera.target += glm::dvec3(0.004, 0.0, 0.0);
+  ASSERT_TRUE(moved.frame(s, {0.0, 0.0}));
+  EXPECT_GT(trustedShare(readTexture(moved.ctx->historyConfidenceTexture(), W, H, 1), 0.25f * weight), 0.5) << "moved";
 }
 
 }  // namespace
