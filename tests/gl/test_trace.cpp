@@ -997,8 +997,13 @@ INSTANTIATE_TEST_SUITE_P(Scenes, TraversalPasses,
                          passCaseName);
 
 // Settings::debug.oneBodyTraversal runs the traversal's walk steps and pixel tests in one loop
-// body: the same steps in the same order per ray, so the same hit images and reflections bit for
-// bit, inline (the Gpu profile) and deferred, at full and half resolution.
+// body: the same steps in the same order per ray, so the same hit images and reflections, inline
+// (the Gpu profile) and deferred, at full and half resolution. Bit for bit where one compiler
+// does the same arithmetic in both programs (Mesa's llvmpipe, CI). GLSL lets a driver fuse a
+// multiply and an add in one program and not in the other (no `precise`), and a walk step that
+// lands on a cell boundary then goes the other way: on an H100 (NVIDIA 580) mirror-walls differed,
+// and the two bodies' ray work differed by 0.4% at 960x540 (docs/results/gpu-h100.md, "0.9").
+// There the two must agree on all but 1% of the pixels.
 class OneBodyTraversal : public sslr::test::GlTest, public ::testing::WithParamInterface<PassCase> {};
 
 TEST_P(OneBodyTraversal, GivesTheTwoPhasesHitsBitForBit) {
@@ -1025,8 +1030,21 @@ TEST_P(OneBodyTraversal, GivesTheTwoPhasesHitsBitForBit) {
     size_t reported = 0;
     for (size_t i = 2; i < hits[0].pixels.size(); i += 4) reported += hits[0].pixels[i] > 0.5f;
     EXPECT_GT(reported, 500u);
-    EXPECT_EQ(hits[0].pixels, hits[1].pixels) << (pass == TraversalPass::Inline ? "inline" : "deferred");
-    EXPECT_EQ(reflections[0].pixels, reflections[1].pixels);
+    const char* which = pass == TraversalPass::Inline ? "inline" : "deferred";
+    if (sslr::test::glContext()->isSoftware()) {
+      EXPECT_EQ(hits[0].pixels, hits[1].pixels) << which;
+      EXPECT_EQ(reflections[0].pixels, reflections[1].pixels) << which;
+    } else {
+      auto differing = [](const Image& a, const Image& b) {
+        size_t n = 0;
+        for (size_t i = 0; i + 3 < a.pixels.size(); i += 4)
+          n += !std::equal(a.pixels.begin() + i, a.pixels.begin() + i + 4, b.pixels.begin() + i);
+        return n;
+      };
+      const size_t pixels = hits[0].pixels.size() / 4;
+      EXPECT_LE(differing(hits[0], hits[1]), pixels / 100) << which << ": hit texels of " << pixels;
+      EXPECT_LE(differing(reflections[0], reflections[1]), pixels / 100) << which << ": reflection texels";
+    }
   }
 }
 
