@@ -94,6 +94,31 @@ struct FloorAndWall {
   }
 };
 
+// The radiance callback gets each visible hit itself (glossyTruthFor shades that exact point): the
+// floor's lobe can only reach the wall and the wall's only the floor (both are planes), so with
+// red for a wall hit and blue for a floor hit each pixel's mean is pure red or pure blue.
+TEST(GlossyTruth, EachVisibleHitIsShadedWhereItLies) {
+  FloorAndWall f;
+  const std::vector<std::uint8_t> all(static_cast<size_t>(f.w) * f.h, 1);
+  const GlossyRadianceAt byMesh = [](const RayTracer::Hit& hit, glm::vec2) {
+    return hit.mesh == 1 ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 0.0f, 1.0f);
+  };
+  const GlossyTruth g = computeGlossyTruth(*f.tracer, f.clipFromView, byMesh, FloorAndWall::image(1, 0.4f), all, 64);
+  ASSERT_EQ(g.width, f.w);
+  ASSERT_EQ(g.height, f.h);
+  size_t red = 0, blue = 0;
+  for (size_t p = 0; p < g.radiance.size(); ++p) {
+    if (!(g.visibleShare[p] > 0.0f)) continue;
+    const glm::vec3 c = g.radiance[p];
+    const bool isRed = std::abs(c.r - 1.0f) < 1e-5f && c.b == 0.0f, isBlue = c.r == 0.0f && std::abs(c.b - 1.0f) < 1e-5f;
+    EXPECT_TRUE(isRed || isBlue) << "pixel " << p << ": " << c.r << " " << c.g << " " << c.b;
+    red += isRed;
+    blue += isBlue;
+  }
+  EXPECT_GT(red, 100u) << "floor pixels reflecting the wall";
+  EXPECT_GT(blue, 10u) << "wall pixels reflecting the floor";
+}
+
 // Under a colour the same everywhere the lobe's mean is that colour, whatever it reaches, and its
 // two halves agree.
 TEST(GlossyTruth, UniformColourIsItsOwnMean) {

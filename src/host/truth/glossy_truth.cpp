@@ -4,7 +4,10 @@
 #include <cmath>
 #include <thread>
 
+#include <glm/gtc/packing.hpp>
+
 #include "sslr/reference.hpp"
+#include "sslr_host/reference_image.hpp"
 #include "sslr_shared.h"
 
 namespace sslr::host {
@@ -32,11 +35,12 @@ void tangentFrame(glm::vec3 n, glm::vec3& t, glm::vec3& b) {
   b = glm::vec3(c, sign + n.y * n.y * a, -n.y);
 }
 
-// Where (uv) the ray from `start` along `vsL` meets the scene, if the camera sees that point on
-// screen (within the depth range, nothing in between): what the screen shows of the ray.
+// Where (`hit`, and `uv` on screen) the ray from `start` along `vsL` meets the scene, if the
+// camera sees that point (within the depth range, nothing in between): what the screen shows of
+// the ray.
 bool visibleOnScreen(const RayTracer& tracer, const glm::dmat4& clipFromView, bool ortho, glm::vec3 start,
-                     glm::vec3 vsL, glm::vec2& uv) {
-  const RayTracer::Hit hit = tracer.intersect(start, vsL);
+                     glm::vec3 vsL, RayTracer::Hit& hit, glm::vec2& uv) {
+  hit = tracer.intersect(start, vsL);
   if (!hit.hit) return false;
   const glm::dvec4 clip = clipFromView * glm::dvec4(glm::dvec3(hit.vsPosition), 1.0);
   if (!(clip.w > 0.0)) return false;
@@ -54,9 +58,16 @@ bool visibleOnScreen(const RayTracer& tracer, const glm::dmat4& clipFromView, bo
 
 GlossyTruth computeGlossyTruth(const RayTracer& tracer, const glm::dmat4& clipFromView, const Image& color,
                                const Image& roughness, const std::vector<std::uint8_t>& mask, int samples) {
+  return computeGlossyTruth(
+      tracer, clipFromView, [&color](const RayTracer::Hit&, glm::vec2 uv) { return sampleBilinear(color, uv); },
+      roughness, mask, samples);
+}
+
+GlossyTruth computeGlossyTruth(const RayTracer& tracer, const glm::dmat4& clipFromView, const GlossyRadianceAt& radianceAt,
+                               const Image& roughness, const std::vector<std::uint8_t>& mask, int samples) {
   GlossyTruth g;
-  g.width = color.width;
-  g.height = color.height;
+  g.width = roughness.width;
+  g.height = roughness.height;
   g.samples = samples;
   const size_t count = static_cast<size_t>(g.width) * g.height;
   g.radiance.assign(count, glm::vec3(0.0f));
@@ -102,8 +113,9 @@ GlossyTruth computeGlossyTruth(const RayTracer& tracer, const glm::dmat4& clipFr
         weight[half] += w;
         const glm::vec3 vsL = glm::normalize(t * l.x + b * l.y + n * l.z);
         glm::vec2 uv;
-        if (!visibleOnScreen(tracer, clipFromView, ortho, start, vsL, uv)) continue;
-        sum[half] += sampleBilinear(color, uv) * w;
+        RayTracer::Hit hit;
+        if (!visibleOnScreen(tracer, clipFromView, ortho, start, vsL, hit, uv)) continue;
+        sum[half] += radianceAt(hit, uv) * w;
         known[half] += w;
       }
       const double totalWeight = weight[0] + weight[1], totalKnown = known[0] + known[1];
@@ -145,7 +157,14 @@ Expected<GlossyTruth> glossyTruthFor(const Scene& scene, const GBuffer& gbuffer,
     rough.pixels[p] = shared::sslrRoughness(frame.value().surface, glm::vec4(n[0], n[1], n[2], n[3]));
   }
   const auto mask = reflectiveMask(depth, packed, in, settings);
-  return computeGlossyTruth(*tracer.value(), gbuffer.clipFromView(), gbuffer.readColor(), rough, mask, samples);
+  // Each visible hit shaded as the G-buffer pass lights that point, stored as its colour buffer
+  // stores it (R11F_G11F_B10F: a screen-space method reads nothing finer).
+  const glm::dmat4 viewFromWorld = gbuffer.viewFromWorld();
+  const bool ortho = gbuffer.clipFromView()[3][3] == 1.0;
+  auto radianceAt = [&](const RayTracer::Hit& hit, glm::vec2) {
+    return glm::unpackF2x11_1x10(glm::packF2x11_1x10(shadeAsGBuffer(scene, hit, viewFromWorld, ortho)));
+  };
+  return computeGlossyTruth(*tracer.value(), gbuffer.clipFromView(), radianceAt, rough, mask, samples);
 }
 
 namespace {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "sslr_host/ground_truth.hpp"
@@ -14,8 +15,8 @@ namespace sslr::host {
 // of the view about a microfacet normal drawn from the distribution of visible normals
 // (sslrSampleGgxVndf), weighted by its masking (sslrSmithG1): the lobe's radiance without its
 // Fresnel term (what sslr's OutputMode::Radiance estimates). A direction counts only where its
-// ray hits geometry visible on screen (the class A of the mirror truth); its radiance is then the
-// lit colour there, read bilinearly as the tracers read it. Elsewhere (the sky, off screen,
+// ray hits geometry visible on screen (the class A of the mirror truth); its radiance is then that
+// point's (glossyTruthFor: its lit colour, as stored by the G-buffer). Elsewhere (the sky, off screen,
 // hidden) screen space cannot know the radiance: `visibleShare` says how much of the lobe's weight
 // is known.
 struct GlossyTruth {
@@ -27,9 +28,18 @@ struct GlossyTruth {
   std::vector<float> roughness;        // the G-buffer's, per pixel
 };
 
-// The lobe at each pixel `mask` marks, from the G-buffer's roughness image (one channel) and lit
-// colour, `samples` directions per pixel (two Hammersley sets of samples / 2, each rotated by a
-// hash of the pixel: fixed, so runs agree). Threads over rows.
+// The radiance a lobe ray brings back from `hit`, a point the camera sees at `uv`. Called from
+// several threads at once.
+using GlossyRadianceAt = std::function<glm::vec3(const RayTracer::Hit& hit, glm::vec2 uv)>;
+
+// The lobe at each pixel `mask` marks, from the G-buffer's roughness image (one channel, its size
+// the truth's), `samples` directions per pixel (two Hammersley sets of samples / 2, each rotated
+// by a hash of the pixel: fixed, so runs agree), each visible hit's radiance by `radianceAt`.
+// Threads over rows.
+GlossyTruth computeGlossyTruth(const RayTracer& tracer, const glm::dmat4& clipFromView, const GlossyRadianceAt& radianceAt,
+                               const Image& roughness, const std::vector<std::uint8_t>& mask, int samples);
+// ... each hit's radiance read from the lit colour image at its uv, bilinearly, as a tracer reads
+// the screen.
 GlossyTruth computeGlossyTruth(const RayTracer& tracer, const glm::dmat4& clipFromView, const Image& color,
                                const Image& roughness, const std::vector<std::uint8_t>& mask, int samples);
 
