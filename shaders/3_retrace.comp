@@ -7,7 +7,7 @@
 layout(local_size_x = SSLR_RETRACE_GROUP) in;
 
 bool sslrPixelHit(ivec2 px, SslrPixel q, out SslrHit hit, out bool ranTracer) {
-  hit = sslrTraceRay(px, q.vsP, q.vsV, q.vsR);
+  hit = sslrTraceRay(sslrRayParams(q), px, q.vsP, q.vsV, q.vsR);
   ranTracer = true;
   return true;
 }

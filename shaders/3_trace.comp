@@ -15,12 +15,12 @@ layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 bool sslrPixelHit(ivec2 px, SslrPixel q, out SslrHit hit, out bool ranTracer) {
 #ifdef SSLR_DEFER_TRAVERSAL
   bool needsTraversal;
-  hit = sslrTraceFirstStage(frame.proj, frame.surface, frame.trace, px, q.vsP, q.vsR, needsTraversal);
+  hit = sslrTraceFirstStage(frame.proj, frame.surface, sslrRayParams(q), px, q.vsP, q.vsR, needsTraversal);
   ranTracer = !needsTraversal;
   if (needsTraversal) sslrListPixelForRetrace(px);
   return !needsTraversal;
 #else
-  hit = sslrTraceRay(px, q.vsP, q.vsV, q.vsR);
+  hit = sslrTraceRay(sslrRayParams(q), px, q.vsP, q.vsV, q.vsR);
   ranTracer = true;
 #ifdef SSLR_COUNT_TRAVERSAL
   // Inline under TraversalPass::Auto: count the pixels the traversal ran for (its feedback).

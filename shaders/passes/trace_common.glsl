@@ -67,16 +67,16 @@ vec2 sslrLoadPyramidTexel(int level, ivec2 cell) {
 #endif
 #endif
 
-// The configured tracer for one ray from pixel px.
-SslrHit sslrTraceRay(ivec2 px, vec3 vsP, vec3 vsV, vec3 vsR) {
+// The configured tracer for one ray from pixel px, under trace parameters t (sslrRayParams).
+SslrHit sslrTraceRay(SslrTraceParams t, ivec2 px, vec3 vsP, vec3 vsV, vec3 vsR) {
 #ifdef SSLR_METHOD_POSITION_BUFFER
   return sslrTracePositionBuffer(frame.proj, frame.surface, frame.positionBuffer, vsP, vsV, vsR);
 #elif defined(SSLR_METHOD_DDA)
   return sslrTraceDda(frame.proj, frame.surface, frame.dda, px, vsP, vsR);
 #elif defined(SSLR_METHOD_FFX)
-  return sslrTraceFfx(frame.proj, frame.surface, frame.trace, px, vsP, vsR);
+  return sslrTraceFfx(frame.proj, frame.surface, t, px, vsP, vsR);
 #else
-  return sslrTraceDepthOnly(frame.proj, frame.surface, frame.trace, px, vsP, vsR);
+  return sslrTraceDepthOnly(frame.proj, frame.surface, t, px, vsP, vsR);
 #endif
 }
 
@@ -88,6 +88,7 @@ struct SslrPixel {
   vec4 material;  // the texel of the material channels (sslrMaterialAt)
   vec3 vsP, vsN, vsV, vsR;
   float cosVN;    // dot(-V, N)
+  bool stochastic;  // vsR was drawn from the lobe (GlossyMode::Stochastic), not the mirror ray
 };
 bool sslrPixelToTrace(ivec2 px, out SslrPixel q) {
   q.texel = sslrLoadNormal(px);
@@ -106,11 +107,24 @@ bool sslrPixelToTrace(ivec2 px, out SslrPixel q) {
   q.cosVN = dot(-q.vsV, q.vsN);
   if (!(q.cosVN > 0.0f)) return false;  // a normal facing away from the camera has nothing to reflect
   q.vsR = reflect(q.vsV, q.vsN);
+  q.stochastic = false;
 #ifdef SSLR_STOCHASTIC  // GlossyMode::Stochastic: a rough pixel's ray from its lobe, another each frame
   float roughness = sslrRoughness(frame.surface, q.material);
-  if (roughness >= frame.trace.stochasticFrom)
+  q.stochastic = roughness >= frame.trace.stochasticFrom;
+  if (q.stochastic)
     q.vsR = sslrGgxReflectionSample(q.vsV, q.vsN, max(roughness * roughness, 1e-4f),
                                     sslrPixelRandom(px, frame.trace.frameIndex));
 #endif
   return true;
+}
+
+// The trace parameters of pixel q's ray. A ray drawn from the lobe takes no hidden guess
+// (Settings::traversal.hiddenGuess) where temporal reuse has a history: the pixel's colour is then
+// the mean over the frames' rays that found something (rgb / a), which a miss leaves alone and a
+// guessed colour pulls away. A frame without history (temporal reuse off, the first frame, a
+// reset) keeps the guess: its one ray is all the pixel shows (docs/results/glossy.md, "0.9.1").
+SslrTraceParams sslrRayParams(SslrPixel q) {
+  SslrTraceParams t = frame.trace;
+  if (q.stochastic && frame.temporal.history != 0) t.hiddenGuessWeight = 0.0f;
+  return t;
 }

@@ -25,7 +25,7 @@ uint sslrTraceQuad(uint slot, ivec2 quad) {
   if (index >= 0) {
 #ifdef SSLR_DEFER_TRAVERSAL
     bool needsTraversal;
-    SslrHit hit = sslrTraceFirstStage(frame.proj, frame.surface, frame.trace, px, q.vsP, q.vsR, needsTraversal);
+    SslrHit hit = sslrTraceFirstStage(frame.proj, frame.surface, sslrRayParams(q), px, q.vsP, q.vsR, needsTraversal);
     if (needsTraversal) {  // the quad retrace pass traces it (and finds the same pixel of the quad)
       sslrListQuadForRetrace(slot, quad);
 #ifdef SSLR_COLLECT_STATS
@@ -34,7 +34,7 @@ uint sslrTraceQuad(uint slot, ivec2 quad) {
       return uint(hit.iterations);
     }
 #else
-    SslrHit hit = sslrTraceRay(px, q.vsP, q.vsV, q.vsR);
+    SslrHit hit = sslrTraceRay(sslrRayParams(q), px, q.vsP, q.vsV, q.vsR);
 #ifdef SSLR_COUNT_TRAVERSAL
     // Inline under TraversalPass::Auto: count the quads the traversal ran for (its feedback).
     if (sslrRanSecondStage(frame.trace, hit)) atomicAdd(retrace.count, 1u);
