@@ -322,7 +322,8 @@ struct Settings {
                                // colour where it went behind (not where it went behind a curved
                                // surface): an occluder's visible side standing in for its hidden
                                // one, half faded to the fallback. 0 = a miss (Preset::Low/Medium;
-                               // results/composite.md)
+                               // results/composite.md). Not for GlossyMode::Stochastic's rays once
+                               // temporal reuse has a history (their mean over frames takes misses)
     float slabBlend = 0.25f;   // 0..1, traversal first. Where the traversal ended inside an object's
                                // assumed slab (a pole thinner than objectDepthRelative assumes) and
                                // adaptive L then hit beyond it, the ray either passed behind the
