@@ -11,6 +11,7 @@
 #include <numeric>
 #include <regex>
 #include <set>
+#include <utility>
 
 #include "common/shell.hpp"
 #include "gl/gl_fixture.hpp"
@@ -276,20 +277,19 @@ TEST_F(Bench, GlossyStudyScoresEachModeAgainstTheGgxReference) {
     EXPECT_GT(rmse[std::string("bright-emitter/") + config + ", clamp"], 1.4 * rmse[std::string("bright-emitter/") + config])
         << config << ": the emitters' reflections clamped to 32 of their ~1000 (measured at 160x90: 1.52x at the least)";
   EXPECT_NE(log.find("glossy study"), std::string::npos);
-  // A roughness that is none is refused before any work.
-  for (const char* bad : {"glossy@rough1.5", "glossy@roughx", "glossy@rough0", "no-such-scene@rough0.2"}) {
-    const int code = runCommand(std::string(SSLR_BENCH_EXE) + " --glossy-scenes " + bad + " --out " +
+  // A roughness that is none, or a frame count out of range, is refused before any work, naming
+  // its option.
+  const std::pair<std::string, std::string> bad[] = {
+      {"--glossy-scenes", "glossy@rough1.5"}, {"--glossy-scenes", "glossy@roughx"},
+      {"--glossy-scenes", "glossy@rough0"},   {"--glossy-scenes", "no-such-scene@rough0.2"},
+      {"--glossy-frames", "0"},               {"--glossy-frames", "1025"},
+      {"--glossy-frames", "x"},               {"--glossy-frames", "-3"}};
+  for (const auto& [option, value] : bad) {
+    const int code = runCommand(std::string(SSLR_BENCH_EXE) + " " + option + " " + value + " --out " +
                                     (fs::path(SSLR_TEST_TMP) / "bench-glossy-bad").string(),
                                 &log);
-    EXPECT_NE(code, 0) << bad;
-    EXPECT_NE(log.find("glossy"), std::string::npos) << log;
-  }
-  for (const char* bad : {"0", "1025", "x", "-3"}) {
-    const int code = runCommand(std::string(SSLR_BENCH_EXE) + " --glossy-frames " + bad + " --out " +
-                                    (fs::path(SSLR_TEST_TMP) / "bench-glossy-bad").string(),
-                                &log);
-    EXPECT_NE(code, 0) << bad;
-    EXPECT_NE(log.find("--glossy-frames"), std::string::npos) << log;
+    EXPECT_NE(code, 0) << option << " " << value;
+    EXPECT_NE(log.find(option), std::string::npos) << log;
   }
 }
 
