@@ -181,4 +181,25 @@ TEST(CompositeImageError, ScoresOnlyMirrorPixelsAndNothingWithoutThem) {
   EXPECT_FALSE(std::isfinite(none.psnr));
 }
 
+// The references' colours as the G-buffer stores them (R11F_G11F_B10F): exact where the format
+// is (small integers, powers of two), otherwise rounded towards zero to its 6 mantissa bits in red
+// and green (less than one step: 2^-6 relative) and 5 in blue (2^-5), as glm packs them and Mesa
+// stores them (test ReferenceShading: the stored shade is the G-buffer's colour exactly on 62-100%
+// of the hits); stored again, unchanged.
+TEST(StoredColor, IsTheColourBuffersValueTowardsZero) {
+  EXPECT_EQ(asStoredColor(glm::vec3(1.0f, 0.5f, 4.0f)), glm::vec3(1.0f, 0.5f, 4.0f));
+  EXPECT_EQ(asStoredColor(glm::vec3(0.0f)), glm::vec3(0.0f));
+  for (float v = 0.013f; v < 300.0f; v *= 1.37f) {
+    const glm::vec3 in(v, v * 1.11f, v * 0.93f);
+    const glm::vec3 out = asStoredColor(in);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_LE(out[c], in[c]) << v << " channel " << c;
+      EXPECT_GT(out[c], in[c] * (1.0f - (c == 2 ? 0.03125f : 0.015625f))) << v << " channel " << c;
+    }
+    EXPECT_EQ(asStoredColor(out), out) << v;
+  }
+  // 0.7044 is not a value of the format: 6 bits give steps of 2^-7 = 0.0078125 in [0.5, 1).
+  EXPECT_EQ(asStoredColor(glm::vec3(0.7044f)).r, 0.703125f);
+}
+
 }  // namespace

@@ -385,7 +385,9 @@ INSTANTIATE_TEST_SUITE_P(Scenes, TraversalFirst,
 // pass does. Where the camera sees that point (class A, shown by a pixel), its shade is the
 // G-buffer's colour at the hit's pixel: the median difference below 0.01 (the pixel's centre lies
 // up to half a pixel from the hit) and 90% of them below 0.05 (edges, texture filtering). Scenes: flat
-// and curved mirrors, interpolated normals, a real textured model.
+// and curved mirrors, interpolated normals, a real textured model. Stored as the colour buffer
+// stores it (asStoredColor), the shade is that colour exactly on most hits (Mesa converts towards
+// zero as glm does; measured 84-97% at 256x144): at least half of them on a software renderer.
 class ReferenceShading : public sslr::test::GlTest, public ::testing::WithParamInterface<const char*> {};
 
 TEST_P(ReferenceShading, IsTheGBuffersColourWhereTheCameraSeesTheHit) {
@@ -403,6 +405,7 @@ TEST_P(ReferenceShading, IsTheGBuffersColourWhereTheCameraSeesTheHit) {
   const bool ortho = g.clipFromView()[3][3] == 1.0;
   const PrimaryRays rays{glm::inverse(g.clipFromView()), ortho, o.width, o.height};
   std::vector<double> diffs;
+  size_t exact = 0;  // hits whose stored shade is the G-buffer's colour bit for bit
   for (int y = 0; y < o.height; ++y)
     for (int x = 0; x < o.width; ++x) {
       const TruthPixel& tp = f.truth.pixels[static_cast<size_t>(y) * o.width + x];
@@ -418,6 +421,7 @@ TEST_P(ReferenceShading, IsTheGBuffersColourWhereTheCameraSeesTheHit) {
       const int hy = std::clamp(static_cast<int>(tp.uvHit.y * o.height), 0, o.height - 1);
       const glm::vec3 seen(color.at(hx, hy, 0), color.at(hx, hy, 1), color.at(hx, hy, 2));
       diffs.push_back(glm::length(shade - seen) / std::sqrt(3.0f));
+      exact += asStoredColor(shade) == seen;
     }
   ASSERT_GT(diffs.size(), 500u);
   std::sort(diffs.begin(), diffs.end());
@@ -426,6 +430,8 @@ TEST_P(ReferenceShading, IsTheGBuffersColourWhereTheCameraSeesTheHit) {
               median, p90);
   EXPECT_LT(median, 0.01);
   EXPECT_LT(p90, 0.05);
+  std::printf("%s: stored, the same colour on %.1f%% of them\n", GetParam(), 100.0 * double(exact) / double(diffs.size()));
+  if (sslr::test::glContext()->isSoftware()) EXPECT_GT(exact, diffs.size() / 2);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceShading,

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <thread>
 
-#include <glm/gtc/packing.hpp>
-
 #include "sslr/reference.hpp"
 #include "sslr_host/reference_image.hpp"
 #include "sslr_shared.h"
@@ -158,11 +156,11 @@ Expected<GlossyTruth> glossyTruthFor(const Scene& scene, const GBuffer& gbuffer,
   }
   const auto mask = reflectiveMask(depth, packed, in, settings);
   // Each visible hit shaded as the G-buffer pass lights that point, stored as its colour buffer
-  // stores it (R11F_G11F_B10F: a screen-space method reads nothing finer).
+  // stores it (asStoredColor: a screen-space method reads nothing finer).
   const glm::dmat4 viewFromWorld = gbuffer.viewFromWorld();
   const bool ortho = gbuffer.clipFromView()[3][3] == 1.0;
   auto radianceAt = [&](const RayTracer::Hit& hit, glm::vec2) {
-    return glm::unpackF2x11_1x10(glm::packF2x11_1x10(shadeAsGBuffer(scene, hit, viewFromWorld, ortho)));
+    return asStoredColor(shadeAsGBuffer(scene, hit, viewFromWorld, ortho));
   };
   return computeGlossyTruth(*tracer.value(), gbuffer.clipFromView(), radianceAt, rough, mask, samples);
 }

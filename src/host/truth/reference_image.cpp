@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/gtc/packing.hpp>
+
 #include "host/lighting.h"
 
 namespace sslr::host {
@@ -62,6 +64,8 @@ glm::vec3 shadeAsGBuffer(const Scene& scene, const RayTracer::Hit& hit, const gl
          shared::sslrHostFallbackSpecular(reflectance(m), toCamera, n, vsUp, scene.background);
 }
 
+glm::vec3 asStoredColor(glm::vec3 rgb) { return glm::unpackF2x11_1x10(glm::packF2x11_1x10(rgb)); }
+
 ReferenceImage referenceComposite(const Scene& scene, const RayTracer& tracer, const GBuffer& gbuffer,
                                   const GroundTruth& truth) {
   ReferenceImage ref;
@@ -88,9 +92,11 @@ ReferenceImage referenceComposite(const Scene& scene, const RayTracer& tracer, c
                                         : nullptr;
         if (m != nullptr && m->roughness <= kReferenceMaxRoughness) {
           const Reflection reflected = traceReflection(tracer, primary, glm::vec3(dir));
-          const glm::vec3 radiance = reflected.hit.hit
-                                         ? shadeAsGBuffer(scene, reflected.hit, gbuffer.viewFromWorld(), ortho)
-                                         : shared::sslrHostEnvironment(reflected.direction, vsUp, scene.background);
+          // A point the camera sees, as the colour buffer stores it (what a screen-space method can
+          // read of it at best); any other, exact.
+          glm::vec3 radiance = shared::sslrHostEnvironment(reflected.direction, vsUp, scene.background);
+          if (reflected.hit.hit) radiance = shadeAsGBuffer(scene, reflected.hit, gbuffer.viewFromWorld(), ortho);
+          if (reflected.hit.hit && truth.pixels[p].cls == TruthClass::Visible) radiance = asStoredColor(radiance);
           const float cosVN = std::max(glm::dot(-glm::vec3(dir), primary.vsNormal), 0.0f);
           out += reflectance(*m) * shared::sslrFresnelClassic(cosVN) * radiance -
                  rgbAt(fallback, p);

@@ -21,7 +21,8 @@ constexpr float kReferenceMaxRoughness = 0.02f;
 
 struct ReferenceImage {
   // RGB, linear: colour - fallback specular + reflectance x Fresnel (classic) x the exact
-  // reflection, on the scored pixels; the G-buffer colour elsewhere.
+  // reflection (as stored, asStoredColor, where the camera sees it), on the scored pixels; the
+  // G-buffer colour elsewhere.
   Image composite;
   std::vector<std::uint8_t> scored;  // 1: a mirror pixel sslr traces, compared
   size_t scoredCount = 0;
@@ -38,6 +39,11 @@ Expected<ReferenceImage> referenceFor(const Scene& scene, const GBuffer& gbuffer
 // shader: a directional light, a sky/ground ambient, emission and the fallback specular).
 glm::vec3 shadeAsGBuffer(const Scene& scene, const RayTracer::Hit& hit, const glm::dmat4& viewFromWorld,
                          bool orthographic);
+// `rgb` as the G-buffer's colour texture stores it (GBuffer: R11F_G11F_B10F, 6, 6 and 5 mantissa
+// bits, rounded towards zero as glm packs and Mesa stores it): the finest colour a screen-space
+// method can read of a point. Both references pass the shades of points the camera sees through
+// it, so that they score the methods, not the colour format.
+glm::vec3 asStoredColor(glm::vec3 rgb);
 
 // NaN where no pixel was scored (a scene without mirrors): no error is not a perfect score.
 struct ImageError {
