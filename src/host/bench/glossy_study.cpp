@@ -103,12 +103,13 @@ Status runGlossyStudy(const std::string& sceneSpec, const BenchOptions& options,
     point.scene = sceneSpec;
     point.config = c.name;
     Image resolved;
+    GlossyMetrics m;
     for (int frame = 0; frame < options.glossyFrames; ++frame) {
       if (Status st = ctx.value()->dispatch(inputs, s); !st) return st;
       resolved = readTexture(ctx.value()->resolvedTexture(), g.width, g.height, 4);
-      point.rmseByFrame.push_back(compareGlossy(truth.value(), resolved).rmse);
+      m = compareGlossy(truth.value(), resolved);
+      point.rmseByFrame.push_back(m.rmse);
     }
-    const GlossyMetrics m = compareGlossy(truth.value(), resolved);
     point.rmse = m.rmse;
     point.relativeRmse = m.relativeRmse;
     point.uncovered = m.uncovered;
