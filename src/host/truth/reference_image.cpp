@@ -93,10 +93,14 @@ ReferenceImage referenceComposite(const Scene& scene, const RayTracer& tracer, c
         if (m != nullptr && m->roughness <= kReferenceMaxRoughness) {
           const Reflection reflected = traceReflection(tracer, primary, glm::vec3(dir));
           // A point the camera sees, as the colour buffer stores it (what a screen-space method can
-          // read of it at best); any other, exact.
-          glm::vec3 radiance = shared::sslrHostEnvironment(reflected.direction, vsUp, scene.background);
-          if (reflected.hit.hit) radiance = shadeAsGBuffer(scene, reflected.hit, gbuffer.viewFromWorld(), ortho);
-          if (reflected.hit.hit && truth.pixels[p].cls == TruthClass::Visible) radiance = asStoredColor(radiance);
+          // read of it at best); any other, exact; an escaped ray, the environment.
+          glm::vec3 radiance;
+          if (!reflected.hit.hit) {
+            radiance = shared::sslrHostEnvironment(reflected.direction, vsUp, scene.background);
+          } else {
+            radiance = shadeAsGBuffer(scene, reflected.hit, gbuffer.viewFromWorld(), ortho);
+            if (truth.pixels[p].cls == TruthClass::Visible) radiance = asStoredColor(radiance);
+          }
           const float cosVN = std::max(glm::dot(-glm::vec3(dir), primary.vsNormal), 0.0f);
           out += reflectance(*m) * shared::sslrFresnelClassic(cosVN) * radiance -
                  rgbAt(fallback, p);
