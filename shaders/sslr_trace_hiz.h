@@ -78,6 +78,47 @@ SSLR_FN vec3 sslrPlaneAtWindow(SslrProjection p, SslrSurface s, vec2 w, vec3 vsO
   return a + dir * (abs(dn) > 1e-6f ? dot(vsOnPlane - a, vsN) / dn : 0.0f);
 }
 
+// How many pixels the face that pixel px shows reaches along `axis`, each way (offsets 1, 2, 4, 8
+// and 16: it stops at the first that leaves the face), plus px itself; once that exceeds
+// maxWidth the face is not thin and the count stops. A pixel is on the face while its
+// depth lies within the tolerance, plus half its distance (a curved face may bend away), of px's
+// tangent plane.
+SSLR_FN float sslrFaceWidthPx(SslrProjection p, SslrSurface s, ivec2 px, ivec2 axis, vec3 vsSurface, vec3 vsN,
+                              float tolerance, float footprint, float maxWidth) {
+  float width = 1.0f;
+  for (int way = -1; way <= 1; way += 2) {
+    int reach = 0;
+    for (int offset = 1; offset <= SSLR_THIN_MAX_WIDTH_PX; offset *= 2) {
+      ivec2 q = px + axis * (way * offset);
+      vec3 vsQ;
+      if (q.x < 0 || q.y < 0 || q.x >= s.width || q.y >= s.height || !sslrLoadSurface(q, vsQ)) break;
+      vec3 vsOnPlane = sslrPlaneAtWindow(p, s, vec2(q) + 0.5f, vsSurface, vsN);
+      if (!(abs(vsQ.z - vsOnPlane.z) <= tolerance + 0.5f * float(offset) * footprint)) break;
+      reach = offset;
+    }
+    width += float(reach);
+    if (width > maxWidth) break;
+  }
+  return width;
+}
+
+// Settings::traversal.thinObjectHits: whether a ray that went `entryBehind` (view units) into the
+// assumed slab of what pixel px shows met that object's hidden side rather than passing behind it.
+// Without a thickness the depth buffer cannot tell; the prior is that a thin object (a bar, a rail,
+// a leg: at most 16 px and a 30th of the screen height across, its narrower extent around px) is
+// about as deep as it is wide, so a ray less deep behind it than twice its width (and than
+// SSLR_THIN_MAX_DEPTH_FOOTPRINTS pixel footprints) met it. Wider objects keep the slab's answers:
+// there a ray this close behind the outline mostly passes a corner (results/composite.md, "0.9.2").
+SSLR_FN bool sslrMetThinObject(SslrProjection p, SslrSurface s, ivec2 px, vec3 vsSurface, vec3 vsN, float tolerance,
+                               float entryBehind) {
+  float footprint = sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : -vsSurface.z);
+  if (!(entryBehind < SSLR_THIN_MAX_DEPTH_FOOTPRINTS * footprint)) return false;
+  float maxWidth = min(float(SSLR_THIN_MAX_WIDTH_PX), SSLR_THIN_MAX_WIDTH_SCREEN * float(s.height));
+  float width = min(sslrFaceWidthPx(p, s, px, ivec2(1, 0), vsSurface, vsN, tolerance, footprint, maxWidth),
+                    sslrFaceWidthPx(p, s, px, ivec2(0, 1), vsSurface, vsN, tolerance, footprint, maxWidth));
+  return width <= maxWidth && entryBehind < SSLR_THIN_DEPTH_PER_WIDTH * width * footprint;
+}
+
 // A ray that crosses an object's outline into its pixel a little behind the face the pixel shows
 // met the object's side: a face the depth buffer holds no sample of where it is narrower than a
 // pixel (a box's top seen from just above it, a pillar's side seen nearly along it). The side is
@@ -161,6 +202,7 @@ struct SslrWalk {
   float tRun;
   bool inSlab;
   bool measuredSlab;  // ... inside a solid whose depth the back-face depth measured
+  bool thinMet;       // ... inside a thin object's, where it met the object's hidden side (sslrMetThinObject)
   // Pixels travelled behind what the screen shows (Settings::traversal.hiddenPassageLimitPx): there
   // hidden geometry may stop the ray unseen, and a hit found after a long passage is a guess.
   float hiddenPx;
@@ -315,6 +357,7 @@ SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   w.tRun = -1.0f;
   w.inSlab = false;
   w.measuredSlab = false;
+  w.thinMet = false;
   w.hiddenPx = 0.0f;
   w.hidden = false;
   w.cell = vec2(0.0f);
@@ -515,6 +558,10 @@ SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, iv
     if (behind > into && behindNear < slab) {
       w.inSlab = true;
       w.measuredSlab = measured;
+      // Not where the ray was already out of sight (the hidden guess's), nor behind a curved or a
+      // measured solid (their depth is estimated or known).
+      w.thinMet = t.thinObjectHits != 0 && normalOk && !measured && !w.hidden && !(w.extra > 0.0f) &&
+                  sslrMetThinObject(p, s, px, vsSurface, vsSurfaceNormal, tolerance, max(behindNear, 0.0f));
       return SSLR_WALK_ENDED;
     }
   }
@@ -577,6 +624,15 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
     return sslrFinishHit(p, hit, vsP, vsR, Lc, 1.0f);
   if (w.inSlab && sslrCurvedEntryHit(p, s, t, w.o + w.d * w.tRun, w.d, vsP, vsR, Lc) && Lc <= t.maxDistance)
     return sslrFinishHit(p, hit, vsP, vsR, Lc, 1.0f);
+  // Inside a thin object's slab: it met the object's hidden side, shown by where it went in.
+  if (w.thinMet) {
+    Lc = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRun, vsP, vsR);
+    if (Lc <= t.maxDistance) {
+      SslrHit met = sslrFinishHit(p, hit, vsP, vsR, Lc, 1.0f);
+      met.guessed = 1;
+      if (met.status == SSLR_STATUS_HIT) return met;
+    }
+  }
   if (w.measuredSlab) {  // known hidden: where the ray entered the solid's pixels, for verification
     hit.status = SSLR_STATUS_HIDDEN;
     hit.L = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRun, vsP, vsR);

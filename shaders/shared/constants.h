@@ -33,6 +33,15 @@ namespace sslr::shared {
 #define SSLR_HIZ_TRAVERSAL_FIRST 4  // the traversal on every ray; adaptive L where it has no hit
                                     // (Settings::traversal.order, the default)
 
+// Settings::traversal.thinObjectHits: a ray met the hidden side of what a pixel shows when that
+// object is at most SSLR_THIN_MAX_WIDTH_PX and SSLR_THIN_MAX_WIDTH_SCREEN x the screen height
+// across, and the ray went in less deep than SSLR_THIN_DEPTH_PER_WIDTH times its width and
+// SSLR_THIN_MAX_DEPTH_FOOTPRINTS pixel footprints (sslrMetThinObject; docs/algorithm.md, "Thin objects").
+#define SSLR_THIN_MAX_WIDTH_PX 16
+#define SSLR_THIN_MAX_WIDTH_SCREEN (1.0f / 30.0f)
+#define SSLR_THIN_DEPTH_PER_WIDTH 2.0f
+#define SSLR_THIN_MAX_DEPTH_FOOTPRINTS 6.0f
+
 // Most levels of the min-max depth pyramid above the depth buffer (level l: 2^l-pixel cells).
 #define SSLR_HIZ_MAX_LEVELS 8
 

@@ -104,7 +104,7 @@ struct SslrTraceParams {
   float hiddenGuessWeight;    // Settings::traversal.hiddenGuess: a hidden ray's guess, its weight (0 = none)
   int resumeAtStepCap;        // Settings::traversal.resumeAtStepCap: 1 = adaptive L resumes where the traversal ran out of steps
   float slabBlend;            // Settings::traversal.slabBlend: the slab's share of a hit past it (none: its confidence)
-  int tracePad0;
+  int thinObjectHits;         // Settings::traversal.thinObjectHits (traversal first): 1 = on
   int tracePad1;
   int tracePad2;
 };

@@ -155,11 +155,17 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
   numberOption(args, "slab-blend", "a number in 0..1", s.traversal.slabBlend);
   numberOption(args, "max-luminance", "a number >= 0", s.radianceClamp.maxLuminance);
   numberOption(args, "ffx-thickness", "a number", s.ffx.depthBufferThickness);
+  numberOption(args, "dda-thickness", "a number", s.dda.objectDepth);
+  if (args.count("dda-stride")) {  // steps enough to cross about 1024 pixels, as sslr-bench's grid
+    numberOption(args, "dda-stride", "a number >= 1", s.dda.stride);
+    if (s.dda.stride >= 1.0f && s.dda.stride <= 1024.0f) s.dda.maxSteps = static_cast<int>(1024.0f / s.dda.stride);
+  }
   numberOption(args, "error-k", "a number", s.fades.errorK);
   numberOption(args, "iterations", "an integer", s.adaptiveL.maxIterations);
   numberOption(args, "hiz-steps", "an integer", s.traversal.maxSteps);
   if (args.count("no-outline-thinning")) s.traversal.outlineThinning = false;
   if (args.count("no-curved-solids")) s.traversal.curvedSolids = false;
+  if (args.count("no-thin-object-hits")) s.traversal.thinObjectHits = false;
   if (args.count("traversal-pass")) {
     const std::string pass = args["traversal-pass"].as<std::string>();
     if (pass == "auto") s.traversal.pass = TraversalPass::Auto;
@@ -196,6 +202,9 @@ void addTracerOptions(cxxopts::Options& options) {
                               "traversal)")
       ("no-curved-solids", "keep the assumed object thickness behind convex curved surfaces too, instead of "
                            "the depth of a sphere of their curvature (hierarchical traversal)")
+      ("no-thin-object-hits", "traversal first: a ray that went just behind a thin object (at most 16 px and a "
+                              "30th of the screen height across) is not taken to have met its hidden side; "
+                              "adaptive L answers beyond it (Settings::traversal.thinObjectHits = false)")
       ("no-blur", "skip the roughness blur")
       ("glossy", "rough surfaces: cone (the mirror reflection blurred over the roughness cone, the default) or "
                  "stochastic (rays drawn from the GGX lobe, resolved by the blur and --temporal)",
@@ -225,6 +234,10 @@ void addTracerOptions(cxxopts::Options& options) {
        cxxopts::value<std::string>())
       ("ffx-thickness", "--method ffx-sssr: FidelityFX SSSR's depth buffer thickness, view units (default 0.015, "
                         "its sample's)", cxxopts::value<std::string>())
+      ("dda-stride", "--method dda: pixels per step (default 2), with steps enough to cross about 1024 pixels "
+                     "(sslr-bench's grid)", cxxopts::value<std::string>())
+      ("dda-thickness", "--method dda: depth assumed behind every visible surface, view units (default 0.5)",
+       cxxopts::value<std::string>())
       ("object-thickness", "assumed depth of what the screen shows, fraction of its view depth (hierarchical traversal)", cxxopts::value<std::string>());
 }
 
@@ -532,6 +545,22 @@ void printFrameTimes(const FrameTimes& t) {
   std::printf("\n");
 }
 
+// RGB of `image` with alpha 1 where `scored` marks a compared pixel, else 0.
+Image withScoredAlpha(const Image& image, const std::vector<std::uint8_t>& scored) {
+  Image out;
+  out.width = image.width;
+  out.height = image.height;
+  out.channels = 4;
+  out.pixels.resize(static_cast<size_t>(image.width) * image.height * 4);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const size_t i = static_cast<size_t>(y) * image.width + x;
+      for (int c = 0; c < 3; ++c) out.at(x, y, c) = c < image.channels ? image.at(x, y, c) : 0.0f;
+      out.at(x, y, 3) = i < scored.size() && scored[i] != 0 ? 1.0f : 0.0f;
+    }
+  return out;
+}
+
 // --score: the hits against Embree's truth and, for a weighted composite over the fallback, the
 // final image against the ray-traced reference (the reference replaces that fallback).
 struct Scores {
@@ -558,6 +587,12 @@ Expected<Scores> scoreFrame(const RenderJob& job, FrameRenderer& r, NamedImages&
     scores.breakdown = compositeBreakdown(reference, final, truth, hit);
     files.push_back({"reference.png", {reference.composite, {}}});
     files.push_back({"composite-error.png", {compositeErrorMap(reference, final), {}}});
+    if (job.dump) {  // the compared images in linear float, A = 1 on the scored pixels
+      Image scored = reference.composite, shown = final;
+      for (Image* image : {&scored, &shown}) *image = withScoredAlpha(*image, reference.scored);
+      files.push_back({"reference.exr", {scored, {"R", "G", "B", "A"}}});
+      files.push_back({"final.exr", {shown, {"R", "G", "B", "A"}}});
+    }
   }
   return scores;
 }

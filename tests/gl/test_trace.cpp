@@ -529,10 +529,13 @@ class SlabBlend : public sslr::test::GlTest {};
 TEST_F(SlabBlend, ChangesTheColourOfHitsPastASlabAndNothingElse) {
   auto scene = loadScene("thin-objects");
   ASSERT_TRUE(scene);
-  Settings hitColourAlone;
+  // Thin objects' hits (Settings::traversal.thinObjectHits) answer some of these rays before adaptive
+  // L runs; off, every slab ray reaches the blend.
+  Settings hitColourAlone, blendedSettings;
+  hitColourAlone.traversal.thinObjectHits = blendedSettings.traversal.thinObjectHits = false;
   hitColourAlone.traversal.slabBlend = 0.0f;
   const CompositeScore alone = scoreComposite(scene.value(), compositeOptions(), hitColourAlone);
-  const CompositeScore blended = scoreComposite(scene.value(), compositeOptions(), Settings{});
+  const CompositeScore blended = scoreComposite(scene.value(), compositeOptions(), blendedSettings);
   ASSERT_TRUE(alone.ok && blended.ok);
   std::printf("thin-objects composite RMSE: slab blend 0 %.5f, 0.25 %.5f\n", alone.rmse, blended.rmse);
   EXPECT_NE(blended.rmse, alone.rmse);
@@ -562,7 +565,8 @@ TEST_F(SlabBlend, ARayWithNothingPastTheSlabShowsTheSlabAtThatConfidence) {
     GBufferOptions o;
     o.width = 256;
     o.height = 144;
-    Settings marked, none;
+    Settings marked, none, shareAlone;
+    marked.traversal.thinObjectHits = none.traversal.thinObjectHits = shareAlone.traversal.thinObjectHits = false;
     marked.traversal.slabBlend = kShare;
     none.traversal.slabBlend = 0.0f;
     size_t guessesMarked = 0, guessesNone = 0, offGeometry = 0;
@@ -580,7 +584,7 @@ TEST_F(SlabBlend, ARayWithNothingPastTheSlabShowsTheSlabAtThatConfidence) {
           offGeometry += settings == &marked && !(d > 0.0f);
         }
     }
-    const CompositeScore with = scoreComposite(scene.value(), compositeOptions(), Settings{});
+    const CompositeScore with = scoreComposite(scene.value(), compositeOptions(), shareAlone);
     const CompositeScore without = scoreComposite(scene.value(), compositeOptions(), none);
     ASSERT_TRUE(with.ok && without.ok);
     std::printf("%s: %zu slab guesses; composite RMSE without %.5f, with %.5f\n", name, guessesMarked, without.rmse,
@@ -590,6 +594,70 @@ TEST_F(SlabBlend, ARayWithNothingPastTheSlabShowsTheSlabAtThatConfidence) {
     EXPECT_EQ(offGeometry, 0u) << name;
     EXPECT_LT(with.rmse, without.rmse) << name;
     EXPECT_EQ(with.metrics.recall1px, without.metrics.recall1px) << name;
+  }
+}
+
+// Settings::traversal.thinObjectHits (on by default; traversal first): a ray that went into the
+// slab of an object at most 16 px across, less deep than twice its width and than 6 pixel
+// footprints, met the object's hidden side, so its answer is where it went in, at full confidence,
+// instead of what adaptive L finds beyond. thin-objects' bars seen from close by (2-4 px across at
+// 256x144): the mirror shows the rails' undersides, which the camera cannot see; their visible
+// fronts stand in for them instead of the wall behind. Measured on llvmpipe (off -> on): composite
+// RMSE 0.1324 -> 0.1247; at 480x270 0.1346 -> 0.1231, at 960x540 0.1340 -> 0.1225.
+class ThinObjectHits : public sslr::test::GlTest {};
+
+TEST_F(ThinObjectHits, ABarsHiddenSideShowsItsFrontAndTheImageComesCloser) {
+  auto scene = loadScene("thin-objects");
+  ASSERT_TRUE(scene);
+  scene.value().camera->eye = {0.0, 1.2, -1.5};
+  scene.value().camera->target = {0.0, 0.5, -4.5};
+  const GBufferOptions o = compositeOptions();
+  Settings off;
+  off.traversal.thinObjectHits = false;
+  const CompositeScore without = scoreComposite(scene.value(), o, off);
+  const CompositeScore with = scoreComposite(scene.value(), o, Settings{});
+  ASSERT_TRUE(with.ok && without.ok);
+  std::printf("thin-objects close up: composite RMSE thin object hits off %.4f, on %.4f\n", without.rmse, with.rmse);
+  // 3%: the gain measured is 6% here and 8-9% at 480x270 and 960x540.
+  EXPECT_LT(with.rmse, 0.97 * without.rmse);
+
+  // Each answer that changed lies no further than the old one (where the ray went into the bar's
+  // slab: in front of adaptive L's hit beyond, where the slab guess was), at full confidence, on
+  // geometry.
+  const ScoredFrame a = renderScored(scene.value(), *scene.value().camera, o, off);
+  const ScoredFrame b = renderScored(scene.value(), *scene.value().camera, o, Settings{});
+  ASSERT_TRUE(a.renderer && b.renderer);
+  const Image depth = b.renderer->gbuffer().readDepth();
+  size_t changed = 0, notInFront = 0, notConfident = 0, offGeometry = 0;
+  for (int y = 0; y < o.height; ++y)
+    for (int x = 0; x < o.width; ++x) {
+      bool same = true;
+      for (int c = 0; c < 4; ++c) same = same && a.hit.at(x, y, c) == b.hit.at(x, y, c);
+      if (same) continue;
+      ++changed;
+      notConfident += b.hit.at(x, y, 2) != 1.0f;
+      // 3%: where adaptive L's crossing was on the bar itself, the entry is the same place (as in
+      // verification, the same surface found twice differs by less).
+      notInFront += a.hit.at(x, y, 2) > 0.0f && !(b.hit.at(x, y, 3) <= 1.03f * a.hit.at(x, y, 3));
+      const int hx = std::min(int(b.hit.at(x, y, 0) * o.width), o.width - 1);
+      const int hy = std::min(int(b.hit.at(x, y, 1) * o.height), o.height - 1);
+      offGeometry += !(depth.at(hx, hy, 0) > 0.0f);  // reversed Z: background 0
+    }
+  std::printf("  %zu answers changed\n", changed);
+  EXPECT_GT(changed, 50u);
+  EXPECT_EQ(notConfident, 0u);
+  EXPECT_EQ(notInFront, 0u);
+  EXPECT_EQ(offGeometry, 0u);
+
+  // The traversal alone (a peer) and the adaptive-L-first order (Preset::Low/Medium) ignore it.
+  for (Settings s : {Settings{}, Settings::preset(Preset::Medium)}) {
+    if (s.traversal.order == TraversalOrder::TraversalFirst) s.method = Method::HierarchicalDepth;
+    Settings sOff = s;
+    sOff.traversal.thinObjectHits = false;
+    const ScoredFrame c = renderScored(scene.value(), *scene.value().camera, o, s);
+    const ScoredFrame d = renderScored(scene.value(), *scene.value().camera, o, sOff);
+    ASSERT_TRUE(c.renderer && d.renderer);
+    EXPECT_EQ(c.hit.pixels, d.hit.pixels);
   }
 }
 

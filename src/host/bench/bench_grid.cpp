@@ -51,6 +51,10 @@ void highVariants(std::vector<BenchConfig>& configs) {
   BenchConfig noSlabBlend{"adaptive-l", "high-no-slab-blend", Settings::preset(preset), false};
   noSlabBlend.settings.traversal.slabBlend = 0.0f;
   configs.push_back(noSlabBlend);
+  // A ray just behind a thin object answered beyond it, as before 0.9.2 (traversal.thinObjectHits off).
+  BenchConfig noThin{"adaptive-l", "high-no-thin-hits", Settings::preset(preset), false};
+  noThin.settings.traversal.thinObjectHits = false;
+  configs.push_back(noThin);
   // The step cap's graceful answer (adaptive L resuming where the traversal ran out of steps): off.
   BenchConfig noResume{"adaptive-l", "high-no-resume", Settings::preset(preset), false};
   noResume.settings.traversal.resumeAtStepCap = false;

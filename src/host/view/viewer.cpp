@@ -314,6 +314,7 @@ struct App {
     ImGui::Checkbox("curved solids", &t.traversal.curvedSolids);
     ImGui::SliderFloat("traversal.hiddenGuess", &t.traversal.hiddenGuess, 0.0f, 1.0f);
     ImGui::SliderFloat("traversal.slabBlend", &t.traversal.slabBlend, 0.0f, 1.0f);
+    ImGui::Checkbox("thin object hits", &t.traversal.thinObjectHits);
     int pass = static_cast<int>(t.traversal.pass);
     const char* passes[] = {"auto", "inline", "deferred"};
     if (ImGui::Combo("traversal pass", &pass, passes, 3)) t.traversal.pass = static_cast<TraversalPass>(pass);

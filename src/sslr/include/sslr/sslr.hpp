@@ -333,6 +333,14 @@ struct Settings {
                                // L finds nothing beyond, the slab's colour at this confidence (the
                                // rest the fallback). 0 = the hit's colour alone, a miss
                                // (results/composite.md, "0.8", "0.9")
+    bool thinObjectHits = true;  // traversal first. A ray that went into the slab of an object at
+                                 // most 16 px and a 30th of the screen height across (a bar, a
+                                 // rail, a leg), less deep than twice its width and than 6 pixel
+                                 // footprints, met its hidden side: the answer is where it went in,
+                                 // at full confidence, instead of what adaptive L finds beyond (which
+                                 // then does not run). Thin objects are taken to be about as deep
+                                 // as they are wide (docs/algorithm.md, "Thin objects";
+                                 // results/composite.md, "0.9.2")
   } traversal;
 
   // When a crossing counts as a hit (all depth-only tracers): the ray point Q and the surface
