@@ -102,6 +102,12 @@ SSLR_FN float sslrFaceWidthPx(SslrProjection p, SslrSurface s, ivec2 px, ivec2 a
   return width;
 }
 
+// sslrMetThinObject's first test, without a fetch: the walk keeps only rays that pass it.
+SSLR_FN bool sslrThinEntryShallow(SslrProjection p, SslrSurface s, vec3 vsSurface, float entryBehind) {
+  return entryBehind < SSLR_THIN_MAX_DEPTH_FOOTPRINTS *
+                           sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : -vsSurface.z);
+}
+
 // Settings::traversal.thinObjectHits: whether a ray that went `entryBehind` (view units) into the
 // assumed slab of what pixel px shows met that object's hidden side rather than passing behind it.
 // Without a thickness the depth buffer cannot tell; the prior is that a thin object (a bar, a rail,
@@ -112,7 +118,7 @@ SSLR_FN float sslrFaceWidthPx(SslrProjection p, SslrSurface s, ivec2 px, ivec2 a
 SSLR_FN bool sslrMetThinObject(SslrProjection p, SslrSurface s, ivec2 px, vec3 vsSurface, vec3 vsN, float tolerance,
                                float entryBehind) {
   float footprint = sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : -vsSurface.z);
-  if (!(entryBehind < SSLR_THIN_MAX_DEPTH_FOOTPRINTS * footprint)) return false;
+  if (!(entryBehind < SSLR_THIN_MAX_DEPTH_FOOTPRINTS * footprint)) return false;  // sslrThinEntryShallow
   float maxWidth = min(float(SSLR_THIN_MAX_WIDTH_PX), SSLR_THIN_MAX_WIDTH_SCREEN * float(s.height));
   float width = min(sslrFaceWidthPx(p, s, px, ivec2(1, 0), vsSurface, vsN, tolerance, footprint, maxWidth),
                     sslrFaceWidthPx(p, s, px, ivec2(0, 1), vsSurface, vsN, tolerance, footprint, maxWidth));
@@ -202,7 +208,11 @@ struct SslrWalk {
   float tRun;
   bool inSlab;
   bool measuredSlab;  // ... inside a solid whose depth the back-face depth measured
-  bool thinMet;       // ... inside a thin object's, where it met the object's hidden side (sslrMetThinObject)
+  // ... inside what pixel slabPx shows, slabBehind deep behind it (view units) where its segment
+  // there begins: a thin object's hidden side, if sslrMetThinObject says so after the walk.
+  bool thinCandidate;
+  ivec2 slabPx;
+  float slabBehind, slabTolerance;
   // Pixels travelled behind what the screen shows (Settings::traversal.hiddenPassageLimitPx): there
   // hidden geometry may stop the ray unseen, and a hit found after a long passage is a guess.
   float hiddenPx;
@@ -357,7 +367,10 @@ SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   w.tRun = -1.0f;
   w.inSlab = false;
   w.measuredSlab = false;
-  w.thinMet = false;
+  w.thinCandidate = false;
+  w.slabPx = ivec2(0);
+  w.slabBehind = 0.0f;
+  w.slabTolerance = 0.0f;
   w.hiddenPx = 0.0f;
   w.hidden = false;
   w.cell = vec2(0.0f);
@@ -559,9 +572,13 @@ SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, iv
       w.inSlab = true;
       w.measuredSlab = measured;
       // Not where the ray was already out of sight (the hidden guess's), nor behind a curved or a
-      // measured solid (their depth is estimated or known).
-      w.thinMet = t.thinObjectHits != 0 && normalOk && !measured && !w.hidden && !(w.extra > 0.0f) &&
-                  sslrMetThinObject(p, s, px, vsSurface, vsSurfaceNormal, tolerance, max(behindNear, 0.0f));
+      // measured solid (their depth is estimated or known). The object's width is measured after
+      // the walk, outside its loop.
+      w.slabPx = px;
+      w.slabBehind = max(behindNear, 0.0f);
+      w.slabTolerance = tolerance;
+      w.thinCandidate = t.thinObjectHits != 0 && normalOk && !measured && !w.hidden && !(w.extra > 0.0f) &&
+                        sslrThinEntryShallow(p, s, vsSurface, w.slabBehind);
       return SSLR_WALK_ENDED;
     }
   }
@@ -625,7 +642,10 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   if (w.inSlab && sslrCurvedEntryHit(p, s, t, w.o + w.d * w.tRun, w.d, vsP, vsR, Lc) && Lc <= t.maxDistance)
     return sslrFinishHit(p, hit, vsP, vsR, Lc, 1.0f);
   // Inside a thin object's slab: it met the object's hidden side, shown by where it went in.
-  if (w.thinMet) {
+  vec3 vsSlab, vsSlabNormal;
+  if (w.thinCandidate && sslrLoadSurface(w.slabPx, vsSlab) &&
+      sslrDecodeNormal(s, sslrLoadNormal(w.slabPx), vsSlabNormal) &&
+      sslrMetThinObject(p, s, w.slabPx, vsSlab, vsSlabNormal, w.slabTolerance, w.slabBehind)) {
     Lc = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRun, vsP, vsR);
     if (Lc <= t.maxDistance) {
       SslrHit met = sslrFinishHit(p, hit, vsP, vsR, Lc, 1.0f);
