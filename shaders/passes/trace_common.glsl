@@ -118,10 +118,10 @@ bool sslrPixelToTrace(ivec2 px, out SslrPixel q) {
   return true;
 }
 
-// The trace parameters of pixel q's ray. A ray drawn from the lobe takes no hidden guess
-// (Settings::traversal.hiddenGuess, nor thinObjectHits') where temporal reuse has a history: the pixel's colour is then
-// the mean over the frames' rays that found something (rgb / a), which a miss leaves alone and a
-// guessed colour pulls away. A frame without history (temporal reuse off, the first frame, a
+// The trace parameters of pixel q's ray. A ray drawn from the lobe takes no guess
+// (Settings::traversal.hiddenGuess, thinObjectHits) where temporal reuse has a history: the pixel's
+// colour is then the mean over the frames' rays that found something (rgb / a), which a miss leaves
+// alone and a guessed colour pulls away. A frame without history (temporal reuse off, the first frame, a
 // reset) keeps the guess: its one ray is all the pixel shows (docs/results/glossy.md, "0.9.1").
 SslrTraceParams sslrRayParams(SslrPixel q) {
   SslrTraceParams t = frame.trace;
