@@ -1,6 +1,7 @@
 // sslr-render as a user runs it: help, exit codes, messages, files written (or not).
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -351,6 +352,44 @@ TEST_F(RenderCli, ScoreWithDumpWritesTheTruthTheRecallComesFrom) {
   const fs::path plain = freshDir("score-only");
   ASSERT_EQ(run("--size 48x32 --scene mirror-walls --score --out " + plain.string()).exitCode, 0);
   EXPECT_FALSE(fs::exists(plain / "truth.exr"));
+}
+
+// ... and the two images the composite error compares (reference.exr, final.exr: linear RGB, A = 1 on
+// the compared pixels); the RMSE recomputed from them must be the printed one.
+TEST_F(RenderCli, ScoreWithDumpWritesTheImagesTheCompositeErrorComesFrom) {
+  const fs::path out = freshDir("score-dump-composite");
+  const Result r = run("--size 96x54 --scene mirror-walls --score --dump --out " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  auto reference = sslr::host::readImage((out / "reference.exr").string());
+  auto shown = sslr::host::readImage((out / "final.exr").string());
+  ASSERT_TRUE(reference) << reference.error();
+  ASSERT_TRUE(shown) << shown.error();
+  ASSERT_EQ(reference.value().channels, 4);
+  ASSERT_EQ(shown.value().channels, 4);
+  ASSERT_EQ(reference.value().width, 96);
+  ASSERT_EQ(shown.value().height, 54);
+  double squared = 0.0;
+  size_t compared = 0;
+  for (int y = 0; y < 54; ++y)
+    for (int x = 0; x < 96; ++x) {
+      const float a = reference.value().at(x, y, 3);
+      ASSERT_TRUE(a == 0.0f || a == 1.0f) << a;
+      ASSERT_EQ(shown.value().at(x, y, 3), a);
+      if (a == 0.0f) continue;
+      ++compared;
+      for (int c = 0; c < 3; ++c) {
+        const double d = double(shown.value().at(x, y, c)) - double(reference.value().at(x, y, c));
+        squared += d * d;
+      }
+    }
+  ASSERT_GT(compared, 100u);
+  const std::string label = "against the ray-traced reference: RMSE ";
+  const size_t at = r.output.find(label);
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const double printed = std::stod(r.output.substr(at + label.size()));
+  // 1e-4: the printed value has four decimals.
+  EXPECT_NEAR(std::sqrt(squared / double(3 * compared)), printed, 1e-4) << r.output;
+  EXPECT_NE(r.output.find("over " + std::to_string(compared) + " mirror pixels"), std::string::npos) << r.output;
 }
 
 TEST_F(RenderCli, EveryBuiltinSceneAndDepthConventionRenders) {
