@@ -117,8 +117,8 @@ SSLR_FN bool sslrThinEntryShallow(SslrProjection p, SslrSurface s, vec3 vsSurfac
 // there a ray this close behind the outline mostly passes a corner (results/composite.md, "0.9.2").
 SSLR_FN bool sslrMetThinObject(SslrProjection p, SslrSurface s, ivec2 px, vec3 vsSurface, vec3 vsN, float tolerance,
                                float entryBehind) {
+  if (!sslrThinEntryShallow(p, s, vsSurface, entryBehind)) return false;
   float footprint = sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : -vsSurface.z);
-  if (!(entryBehind < SSLR_THIN_MAX_DEPTH_FOOTPRINTS * footprint)) return false;  // sslrThinEntryShallow
   float maxWidth = min(float(SSLR_THIN_MAX_WIDTH_PX), SSLR_THIN_MAX_WIDTH_SCREEN * float(s.height));
   float width = min(sslrFaceWidthPx(p, s, px, ivec2(1, 0), vsSurface, vsN, tolerance, footprint, maxWidth),
                     sslrFaceWidthPx(p, s, px, ivec2(0, 1), vsSurface, vsN, tolerance, footprint, maxWidth));
@@ -519,6 +519,21 @@ SSLR_FN float sslrCrossingInPixel(SslrProjection p, SslrSurface s, SslrTracePara
 
 // The test of the pixel the walk reached (level 0): a hit (SSLR_WALK_ANSWERED), the ray inside
 // what the pixel shows (SSLR_WALK_ENDED, w.inSlab), or on past it (SSLR_WALK_PIXEL: walk on).
+// The walk ends inside what pixel px shows (vsSurface), behindNear deep behind it where the ray's
+// segment there begins. Kept for sslrMetThinObject after the walk, outside its loop: a thin object's
+// hidden side, not where the ray was already out of sight (the hidden guess's), nor behind a curved
+// or measured solid (their depth is estimated or known; `thinTestable` is false for a measured one
+// or a pixel without a normal).
+SSLR_FN void sslrEnterSlab(SslrProjection p, SslrSurface s, SslrTraceParams t, SSLR_INOUT(SslrWalk) w, ivec2 px,
+                           vec3 vsSurface, bool thinTestable, float behindNear, float tolerance) {
+  w.inSlab = true;
+  w.slabPx = px;
+  w.slabBehind = max(behindNear, 0.0f);
+  w.slabTolerance = tolerance;
+  w.thinCandidate = t.thinObjectHits != 0 && thinTestable && !w.hidden && !(w.extra > 0.0f) &&
+                    sslrThinEntryShallow(p, s, vsSurface, w.slabBehind);
+}
+
 SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP, vec3 vsR,
                           SSLR_INOUT(SslrWalk) w, SSLR_INOUT(SslrHit) hit) {
   ivec2 px = ivec2(w.cell);
@@ -569,16 +584,8 @@ SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, iv
     // wide one) holds the ray once it is half the solid deep: the measurement says it is inside.
     float into = measured ? min(tolerance, 0.5f * slab) : tolerance;
     if (behind > into && behindNear < slab) {
-      w.inSlab = true;
+      sslrEnterSlab(p, s, t, w, px, vsSurface, normalOk && !measured, behindNear, tolerance);
       w.measuredSlab = measured;
-      // Not where the ray was already out of sight (the hidden guess's), nor behind a curved or a
-      // measured solid (their depth is estimated or known). The object's width is measured after
-      // the walk, outside its loop.
-      w.slabPx = px;
-      w.slabBehind = max(behindNear, 0.0f);
-      w.slabTolerance = tolerance;
-      w.thinCandidate = t.thinObjectHits != 0 && normalOk && !measured && !w.hidden && !(w.extra > 0.0f) &&
-                        sslrThinEntryShallow(p, s, vsSurface, w.slabBehind);
       return SSLR_WALK_ENDED;
     }
   }

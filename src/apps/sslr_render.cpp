@@ -588,10 +588,8 @@ Expected<Scores> scoreFrame(const RenderJob& job, FrameRenderer& r, NamedImages&
     files.push_back({"reference.png", {reference.composite, {}}});
     files.push_back({"composite-error.png", {compositeErrorMap(reference, final), {}}});
     if (job.dump) {  // the compared images in linear float, A = 1 on the scored pixels
-      Image scored = reference.composite, shown = final;
-      for (Image* image : {&scored, &shown}) *image = withScoredAlpha(*image, reference.scored);
-      files.push_back({"reference.exr", {scored, {"R", "G", "B", "A"}}});
-      files.push_back({"final.exr", {shown, {"R", "G", "B", "A"}}});
+      files.push_back({"reference.exr", {withScoredAlpha(reference.composite, reference.scored), {"R", "G", "B", "A"}}});
+      files.push_back({"final.exr", {withScoredAlpha(final, reference.scored), {"R", "G", "B", "A"}}});
     }
   }
   return scores;

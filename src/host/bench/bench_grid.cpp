@@ -51,7 +51,7 @@ void highVariants(std::vector<BenchConfig>& configs) {
   BenchConfig noSlabBlend{"adaptive-l", "high-no-slab-blend", Settings::preset(preset), false};
   noSlabBlend.settings.traversal.slabBlend = 0.0f;
   configs.push_back(noSlabBlend);
-  // A ray just behind a thin object answered beyond it, as before 0.9.2 (traversal.thinObjectHits off).
+  // A ray just behind a thin object answered by adaptive L beyond it (traversal.thinObjectHits off).
   BenchConfig noThin{"adaptive-l", "high-no-thin-hits", Settings::preset(preset), false};
   noThin.settings.traversal.thinObjectHits = false;
   configs.push_back(noThin);
