@@ -584,7 +584,7 @@ Expected<Scores> scoreFrame(const RenderJob& job, FrameRenderer& r, NamedImages&
     const ReferenceImage reference = referenceComposite(job.scene, *tracer.value(), r.gbuffer(), truth);
     const Image final = r.readFinal();
     scores.composite = compositeError(reference, final);
-    scores.breakdown = compositeBreakdown(reference, final, truth, hit);
+    scores.breakdown = compositeBreakdown(reference, final, truth, hit, color);  // a miss shows the colour
     files.push_back({"reference.png", {reference.composite, {}}});
     files.push_back({"composite-error.png", {compositeErrorMap(reference, final), {}}});
     if (job.dump) {  // the compared images in linear float, A = 1 on the scored pixels
@@ -618,6 +618,9 @@ void printScores(const Scores& scores) {
       {"hits within 1 px", &b.hit}, {"wrong hits", &b.wrong}, {"missed", &b.missed}, {"unreachable", &b.unreachable}};
   for (const auto& [name, k] : kinds) std::printf(" %s %.4f, %.0f%%, %zu;", name, k->rmse, 100.0 * k->share, k->pixels);
   std::printf("\n");
+  if (b.wrong.pixels > 0)
+    std::printf("  the wrong hits' pixels as misses (the fallback instead): RMSE %.4f, %.0f%% of today's squared error\n",
+                b.wrongAsMisses.rmse, 100.0 * b.wrongAsMisses.share);
 }
 
 // A frame in which no pixel shows the scene (a model scaled to nothing, a zero node scale, only

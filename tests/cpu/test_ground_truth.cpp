@@ -181,6 +181,69 @@ TEST(CompositeImageError, ScoresOnlyMirrorPixelsAndNothingWithoutThem) {
   EXPECT_FALSE(std::isfinite(none.psnr));
 }
 
+// The composite error by what the method reported, on five pixels with known answers: a hit within
+// 1 px, a wrong hit (reported where the truth is occluded), a visible reflection missed, an escaped
+// ray left alone, and an unscored pixel that counts nowhere. The wrong hit's pixel is also scored as
+// the colour a miss would have shown there.
+TEST(CompositeBreakdown, SortsTheErrorByWhatWasReportedAndScoresWrongHitsAsMisses) {
+  GroundTruth gt;
+  gt.width = 5;
+  gt.height = 1;
+  gt.pixels.resize(5);
+  gt.pixels[0].cls = TruthClass::Visible;
+  gt.pixels[0].uvHit = {0.5f, 0.5f};
+  gt.pixels[1].cls = TruthClass::Occluded;
+  gt.pixels[2].cls = TruthClass::Visible;
+  gt.pixels[2].uvHit = {0.1f, 0.5f};
+  gt.pixels[3].cls = TruthClass::Escaped;
+  gt.pixels[4].cls = TruthClass::Visible;
+  Image hit{5, 1, 4, std::vector<float>(20, 0.0f)};
+  const float reported[5][3] = {{0.55f, 0.5f, 1.0f},   // 0.25 px off: within 1 px
+                                {0.3f, 0.5f, 0.9f},    // a false hit
+                                {0.1f, 0.5f, 0.4f},    // below the reporting threshold: a miss
+                                {0.0f, 0.0f, 0.0f},    // nothing
+                                {0.9f, 0.5f, 1.0f}};   // unscored
+  for (int p = 0; p < 5; ++p)
+    for (int c = 0; c < 3; ++c) hit.pixels[p * 4 + c] = reported[p][c];
+  ReferenceImage reference;
+  reference.composite = Image{5, 1, 3, std::vector<float>(15, 0.5f)};
+  reference.scored = {1, 1, 1, 1, 0};
+  reference.scoredCount = 4;
+  // Squared errors (sum over RGB): 0.03, 0.12, 0.27, 0.48; the unscored pixel's 3 counts nowhere.
+  const float off[5] = {0.1f, 0.2f, 0.3f, 0.4f, 1.0f};
+  Image composite{5, 1, 3, {}};
+  for (float o : off) composite.pixels.insert(composite.pixels.end(), {0.5f + o, 0.5f + o, 0.5f + o});
+  // What a miss shows at the wrong hit's pixel: 0.1 off in one channel (squared error 0.01).
+  Image colour{5, 1, 3, std::vector<float>(15, 0.5f)};
+  colour.pixels[1 * 3 + 0] = 0.6f;
+
+  const CompositeBreakdown b = compositeBreakdown(reference, composite, gt, hit, colour);
+  EXPECT_EQ(b.hit.pixels, 1u);
+  EXPECT_EQ(b.wrong.pixels, 1u);
+  EXPECT_EQ(b.missed.pixels, 1u);
+  EXPECT_EQ(b.unreachable.pixels, 1u);
+  const double total = 0.03 + 0.12 + 0.27 + 0.48;
+  EXPECT_NEAR(b.hit.rmse, 0.1, 1e-6);
+  EXPECT_NEAR(b.wrong.rmse, 0.2, 1e-6);
+  EXPECT_NEAR(b.missed.rmse, 0.3, 1e-6);
+  EXPECT_NEAR(b.unreachable.rmse, 0.4, 1e-6);
+  EXPECT_NEAR(b.hit.share, 0.03 / total, 1e-6);
+  EXPECT_NEAR(b.wrong.share, 0.12 / total, 1e-6);
+  EXPECT_NEAR(b.hit.share + b.wrong.share + b.missed.share + b.unreachable.share, 1.0, 1e-9);
+  EXPECT_EQ(b.wrongAsMisses.pixels, 1u);
+  EXPECT_NEAR(b.wrongAsMisses.rmse, std::sqrt(0.01 / 3.0), 1e-6) << "the wrong pixel as a miss: the colour there";
+  EXPECT_NEAR(b.wrongAsMisses.share, 0.01 / total, 1e-6);
+  EXPECT_LT(b.wrongAsMisses.rmse, b.wrong.rmse) << "here a miss would have served the pixel better";
+
+  // No wrong hit: nothing to score as a miss.
+  hit.pixels[1 * 4 + 2] = 0.0f;
+  const CompositeBreakdown none = compositeBreakdown(reference, composite, gt, hit, colour);
+  EXPECT_EQ(none.wrong.pixels, 0u);
+  EXPECT_EQ(none.wrongAsMisses.pixels, 0u);
+  EXPECT_EQ(none.wrongAsMisses.share, 0.0);
+  EXPECT_EQ(none.unreachable.pixels, 2u) << "an occluded reflection not reported is unreachable";
+}
+
 // The references' colours as the G-buffer stores them (R11F_G11F_B10F): exact where the format
 // is (small integers, powers of two), otherwise rounded towards zero to its 6 mantissa bits in red
 // and green (less than one step: 2^-6 relative) and 5 in blue (2^-5), as glm packs them and Mesa

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -72,6 +73,22 @@ TEST_F(Bench, QuickGridWritesCompleteResultsAndReport) {
       for (const char* f : {"recall1px", "falseHitRate", "reflectionRmse", "fetchesPerTracedPixel"})
         EXPECT_TRUE(r[f].is_number()) << f << " in " << r.dump();
       EXPECT_LE(r["recall1px"].get<double>(), r["recall4px"].get<double>());
+      // The composite error's breakdown adds up to it: each kind's mean squared error by its pixels.
+      if (r["compositeRmse"].is_number()) {
+        const auto& b = r["compositeBreakdown"];
+        double squared = 0.0, share = 0.0;
+        size_t pixels = 0;
+        for (const char* k : {"hit", "wrong", "missed", "unreachable"}) {
+          const size_t n = b[k]["pixels"].get<size_t>();
+          if (n > 0) squared += std::pow(b[k]["rmse"].get<double>(), 2) * double(n);
+          pixels += n;
+          share += b[k]["share"].get<double>();
+        }
+        ASSERT_GT(pixels, 0u) << r.dump();
+        EXPECT_NEAR(std::sqrt(squared / double(pixels)), r["compositeRmse"].get<double>(), 1e-6) << r.dump();
+        EXPECT_NEAR(share, 1.0, 1e-9) << r.dump();
+        EXPECT_EQ(b["wrongAsMisses"]["pixels"], b["wrong"]["pixels"]);
+      }
       // Pass by pass, classify to finish; their bytes sum to the run's.
       ASSERT_EQ(r["passes"].size(), 6u) << r.dump();
       std::uint64_t read = 0;

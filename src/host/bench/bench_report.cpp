@@ -58,6 +58,25 @@ json settingsJson(const BenchConfig& c) {
 
 // NaN/Inf are not JSON: write null for "not applicable".
 json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+// The composite error's breakdown (CompositeBreakdown): each kind's pixels, RMSE (null without
+// pixels) and share.
+json breakdownJson(const CompositeBreakdown& b) {
+  auto kind = [](const CompositeBreakdown::Kind& k) {
+    return json{{"pixels", k.pixels}, {"rmse", k.pixels > 0 ? num(k.rmse) : json(nullptr)}, {"share", num(k.share)}};
+  };
+  return {{"hit", kind(b.hit)}, {"wrong", kind(b.wrong)}, {"missed", kind(b.missed)},
+          {"unreachable", kind(b.unreachable)}, {"wrongAsMisses", kind(b.wrongAsMisses)}};
+}
+
+// Its CSV columns: the four kinds' shares, the wrong hits' RMSE and theirs as misses (empty where
+// not measured).
+std::string breakdownCsv(const json& b) {
+  if (b.is_null()) return ",,,,,";
+  auto v = [](const json& x) { return x.is_null() ? std::string() : x.dump(); };
+  return v(b["hit"]["share"]) + "," + v(b["wrong"]["share"]) + "," + v(b["missed"]["share"]) + "," +
+         v(b["unreachable"]["share"]) + "," + v(b["wrong"]["rmse"]) + "," + v(b["wrongAsMisses"]["rmse"]);
+}
 json nums(const std::vector<double>& v) {
   json a = json::array();
   for (double x : v) a.push_back(num(x));
@@ -134,6 +153,7 @@ json runJson(const RunRecord& r) {
           {"reflectionPsnr", traced ? num(m.reflectionPsnr) : json(nullptr)},
           {"compositeRmse", traced ? num(r.compositeRmse) : json(nullptr)},
           {"compositePsnr", traced ? num(r.compositePsnr) : json(nullptr)},
+          {"compositeBreakdown", traced ? breakdownJson(r.compositeBreakdown) : json(nullptr)},
           {"predictedH100Ms", num(r.predictedH100Ms)},
           {"nonFiniteHitPixels", m.nonFinite},
           {"nonFiniteOutputPixels", r.nonFiniteOutputs},
@@ -407,7 +427,9 @@ std::string resultsCsv(const BenchResult& result) {
          "visible,occluded,offScreen,escaped,recall1px,recall2px,recall4px,medianErrorPx,p95ErrorPx,falseHitRate,"
          "reflectionRmse,reflectionPsnr,nonFiniteHitPixels,nonFiniteOutputPixels,tracedPixels,fetches,"
          "fetchesPerTracedPixel,dispatches,indirectDispatches,barriers,programs,bytesRead,bytesWritten,laneSteps,simt32,"
-         "simt64,longestChain,gbufferBytesPerPixel,extraBytesPerPixel,compositeRmse,compositePsnr,predictedH100Ms,parameters\n";
+         "simt64,longestChain,gbufferBytesPerPixel,extraBytesPerPixel,compositeRmse,compositePsnr,predictedH100Ms,"
+         "compositeHitShare,compositeWrongShare,compositeMissedShare,compositeUnreachableShare,compositeWrongRmse,"
+         "compositeWrongAsMissesRmse,parameters\n";
   for (const RunRecord& r : result.runs) {
     const json rj = runJson(r);
     const RayWork work = r.frameStats.totalRayWork();
@@ -427,7 +449,8 @@ std::string resultsCsv(const BenchResult& result) {
         << r.commands.programs << "," << r.traffic.bytesRead << "," << r.traffic.bytesWritten << ","
         << work.laneSteps << "," << work.simt32 << "," << work.simt64 << "," << work.longestChain
         << "," << r.gbufferBytesPerPixel << "," << r.extraBytesPerPixel << "," << v("compositeRmse") << ","
-        << v("compositePsnr") << "," << v("predictedH100Ms") << "," << quoted << "\n";
+        << v("compositePsnr") << "," << v("predictedH100Ms") << "," << breakdownCsv(rj["compositeBreakdown"]) << ","
+        << quoted << "\n";
   }
   return out.str();
 }

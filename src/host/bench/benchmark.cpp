@@ -307,9 +307,11 @@ Expected<RunRecord> qualityRun(const BenchConfig& c, size_t i, const std::string
     const Image hit = readTexture(ctx->hitTexture(), options.width, options.height, 4);
     r.metrics = compareHits(gt, hit, kReportedConfidence, &color);
     if (Status st = fr.compositeFrom(*ctx); !st) return Status::error(st.message());
-    const ImageError composite = compositeError(reference, fr.readFinal());
+    const Image final = fr.readFinal();
+    const ImageError composite = compositeError(reference, final);
     r.compositeRmse = composite.rmse;
     r.compositePsnr = composite.psnr;
+    r.compositeBreakdown = compositeBreakdown(reference, final, gt, hit, color);  // a miss shows the colour
     const FrameStats stats = ctx->waitForStats();
     r.tracedPixels = stats.tracedPixels;
     r.fetches = stats.fetches;

@@ -135,10 +135,14 @@ ImageError compositeError(const ReferenceImage& reference, const Image& composit
 }
 
 CompositeBreakdown compositeBreakdown(const ReferenceImage& reference, const Image& composite, const GroundTruth& truth,
-                                      const Image& hit) {
+                                      const Image& hit, const Image& withoutReflection) {
   CompositeBreakdown b;
-  double sum[4] = {0, 0, 0, 0}, total = 0.0;
+  double sum[4] = {0, 0, 0, 0}, total = 0.0, wrongAsMisses = 0.0;
   CompositeBreakdown::Kind* kinds[4] = {&b.hit, &b.wrong, &b.missed, &b.unreachable};
+  auto squaredError = [&](const Image& image, size_t p) {
+    const glm::vec3 d = rgbAt(image, p) - rgbAt(reference.composite, p);
+    return double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
+  };
   for (size_t p = 0; p < reference.scored.size(); ++p) {
     if (!reference.scored[p]) continue;
     const TruthPixel& tp = truth.pixels[p];
@@ -148,16 +152,19 @@ CompositeBreakdown compositeBreakdown(const ReferenceImage& reference, const Ima
     const bool within1px =
         visible && std::hypot((h[0] - tp.uvHit.x) * truth.width, (h[1] - tp.uvHit.y) * truth.height) <= 1.0f;
     const int k = reported ? (within1px ? 0 : 1) : (visible ? 2 : 3);
-    const glm::vec3 d = rgbAt(composite, p) - rgbAt(reference.composite, p);
-    const double e = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
+    const double e = squaredError(composite, p);
     sum[k] += e;
     total += e;
     ++kinds[k]->pixels;
+    if (k == 1) wrongAsMisses += squaredError(withoutReflection, p);
   }
   for (int k = 0; k < 4; ++k) {
     if (kinds[k]->pixels > 0) kinds[k]->rmse = std::sqrt(sum[k] / (3.0 * double(kinds[k]->pixels)));
     kinds[k]->share = total > 0.0 ? sum[k] / total : 0.0;
   }
+  b.wrongAsMisses.pixels = b.wrong.pixels;
+  if (b.wrong.pixels > 0) b.wrongAsMisses.rmse = std::sqrt(wrongAsMisses / (3.0 * double(b.wrong.pixels)));
+  b.wrongAsMisses.share = total > 0.0 ? wrongAsMisses / total : 0.0;
   return b;
 }
 

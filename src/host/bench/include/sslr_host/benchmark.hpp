@@ -10,6 +10,7 @@
 
 #include "sslr/sslr.hpp"
 #include "sslr_host/ground_truth.hpp"
+#include "sslr_host/reference_image.hpp"
 
 namespace sslr::host {
 
@@ -78,6 +79,9 @@ struct RunRecord {
   // The composite (over the fallback) against the ray-traced reference, over the mirror pixels
   // (reference_image.hpp): what the user sees. NaN where not measured (the baseline).
   double compositeRmse = NAN, compositePsnr = NAN;
+  // Where that error comes from (hits, wrong hits, misses, unreachable; the wrong hits' pixels as
+  // misses): the composite's pixels by what the method reported.
+  CompositeBreakdown compositeBreakdown;
   // The frame's time on an NVIDIA H100 as the ray-work model predicts it (cost_model.hpp); NaN
   // where the model does not apply (a frame not shaped as the fitted ones, the baseline).
   double predictedH100Ms = NAN;

@@ -65,9 +65,16 @@ struct CompositeBreakdown {
   Kind wrong;        // reported elsewhere: a false hit, or a visible reflection's hit over 1 px off
   Kind missed;       // visible reflection not reported: the fallback shows instead
   Kind unreachable;  // occluded, off screen or escaped, not reported: what no screen-space method sees
+  // The wrong pixels scored as if they had been misses: showing `withoutReflection` (what the
+  // composite shows at coverage 0) instead (share: of the total squared error as it is). Below
+  // `wrong`, a miss would have served those pixels better than their hits.
+  Kind wrongAsMisses;
 };
+// `withoutReflection`: the frame as the composite leaves it where nothing was found; over the
+// fallback (CompositeMode::BlendOverFallback) that is the G-buffer's colour, which holds the
+// fallback specular. Per pixel: a miss would also change what the blur spreads to its neighbours.
 CompositeBreakdown compositeBreakdown(const ReferenceImage& reference, const Image& composite, const GroundTruth& truth,
-                                      const Image& hit);
+                                      const Image& hit, const Image& withoutReflection);
 
 // |composite - reference| x 4 on the scored pixels, dark grey elsewhere (an sRGB image to look at).
 Image compositeErrorMap(const ReferenceImage& reference, const Image& composite);
