@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <unistd.h>
 #include <filesystem>
+#include <map>
+#include <regex>
 
 #include "common/shell.hpp"
 #include "gl/gl_fixture.hpp"
@@ -124,6 +126,48 @@ TEST_F(Viewer, ErrorViewAndSplitScreenRun) {
                           (dir / (std::string(name) + ".png")).string());
     EXPECT_EQ(r.exitCode, 0) << name << ": " << r.output;
   }
+}
+
+// The image-error view: each side's composite against the ray-traced reference, as sslr-render
+// --score maps and measures it for the same camera (the same numbers, printed by a scripted run;
+// the same map, left of the split line).
+TEST_F(Viewer, ImageErrorViewShowsWhatSslrRenderScores) {
+  const fs::path dir = freshDir("image-error");
+  const Result v = view("--size 320x180 --frames 2 --hide-ui --split dda --view image-error --screenshot " +
+                        (dir / "image-error.png").string());
+  ASSERT_EQ(v.exitCode, 0) << v.output;
+  const std::regex printed("sslr-view: ([AB]) [a-z-]+: image RMSE ([0-9.]+) over ([0-9]+) mirror pixels; hits");
+  std::map<std::string, std::pair<double, long>> viewer;
+  for (std::sregex_iterator it(v.output.begin(), v.output.end(), printed), end; it != end; ++it)
+    viewer[(*it)[1].str()] = {std::stod((*it)[2].str()), std::stol((*it)[3].str())};
+  ASSERT_EQ(viewer.size(), 2u) << v.output;
+  const std::regex scored("composite against the ray-traced reference: RMSE ([0-9.]+), PSNR [0-9.]+ dB over ([0-9]+)");
+  const std::pair<const char*, const char*> sides[] = {{"A", "adaptive-l"}, {"B", "dda"}};
+  for (const auto& [side, method] : sides) {
+    const Result r = sh(std::string(SSLR_RENDER_EXE) + " --size 320x180 --score --method " + method + " --out " +
+                        (dir / method).string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.output, m, scored)) << r.output;
+    // Printed to 4 decimals; the window's pipeline matches sslr-render's image (test above), so
+    // the two may differ by a rounding step.
+    EXPECT_NEAR(viewer[side].first, std::stod(m[1].str()), 1.5e-4) << method;
+    EXPECT_EQ(viewer[side].second, std::stol(m[2].str())) << method;
+  }
+  EXPECT_LT(viewer["A"].first, viewer["B"].first) << "the default is closer to the reference than the DDA here";
+  // Left of the split line (2 px either side of x = 160 left out): adaptive L's map.
+  auto shot = readImage((dir / "image-error.png").string());
+  auto map = readImage((dir / "adaptive-l" / "composite-error.png").string());
+  ASSERT_TRUE(shot && map);
+  size_t over = 0;
+  for (int y = 0; y < 180; ++y)
+    for (int x = 0; x < 158; ++x)
+      for (int k = 0; k < 3; ++k)
+        if (std::abs(shot.value().at(x, y, k) - map.value().at(x, y, k)) > 8.0f / 255.0f) {
+          ++over;
+          break;
+        }
+  EXPECT_LE(over, 158u * 180u / 100u) << "the window's image-error map and sslr-render's composite-error.png differ";
 }
 
 // A model with nothing to reflect in gets a mirror floor with --mirror-floor (Debian's

@@ -19,6 +19,7 @@
 #include "sslr_host/gl.hpp"
 #include "sslr_host/ground_truth.hpp"
 #include "sslr_host/image_io.hpp"
+#include "sslr_host/reference_image.hpp"
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -32,7 +33,7 @@ namespace sslr::host {
 namespace {
 
 // What the window shows of each view (present.frag's modes).
-enum class Source { Final, Reflection, Resolved, Hit, Iterations, HitDistance, Error };
+enum class Source { Final, Reflection, Resolved, Hit, Iterations, HitDistance, Error, ImageError };
 struct View {
   const char* name;
   Source source;
@@ -51,7 +52,9 @@ constexpr View kViews[] = {
     {"hit-distance", Source::HitDistance, 4, 10.0f},  // Context::hitDistanceTexture() / 10 view units
     {"hit-uv", Source::Hit, 5, 1.0f},
     {"error", Source::Error, 0, 1.0f},
+    {"image-error", Source::ImageError, 0, 1.0f},
 };
+constexpr int kErrorView = IM_ARRAYSIZE(kViews) - 2;
 
 const char* kMethods[] = {"adaptive-l", "hiz", "dda", "position-buffer", "none"};
 
@@ -69,9 +72,11 @@ struct Side {
   int preset = 2;
   Settings settings = Settings::preset(Preset::High);
   std::unique_ptr<FrameRenderer> renderer;
-  GLuint errorTexture = 0;  // the error view, computed on demand
-  std::string error;        // the last dispatch's error, shown in the panel
-  std::string errorSummary;  // the error view's metrics
+  GLuint errorTexture = 0;       // the error view, computed on demand
+  GLuint imageErrorTexture = 0;  // the image-error view, computed on demand
+  std::string error;             // the last dispatch's error, shown in the panel
+  std::string errorSummary;      // the error view's metrics
+  std::string imageErrorSummary;  // the image-error view's
   FrameStats stats;
 };
 
@@ -173,8 +178,11 @@ struct App {
       auto r = FrameRenderer::create(g, reinterpret_cast<GetProcAddress>(&glfwGetProcAddress));
       if (!r) return Status::error(r.error());
       s.renderer = std::move(r.value());
-      if (s.errorTexture != 0) glDeleteTextures(1, &s.errorTexture);
-      s.errorTexture = 0;
+      for (GLuint* t : {&s.errorTexture, &s.imageErrorTexture}) {
+        if (*t != 0) glDeleteTextures(1, t);
+        *t = 0;
+      }
+      s.imageErrorSummary.clear();
     }
     return {};
   }
@@ -198,6 +206,7 @@ struct App {
       case Source::Iterations: return c.iterationsTexture();
       case Source::HitDistance: return c.hitDistanceTexture();
       case Source::Error: return s.errorTexture != 0 ? s.errorTexture : s.renderer->finalTexture();
+      case Source::ImageError: return s.imageErrorTexture != 0 ? s.imageErrorTexture : s.renderer->finalTexture();
     }
     return 0;
   }
@@ -213,18 +222,62 @@ struct App {
     const Image hit = s.renderer->readHit();
     const Image map = hitErrorImage(truth.value(), hit);
     const HitMetrics m = compareHits(truth.value(), hit);
-    if (s.errorTexture == 0) {
-      glCreateTextures(GL_TEXTURE_2D, 1, &s.errorTexture);
-      glTextureStorage2D(s.errorTexture, 1, GL_RGBA16F, width, height);
-    }
-    std::vector<float> rgba(static_cast<size_t>(width) * height * 4, 1.0f);
-    for (size_t i = 0; i < static_cast<size_t>(width) * height; ++i)
-      for (int k = 0; k < 3; ++k) rgba[i * 4 + k] = map.pixels[i * 3 + k];
-    glTextureSubImage2D(s.errorTexture, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, rgba.data());
+    upload(s.errorTexture, map);
     char line[256];
     std::snprintf(line, sizeof line, "%s: recall@1px %.4f, p95 %.2f px, false hits %.2f%%", kMethods[s.method],
                   m.recall1px, m.p95ErrorPx, 100.0 * m.falseHitRate);
     s.errorSummary = line;
+  }
+
+  // The image-error view of one side: what the user sees, its composite over the fallback, against
+  // the ray-traced reference (reference_image.hpp): |error| x 4 on the mirror pixels, the RMSE, and
+  // the share of the squared error by what the method reported there.
+  void computeImageError(Side& s) {
+    if (s.method == 4) return;
+    const Settings settings = settingsFor(s);
+    if (composite != 0 || settings.output != OutputMode::Weighted) {
+      s.imageErrorSummary = std::string(kMethods[s.method]) +
+                            ": the image error needs the blend over the fallback and weighted output";
+      return;
+    }
+    const GBuffer& g = s.renderer->gbuffer();
+    auto truth = groundTruthFor(scene, g, settings);
+    if (!truth) {
+      status = "image-error view: " + truth.error();
+      return;
+    }
+    auto reference = referenceFor(scene, g, truth.value());
+    if (!reference) {
+      status = "image-error view: " + reference.error();
+      return;
+    }
+    const Image final = s.renderer->readFinal();
+    const ImageError e = compositeError(reference.value(), final);
+    const CompositeBreakdown b = compositeBreakdown(reference.value(), final, truth.value(), s.renderer->readHit(),
+                                                    g.readColor());  // a miss shows the colour
+    upload(s.imageErrorTexture, compositeErrorMap(reference.value(), final));
+    char line[320];
+    if (e.pixels == 0)
+      std::snprintf(line, sizeof line, "%s: no mirror pixel to score", kMethods[s.method]);
+    else
+      std::snprintf(line, sizeof line,
+                    "%s: image RMSE %.4f over %zu mirror pixels; hits %.0f%%, wrong %.0f%%, missed %.0f%%, "
+                    "unreachable %.0f%%",
+                    kMethods[s.method], e.rmse, e.pixels, 100.0 * b.hit.share, 100.0 * b.wrong.share,
+                    100.0 * b.missed.share, 100.0 * b.unreachable.share);
+    s.imageErrorSummary = line;
+  }
+
+  // An RGB image of the window's size into `texture` (RGBA16F, made on first use).
+  void upload(GLuint& texture, const Image& rgb) {
+    if (texture == 0) {
+      glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+      glTextureStorage2D(texture, 1, GL_RGBA16F, width, height);
+    }
+    std::vector<float> rgba(static_cast<size_t>(width) * height * 4, 1.0f);
+    for (size_t i = 0; i < static_cast<size_t>(width) * height; ++i)
+      for (int k = 0; k < 3; ++k) rgba[i * 4 + k] = rgb.pixels[i * 3 + k];
+    glTextureSubImage2D(texture, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, rgba.data());
   }
 
   void present() {
@@ -390,7 +443,12 @@ struct App {
     ImGui::SameLine();
     if (ImGui::Button("error view")) {
       for (int i = 0; i < (compare ? 2 : 1); ++i) computeError(sides[i]);
-      view = IM_ARRAYSIZE(kViews) - 1;
+      view = kErrorView;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("image error")) {
+      for (int i = 0; i < (compare ? 2 : 1); ++i) computeImageError(sides[i]);
+      view = kErrorView + 1;
     }
     std::vector<const char*> names;
     for (const View& v : kViews) names.push_back(v.name);
@@ -413,9 +471,12 @@ struct App {
       editing = 0;
     }
     sidePanel(sides[editing]);
-    for (int i = 0; i < (compare ? 2 : 1); ++i)
+    for (int i = 0; i < (compare ? 2 : 1); ++i) {
       if (!sides[i].errorSummary.empty())
         ImGui::Text("%s %s", compare ? (i == 0 ? "A" : "B") : "error view:", sides[i].errorSummary.c_str());
+      if (!sides[i].imageErrorSummary.empty())
+        ImGui::TextWrapped("%s %s", compare ? (i == 0 ? "A" : "B") : "image error:", sides[i].imageErrorSummary.c_str());
+    }
     if (!status.empty()) ImGui::TextWrapped("%s", status.c_str());
     ImGui::End();
   }
@@ -559,10 +620,16 @@ FrameResult drawFrame(App& app, const ViewerOptions& options, int frame, int& ex
   if (app.compare) app.renderSide(app.sides[1]);
   glFinish();
   app.frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  // The error view is computed when first shown (and by its button after the camera moved).
-  if (kViews[app.view].source == Source::Error)
-    for (int i = 0; i < (app.compare ? 2 : 1); ++i)
-      if (app.sides[i].errorTexture == 0 && app.sides[i].method != 4) app.computeError(app.sides[i]);
+  // The error views are computed when first shown (and by their buttons after the camera moved).
+  for (int i = 0; i < (app.compare ? 2 : 1); ++i) {
+    Side& s = app.sides[i];
+    if (s.method == 4) continue;
+    if (kViews[app.view].source == Source::Error && s.errorTexture == 0) app.computeError(s);
+    if (kViews[app.view].source == Source::ImageError && s.imageErrorTexture == 0 && s.imageErrorSummary.empty()) {
+      app.computeImageError(s);
+      if (options.frames > 0) std::printf("sslr-view: %s %s\n", i == 0 ? "A" : "B", s.imageErrorSummary.c_str());
+    }
+  }
   app.present();
   if (!options.hideUi) app.panel();
   ImGui::Render();
@@ -595,7 +662,8 @@ void releaseViewer(App& app) {
   ImGui::DestroyContext();
   for (Side& s : app.sides) {
     s.renderer.reset();
-    if (s.errorTexture != 0) glDeleteTextures(1, &s.errorTexture);
+    for (GLuint t : {s.errorTexture, s.imageErrorTexture})
+      if (t != 0) glDeleteTextures(1, &t);
   }
   app.gpu.reset();
   glDeleteProgram(app.presentProgram);

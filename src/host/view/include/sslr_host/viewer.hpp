@@ -1,7 +1,8 @@
 // sslr-view: the module dropped into a GLFW window. A small deferred renderer (the tools'
 // FrameRenderer: G-buffer pass with lighting and fallback specular, sslr dispatch, composite over
 // the fallback) presented to the window, with a Dear ImGui panel for every setting, debug views,
-// a split screen comparing two settings, per-pass timings and an error view against Embree.
+// a split screen comparing two settings, per-pass timings, an error view of the hits against
+// Embree and an image-error view of the composite against the ray-traced reference.
 #pragma once
 
 #include <string>
