@@ -109,6 +109,7 @@ TEST_F(Bench, QuickGridWritesCompleteResultsAndReport) {
   const std::string text((std::istreambuf_iterator<char>(html)), {});
   EXPECT_NE(text.find("<svg"), std::string::npos);
   EXPECT_NE(text.find("Fastest configuration reaching recall"), std::string::npos);
+  EXPECT_NE(text.find("its error: hits / wrong / missed / unreachable"), std::string::npos);
   const std::regex img("src='([^']+)'");
   int images = 0;
   for (std::sregex_iterator it(text.begin(), text.end(), img), end; it != end; ++it, ++images)

@@ -469,15 +469,32 @@ void reportHead(std::ostringstream& h, const BenchResult& result) {
     << ". Error: Embree ground truth; recall = visible (class A) reflections reported (confidence &gt; 0.5) within N px of "
        "the true hit; false hits = occluded/off-screen/escaped reflections reported; RMSE = colour at the reported hit "
        "(0 if none) vs colour at the true hit, over class A; composite RMSE = the final image (the reflection "
-       "composited over the fallback) against a ray-traced reference composite, over the mirror pixels. Large dots: "
+       "composited over the fallback) against a ray-traced reference composite, over the mirror pixels, and the share "
+       "of its squared error in hits within 1 px, wrong hits, misses and reflections no screen-space method sees; "
+       "wrong hits as misses = those pixels' RMSE, then as if nothing had been reported there. Large dots: "
        "each method's default.</p>";
+}
+
+// A run's composite error by kind (shares of its squared error, %), empty where not measured.
+std::string breakdownCell(const RunRecord& r) {
+  if (!std::isfinite(r.compositeRmse)) return "";
+  const CompositeBreakdown& b = r.compositeBreakdown;
+  return fmt(100.0 * b.hit.share, 0) + " / " + fmt(100.0 * b.wrong.share, 0) + " / " + fmt(100.0 * b.missed.share, 0) +
+         " / " + fmt(100.0 * b.unreachable.share, 0) + "%";
+}
+// Its wrong hits' RMSE, then the same pixels' as misses (lower: a miss would have served them better).
+std::string wrongAsMissesCell(const RunRecord& r) {
+  const CompositeBreakdown& b = r.compositeBreakdown;
+  if (!std::isfinite(r.compositeRmse) || b.wrong.pixels == 0) return "";
+  return fmt(b.wrong.rmse, 3) + " &rarr; " + fmt(b.wrongAsMisses.rmse, 3);
 }
 
 // The defaults side by side per scene, and each method's fastest configuration reaching recall 0.95.
 void reportSummaries(std::ostringstream& h, const BenchResult& result) {
   // Summary table: the defaults side by side per scene.
   h << "<h2>Summary (defaults)</h2><table><tr><th>scene</th><th>method</th><th>time ms</th><th>time ratio</th>"
-       "<th>recall@1px</th><th>p95 px</th><th>false hits</th><th>RMSE</th><th>composite RMSE</th><th>fetches/px</th>"
+       "<th>recall@1px</th><th>p95 px</th><th>false hits</th><th>RMSE</th><th>composite RMSE</th>"
+       "<th>its error: hits / wrong / missed / unreachable</th><th>wrong hits as misses</th><th>fetches/px</th>"
        "<th>G-buffer B/px</th></tr>";
   for (const SceneRecord& sc : result.scenes) {
     // Each method's default; the time ratio is to the tutorial's configuration.
@@ -489,6 +506,7 @@ void reportSummaries(std::ostringstream& h, const BenchResult& result) {
         << fmt(r->timeMedianMs, 2) << "</td><td>" << fmt(ratio, 2) << "</td><td>" << fmt(r->metrics.recall1px, 4)
         << "</td><td>" << fmt(r->metrics.p95ErrorPx, 3) << "</td><td>" << fmt(r->metrics.falseHitRate, 4) << "</td><td>"
         << fmt(r->metrics.reflectionRmse, 4) << "</td><td>" << fmt(r->compositeRmse, 4) << "</td><td>"
+        << breakdownCell(*r) << "</td><td>" << wrongAsMissesCell(*r) << "</td><td>"
         << fmt(r->fetchesPerTracedPixel, 1) << "</td><td>"
         << r->gbufferBytesPerPixel << "</td></tr>";
     }
