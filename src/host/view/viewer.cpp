@@ -238,6 +238,8 @@ struct App {
     if (composite != 0 || settings.output != OutputMode::Weighted) {
       s.imageErrorSummary = std::string(kMethods[s.method]) +
                             ": the image error needs the blend over the fallback and weighted output";
+      if (s.imageErrorTexture != 0) glDeleteTextures(1, &s.imageErrorTexture);  // no stale map
+      s.imageErrorTexture = 0;
       return;
     }
     const GBuffer& g = s.renderer->gbuffer();
