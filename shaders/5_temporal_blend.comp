@@ -120,18 +120,57 @@ vec4 sslrClipToNeighbourhood(ivec2 px, vec4 current, vec4 history) {
   return clamp(history, lo, hi);
 }
 
+// Whether pixel px (traced) drew its ray from its lobe (GlossyMode::Stochastic; stochasticFrom > 1
+// otherwise).
+bool sslrStochasticPixel(vec4 material) {
+  return sslrRoughness(frame.surface, material) >= frame.trace.stochasticFrom;
+}
+
+// GlossyMode::Stochastic in a frame with history: a rough pixel's one ray is not blurred (the trace
+// gave it no blur weight, sslrStochasticWithHistory) but averaged here with those of its 3x3
+// neighbours that drew theirs too, by the blur's tap weights (sslrBlurTapWeight2d: the surface's
+// depth and normal, a Gaussian of one pixel). Temporal reuse then accumulates that over frames:
+// one pass over nine pixels in place of the blur's two (docs/results/glossy.md, "0.9.3").
+vec4 sslrStochasticNeighbourhood(ivec2 px, vec4 current, float depth, vec4 packedNormal) {
+  vec3 n0;
+  if (!sslrDecodeNormal(frame.surface, packedNormal, n0)) return current;
+  SslrBlurCentre centre = sslrBlurCentre(frame.trace, 2.0f, abs(sslrViewAtPixel(px, depth).z), n0);
+  ivec2 maxPx = ivec2(sslrSizePx()) - 1;
+  vec4 sum = current;
+  float weightSum = 1.0f;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      ivec2 q = px + ivec2(dx, dy);
+      if ((dx == 0 && dy == 0) || any(lessThan(q, ivec2(0))) || any(greaterThan(q, maxPx))) continue;
+      float depth1 = texelFetch(uDepth, sslrTexel(q), 0).r;
+      vec4 normal1 = texelFetch(uNormal, sslrTexel(q), 0);
+      vec4 material1 = sslrMaterialAt(q, normal1);
+      vec3 n1;
+      if (!sslrShouldTracePixel(q, depth1, normal1, material1) || !sslrStochasticPixel(material1) ||
+          !sslrDecodeNormal(frame.surface, normal1, n1))
+        continue;
+      float w = sslrBlurTapWeight2d(centre, ivec2(dx, dy), abs(sslrViewAtPixel(q, depth1).z), n1);
+      sum += texelFetch(uCurrent, sslrTexel(q), 0) * w;
+      weightSum += w;
+    }
+  return sum / weightSum;
+}
+
 void main() {
   ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
   if (!sslrInside(px)) return;
   vec4 current = texelFetch(uCurrent, sslrTexel(px), 0);
-  vec4 blended = current;
   float historyShare = 0.0f;  // how much of `blended` is history
   float depth = texelFetch(uDepth, sslrTexel(px), 0).r;
   vec4 packedNormal = texelFetch(uNormal, sslrTexel(px), 0);
+  vec4 material = sslrMaterialAt(px, packedNormal);
+  bool traced = sslrShouldTracePixel(px, depth, packedNormal, material);
+  if (frame.temporal.history != 0 && traced && sslrStochasticPixel(material))
+    current = sslrStochasticNeighbourhood(px, current, depth, packedNormal);
+  vec4 blended = current;
   vec4 history;
   bool fullWeight;
-  if (frame.temporal.history != 0 && sslrShouldTracePixel(px, depth, packedNormal, sslrMaterialAt(px, packedNormal)) &&
-      sslrFindHistory(px, current, depth, packedNormal, history, fullWeight)) {
+  if (frame.temporal.history != 0 && traced && sslrFindHistory(px, current, depth, packedNormal, history, fullWeight)) {
     historyShare = frame.temporal.historyWeight * (fullWeight ? 1.0f : 0.25f);
     blended = mix(current, sslrClipToNeighbourhood(px, current, history), historyShare);
   }

@@ -118,6 +118,11 @@ bool sslrPixelToTrace(ivec2 px, out SslrPixel q) {
   return true;
 }
 
+// Whether pixel q's ray was drawn from its lobe in a frame with temporal history. Such a pixel takes
+// no guess (sslrRayParams) and no blur: the temporal blend filters it over its neighbours instead
+// (sslrStochasticNeighbourhood in 5_temporal_blend.comp; docs/results/glossy.md, "0.9.3").
+bool sslrStochasticWithHistory(SslrPixel q) { return q.stochastic && frame.temporal.history != 0; }
+
 // The trace parameters of pixel q's ray. A ray drawn from the lobe takes no guess
 // (Settings::traversal.hiddenGuess, thinObjectHits) where temporal reuse has a history: the pixel's
 // colour is then the mean over the frames' rays that found something (rgb / a), which a miss leaves
@@ -125,7 +130,7 @@ bool sslrPixelToTrace(ivec2 px, out SslrPixel q) {
 // reset) keeps the guess: its one ray is all the pixel shows (docs/results/glossy.md, "0.9.1").
 SslrTraceParams sslrRayParams(SslrPixel q) {
   SslrTraceParams t = frame.trace;
-  if (q.stochastic && frame.temporal.history != 0) {
+  if (sslrStochasticWithHistory(q)) {
     t.hiddenGuessWeight = 0.0f;
     t.thinObjectHits = 0;
   }

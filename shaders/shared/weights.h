@@ -91,15 +91,21 @@ SSLR_FN vec3 sslrClampLuminance(vec3 color, float maxLuminance) {
 }
 
 // One tap's weight in the blur's sum (not the "blur weight", the reflection's alpha that sets
-// the radius): Gaussian in the offset, falling with the depth and normal differences.
-SSLR_FN float sslrBlurTapWeight(SslrBlurCentre c, int offsetPx, float z1, vec3 n1) {
+// the radius): Gaussian in the offset, falling with the depth and normal differences. For a tap
+// `offset` pixels away in both axes (the stochastic mode's filter in the temporal blend,
+// 5_temporal_blend.comp) the Gaussian is in the squared distance.
+SSLR_FN float sslrBlurTapWeight2d(SslrBlurCentre c, ivec2 offset, float z1, vec3 n1) {
   float normalLog2 = 0.0f;  // blur.normalPower 0: no normal term
   if (c.normalPower > 0.0f) {
     float cosine = dot(c.normal, n1);
     if (!(cosine > 0.0f)) return 0.0f;  // max(0, n0.n1)^power = 0 (log2 would be undefined)
     normalLog2 = c.normalPower * log2(cosine);
   }
-  return exp2(c.gaussianLog2 * float(offsetPx * offsetPx) + c.depthLog2 * abs(z1 - c.z) + normalLog2);
+  return exp2(c.gaussianLog2 * float(offset.x * offset.x + offset.y * offset.y) + c.depthLog2 * abs(z1 - c.z) +
+              normalLog2);
+}
+SSLR_FN float sslrBlurTapWeight(SslrBlurCentre c, int offsetPx, float z1, vec3 n1) {
+  return sslrBlurTapWeight2d(c, ivec2(offsetPx, 0), z1, n1);
 }
 
 #ifdef __cplusplus

@@ -773,6 +773,52 @@ TEST_F(Api, SignedNormalFormatsGiveTheSameHits) {
   }
 }
 
+// GlossyMode::Stochastic with temporal reuse: the first frame (no history) blurs its rough pixels'
+// rays as the cone blur does; a frame with history gives them no blur weight, so the blur runs over
+// none of their tiles (the temporal blend filters them instead: 5_temporal_blend.comp). Measured
+// at 160x90: 3,023 of the 11,072 rough pixels blurred in the first frame over 84 tiles, none and 0
+// in the second.
+TEST_F(Api, StochasticRaysWithHistoryAreFilteredByTheTemporalBlendNotBlurred) {
+  auto scene = makeBuiltinScene("glossy");  // panels of roughness 0, 0.1, ..., 0.5
+  ASSERT_TRUE(scene);
+  GpuScene gpu(scene.value());
+  GBufferOptions o;
+  o.width = 160;
+  o.height = 90;
+  auto g = GBuffer::create(o);
+  ASSERT_TRUE(g) << g.error();
+  ASSERT_TRUE(g.value()->render(gpu, *scene.value().camera));
+  FrameInputs in = g.value()->frameInputs();
+  in.previousClipFromView = in.clipFromView;
+  const Image packed = g.value()->readNormalPacked();  // roughness in B (the tools' layout)
+  Settings s;
+  s.debug.outputs = true;
+  s.debug.collectStats = true;
+  s.glossy.mode = GlossyMode::Stochastic;
+  s.temporal.enabled = true;
+  auto ctx = makeContext(o.width, o.height);
+  ASSERT_TRUE(ctx->dispatch(in, s));  // no history yet
+  const Image first = readTexture(ctx->reflectionTexture(), o.width, o.height, 4);
+  const std::uint32_t firstBlurTiles = ctx->waitForStats().blurTiles;
+  ASSERT_TRUE(ctx->dispatch(in, s));
+  const Image second = readTexture(ctx->reflectionTexture(), o.width, o.height, 4);
+  const std::uint32_t secondBlurTiles = ctx->waitForStats().blurTiles;
+  size_t rough = 0, blurredFirst = 0, blurredSecond = 0;
+  for (int y = 0; y < o.height; ++y)
+    for (int x = 0; x < o.width; ++x) {
+      if (!(packed.at(x, y, 2) >= s.glossy.stochasticFrom)) continue;
+      ++rough;
+      blurredFirst += first.at(x, y, 3) > 0.0f ? 1 : 0;  // the reflection's alpha: its blur weight
+      blurredSecond += second.at(x, y, 3) > 0.0f ? 1 : 0;
+    }
+  ASSERT_GT(rough, 2000u);
+  EXPECT_GT(blurredFirst, 1000u) << "the first frame blurs the rays that hit";
+  EXPECT_EQ(blurredSecond, 0u) << "a frame with history blurs no stochastic ray";
+  EXPECT_GT(firstBlurTiles, 20u);
+  EXPECT_LT(secondBlurTiles, firstBlurTiles / 4) << "the blur runs over the smooth panels' tiles alone";
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
 // GlossyMode::Stochastic changes the rays of the pixels at least glossy.stochasticFrom rough, and
 // of no other: below the threshold the hits are the cone blur mode's bit for bit; above it they
 // differ from the mirror rays' and from frame to frame (a new draw each dispatch).
