@@ -120,17 +120,18 @@ vec4 sslrClipToNeighbourhood(ivec2 px, vec4 current, vec4 history) {
   return clamp(history, lo, hi);
 }
 
-// Whether pixel px (traced) drew its ray from its lobe (GlossyMode::Stochastic; stochasticFrom > 1
-// otherwise).
+#ifdef SSLR_STOCHASTIC_FILTER
+// Whether a traced pixel with these material channels drew its ray from its lobe.
 bool sslrStochasticPixel(vec4 material) {
   return sslrRoughness(frame.surface, material) >= frame.trace.stochasticFrom;
 }
 
-// GlossyMode::Stochastic in a frame with history: a rough pixel's one ray is not blurred (the trace
-// gave it no blur weight, sslrStochasticWithHistory) but averaged here with those of its 3x3
-// neighbours that drew theirs too, by the blur's tap weights (sslrBlurTapWeight2d: the surface's
-// depth and normal, a Gaussian of one pixel). Temporal reuse then accumulates that over frames:
-// one pass over nine pixels in place of the blur's two (docs/results/glossy.md, "0.9.3").
+// GlossyMode::Stochastic with the blur, in a frame with history: a rough pixel's one ray is not
+// blurred (the trace gave it no blur weight, sslrFilteredByTemporalBlend) but averaged here with
+// those of its 3x3 neighbours that drew theirs too, by the blur's tap weights (sslrBlurTapWeight2d:
+// the surface's depth and normal, a Gaussian of one pixel). Temporal reuse then accumulates that
+// over frames: one pass over nine pixels in place of the blur's two (docs/results/glossy.md,
+// "0.9.3").
 vec4 sslrStochasticNeighbourhood(ivec2 px, vec4 current, float depth, vec4 packedNormal) {
   vec3 n0;
   if (!sslrDecodeNormal(frame.surface, packedNormal, n0)) return current;
@@ -155,6 +156,7 @@ vec4 sslrStochasticNeighbourhood(ivec2 px, vec4 current, float depth, vec4 packe
     }
   return sum / weightSum;
 }
+#endif
 
 void main() {
   ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
@@ -165,8 +167,10 @@ void main() {
   vec4 packedNormal = texelFetch(uNormal, sslrTexel(px), 0);
   vec4 material = sslrMaterialAt(px, packedNormal);
   bool traced = sslrShouldTracePixel(px, depth, packedNormal, material);
+#ifdef SSLR_STOCHASTIC_FILTER
   if (frame.temporal.history != 0 && traced && sslrStochasticPixel(material))
     current = sslrStochasticNeighbourhood(px, current, depth, packedNormal);
+#endif
   vec4 blended = current;
   vec4 history;
   bool fullWeight;

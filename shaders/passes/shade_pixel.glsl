@@ -38,8 +38,7 @@ uint sslrShadePixel(ivec2 px) {
       if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0f);
       color = clamp(color, vec3(0.0f), vec3(60000.0f));
       color = sslrClampLuminance(color, frame.trace.maxHitLuminance);
-      // A stochastic ray with a history is filtered by the temporal blend, not blurred.
-      float blurWeight = sslrStochasticWithHistory(q) ? 0.0f : w.blurWeight;
+      float blurWeight = sslrFilteredByTemporalBlend(q) ? 0.0f : w.blurWeight;
 #ifdef SSLR_COLORED_F0
       vec3 f0 = sslrColoredF0At(px, q.material, reflectance);
       reflection = vec4(color * (sslrFresnelColored(frame.trace, f0, q.cosVN) * w.coverage), blurWeight);

@@ -118,10 +118,20 @@ bool sslrPixelToTrace(ivec2 px, out SslrPixel q) {
   return true;
 }
 
-// Whether pixel q's ray was drawn from its lobe in a frame with temporal history. Such a pixel takes
-// no guess (sslrRayParams) and no blur: the temporal blend filters it over its neighbours instead
-// (sslrStochasticNeighbourhood in 5_temporal_blend.comp; docs/results/glossy.md, "0.9.3").
+// Whether pixel q's ray was drawn from its lobe in a frame with temporal history: it takes no guess
+// (sslrRayParams).
 bool sslrStochasticWithHistory(SslrPixel q) { return q.stochastic && frame.temporal.history != 0; }
+
+// Whether pixel q's value skips the blur: such a ray, with the blur on (SSLR_STOCHASTIC_FILTER),
+// which the temporal blend filters over its neighbours instead (sslrStochasticNeighbourhood in
+// 5_temporal_blend.comp; docs/results/glossy.md, "0.9.3").
+bool sslrFilteredByTemporalBlend(SslrPixel q) {
+#ifdef SSLR_STOCHASTIC_FILTER
+  return sslrStochasticWithHistory(q);
+#else
+  return false;
+#endif
+}
 
 // The trace parameters of pixel q's ray. A ray drawn from the lobe takes no guess
 // (Settings::traversal.hiddenGuess, thinObjectHits) where temporal reuse has a history: the pixel's

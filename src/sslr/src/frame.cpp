@@ -244,6 +244,11 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
   if (settings.temporal.enabled) traceDefines += "#define SSLR_TEMPORAL_HITS 1\n";
   if (settings.hitDistance) traceDefines += "#define SSLR_HIT_DISTANCE 1\n";
   if (settings.glossy.mode == GlossyMode::Stochastic) traceDefines += "#define SSLR_STOCHASTIC 1\n";
+  // Stochastic rays with a history: the temporal blend filters them in place of the blur.
+  const std::string stochasticFilter = settings.glossy.mode == GlossyMode::Stochastic && f.blur && f.temporal
+                                           ? "#define SSLR_STOCHASTIC_FILTER 1\n"
+                                           : "";
+  traceDefines += stochasticFilter;
   const std::string deferDefine = f.deferTraversal ? "#define SSLR_DEFER_TRAVERSAL 1\n" : "";
   const std::string countDefine = "#define SSLR_COUNT_TRAVERSAL 1\n";
   // The full-resolution trace; at half resolution the shading from the quads' rays instead.
@@ -274,7 +279,7 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
       {&f.programs.blur.vertical, optionalProgram(f.blur, "4_blur.comp", "#define SSLR_BLUR_AXIS ivec2(0, 1)\n#define SSLR_BLUR_VERTICAL 1\n")},
       {&f.programs.temporal.blend,
        optionalProgram(settings.temporal.enabled, "5_temporal_blend.comp",
-                       f.historyConfidence ? "#define SSLR_HISTORY_CONFIDENCE 1\n" : "")},
+                       (f.historyConfidence ? "#define SSLR_HISTORY_CONFIDENCE 1\n" : "") + stochasticFilter)},
       {&f.programs.temporal.store, optionalProgram(settings.temporal.enabled, "5_temporal_store.comp", "")},
       {&f.programs.temporal.cleanup, optionalProgram(settings.temporal.enabled, "5_clear_untraced_history.comp", "")}};
   for (const auto& [slot, program] : built) {
