@@ -225,9 +225,11 @@ enum class GlossyMode {
   // image's neighbourhood.
   ConeBlur,
   // Pixels at least Settings::glossy.stochasticFrom rough trace one ray a frame drawn from their
-  // GGX lobe (visible normals, Heitz 2018); the blur over the same cone resolves them in space and
-  // temporal reuse (Settings::temporal) over frames. Without temporal reuse each frame is one
-  // noisy sample per pixel (for an engine's own denoiser). Not with halfResolution.
+  // GGX lobe (visible normals, Heitz 2018), resolved in space and over frames (Settings::temporal):
+  // by the blur over the same cone where there is no history, and, with the blur on, by a 3x3
+  // filter in the temporal blend once there is one (their reflection's blur weight is then 0).
+  // Without temporal reuse each frame is one noisy sample per pixel; with blur.enabled = false
+  // the samples are left raw (for an engine's own denoiser). Not with halfResolution.
   Stochastic,
 };
 
