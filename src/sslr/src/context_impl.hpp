@@ -66,6 +66,7 @@ struct TrafficModel {
   std::uint64_t upperCells = 0;   // cells of levels 2 and up
   int fetchBytes = 0;             // bytes of one counted fetch (depth, position, or pyramid texel)
   bool halfResolution = false, hitRecord = false, iterations = false, hitDistance = false, temporal = false;
+  bool stochasticFilter = false;  // the temporal blend reads its 3x3 neighbours' depth, normal and material
   int blurTaps = 0;               // taps on each side at the blur's widest (0: no blur)
 };
 // FrameStats' PassTraffic from the model and the frame's counts (tiles, traced pixels, fetches).
@@ -217,6 +218,9 @@ struct Context::Impl {
     bool countTraversal = false, countQuads = false;  // Auto inline: count what needed it
     bool retracePass = false, quadRetracePass = false;
     bool blur = false;
+    // GlossyMode::Stochastic with the blur and temporal reuse: in a frame with history the temporal
+    // blend filters the stochastic rays in place of the blur (SSLR_STOCHASTIC_FILTER).
+    bool stochasticFilter = false;
     bool wideClassify = false;     // DeviceProfile::Gpu: 2x2 tiles a group, clean-up and pyramid arguments inside
     bool useHistory = false;       // temporal: the previous frame stored a history
     StatsSlot* slot = nullptr;     // Settings::debug.collectStats: this frame's ring slot

@@ -181,6 +181,7 @@ Context::Impl::FramePlan Context::Impl::planFrame(const Settings& settings,
   f.retracePass = settings.halfResolution || f.deferTraversal;
   f.quadRetracePass = settings.halfResolution && f.deferTraversal;
   f.blur = settings.blur.enabled && settings.blur.maxRadiusPx > 0.0f;
+  f.stochasticFilter = settings.glossy.mode == GlossyMode::Stochastic && f.blur && f.temporal;
   f.wideClassify = !softwareRenderer;
   // History of the previous frame only if it stored one (else its keys may be older: cleared).
   f.useHistory = settings.temporal.enabled && hadHistory;
@@ -213,6 +214,7 @@ TrafficModel Context::Impl::trafficModel(const FramePlan& f, TrafficModel format
   m.iterations = f.debugOutputs;
   m.hitDistance = f.hitDistance;
   m.temporal = f.temporal;
+  m.stochasticFilter = f.stochasticFilter;
   m.blurTaps = f.blur ? static_cast<int>(std::ceil(std::min(settings.blur.maxRadiusPx, 32.0f))) : 0;
   return m;
 }
@@ -244,10 +246,7 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
   if (settings.temporal.enabled) traceDefines += "#define SSLR_TEMPORAL_HITS 1\n";
   if (settings.hitDistance) traceDefines += "#define SSLR_HIT_DISTANCE 1\n";
   if (settings.glossy.mode == GlossyMode::Stochastic) traceDefines += "#define SSLR_STOCHASTIC 1\n";
-  // Stochastic rays with a history: the temporal blend filters them in place of the blur.
-  const std::string stochasticFilter = settings.glossy.mode == GlossyMode::Stochastic && f.blur && f.temporal
-                                           ? "#define SSLR_STOCHASTIC_FILTER 1\n"
-                                           : "";
+  const std::string stochasticFilter = f.stochasticFilter ? "#define SSLR_STOCHASTIC_FILTER 1\n" : "";
   traceDefines += stochasticFilter;
   const std::string deferDefine = f.deferTraversal ? "#define SSLR_DEFER_TRAVERSAL 1\n" : "";
   const std::string countDefine = "#define SSLR_COUNT_TRAVERSAL 1\n";

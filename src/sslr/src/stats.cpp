@@ -146,6 +146,11 @@ void estimateTraffic(const TrafficModel& m, FrameStats& f) {
     read(t, tilePixels * 3, m.normalBytes);  // the normal and two neighbours'
     read(t, tilePixels, m.depthBytes);
     if (m.motionBytes > 0) read(t, tilePixels, m.motionBytes);
+    if (m.stochasticFilter) {  // the 3x3 filter's neighbours (every pixel counted: an upper bound)
+      read(t, tilePixels * 8, m.depthBytes);
+      read(t, tilePixels * 8, m.normalBytes);
+      if (m.materialBytes > 0) read(t, tilePixels * 8, m.materialBytes);
+    }
     write(t, tilePixels, kRgba16f);
     read(t, tilePixels, kRgba16f);          // store: the blend, depth, normal
     read(t, tilePixels, m.depthBytes);
