@@ -54,6 +54,27 @@ struct Frame {
   }
 };
 
+// The built-in `glossy` scene (panels of roughness 0, 0.1, ..., 0.5) rendered at 160x90, with its
+// packed normal texels (roughness in B, the tools' layout).
+struct GlossyPanels {
+  static constexpr int kWidth = 160, kHeight = 90;
+  std::unique_ptr<GBuffer> gbuffer;
+  Image packed;
+  GlossyPanels() {
+    GBufferOptions o;
+    o.width = kWidth;
+    o.height = kHeight;
+    auto g = GBuffer::create(o);
+    EXPECT_TRUE(g) << g.error();
+    gbuffer = std::move(g.value());
+    auto scene = makeBuiltinScene("glossy");
+    EXPECT_TRUE(scene) << scene.error();
+    GpuScene gpu(scene.value());
+    EXPECT_TRUE(gbuffer->render(gpu, *scene.value().camera));
+    packed = gbuffer->readNormalPacked();
+  }
+};
+
 class Api : public sslr::test::GlTest {};
 
 TEST_F(Api, CreateRejectsBadDescriptions) {
@@ -779,33 +800,27 @@ TEST_F(Api, SignedNormalFormatsGiveTheSameHits) {
 // at 160x90: 3,023 of the 11,072 rough pixels blurred in the first frame over 84 tiles, none and 0
 // in the second.
 TEST_F(Api, StochasticRaysWithHistoryAreFilteredByTheTemporalBlendNotBlurred) {
-  auto scene = makeBuiltinScene("glossy");  // panels of roughness 0, 0.1, ..., 0.5
-  ASSERT_TRUE(scene);
-  GpuScene gpu(scene.value());
-  GBufferOptions o;
-  o.width = 160;
-  o.height = 90;
-  auto g = GBuffer::create(o);
-  ASSERT_TRUE(g) << g.error();
-  ASSERT_TRUE(g.value()->render(gpu, *scene.value().camera));
-  FrameInputs in = g.value()->frameInputs();
+  const GlossyPanels panels;
+  ASSERT_TRUE(panels.gbuffer);
+  FrameInputs in = panels.gbuffer->frameInputs();
   in.previousClipFromView = in.clipFromView;
-  const Image packed = g.value()->readNormalPacked();  // roughness in B (the tools' layout)
+  const Image& packed = panels.packed;
+  const int w = GlossyPanels::kWidth, h = GlossyPanels::kHeight;
   Settings s;
   s.debug.outputs = true;
   s.debug.collectStats = true;
   s.glossy.mode = GlossyMode::Stochastic;
   s.temporal.enabled = true;
-  auto ctx = makeContext(o.width, o.height);
+  auto ctx = makeContext(w, h);
   ASSERT_TRUE(ctx->dispatch(in, s));  // no history yet
-  const Image first = readTexture(ctx->reflectionTexture(), o.width, o.height, 4);
+  const Image first = readTexture(ctx->reflectionTexture(), w, h, 4);
   const std::uint32_t firstBlurTiles = ctx->waitForStats().blurTiles;
   ASSERT_TRUE(ctx->dispatch(in, s));
-  const Image second = readTexture(ctx->reflectionTexture(), o.width, o.height, 4);
+  const Image second = readTexture(ctx->reflectionTexture(), w, h, 4);
   const std::uint32_t secondBlurTiles = ctx->waitForStats().blurTiles;
   size_t rough = 0, blurredFirst = 0, blurredSecond = 0;
-  for (int y = 0; y < o.height; ++y)
-    for (int x = 0; x < o.width; ++x) {
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
       if (!(packed.at(x, y, 2) >= s.glossy.stochasticFrom)) continue;
       ++rough;
       blurredFirst += first.at(x, y, 3) > 0.0f ? 1 : 0;  // the reflection's alpha: its blur weight
@@ -823,32 +838,26 @@ TEST_F(Api, StochasticRaysWithHistoryAreFilteredByTheTemporalBlendNotBlurred) {
 // of no other: below the threshold the hits are the cone blur mode's bit for bit; above it they
 // differ from the mirror rays' and from frame to frame (a new draw each dispatch).
 TEST_F(Api, StochasticGlossyDrawsNewRaysOnRoughPixelsOnly) {
-  auto scene = makeBuiltinScene("glossy");  // panels of roughness 0, 0.1, ..., 0.5
-  ASSERT_TRUE(scene);
-  GpuScene gpu(scene.value());
-  GBufferOptions o;
-  o.width = 160;
-  o.height = 90;
-  auto g = GBuffer::create(o);
-  ASSERT_TRUE(g) << g.error();
-  ASSERT_TRUE(g.value()->render(gpu, *scene.value().camera));
-  const FrameInputs in = g.value()->frameInputs();
-  const Image packed = g.value()->readNormalPacked();  // roughness in B (the tools' layout)
+  const GlossyPanels panels;
+  ASSERT_TRUE(panels.gbuffer);
+  const FrameInputs in = panels.gbuffer->frameInputs();
+  const Image& packed = panels.packed;
+  const int w = GlossyPanels::kWidth, h = GlossyPanels::kHeight;
   Settings cone;
   cone.debug.outputs = true;
   Settings stochastic = cone;
   stochastic.glossy.mode = GlossyMode::Stochastic;
   stochastic.glossy.stochasticFrom = 0.25f;
-  auto ctx = makeContext(o.width, o.height);
+  auto ctx = makeContext(w, h);
   ASSERT_TRUE(ctx->dispatch(in, cone));
-  const Image hitCone = readTexture(ctx->hitTexture(), o.width, o.height, 4);
+  const Image hitCone = readTexture(ctx->hitTexture(), w, h, 4);
   ASSERT_TRUE(ctx->dispatch(in, stochastic));
-  const Image hitA = readTexture(ctx->hitTexture(), o.width, o.height, 4);
+  const Image hitA = readTexture(ctx->hitTexture(), w, h, 4);
   ASSERT_TRUE(ctx->dispatch(in, stochastic));
-  const Image hitB = readTexture(ctx->hitTexture(), o.width, o.height, 4);
+  const Image hitB = readTexture(ctx->hitTexture(), w, h, 4);
   size_t smooth = 0, smoothDiffering = 0, rough = 0, roughVsCone = 0, roughVsLastFrame = 0;
-  for (int y = 0; y < o.height; ++y)
-    for (int x = 0; x < o.width; ++x) {
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
       if (!(hitCone.at(x, y, 2) > 0.5f)) continue;  // traced and hit
       const bool isRough = packed.at(x, y, 2) >= 0.25f;
       const bool sameAsCone = hitA.at(x, y, 0) == hitCone.at(x, y, 0) && hitA.at(x, y, 1) == hitCone.at(x, y, 1);
