@@ -136,13 +136,12 @@ vec4 sslrStochasticNeighbourhood(ivec2 px, vec4 current, float depth, vec4 packe
   vec3 n0;
   if (!sslrDecodeNormal(frame.surface, packedNormal, n0)) return current;
   SslrBlurCentre centre = sslrBlurCentre(frame.trace, 2.0f, abs(sslrViewAtPixel(px, depth).z), n0);
-  ivec2 maxPx = ivec2(sslrSizePx()) - 1;
   vec4 sum = current;
   float weightSum = 1.0f;
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
       ivec2 q = px + ivec2(dx, dy);
-      if ((dx == 0 && dy == 0) || any(lessThan(q, ivec2(0))) || any(greaterThan(q, maxPx))) continue;
+      if ((dx == 0 && dy == 0) || !sslrInside(q)) continue;
       float depth1 = texelFetch(uDepth, sslrTexel(q), 0).r;
       vec4 normal1 = texelFetch(uNormal, sslrTexel(q), 0);
       vec4 material1 = sslrMaterialAt(q, normal1);

@@ -103,9 +103,9 @@ SSLR_FN float sslrFaceWidthPx(SslrProjection p, SslrSurface s, ivec2 px, ivec2 a
 }
 
 // sslrMetThinObject's first test, without a fetch: the walk keeps only rays that pass it.
-SSLR_FN bool sslrThinEntryShallow(SslrProjection p, SslrSurface s, vec3 vsSurface, float entryBehind) {
-  return entryBehind < SSLR_THIN_MAX_DEPTH_FOOTPRINTS *
-                           sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : -vsSurface.z);
+// `footprint`: the pixel footprint at the surface the ray went behind.
+SSLR_FN bool sslrThinEntryShallow(float footprint, float entryBehind) {
+  return entryBehind < SSLR_THIN_MAX_DEPTH_FOOTPRINTS * footprint;
 }
 
 // Settings::traversal.thinObjectHits: whether a ray that went `entryBehind` (view units) into the
@@ -117,8 +117,8 @@ SSLR_FN bool sslrThinEntryShallow(SslrProjection p, SslrSurface s, vec3 vsSurfac
 // there a ray this close behind the outline mostly passes a corner (results/composite.md, "0.9.2").
 SSLR_FN bool sslrMetThinObject(SslrProjection p, SslrSurface s, ivec2 px, vec3 vsSurface, vec3 vsN, float tolerance,
                                float entryBehind) {
-  if (!sslrThinEntryShallow(p, s, vsSurface, entryBehind)) return false;
-  float footprint = sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : -vsSurface.z);
+  float footprint = sslrPixelFootprint(p, s.height, sslrClipW(p, vsSurface));
+  if (!sslrThinEntryShallow(footprint, entryBehind)) return false;
   float maxWidth = min(float(SSLR_THIN_MAX_WIDTH_PX), SSLR_THIN_MAX_WIDTH_SCREEN * float(s.height));
   float width = min(sslrFaceWidthPx(p, s, px, ivec2(1, 0), vsSurface, vsN, tolerance, footprint, maxWidth),
                     sslrFaceWidthPx(p, s, px, ivec2(0, 1), vsSurface, vsN, tolerance, footprint, maxWidth));
@@ -531,7 +531,7 @@ SSLR_FN void sslrEnterSlab(SslrProjection p, SslrSurface s, SslrTraceParams t, S
   w.slabBehind = max(behindNear, 0.0f);
   w.slabTolerance = tolerance;
   w.thinCandidate = t.thinObjectHits != 0 && thinTestable && !w.hidden && !(w.extra > 0.0f) &&
-                    sslrThinEntryShallow(p, s, vsSurface, w.slabBehind);
+                    sslrThinEntryShallow(sslrPixelFootprint(p, s.height, sslrClipW(p, vsSurface)), w.slabBehind);
 }
 
 SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP, vec3 vsR,

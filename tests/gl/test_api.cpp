@@ -33,22 +33,20 @@ GLuint makeTexture(GLenum format, int w = W, int h = H) {
   return t;
 }
 
-// A small G-buffer of the analytic mirror scene, rendered by the host pass.
+// A G-buffer of a built-in scene, rendered by the host pass: by default a small one of the
+// analytic mirror scene.
 struct Frame {
   std::unique_ptr<GBuffer> gbuffer;
   std::unique_ptr<GpuScene> scene;
   Frame(DepthMode mode = DepthMode::Reversed, NormalEncoding normals = NormalEncoding::Octahedral,
-        bool backDepth = false) {
-    GBufferOptions o;
-    o.width = W;
-    o.height = H;
-    o.depth = mode;
-    o.normals = normals;
-    o.withBackDepth = backDepth;
+        bool backDepth = false)
+      : Frame("mirror-box", {.width = W, .height = H, .depth = mode, .normals = normals, .withBackDepth = backDepth}) {}
+  Frame(const char* sceneName, const GBufferOptions& o) {
     auto g = GBuffer::create(o);
     EXPECT_TRUE(g) << g.error();
     gbuffer = std::move(g.value());
-    auto s = makeBuiltinScene("mirror-box");
+    auto s = makeBuiltinScene(sceneName);
+    EXPECT_TRUE(s) << s.error();
     scene = std::make_unique<GpuScene>(s.value());
     EXPECT_TRUE(gbuffer->render(*scene, *s.value().camera));
   }
@@ -56,23 +54,10 @@ struct Frame {
 
 // The built-in `glossy` scene (panels of roughness 0, 0.1, ..., 0.5) rendered at 160x90, with its
 // packed normal texels (roughness in B, the tools' layout).
-struct GlossyPanels {
+struct GlossyPanels : Frame {
   static constexpr int kWidth = 160, kHeight = 90;
-  std::unique_ptr<GBuffer> gbuffer;
   Image packed;
-  GlossyPanels() {
-    GBufferOptions o;
-    o.width = kWidth;
-    o.height = kHeight;
-    auto g = GBuffer::create(o);
-    EXPECT_TRUE(g) << g.error();
-    gbuffer = std::move(g.value());
-    auto scene = makeBuiltinScene("glossy");
-    EXPECT_TRUE(scene) << scene.error();
-    GpuScene gpu(scene.value());
-    EXPECT_TRUE(gbuffer->render(gpu, *scene.value().camera));
-    packed = gbuffer->readNormalPacked();
-  }
+  GlossyPanels() : Frame("glossy", {.width = kWidth, .height = kHeight}) { packed = gbuffer->readNormalPacked(); }
 };
 
 class Api : public sslr::test::GlTest {};
