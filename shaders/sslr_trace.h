@@ -37,6 +37,7 @@ struct SslrHit {
                      // ray's length there, where adaptive L resumes (0: it did not)
   float LSlab;       // the traversal ended inside what a pixel shows (an assumed slab): the ray's
                      // length where it went in (0: it did not)
+  int slabShallow;   // 1: it went into that slab less deep than sslrThinEntryShallow allows
   float LBlend;      // a hit found past such a slab: the slab's entry, whose colour the hit's is
                      // blended with (Settings::traversal.slabBlend; 0: none)
   int guessed;       // 1: the answer is a guess where the ray went out of sight (sslrHiddenGuess,
@@ -57,6 +58,7 @@ SSLR_FN SslrHit sslrNoHit(int status) {
   hit.LGuess = 0.0f;
   hit.LResume = 0.0f;
   hit.LSlab = 0.0f;
+  hit.slabShallow = 0;
   hit.LBlend = 0.0f;
   hit.guessed = 0;
   return hit;

@@ -211,6 +211,7 @@ struct SslrWalk {
   // ... inside what pixel slabPx shows, slabBehind deep behind it (view units) where its segment
   // there begins: a thin object's hidden side, if sslrMetThinObject says so after the walk.
   bool thinCandidate;
+  bool slabShallow;
   ivec2 slabPx;
   float slabBehind, slabTolerance;
   // Pixels travelled behind what the screen shows (Settings::traversal.hiddenPassageLimitPx): there
@@ -368,6 +369,7 @@ SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   w.inSlab = false;
   w.measuredSlab = false;
   w.thinCandidate = false;
+  w.slabShallow = false;
   w.slabPx = ivec2(0);
   w.slabBehind = 0.0f;
   w.slabTolerance = 0.0f;
@@ -530,8 +532,8 @@ SSLR_FN void sslrEnterSlab(SslrProjection p, SslrSurface s, SslrTraceParams t, S
   w.slabPx = px;
   w.slabBehind = max(behindNear, 0.0f);
   w.slabTolerance = tolerance;
-  w.thinCandidate = t.thinObjectHits != 0 && thinTestable && !w.hidden && !(w.extra > 0.0f) &&
-                    sslrThinEntryShallow(sslrPixelFootprint(p, s.height, sslrClipW(p, vsSurface)), w.slabBehind);
+  w.slabShallow = sslrThinEntryShallow(sslrPixelFootprint(p, s.height, sslrClipW(p, vsSurface)), w.slabBehind);
+  w.thinCandidate = t.thinObjectHits != 0 && thinTestable && !w.hidden && !(w.extra > 0.0f) && w.slabShallow;
 }
 
 SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP, vec3 vsR,
@@ -665,6 +667,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
     hit.L = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRun, vsP, vsR);
   } else if (w.inSlab) {
     hit.LSlab = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRun, vsP, vsR);
+    hit.slabShallow = w.slabShallow ? 1 : 0;
   }
   return hit;
 }
@@ -736,7 +739,10 @@ SSLR_FN SslrHit sslrProbeAfterWalk(SslrProjection p, SslrSurface s, SslrTracePar
   // side (the slab's colour): the image takes both (Settings::traversal.slabBlend).
   if (useProbed && sslrConfidentHit(probed) && walked.LSlab > 0.0f) answer.LBlend = walked.LSlab;
   // ... and where it found nothing beyond, the slab's colour at that share (sslrSlabGuess).
-  if (answer.status != SSLR_STATUS_HIT) answer.LSlab = walked.LSlab;
+  if (answer.status != SSLR_STATUS_HIT) {
+    answer.LSlab = walked.LSlab;
+    answer.slabShallow = walked.slabShallow;
+  }
   answer.iterations = walked.iterations + probed.iterations;
   answer.hierarchical = 2;
   return answer;
@@ -771,13 +777,20 @@ SSLR_FN SslrHit sslrHiddenGuess(SslrSurface s, SslrTraceParams t, SslrHit answer
 // Settings::traversal.slabBlend for a ray the traversal stopped inside an object's assumed slab and
 // adaptive L carried nowhere: it passed behind the object (a miss: the fallback) or met its hidden
 // side (the slab's colour), so the answer is the slab's entry at confidence slabBlend, as a hit
-// past the slab takes that share of its colour. It runs after sslrHiddenGuess, whose guess (where
-// the ray first went behind something) takes precedence.
+// past the slab takes that share of its colour. A ray that went in deeper than a thin object's
+// test allows (sslrThinEntryShallow: 6 pixel footprints) is well inside the object rather than
+// just past its outline, where rays mostly pass a corner: its confidence is
+// Settings::traversal.deepSlabGuess. It runs after sslrHiddenGuess, whose guess (where the ray
+// first went behind something) takes precedence.
+SSLR_FN float sslrSlabGuessWeight(SslrTraceParams t, SslrHit answer) {
+  return answer.slabShallow != 0 ? t.slabBlend : t.deepSlabGuess;
+}
 SSLR_FN SslrHit sslrSlabGuess(SslrProjection p, SslrTraceParams t, vec3 vsP, vec3 vsR, SslrHit answer) {
-  if (answer.status == SSLR_STATUS_HIT || !(answer.LSlab > 0.0f) || !(t.slabBlend > 0.0f) ||
+  float weight = sslrSlabGuessWeight(t, answer);
+  if (answer.status == SSLR_STATUS_HIT || !(answer.LSlab > 0.0f) || !(weight > 0.0f) ||
       !(answer.LSlab <= t.maxDistance))
     return answer;
-  SslrHit guess = sslrFinishHit(p, answer, vsP, vsR, answer.LSlab, t.slabBlend);
+  SslrHit guess = sslrFinishHit(p, answer, vsP, vsR, answer.LSlab, weight);
   guess.guessed = 1;
   return guess.status == SSLR_STATUS_HIT ? guess : answer;
 }

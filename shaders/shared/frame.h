@@ -105,7 +105,7 @@ struct SslrTraceParams {
   int resumeAtStepCap;        // Settings::traversal.resumeAtStepCap: 1 = adaptive L resumes where the traversal ran out of steps
   float slabBlend;            // Settings::traversal.slabBlend: the slab's share of a hit past it (none: its confidence)
   int thinObjectHits;         // Settings::traversal.thinObjectHits (traversal first): 1 = on
-  int tracePad1;
+  float deepSlabGuess;        // Settings::traversal.deepSlabGuess: the slab guess's confidence after a deep entry
   int tracePad2;
 };
 

@@ -153,6 +153,7 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
   numberOption(args, "hidden-passage", "a number", s.traversal.hiddenPassageLimitPx);
   numberOption(args, "hidden-guess", "a number in 0..1", s.traversal.hiddenGuess);
   numberOption(args, "slab-blend", "a number in 0..1", s.traversal.slabBlend);
+  numberOption(args, "deep-slab-guess", "a number in 0..1", s.traversal.deepSlabGuess);
   numberOption(args, "max-luminance", "a number >= 0", s.radianceClamp.maxLuminance);
   numberOption(args, "ffx-thickness", "a number", s.ffx.depthBufferThickness);
   numberOption(args, "dda-thickness", "a number", s.dda.objectDepth);
@@ -228,6 +229,9 @@ void addTracerOptions(cxxopts::Options& options) {
                      "0..1 of the colour where the ray went into the slab, and one with nothing beyond shows "
                      "the slab at that confidence (Settings::traversal.slabBlend; default 0.25, 0 = the hit's "
                      "colour alone, a miss)",
+       cxxopts::value<std::string>())
+      ("deep-slab-guess", "traversal first: that confidence 0..1 where the ray went at least 6 pixel footprints "
+                          "into the slab (Settings::traversal.deepSlabGuess; default 0.5, 0.25 = 0.9.3's)",
        cxxopts::value<std::string>())
       ("max-luminance", "HDR-safe radiance: hit colours brighter than this luminance (display units) are scaled "
                         "down to it before the blur and temporal reuse (Settings::radianceClamp; default 0 = off)",

@@ -59,6 +59,8 @@ TEST(Settings, EveryInvalidFieldIsNamed) {
       {"traversal.hiddenGuess", [](Settings& s) { s.traversal.hiddenGuess = NAN; }},
       {"traversal.slabBlend", [](Settings& s) { s.traversal.slabBlend = -0.1f; }},
       {"traversal.slabBlend", [](Settings& s) { s.traversal.slabBlend = NAN; }},
+      {"traversal.deepSlabGuess", [](Settings& s) { s.traversal.deepSlabGuess = 1.5f; }},
+      {"traversal.deepSlabGuess", [](Settings& s) { s.traversal.deepSlabGuess = NAN; }},
       {"ffx.depthBufferThickness", [](Settings& s) { s.ffx.depthBufferThickness = 0.0f; }},
       {"ffx.maxTraversalIntersections", [](Settings& s) { s.ffx.maxTraversalIntersections = 0; }},
       {"traversal.hiddenPassageLimitPx", [](Settings& s) { s.traversal.hiddenPassageLimitPx = NAN; }},

@@ -68,6 +68,8 @@ TEST(RenderCliNoGl, BadArgumentsExitTwoWithAMessageAndWriteNothing) {
       {"--hidden-guess 2", "traversal.hiddenGuess"},
       {"--slab-blend 1.5", "traversal.slabBlend"},
       {"--slab-blend half", "--slab-blend expects a number"},
+      {"--deep-slab-guess 1.5", "traversal.deepSlabGuess"},
+      {"--deep-slab-guess deep", "--deep-slab-guess expects a number"},
       {"--method dda --dda-stride 0.5", "dda.stride"},
       {"--method dda --dda-stride wide", "--dda-stride expects a number"},
       {"--method dda --dda-thickness -1", "dda.objectDepth"},

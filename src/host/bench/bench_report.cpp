@@ -46,6 +46,7 @@ json settingsJson(const BenchConfig& c) {
           {"device", c.device == DeviceProfile::Gpu ? "gpu" : c.device == DeviceProfile::Software ? "software" : "auto"},
           {"traversal.hiddenGuess", s.traversal.hiddenGuess},
           {"traversal.slabBlend", s.traversal.slabBlend},
+          {"traversal.deepSlabGuess", s.traversal.deepSlabGuess},
           {"traversal.thinObjectHits", s.traversal.thinObjectHits},
           {"traversal.resumeAtStepCap", s.traversal.resumeAtStepCap},
           {"debug.oneBodyTraversal", s.debug.oneBodyTraversal},

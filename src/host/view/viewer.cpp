@@ -369,6 +369,7 @@ struct App {
     ImGui::Checkbox("curved solids", &t.traversal.curvedSolids);
     ImGui::SliderFloat("traversal.hiddenGuess", &t.traversal.hiddenGuess, 0.0f, 1.0f);
     ImGui::SliderFloat("traversal.slabBlend", &t.traversal.slabBlend, 0.0f, 1.0f);
+    ImGui::SliderFloat("traversal.deepSlabGuess", &t.traversal.deepSlabGuess, 0.0f, 1.0f);
     ImGui::Checkbox("thin object hits", &t.traversal.thinObjectHits);
     int pass = static_cast<int>(t.traversal.pass);
     const char* passes[] = {"auto", "inline", "deferred"};

@@ -116,6 +116,7 @@ void traceConstants(const FrameInputs& in, const Settings& s, int width, int hei
   t.hiddenPassageLimitPx = s.traversal.hiddenPassageLimitPx;
   t.hiddenGuessWeight = s.traversal.hiddenGuess;
   t.slabBlend = s.traversal.slabBlend;
+  t.deepSlabGuess = s.traversal.deepSlabGuess;
   t.thinObjectHits = s.traversal.thinObjectHits && t.hizMode == SSLR_HIZ_TRAVERSAL_FIRST ? 1 : 0;
   t.resumeAtStepCap = s.traversal.resumeAtStepCap ? 1 : 0;
   t.ffxDepthBufferThickness = s.ffx.depthBufferThickness;

@@ -66,6 +66,8 @@ void checkTracer(const Settings& s, std::ostringstream& why) {
     why << "traversal.hiddenGuess = " << s.traversal.hiddenGuess << " (must be 0..1); ";
   if (!(s.traversal.slabBlend >= 0.0f && s.traversal.slabBlend <= 1.0f))
     why << "traversal.slabBlend = " << s.traversal.slabBlend << " (must be 0..1); ";
+  if (!(s.traversal.deepSlabGuess >= 0.0f && s.traversal.deepSlabGuess <= 1.0f))
+    why << "traversal.deepSlabGuess = " << s.traversal.deepSlabGuess << " (must be 0..1); ";
   if (std::isnan(s.traversal.hiddenPassageLimitPx) || s.traversal.hiddenPassageLimitPx < 0.0f)
     why << "traversal.hiddenPassageLimitPx = " << s.traversal.hiddenPassageLimitPx << " (must be >= 0; 1e30 = off); ";
   if (!finite(s.traversal.objectDepthRelative) || s.traversal.objectDepthRelative < 0.0f)

@@ -333,8 +333,13 @@ struct Settings {
                                // share of the colour where the ray went into the slab (at half
                                // resolution: on the pixels that trace their own ray). Where adaptive
                                // L finds nothing beyond, the slab's colour at this confidence (the
-                               // rest the fallback). 0 = the hit's colour alone, a miss
-                               // (results/composite.md, "0.8", "0.9")
+                               // rest the fallback; deepSlabGuess where the ray went in deep).
+                               // 0 = the hit's colour alone, a miss (results/composite.md, "0.8", "0.9")
+    float deepSlabGuess = 0.5f;  // 0..1, traversal first. That confidence where the ray went into the
+                                 // slab at least 6 pixel footprints behind what the pixel shows and
+                                 // adaptive L found nothing beyond: so deep inside an object the ray
+                                 // more likely met its hidden side than passed a corner. Equal to
+                                 // slabBlend: 0.9.3's answers (results/composite.md, "0.9.4")
     bool thinObjectHits = true;  // traversal first. A ray that went into the slab of an object at
                                  // most 16 px and a 30th of the screen height across (a bar, a
                                  // rail, a leg), less deep than twice its width and than 6 pixel
