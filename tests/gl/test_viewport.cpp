@@ -215,3 +215,82 @@ TEST_F(Viewports, RectanglesOutsideTheTexturesAreRefused) {
 }
 
 }  // namespace
+
+// Stereo today (integration.md, "Stereo and multiview"): a host whose G-buffer is a 2D array
+// (one layer an eye) gives each eye's context texture views of its layer (glTextureView, one
+// layer as GL_TEXTURE_2D). Each eye's outputs are then bit for bit those of the same frame in
+// textures of its own.
+class ArrayLayers : public sslr::test::GlTest {};
+
+TEST_F(ArrayLayers, EachEyeTracesAViewOfItsLayerAsItsOwnTextures) {
+  constexpr int kW = 160, kH = 96;
+  auto scene = makeBuiltinScene("mirror-room");
+  ASSERT_TRUE(scene);
+  GpuScene gpu(scene.value());
+  Settings s;
+  s.debug.outputs = true;
+  // The two eyes 0.064 units apart along the camera's right axis, looking the same way.
+  Camera eyes[2] = {*scene.value().camera, *scene.value().camera};
+  const glm::dvec3 right = glm::normalize(glm::cross(eyes[0].target - eyes[0].eye, eyes[0].up));
+  for (int e = 0; e < 2; ++e) {
+    const glm::dvec3 shift = right * (e == 0 ? -0.032 : 0.032);
+    eyes[e].eye += shift;
+    eyes[e].target += shift;
+  }
+  GBufferOptions o;
+  o.width = kW;
+  o.height = kH;
+  std::unique_ptr<GBuffer> own[2];
+  for (int e = 0; e < 2; ++e) {
+    auto g = GBuffer::create(o);
+    ASSERT_TRUE(g) << g.error();
+    own[e] = std::move(g.value());
+    ASSERT_TRUE(own[e]->render(gpu, eyes[e]));
+  }
+  // The host's layered G-buffer: each input a 2-layer array of the eye textures' format.
+  const FrameInputs in0 = own[0]->frameInputs(), in1 = own[1]->frameInputs();
+  GLName FrameInputs::*const inputs[] = {&FrameInputs::colorTexture, &FrameInputs::normalTexture,
+                                         &FrameInputs::depthTexture};
+  std::vector<GLuint> arrays, views;
+  FrameInputs layered[2] = {in0, in1};
+  for (const auto member : inputs) {
+    GLint format = 0;
+    glGetTextureLevelParameteriv(in0.*member, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    GLuint array = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &array);
+    glTextureStorage3D(array, 1, static_cast<GLenum>(format), kW, kH, 2);
+    for (int e = 0; e < 2; ++e) {
+      const GLuint source = (e == 0 ? in0 : in1).*member;
+      glCopyImageSubData(source, GL_TEXTURE_2D, 0, 0, 0, 0, array, GL_TEXTURE_2D_ARRAY, 0, 0, 0, e, kW, kH, 1);
+      GLuint view = 0;
+      glGenTextures(1, &view);  // a view takes a name that was never bound
+      glTextureView(view, GL_TEXTURE_2D, array, static_cast<GLenum>(format), 0, 1, static_cast<GLuint>(e), 1);
+      layered[e].*member = view;
+      views.push_back(view);
+    }
+    arrays.push_back(array);
+  }
+  ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  size_t hitPixels = 0;
+  for (int e = 0; e < 2; ++e) {
+    SCOPED_TRACE(e == 0 ? "left eye" : "right eye");
+    auto fromLayer = makeContext(kW, kH), fromOwn = makeContext(kW, kH);
+    ASSERT_TRUE(fromLayer && fromOwn);
+    ASSERT_TRUE(fromLayer->dispatch(layered[e], s));
+    ASSERT_TRUE(fromOwn->dispatch(e == 0 ? in0 : in1, s));
+    for (auto texture : {&Context::hitTexture, &Context::reflectionTexture, &Context::resolvedTexture}) {
+      const Image a = readTexture(((*fromLayer).*texture)(), kW, kH, 4);
+      const Image b = readTexture(((*fromOwn).*texture)(), kW, kH, 4);
+      size_t differing = 0;
+      for (size_t i = 0; i < a.pixels.size(); ++i) differing += a.pixels[i] != b.pixels[i];
+      EXPECT_EQ(differing, 0u);
+    }
+    const Image hit = readTexture(fromLayer->hitTexture(), kW, kH, 4);
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) hitPixels += hit.at(x, y, 2) > 0.5f;
+  }
+  EXPECT_GT(hitPixels, 2000u);  // both eyes see the mirror room's reflections
+  glDeleteTextures(static_cast<GLsizei>(views.size()), views.data());
+  glDeleteTextures(static_cast<GLsizei>(arrays.size()), arrays.data());
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
