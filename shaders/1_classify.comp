@@ -12,6 +12,7 @@
 layout(local_size_x = SSLR_TILE_QUADS) in;  // the tile's quads (sslrTileQuad)
 
 void main() {
+  SSLR_SET_VIEW(gl_WorkGroupID.z);  // (the dispatch's z: one a view)
   uvec2 tile = gl_WorkGroupID.xy;
   ivec2 cell = ivec2(tile) * (SSLR_TILE_SIZE / 2) + sslrTileQuad(gl_LocalInvocationIndex);
   uint slot;

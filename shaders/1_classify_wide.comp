@@ -7,8 +7,8 @@
 #include "passes/classify_tiles.glsl"
 
 #define SSLR_CLASSIFY_TILES 4  // 2x2 tiles a group
-layout(binding = SSLR_IMAGE_CLASSIFY_REFLECTION, rgba16f) uniform writeonly image2D uReflection;
-layout(binding = SSLR_IMAGE_CLASSIFY_RESOLVED, rgba16f) uniform writeonly image2D uResolved;
+layout(binding = SSLR_IMAGE_CLASSIFY_REFLECTION, rgba16f) uniform writeonly SSLR_IMAGE uReflection;
+layout(binding = SSLR_IMAGE_CLASSIFY_RESOLVED, rgba16f) uniform writeonly SSLR_IMAGE uResolved;
 shared uint sTileListed[SSLR_CLASSIFY_TILES];
 
 layout(local_size_x = SSLR_CLASSIFY_TILES * SSLR_TILE_QUADS) in;  // the tiles' quads (sslrTileQuad)
@@ -29,6 +29,7 @@ void clearIfUntraced(uvec2 tile, ivec2 cell, bool listed) {
 }
 
 void main() {
+  SSLR_SET_VIEW(gl_WorkGroupID.z);  // (the dispatch's z: one a view)
   uint tileInGroup = gl_LocalInvocationIndex / uint(SSLR_TILE_QUADS);
   uvec2 tile = gl_WorkGroupID.xy * 2u + uvec2(tileInGroup & 1u, tileInGroup >> 1);
   ivec2 cell = ivec2(tile) * (SSLR_TILE_SIZE / 2) + sslrTileQuad(gl_LocalInvocationIndex % uint(SSLR_TILE_QUADS));

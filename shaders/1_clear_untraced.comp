@@ -6,8 +6,8 @@
 
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 
-layout(binding = SSLR_IMAGE_REFLECTION, rgba16f) uniform writeonly image2D uReflection;
-layout(binding = SSLR_IMAGE_RESOLVED, rgba16f) uniform writeonly image2D uResolved;
+layout(binding = SSLR_IMAGE_REFLECTION, rgba16f) uniform writeonly SSLR_IMAGE uReflection;
+layout(binding = SSLR_IMAGE_RESOLVED, rgba16f) uniform writeonly SSLR_IMAGE uResolved;
 
 void main() {
   ivec2 px;

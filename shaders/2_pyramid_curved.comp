@@ -36,11 +36,11 @@ void main() {
   // Classification under DeviceProfile::Gpu sizes this dispatch while it lists tiles, so a frame
   // that lists none may still launch groups; they return here (such a frame needs no pyramid).
   if (gl_GlobalInvocationID.x >= curved.count || tiles.dispatchX == 0u) return;
-  ivec2 cell = sslrUnpackCoord(curved.quads[gl_GlobalInvocationID.x]);
+  ivec2 cell = sslrEnterCoord(curved.quads[gl_GlobalInvocationID.x]);
   SslrQuad q = sslrLoadQuad(cell);
   vec4 extra;
   vec2 level1 = sslrHiZLevel1Cell(frame.proj, frame.surface, frame.trace, q.p0, q.p1, q.p2, q.p3, q.depths, q.n0, q.n1,
                                   q.n2, q.n3, extra);
-  imageStore(uLevel1, cell, vec4(level1, 0.0f, 0.0f));
+  imageStore(uLevel1, SSLR_AT(cell), vec4(level1, 0.0f, 0.0f));
   sslrWriteLevel0(cell, q.depths, extra);
 }

@@ -8,6 +8,7 @@
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 
 void main() {
+  SSLR_SET_VIEW(gl_WorkGroupID.z);  // (the dispatch's z: one a view)
   ivec2 cell = ivec2(gl_GlobalInvocationID.xy);
   sslrWriteLevels01(cell, SSLR_GATHER_QUAD(uDepth, cell, 0), true);
 }

@@ -14,6 +14,6 @@ bool sslrPixelHit(ivec2 px, SslrPixel q, out SslrHit hit, out bool ranTracer) {
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  uint steps = i < retrace.count ? sslrShadePixel(sslrUnpackCoord(retrace.entries[i])) : 0u;
+  uint steps = i < retrace.count ? sslrShadePixel(sslrEnterCoord(retrace.entries[i])) : 0u;
   sslrCountRayWork(SSLR_RAY_WORK_RETRACE, steps);
 }

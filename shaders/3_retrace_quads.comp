@@ -11,6 +11,6 @@ void main() {
   uint slot = retrace.entries[gl_WorkGroupID.x];
   uint steps = 0u;
   if (gl_LocalInvocationIndex < tiles.tileCoords[sslrQuadRetraceCountIndex(slot)])
-    steps = sslrTraceQuad(slot, sslrUnpackCoord(retrace.entries[sslrQuadRetraceRegion(slot) + gl_LocalInvocationIndex]));
+    steps = sslrTraceQuad(slot, sslrEnterCoord(retrace.entries[sslrQuadRetraceRegion(slot) + gl_LocalInvocationIndex]));
   sslrCountRayWork(SSLR_RAY_WORK_QUAD_RETRACE, steps);
 }

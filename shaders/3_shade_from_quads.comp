@@ -8,8 +8,8 @@
 
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 
-layout(binding = SSLR_UNIT_QUAD_HIT) uniform sampler2D uQuadHit;          // xyz: view-space hit point; w: sslrPackQuadCode
-layout(binding = SSLR_UNIT_QUAD_SURFACE) uniform sampler2D uQuadSurface;  // xy: traced pixel's octahedral normal; zw: hit surface's
+layout(binding = SSLR_UNIT_QUAD_HIT) uniform SSLR_SAMPLER uQuadHit;          // xyz: view-space hit point; w: sslrPackQuadCode
+layout(binding = SSLR_UNIT_QUAD_SURFACE) uniform SSLR_SAMPLER uQuadSurface;  // xy: traced pixel's octahedral normal; zw: hit surface's
 
 // Whether the ray of a quad (of a tile traced this frame: the others hold older frames' records) hit
 // (a guess is not a hit: SSLR_QUAD_MISS).
@@ -19,7 +19,7 @@ bool sslrQuadRayHit(ivec2 quad) {
   if (tiles.tileCoords[sslrTileListedStamp(uvec2(px) / uint(SSLR_TILE_SIZE))] != uint(frame.trace.frameIndex))
     return false;
   gFetches += 1u;
-  SslrQuadCode code = sslrUnpackQuadCode(texelFetch(uQuadHit, quad, 0).w);
+  SslrQuadCode code = sslrUnpackQuadCode(texelFetch(uQuadHit, SSLR_AT(quad), 0).w);
   return code.kind == SSLR_QUAD_HIT && code.confidence > 0.0f;
 }
 
@@ -30,8 +30,8 @@ bool sslrQuadRayHit(ivec2 quad) {
 bool sslrReuseQuadHit(ivec2 px, vec3 vsP, vec3 vsN, vec3 vsR, out SslrHit hit) {
   hit = sslrNoHit(SSLR_STATUS_MISS);
   ivec2 quad = px / 2;
-  vec4 a = texelFetch(uQuadHit, quad, 0);
-  vec4 b = texelFetch(uQuadSurface, quad, 0);
+  vec4 a = texelFetch(uQuadHit, SSLR_AT(quad), 0);
+  vec4 b = texelFetch(uQuadSurface, SSLR_AT(quad), 0);
   gFetches += 2u;
   SslrQuadCode code = sslrUnpackQuadCode(a.w);
   float confidence = code.confidence;

@@ -23,12 +23,12 @@
 
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 
-layout(binding = SSLR_UNIT_BLUR_INPUT) uniform sampler2D uBlurInput;   // unblurred resolved (H pass) or the scratch image (V pass)
-layout(binding = SSLR_UNIT_BLUR_REFLECTION) uniform sampler2D uReflectionIn;  // the reflection: its alpha is the blur radius
+layout(binding = SSLR_UNIT_BLUR_INPUT) uniform SSLR_SAMPLER uBlurInput;   // unblurred resolved (H pass) or the scratch image (V pass)
+layout(binding = SSLR_UNIT_BLUR_REFLECTION) uniform SSLR_SAMPLER uReflectionIn;  // the reflection: its alpha is the blur radius
 #ifdef SSLR_BLUR_VERTICAL
-layout(binding = SSLR_UNIT_BLUR_UNBLURRED) uniform sampler2D uUnblurred;     // V pass: resolved before this pass
+layout(binding = SSLR_UNIT_BLUR_UNBLURRED) uniform SSLR_SAMPLER uUnblurred;     // V pass: resolved before this pass
 #endif
-layout(binding = SSLR_IMAGE_BLUR_OUTPUT, rgba16f) uniform writeonly image2D uBlurOutput;
+layout(binding = SSLR_IMAGE_BLUR_OUTPUT, rgba16f) uniform writeonly SSLR_IMAGE uBlurOutput;
 
 // Settings cap blur.maxRadiusPx at 32 (sslr::validate): taps reach ceil(radius) <= 32 pixels out.
 #define SSLR_BLUR_MAX_TAPS 32

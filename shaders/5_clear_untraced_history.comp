@@ -7,7 +7,7 @@
 
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 
-layout(binding = SSLR_IMAGE_HISTORY_KEY, r32f) uniform writeonly image2D uHistoryKey;
+layout(binding = SSLR_IMAGE_HISTORY_KEY, r32f) uniform writeonly SSLR_IMAGE uHistoryKey;
 
 void main() {
   ivec2 px;

@@ -14,14 +14,14 @@
 
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 
-layout(binding = SSLR_UNIT_TEMPORAL_CURRENT) uniform sampler2D uCurrent;     // resolved: this frame, blurred
-layout(binding = SSLR_UNIT_HISTORY) uniform sampler2D uHistory;     // the previous frame's output
-layout(binding = SSLR_UNIT_HISTORY_KEY) uniform sampler2D uHistoryKey;  // its keys
-layout(binding = SSLR_UNIT_MOTION) uniform sampler2D uMotion;      // optional: uv now - uv then (host motion vectors)
-layout(binding = SSLR_UNIT_HIT_RECORD) uniform sampler2D uHitRecord;   // this frame's hits: uv, confidence, L
-layout(binding = SSLR_IMAGE_TEMPORAL_OUTPUT, rgba16f) uniform writeonly image2D uBlended;
+layout(binding = SSLR_UNIT_TEMPORAL_CURRENT) uniform SSLR_SAMPLER uCurrent;     // resolved: this frame, blurred
+layout(binding = SSLR_UNIT_HISTORY) uniform SSLR_SAMPLER uHistory;     // the previous frame's output
+layout(binding = SSLR_UNIT_HISTORY_KEY) uniform SSLR_SAMPLER uHistoryKey;  // its keys
+layout(binding = SSLR_UNIT_MOTION) uniform SSLR_SAMPLER uMotion;      // optional: uv now - uv then (host motion vectors)
+layout(binding = SSLR_UNIT_HIT_RECORD) uniform SSLR_SAMPLER uHitRecord;   // this frame's hits: uv, confidence, L
+layout(binding = SSLR_IMAGE_TEMPORAL_OUTPUT, rgba16f) uniform writeonly SSLR_IMAGE uBlended;
 #ifdef SSLR_HISTORY_CONFIDENCE  // Settings::temporal.outputConfidence
-layout(binding = SSLR_IMAGE_HISTORY_CONFIDENCE, r8) uniform writeonly image2D uHistoryConfidence;
+layout(binding = SSLR_IMAGE_HISTORY_CONFIDENCE, r8) uniform writeonly SSLR_IMAGE uHistoryConfidence;
 #endif
 
 // The history at uvPrevious, bilinear over the four texels around it whose key matches

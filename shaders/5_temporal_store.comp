@@ -6,10 +6,10 @@
 
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 
-layout(binding = SSLR_UNIT_TEMPORAL_CURRENT) uniform sampler2D uBlended;
-layout(binding = SSLR_IMAGE_TEMPORAL_OUTPUT, rgba16f) uniform writeonly image2D uResolved;
-layout(binding = SSLR_IMAGE_HISTORY, rgba16f) uniform writeonly image2D uHistory;
-layout(binding = SSLR_IMAGE_HISTORY_KEY, r32f) uniform writeonly image2D uHistoryKey;
+layout(binding = SSLR_UNIT_TEMPORAL_CURRENT) uniform SSLR_SAMPLER uBlended;
+layout(binding = SSLR_IMAGE_TEMPORAL_OUTPUT, rgba16f) uniform writeonly SSLR_IMAGE uResolved;
+layout(binding = SSLR_IMAGE_HISTORY, rgba16f) uniform writeonly SSLR_IMAGE uHistory;
+layout(binding = SSLR_IMAGE_HISTORY_KEY, r32f) uniform writeonly SSLR_IMAGE uHistoryKey;
 
 void main() {
   ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);

@@ -4,15 +4,19 @@
 //                            subtraction (final = existing - coverage x fallback), see composite.cpp.
 #include "sslr_shared.h"
 
-layout(binding = SSLR_UNIT_COMPOSITE_RESOLVED) uniform sampler2D uResolved;  // rgb = reflection, a = coverage
+layout(binding = SSLR_UNIT_COMPOSITE_RESOLVED) uniform SSLR_SAMPLER uResolved;  // rgb = reflection, a = coverage
+#if SSLR_VIEWS > 1
+layout(location = SSLR_COMPOSITE_VIEW_LOCATION) uniform int uView;  // its layer drawn (the host's fallback: that view's)
+#endif
 #ifdef SSLR_COMPOSITE_FALLBACK
 layout(binding = SSLR_UNIT_COMPOSITE_FALLBACK) uniform sampler2D uFallbackSpecular;
 #endif
 layout(location = 0) out vec4 oColor;
 
 void main() {
+  SSLR_SET_VIEW(uView);
   ivec2 px = ivec2(gl_FragCoord.xy);
-  vec4 resolved = texelFetch(uResolved, px, 0);
+  vec4 resolved = texelFetch(uResolved, SSLR_AT(px), 0);
 #ifdef SSLR_COMPOSITE_FALLBACK
   vec3 fallback = texelFetch(uFallbackSpecular, px, 0).rgb;
   // A poisoned fallback texel must not spread NaN into the host's frame.

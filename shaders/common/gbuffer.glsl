@@ -2,31 +2,37 @@
 // so the host's texture parameters do not matter).
 #include "sslr_shared.h"
 
-layout(binding = SSLR_UNIT_DEPTH) uniform sampler2D uDepth;   // raw window depth (nearest)
-layout(binding = SSLR_UNIT_NORMAL) uniform sampler2D uNormal;  // texel normal + material (nearest)
-layout(binding = SSLR_UNIT_COLOR) uniform sampler2D uColor;   // lit colour (bilinear, clamped)
-layout(binding = SSLR_UNIT_MATERIAL) uniform sampler2D uMaterial;  // optional material texture (nearest)
+layout(binding = SSLR_UNIT_DEPTH) uniform SSLR_SAMPLER uDepth;   // raw window depth (nearest)
+layout(binding = SSLR_UNIT_NORMAL) uniform SSLR_SAMPLER uNormal;  // texel normal + material (nearest)
+layout(binding = SSLR_UNIT_COLOR) uniform SSLR_SAMPLER uColor;   // lit colour (bilinear, clamped)
+layout(binding = SSLR_UNIT_MATERIAL) uniform SSLR_SAMPLER uMaterial;  // optional material texture (nearest)
 
-layout(binding = SSLR_UNIT_MASK) uniform sampler2D uMask;      // optional: where rays may start (nearest)
+layout(binding = SSLR_UNIT_MASK) uniform SSLR_SAMPLER uMask;      // optional: where rays may start (nearest)
 #if defined(SSLR_BACK_DEPTH) && SSLR_BACK_DEPTH
-layout(binding = SSLR_UNIT_BACK_DEPTH) uniform sampler2D uBackDepth;  // optional: the nearest back face's depth (nearest)
+layout(binding = SSLR_UNIT_BACK_DEPTH) uniform SSLR_SAMPLER uBackDepth;  // optional: the nearest back face's depth (nearest)
 #endif
 #ifdef SSLR_COLORED_F0
-layout(binding = SSLR_UNIT_BASE_COLOR) uniform sampler2D uBaseColor;  // optional: base colour, metals' F0 (nearest)
+layout(binding = SSLR_UNIT_BASE_COLOR) uniform SSLR_SAMPLER uBaseColor;  // optional: base colour, metals' F0 (nearest)
 #endif
 
 // Pixel px of the frame as a texel of the host's textures and of the outputs (the frame is
 // FrameInputs::viewport's rectangle of them). sslr's own pyramid and quad images are the frame's
 // and read at px itself.
-ivec2 sslrTexel(ivec2 px) { return px + ivec2(frame.surface.originX, frame.surface.originY); }
+// (With several views: of the current view's layer, SSLR_AT.)
+SSLR_COORD sslrTexel(ivec2 px) { return SSLR_AT(px + ivec2(frame.surface.originX, frame.surface.originY)); }
 
 // A uv of the frame as a uv of the textures, for a bilinear read: clamped to the frame's edge
 // texels' centres, as the sampler's clamp to edge does at the textures' own edge.
-vec2 sslrTextureUv(vec2 uv) {
-  if (frame.surface.viewportInside == 0) return uv;  // (uniform: the same branch for every pixel)
+#if SSLR_VIEWS > 1
+#define SSLR_UV vec3
+#else
+#define SSLR_UV vec2
+#endif
+SSLR_UV sslrTextureUv(vec2 uv) {
+  if (frame.surface.viewportInside == 0) return SSLR_UV_AT(uv);  // (uniform: the same branch for every pixel)
   vec2 size = vec2(frame.surface.width, frame.surface.height);
   vec2 texel = clamp(uv * size, vec2(0.5f), size - 0.5f) + vec2(frame.surface.originX, frame.surface.originY);
-  return texel / vec2(frame.surface.textureWidth, frame.surface.textureHeight);
+  return SSLR_UV_AT(texel / vec2(frame.surface.textureWidth, frame.surface.textureHeight));
 }
 
 // The texel holding pixel px's material channels: the host's material texture if it gave one,
@@ -70,8 +76,9 @@ vec2 sslrSizePx() { return vec2(frame.surface.width, frame.surface.height); }
 // decodes.
 // Components in pixel order p0 = (0, 0), p1 = (1, 0), p2 = (0, 1), p3 = (1, 1): a gather returns
 // (0, 1), (1, 1), (1, 0), (0, 0).
-vec2 sslrQuadCornerUv(ivec2 cell) {
-  return (vec2(sslrTexel(cell * 2)) + 1.0f) / vec2(frame.surface.textureWidth, frame.surface.textureHeight);
+SSLR_UV sslrQuadCornerUv(ivec2 cell) {
+  ivec2 texel = cell * 2 + ivec2(frame.surface.originX, frame.surface.originY);
+  return SSLR_UV_AT((vec2(texel) + 1.0f) / vec2(frame.surface.textureWidth, frame.surface.textureHeight));
 }
 vec4 sslrQuadInFrame(vec4 v, ivec2 cell) {
   if (frame.surface.viewportInside == 0) return v;  // the textures' clamp to edge did it (uniform)

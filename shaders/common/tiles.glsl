@@ -14,13 +14,24 @@ layout(std430, binding = SSLR_BINDING_TILE_SSBO) buffer SslrTiles {
 
 uint sslrTilesX() { return (uint(frame.surface.width) + uint(SSLR_TILE_SIZE) - 1u) / uint(SSLR_TILE_SIZE); }
 uint sslrTilesY() { return (uint(frame.surface.height) + uint(SSLR_TILE_SIZE) - 1u) / uint(SSLR_TILE_SIZE); }
-uint sslrTileCapacity() { return sslrTilesX() * sslrTilesY(); }
+// Tiles of one view; the lists and per-tile arrays hold every view's (every view is the same size).
+uint sslrViewTiles() { return sslrTilesX() * sslrTilesY(); }
+uint sslrTileCapacity() { return sslrViewTiles() * uint(SSLR_VIEWS); }
+// Tile `tile` of the current view in the per-tile arrays.
+uint sslrTileIndex(uvec2 tile) { return uint(sslrView) * sslrViewTiles() + tile.y * sslrTilesX() + tile.x; }
 
-// The lists' entries: a tile's, quad's or pixel's coordinates as x | y << 16.
-uint sslrPackCoord(ivec2 c) { return uint(c.x) | (uint(c.y) << 16); }
-ivec2 sslrUnpackCoord(uint entry) { return ivec2(int(entry & 0xffffu), int(entry >> 16)); }
+// The lists' entries: a tile's, quad's or pixel's coordinates (< 2^14) as x | view << 14 | y << 16,
+// the view the current one (sslrView) when packed.
+uint sslrPackCoord(ivec2 c) { return uint(c.x) | (uint(sslrView) << 14) | (uint(c.y) << 16); }
+ivec2 sslrUnpackCoord(uint entry) { return ivec2(int(entry & 0x3fffu), int(entry >> 16)); }
+// An entry's coordinates, its view made the current one.
+ivec2 sslrEnterCoord(uint entry) {
+  SSLR_SET_VIEW((entry >> 14) & 3u);
+  return sslrUnpackCoord(entry);
+}
 
-ivec2 sslrTileOriginFromEntry(uint entry) { return sslrUnpackCoord(entry) * SSLR_TILE_SIZE; }
+// (Enters the tile's view.)
+ivec2 sslrTileOriginFromEntry(uint entry) { return sslrEnterCoord(entry) * SSLR_TILE_SIZE; }
 ivec2 sslrTileOrigin(uint index) { return sslrTileOriginFromEntry(tiles.tileCoords[index]); }
 ivec2 sslrBlurTileOrigin(uint index) {
   return sslrTileOriginFromEntry(tiles.tileCoords[sslrTileCapacity() + index]);
@@ -35,12 +46,12 @@ ivec2 sslrTileQuad(uint index) {
 
 uint sslrQuadRetraceCountIndex(uint slot) { return 5u * sslrTileCapacity() + slot; }
 
-uint sslrTileListedStamp(uvec2 tile) { return 3u * sslrTileCapacity() + tile.y * sslrTilesX() + tile.x; }
+uint sslrTileListedStamp(uvec2 tile) { return 3u * sslrTileCapacity() + sslrTileIndex(tile); }
 
 // Appends the tile holding px to the blur list, once per frame.
 void sslrListTileForBlur(ivec2 px) {
   uvec2 tile = uvec2(px) / uint(SSLR_TILE_SIZE);
-  uint flag = 2u * sslrTileCapacity() + tile.y * sslrTilesX() + tile.x;
+  uint flag = 2u * sslrTileCapacity() + sslrTileIndex(tile);
   if (atomicExchange(tiles.tileCoords[flag], uint(frame.trace.frameIndex)) != uint(frame.trace.frameIndex)) {
     uint slot = atomicAdd(tiles.blurDispatchX, 1u);
     tiles.tileCoords[sslrTileCapacity() + slot] = sslrPackCoord(ivec2(tile));

@@ -6,18 +6,18 @@
 #include "passes/curved_quads.glsl"
 #endif
 
-layout(binding = SSLR_IMAGE_PYRAMID_LEVEL1, rg32f) uniform writeonly image2D uLevel1;  // the pyramid's level 1 (mip 1)
-layout(binding = SSLR_IMAGE_PYRAMID_LEVEL0, rg32f) uniform writeonly image2D uLevel0;  // its level 0 (mip 0)
+layout(binding = SSLR_IMAGE_PYRAMID_LEVEL1, rg32f) uniform writeonly SSLR_IMAGE uLevel1;  // the pyramid's level 1 (mip 1)
+layout(binding = SSLR_IMAGE_PYRAMID_LEVEL0, rg32f) uniform writeonly SSLR_IMAGE uLevel0;  // its level 0 (mip 0)
 
 // The level-0 texels of level-1 cell `cell`'s pixels. Where the quad straddles the screen's edge,
 // `depths` and `extra` repeat a pixel of the quad for the one past the edge, which lands in the
 // level's padding (never read: the traversal stays on the screen); stores without a condition.
 void sslrWriteLevel0(ivec2 cell, vec4 depths, vec4 extra) {
   ivec2 px = cell * 2;
-  imageStore(uLevel0, px, vec4(sslrHiZLevel0Texel(frame.surface, depths.x, extra.x), 0.0f, 0.0f));
-  imageStore(uLevel0, px + ivec2(1, 0), vec4(sslrHiZLevel0Texel(frame.surface, depths.y, extra.y), 0.0f, 0.0f));
-  imageStore(uLevel0, px + ivec2(0, 1), vec4(sslrHiZLevel0Texel(frame.surface, depths.z, extra.z), 0.0f, 0.0f));
-  imageStore(uLevel0, px + 1, vec4(sslrHiZLevel0Texel(frame.surface, depths.w, extra.w), 0.0f, 0.0f));
+  imageStore(uLevel0, SSLR_AT(px), vec4(sslrHiZLevel0Texel(frame.surface, depths.x, extra.x), 0.0f, 0.0f));
+  imageStore(uLevel0, SSLR_AT(px + ivec2(1, 0)), vec4(sslrHiZLevel0Texel(frame.surface, depths.y, extra.y), 0.0f, 0.0f));
+  imageStore(uLevel0, SSLR_AT(px + ivec2(0, 1)), vec4(sslrHiZLevel0Texel(frame.surface, depths.z, extra.z), 0.0f, 0.0f));
+  imageStore(uLevel0, SSLR_AT(px + 1), vec4(sslrHiZLevel0Texel(frame.surface, depths.w, extra.w), 0.0f, 0.0f));
 }
 
 #if defined(SSLR_CURVED_SOLIDS) && SSLR_CURVED_SOLIDS
@@ -54,8 +54,8 @@ void sslrWriteLevels01(ivec2 cell, vec4 depths, bool countsOwnDispatch) {
 #endif
   bool outside = any(greaterThan(cell * 2, ivec2(frame.surface.width, frame.surface.height) - 1));
   if (outside) level1 = sslrHiZEmpty();
-  if (all(lessThan(cell, imageSize(uLevel1)))) {
-    imageStore(uLevel1, cell, vec4(level1, 0.0f, 0.0f));
+  if (all(lessThan(cell, imageSize(uLevel1).xy))) {
+    imageStore(uLevel1, SSLR_AT(cell), vec4(level1, 0.0f, 0.0f));
     // A quad of background alone gets no level-0 texels: the traversal skips its level-1 cell
     // (nothing there can stop a ray) and never reads them.
     if (!outside && sslrHiZCellHoldsGeometry(frame.surface, level1)) sslrWriteLevel0(cell, depths, extra);

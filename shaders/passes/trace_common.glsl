@@ -8,19 +8,19 @@
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
 
-layout(binding = SSLR_IMAGE_REFLECTION, rgba16f) uniform writeonly image2D uReflection;
+layout(binding = SSLR_IMAGE_REFLECTION, rgba16f) uniform writeonly SSLR_IMAGE uReflection;
 // The resolved image gets the reflection too: tiles without a pixel to blur are final here,
 // and the blur passes then run only over the tiles listed for them.
-layout(binding = SSLR_IMAGE_RESOLVED, rgba16f) uniform writeonly image2D uResolved;
+layout(binding = SSLR_IMAGE_RESOLVED, rgba16f) uniform writeonly SSLR_IMAGE uResolved;
 // The hit record: a debug output, and what temporal reuse (SSLR_TEMPORAL_HITS) reprojects by.
 #if defined(SSLR_DEBUG_OUTPUTS) || defined(SSLR_TEMPORAL_HITS)
-layout(binding = SSLR_IMAGE_HIT, rgba32f) uniform writeonly image2D uHit;
+layout(binding = SSLR_IMAGE_HIT, rgba32f) uniform writeonly SSLR_IMAGE uHit;
 #endif
 #ifdef SSLR_DEBUG_OUTPUTS
-layout(binding = SSLR_IMAGE_ITERATIONS, r32f) uniform writeonly image2D uIterations;
+layout(binding = SSLR_IMAGE_ITERATIONS, r32f) uniform writeonly SSLR_IMAGE uIterations;
 #endif
 #ifdef SSLR_HIT_DISTANCE  // Settings::hitDistance
-layout(binding = SSLR_IMAGE_HIT_DISTANCE, r32f) uniform writeonly image2D uHitDistance;
+layout(binding = SSLR_IMAGE_HIT_DISTANCE, r32f) uniform writeonly SSLR_IMAGE uHitDistance;
 #endif
 #ifdef SSLR_COLLECT_STATS
 layout(std430, binding = SSLR_BINDING_STATS_SSBO) buffer SslrStats {
@@ -45,7 +45,7 @@ vec4 sslrLoadNormal(ivec2 px) { return texelFetch(uNormal, sslrTexel(px), 0); }
 #include "passes/ray_work.glsl"  // sslrCountRayWork (a no-op without SSLR_COLLECT_STATS)
 
 #ifdef SSLR_METHOD_POSITION_BUFFER
-layout(binding = SSLR_UNIT_POSITION) uniform sampler2D uPosition;  // view-space position, w = 1 on geometry
+layout(binding = SSLR_UNIT_POSITION) uniform SSLR_SAMPLER uPosition;  // view-space position, w = 1 on geometry
 bool sslrLoadPosition(ivec2 px, out vec4 vsPosition) {
   gFetches += 1u;
   vsPosition = texelFetch(uPosition, sslrTexel(px), 0);
@@ -56,10 +56,10 @@ bool sslrLoadPosition(ivec2 px, out vec4 vsPosition) {
 #include "sslr_trace_dda.h"
 #else
 // The min-max depth pyramid (pass 2): mip m holds level m.
-layout(binding = SSLR_UNIT_PYRAMID) uniform sampler2D uHiZ;
+layout(binding = SSLR_UNIT_PYRAMID) uniform SSLR_SAMPLER uHiZ;
 vec2 sslrLoadPyramidTexel(int level, ivec2 cell) {
   gFetches += 1u;
-  return texelFetch(uHiZ, cell, level).rg;
+  return texelFetch(uHiZ, SSLR_AT(cell), level).rg;
 }
 #include "sslr_trace_hiz.h"
 #ifdef SSLR_METHOD_FFX

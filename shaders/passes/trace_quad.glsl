@@ -1,8 +1,8 @@
 // Half resolution's quad ray (sslr_shared.h, "Half resolution"): one ray per 2x2 quad, from the
 // first pixel of the quad, in a rotating order, that needs one; its hit, confidence and both
 // surfaces' normals go to the quad images that the shading pass reuses.
-layout(binding = SSLR_IMAGE_QUAD_HIT, rgba32f) uniform writeonly image2D uQuadHitOut;          // see uQuadHit
-layout(binding = SSLR_IMAGE_QUAD_SURFACE, rgba16f) uniform writeonly image2D uQuadSurfaceOut;  // see uQuadSurface
+layout(binding = SSLR_IMAGE_QUAD_HIT, rgba32f) uniform writeonly SSLR_IMAGE uQuadHitOut;          // see uQuadHit
+layout(binding = SSLR_IMAGE_QUAD_SURFACE, rgba16f) uniform writeonly SSLR_IMAGE uQuadSurfaceOut;  // see uQuadSurface
 
 // `slot`: the quad's tile's slot in the tile list. Returns the dependent steps of the tracer run
 // here (0 where none ran: FrameStats' ray work).
@@ -58,8 +58,8 @@ uint sslrTraceQuad(uint slot, ivec2 quad) {
     if (hit.hierarchical != 0) atomicAdd(stats.hierarchicalPixels, 1u);
 #endif
   }
-  imageStore(uQuadHitOut, quad, quadHit);
-  imageStore(uQuadSurfaceOut, quad, quadSurface);
+  imageStore(uQuadHitOut, SSLR_AT(quad), quadHit);
+  imageStore(uQuadSurfaceOut, SSLR_AT(quad), quadSurface);
 #ifdef SSLR_COLLECT_STATS
   atomicAdd(stats.fetches, gFetches);
 #endif

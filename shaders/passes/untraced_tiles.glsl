@@ -5,7 +5,7 @@
 // This invocation's pixel, when its tile was traced last frame and not in this one.
 bool sslrUntracedPixel(out ivec2 px) {
   uint entry = tiles.tileCoords[4u * sslrTileCapacity() + gl_WorkGroupID.x];
-  uvec2 tile = uvec2(sslrUnpackCoord(entry));
+  uvec2 tile = uvec2(sslrEnterCoord(entry));
   px = ivec2(tile) * SSLR_TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
   if (tiles.tileCoords[sslrTileListedStamp(tile)] == uint(frame.trace.frameIndex)) return false;  // traced again
   return sslrInside(px);

@@ -45,6 +45,15 @@ namespace sslr::shared {
 // Most levels of the min-max depth pyramid above the depth buffer (level l: 2^l-pixel cells).
 #define SSLR_HIZ_MAX_LEVELS 8
 
+// Views a context traces in the same dispatches at most (ContextDesc::views): a list entry keeps
+// its view in the two bits above a 14-bit coordinate (common/tiles.glsl).
+#define SSLR_MAX_VIEWS 4
+#ifndef __cplusplus
+#ifndef SSLR_VIEWS
+#define SSLR_VIEWS 1  // the program's views (Context::Impl::buildPrograms defines it when > 1)
+#endif
+#endif
+
 #define SSLR_TILE_SIZE 8  // compute work-group edge and classification tile edge, in pixels
 #define SSLR_TILE_QUADS ((SSLR_TILE_SIZE / 2) * (SSLR_TILE_SIZE / 2))  // 2x2 quads per tile
 
@@ -70,6 +79,8 @@ namespace sslr::shared {
 #define SSLR_UNIT_HISTORY_KEY 5       // ... its keys
 #define SSLR_UNIT_COMPOSITE_RESOLVED 4  // composite: the resolved output
 #define SSLR_UNIT_COMPOSITE_FALLBACK 5  // ... the host's fallback specular
+// The composite's uniform location of the view it draws (ContextDesc::views > 1: CompositeOptions::view).
+#define SSLR_COMPOSITE_VIEW_LOCATION 0
 #define SSLR_UNIT_POSITION 5          // Method::PositionBuffer: the host's position texture
 #define SSLR_UNIT_PYRAMID 6           // the depth pyramid (the trace passes, 2_pyramid_*.comp)
 #define SSLR_UNIT_MOTION 6            // temporal reuse: the host's motion vectors (after the trace)

@@ -143,6 +143,11 @@ struct SslrTemporalParams {
 #ifdef __cplusplus
 #define SSLR_FRAME_BLOCK_BEGIN struct SslrFrame {
 #define SSLR_FRAME_BLOCK_END };
+#elif SSLR_VIEWS > 1
+// Several views (ContextDesc::views): one SslrFrame a view, `frame` the current view's.
+#define SSLR_FRAME_BLOCK_BEGIN struct SslrFrame {
+#define SSLR_FRAME_BLOCK_END };                                                                  \
+  layout(std140, binding = SSLR_BINDING_FRAME_UBO) uniform SslrFrameBlock { SslrFrame sslrFrames[SSLR_VIEWS]; };
 #else
 #define SSLR_FRAME_BLOCK_BEGIN layout(std140, binding = SSLR_BINDING_FRAME_UBO) uniform SslrFrameBlock {
 #define SSLR_FRAME_BLOCK_END } frame;
@@ -156,6 +161,33 @@ SSLR_FRAME_BLOCK_BEGIN
   SslrDdaParams dda;
   SslrTemporalParams temporal;
 SSLR_FRAME_BLOCK_END
+
+#ifndef __cplusplus
+// ---- Views (ContextDesc::views) ----------------------------------------------------------------
+// With several views every texture and image of a pass is a 2D array, one layer a view, and each
+// invocation serves one view, sslrView: a full-screen pass's gl_WorkGroupID.z, a listed tile's,
+// pixel's or quad's view from its list entry (sslrEnterCoord, common/tiles.glsl). SSLR_AT and
+// SSLR_UV_AT turn a texel or uv of the frame into that view's; with one view they are the texel
+// or uv itself and the textures plain 2D ones, so the single-view shaders are unchanged.
+#if SSLR_VIEWS > 1
+int sslrView = 0;
+#define frame sslrFrames[sslrView]
+#define SSLR_SET_VIEW(v) sslrView = int(v)
+#define SSLR_SAMPLER sampler2DArray
+#define SSLR_IMAGE image2DArray
+#define SSLR_COORD ivec3
+#define SSLR_AT(p) ivec3(p, sslrView)
+#define SSLR_UV_AT(uv) vec3(uv, float(sslrView))
+#else
+#define sslrView 0
+#define SSLR_SET_VIEW(v)
+#define SSLR_SAMPLER sampler2D
+#define SSLR_IMAGE image2D
+#define SSLR_COORD ivec2
+#define SSLR_AT(p) (p)
+#define SSLR_UV_AT(uv) (uv)
+#endif
+#endif
 
 // The tile buffer's header (common/tiles.glsl's SSBO, std430: tightly packed uints), shared by the
 // passes and the C++ code that writes its per-frame part and dispatches through its commands.

@@ -53,18 +53,22 @@ Status Context::Impl::checkCompositeTarget(GLName framebuffer) const {
 Expected<GLuint> Context::Impl::compositeProgram(bool overFallback) {
   const std::vector<std::pair<GLenum, const char*>> stages = {{GL_VERTEX_SHADER, "composite.vert"},
                                                                {GL_FRAGMENT_SHADER, "composite.frag"}};
-  return program(stages, overFallback ? "#define SSLR_COMPOSITE_FALLBACK 1\n" : "");
+  const std::string viewsDefine = views > 1 ? "#define SSLR_VIEWS " + std::to_string(views) + "\n" : "";
+  return program(stages, viewsDefine + (overFallback ? "#define SSLR_COMPOSITE_FALLBACK 1\n" : ""));
 }
 
 // CompositeOptions that composite() and prepare()'s warm-up accept.
 Status Context::Impl::checkCompositeOptions(const CompositeOptions& options) const {
   const bool blendOverFallback = options.mode == CompositeMode::BlendOverFallback;
+  if (options.view < 0 || options.view >= views)
+    return Status::error(StatusCode::InvalidSettings, "sslr: composite(): CompositeOptions::view " + std::to_string(options.view) +
+                         " is not a view of the context (0.." + std::to_string(views - 1) + ")");
   if (options.mode != CompositeMode::Add && !blendOverFallback)
     return Status::error(StatusCode::InvalidSettings, "sslr: composite(): CompositeOptions::mode " +
                          std::to_string(static_cast<int>(options.mode)) + " is not a CompositeMode");
   if (blendOverFallback) {
     if (Status s = checkTexture(options.fallbackSpecularTexture, "CompositeOptions::fallbackSpecularTexture",
-                                FormatInfo::Color, 3);
+                                FormatInfo::Color, 3, nullptr, false);
         !s)
       return Status::error(s.code(), s.message() + " (CompositeMode::BlendOverFallback reads it)");
   } else if (options.fallbackSpecularTexture != 0) {
@@ -139,6 +143,10 @@ void Context::Impl::drawComposite(GLName framebuffer, GLuint addProgram, GLuint 
   gl.GetIntegerv(GL_MAX_DRAW_BUFFERS, &maxDrawBuffers);
   for (GLint i = 1; i < std::min(maxDrawBuffers, 8); ++i) gl.ColorMaski(i, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   // 6 vertices per listed tile, instance count written by classification (offset 12 bytes).
+  if (views > 1) {  // the view drawn (composite.vert, composite.frag: uView)
+    for (GLuint program : {addProgram, fallbackProgram})
+      if (program != 0) gl.ProgramUniform1i(program, SSLR_COMPOSITE_VIEW_LOCATION, options.view);
+  }
   if (blendOverFallback) {
     // existing - coverage * fallback first, as a subtraction by the blender: a fixed-point target
     // clamps a negative source to 0 before blending, so "reflection - coverage * fallback" cannot

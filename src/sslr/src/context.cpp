@@ -30,9 +30,7 @@ const char* libraryVersion() { return SSLR_VERSION_STRING; }
 // ---- Render targets -------------------------------------------------------------------------
 
 GLuint Context::Impl::makeTexture(GLenum format, const char* name) const {
-  GLuint t = 0;
-  gl.CreateTextures(GL_TEXTURE_2D, 1, &t);
-  gl.TextureStorage2D(t, 1, format, width, height);
+  const GLuint t = createTexture(format, 1, width, height);
   label(GL_TEXTURE, t, name);
   return t;
 }
@@ -59,9 +57,10 @@ void Context::Impl::createTargets() {
 }
 
 // Header (see common/tiles.glsl), traced tiles, tiles to blur, per-tile stamps (zero: frame
-// indices start at 1), the previous frame's traced tiles (none: the outputs start cleared).
+// indices start at 1), the previous frame's traced tiles (none: the outputs start cleared); each
+// array holds every view's tiles.
 std::vector<GLuint> Context::Impl::initialTileList() const {
-  const size_t tiles = static_cast<size_t>(tilesX()) * tilesY();
+  const size_t tiles = static_cast<size_t>(tilesX()) * tilesY() * views;
   std::vector<GLuint> list(kTileHeader + kTileArrays * tiles, 0u);
   list[kCleanupDispatchOffset / 4 + 1] = list[kCleanupDispatchOffset / 4 + 2] = 1;
   return list;
@@ -147,6 +146,9 @@ Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
   if (desc.width <= 0 || desc.height <= 0 || desc.width > 16384 || desc.height > 16384)
     return Status::error(StatusCode::InvalidSize, "sslr: ContextDesc size " + std::to_string(desc.width) + "x" +
                          std::to_string(desc.height) + " is invalid (must be 1..16384 each)");
+  if (desc.views < 1 || desc.views > SSLR_MAX_VIEWS)
+    return Status::error(StatusCode::InvalidSettings, "sslr: ContextDesc views = " + std::to_string(desc.views) +
+                         " is invalid (must be 1.." + std::to_string(SSLR_MAX_VIEWS) + ")");
   if (desc.device != DeviceProfile::Auto && desc.device != DeviceProfile::Gpu && desc.device != DeviceProfile::Software)
     return Status::error(StatusCode::InvalidSettings, "sslr: ContextDesc device = " +
                          std::to_string(static_cast<int>(desc.device)) + " is not a DeviceProfile");
@@ -183,8 +185,10 @@ Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
   }
   impl->width = desc.width;
   impl->height = desc.height;
-  gl.CreateBuffers(1, &impl->frameUbo);
-  gl.NamedBufferStorage(impl->frameUbo, sizeof(shared::SslrFrame), nullptr, GL_DYNAMIC_STORAGE_BIT);
+  impl->views = desc.views;
+  gl.CreateBuffers(1, &impl->frameUbo);  // one SslrFrame a view (std140: an array of them)
+  gl.NamedBufferStorage(impl->frameUbo, static_cast<GLsizeiptr>(sizeof(shared::SslrFrame)) * desc.views, nullptr,
+                        GL_DYNAMIC_STORAGE_BIT);
   impl->label(GL_BUFFER, impl->frameUbo, "sslr.frame");
   for (Impl::StatsSlot& slot : impl->statsRing) {
     gl.CreateBuffers(1, &slot.buffer);
@@ -237,11 +241,18 @@ int Context::height() const { return impl_->height; }
 DeviceProfile Context::device() const {
   return impl_->softwareRenderer ? DeviceProfile::Software : DeviceProfile::Gpu;
 }
+int Context::views() const { return impl_->views; }
 Status Context::dispatch(const FrameInputs& inputs, const Settings& settings) {
-  return impl_->dispatch(inputs, settings);
+  return impl_->dispatch(std::span<const FrameInputs>(&inputs, 1), settings);
+}
+Status Context::dispatch(std::span<const FrameInputs> views, const Settings& settings) {
+  return impl_->dispatch(views, settings);
 }
 Status Context::prepare(const FrameInputs& inputs, const Settings& settings, const PrepareOptions& options) {
-  return impl_->prepare(inputs, settings, options);
+  return impl_->prepare(std::span<const FrameInputs>(&inputs, 1), settings, options);
+}
+Status Context::prepare(std::span<const FrameInputs> views, const Settings& settings, const PrepareOptions& options) {
+  return impl_->prepare(views, settings, options);
 }
 Status Context::composite(GLName framebuffer, const CompositeOptions& options) {
   return impl_->composite(framebuffer, options);

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <array>
 #include <map>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -78,6 +79,22 @@ struct Context::Impl {
   LogCallback log;
   bool softwareRenderer = false;  // DeviceProfile::Software (ContextDesc::device, or Auto on a CPU rasterizer)
   int width = 0, height = 0;  // the textures' (inputs and outputs)
+  // ContextDesc::views: with more than one, every texture and image is a 2D array of one layer a
+  // view, the tile lists hold every view's entries and the full-screen dispatches have z = views.
+  int views = 1;
+  GLenum textureTarget() const { return views > 1 ? GL_TEXTURE_2D_ARRAY : GL_TEXTURE_2D; }
+  // A texture of the context's kind (a 2D array of `views` layers when views > 1).
+  GLuint createTexture(GLenum format, int levels, int w, int h) const {
+    GLuint t = 0;
+    gl.CreateTextures(textureTarget(), 1, &t);
+    if (views > 1) gl.TextureStorage3D(t, levels, format, w, h, views);
+    else gl.TextureStorage2D(t, levels, format, w, h);
+    return t;
+  }
+  // Binds level `level` of one of sslr's textures (every layer) to image unit `unit`, write-only.
+  void bindImage(GLuint unit, GLuint texture, int level, GLenum format) const {
+    gl.BindImageTexture(unit, texture, level, views > 1 ? GL_TRUE : GL_FALSE, 0, GL_WRITE_ONLY, format);
+  }
 
   // This frame's rectangle of the textures (FrameInputs::viewport) and what follows from its
   // size: the tile grid and the pyramid's shape (allocations are the context's: the largest).
@@ -196,15 +213,18 @@ struct Context::Impl {
   Expected<GLuint> program(const std::vector<std::pair<GLenum, const char*>>& stages, const std::string& defines);
   Expected<GLuint> computeProgram(const char* entry, const std::string& defines = {});
   // inputs.cpp
+  // `perView`: one of the frame's inputs, a 2D array of a layer a view when views > 1 (else a 2D
+  // texture whatever the views: the composite's fallback).
   Status checkTexture(GLName tex, const char* what, FormatInfo::Kind kind, int minChannels,
-                      FormatInfo* infoOut = nullptr) const;
+                      FormatInfo* infoOut = nullptr, bool perView = true) const;
   Status checkInputs(const FrameInputs& in, Method method, TrafficModel* formats = nullptr) const;
   Status checkSurfaceLayout(const FrameInputs& in, const FormatInfo& materialInfo, FormatInfo* baseColorInfo) const;
   Status checkNormalDecode(const SurfaceLayout& sl, const FormatInfo& info, GLName tex) const;
   // frame.cpp: a frame's plan (which passes run, their switches and programs), its start and end;
   // passes/*.cpp: one function per pass, in the order they run.
   struct FramePlan {
-    shared::SslrFrame frame{};  // the constants the passes read (frameConstants)
+    shared::SslrFrame frame{};  // the constants the passes read (frameConstants): view 0's
+    std::vector<shared::SslrFrame> otherViews;  // views 1.. (ContextDesc::views > 1)
     Method method = Method::AdaptiveL;
     bool halfResolution = false, temporal = false, debugOutputs = false, collectStats = false;
     bool hitDistance = false;      // Settings::hitDistance: the trace writes hitDistanceTexture()
@@ -234,8 +254,12 @@ struct Context::Impl {
     } programs;
   };
   // frame.cpp
-  Status dispatch(const FrameInputs& in, const Settings& settings);
-  Status prepare(const FrameInputs& in, const Settings& settings, const PrepareOptions& options);
+  Status dispatch(std::span<const FrameInputs> in, const Settings& settings);
+  Status prepare(std::span<const FrameInputs> in, const Settings& settings, const PrepareOptions& options);
+  // Every view's constants (validated), the first view's in `constants`, the others' in `others`;
+  // views must agree on all but their matrices.
+  Status viewConstants(std::span<const FrameInputs> in, const Settings& settings, const char* call,
+                       shared::SslrFrame& constants, std::vector<shared::SslrFrame>& others) const;
   void warmUp(FramePlan& plan, const FrameInputs& in);
   void recordFrame(FramePlan& plan, const FrameInputs& in, const char* debugGroup);
   void readFeedback();

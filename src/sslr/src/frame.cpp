@@ -7,6 +7,7 @@
 // listed pixels) only.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "context_impl.hpp"
 #include "gl_state.hpp"
@@ -17,16 +18,18 @@ namespace sslr {
 // A frame: validate, plan (which passes run and with which programs, before any GL state is
 // touched), create what the plan needs, then the passes in order. Each pass function issues its
 // GL commands through the counting wrappers (FrameStats' per-pass commands).
-Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) {
+Status Context::Impl::dispatch(std::span<const FrameInputs> inputs, const Settings& settings) {
   haveFrame = false;
   // Temporal history is the previous dispatch's only if that one stored it: a failed or
   // non-temporal dispatch in between breaks the chain (the host's "previous" matrices would not
   // describe the stored frame).
-  bool hadHistory = temporal.valid && !in.historyReset;
+  bool hadHistory = temporal.valid && !inputs.empty() && !inputs[0].historyReset;
   temporal.valid = false;
   if (Status s = checkCurrentContext("dispatch()"); !s) return s;
-  auto constants = frameConstants(in, settings, width, height);  // validates settings + projection
-  if (!constants) return constants.status();
+  shared::SslrFrame constants{};
+  std::vector<shared::SslrFrame> otherViews;
+  if (Status s = viewConstants(inputs, settings, "dispatch()", constants, otherViews); !s) return s;
+  const FrameInputs& in = inputs[0];  // (the textures, layout and viewport every view shares)
   TrafficModel formats;
   if (Status s = checkInputs(in, settings.method, &formats); !s) return s;
   setArea(in);
@@ -34,12 +37,63 @@ Status Context::Impl::dispatch(const FrameInputs& in, const Settings& settings) 
   recordingPass = 0;
   // History is of the last frame's rectangle; another one starts afresh (as after a resize).
   hadHistory = hadHistory && !area.changed;
-  FramePlan plan = planFrame(settings, constants.value(), hadHistory);
+  FramePlan plan = planFrame(settings, constants, hadHistory);
+  plan.otherViews = std::move(otherViews);
   if (plan.collectStats) plan.traffic = trafficModel(plan, formats, settings);
   if (Status s = buildPrograms(plan, in, settings); !s) return s;
   recordFrame(plan, in, "sslr.dispatch");
   haveFrame = true;
   frameIsRadiance = settings.output == OutputMode::Radiance;
+  return {};
+}
+
+// Every view's constants (frameConstants validates each view's settings and projection); the
+// views share their textures, layout, viewport and everything but their matrices, so that one
+// plan and one set of programs serve them all.
+Status Context::Impl::viewConstants(std::span<const FrameInputs> in, const Settings& settings, const char* call,
+                                    shared::SslrFrame& constants, std::vector<shared::SslrFrame>& others) const {
+  const std::string where = std::string("sslr: ") + call + ": ";
+  if (in.size() != static_cast<size_t>(views))
+    return Status::error(StatusCode::InvalidInput, where + std::to_string(in.size()) + " FrameInputs for a context of " +
+                         std::to_string(views) + " view(s) (ContextDesc::views): give one a view");
+  others.clear();
+  for (size_t v = 0; v < in.size(); ++v) {
+    auto c = frameConstants(in[v], settings, width, height);
+    if (!c) {
+      if (views == 1) return c.status();
+      return Status::error(c.status().code(), c.status().message() + " (view " + std::to_string(v) + ")");
+    }
+    if (v == 0) {
+      constants = c.value();
+      continue;
+    }
+    const FrameInputs& a = in[0];
+    const FrameInputs& b = in[v];
+    const std::string which = where + "views[" + std::to_string(v) + "] ";
+    const std::pair<GLName FrameInputs::*, const char*> textures[] = {
+        {&FrameInputs::colorTexture, "colorTexture"},       {&FrameInputs::normalTexture, "normalTexture"},
+        {&FrameInputs::depthTexture, "depthTexture"},       {&FrameInputs::positionTexture, "positionTexture"},
+        {&FrameInputs::materialTexture, "materialTexture"}, {&FrameInputs::maskTexture, "maskTexture"},
+        {&FrameInputs::backDepthTexture, "backDepthTexture"}, {&FrameInputs::baseColorTexture, "baseColorTexture"},
+        {&FrameInputs::motionTexture, "motionTexture"}};
+    for (const auto& [member, name] : textures)
+      if (a.*member != b.*member)
+        return Status::error(StatusCode::InvalidInput, which + "names " + name + " " + std::to_string(b.*member) +
+                             ", views[0] " + std::to_string(a.*member) +
+                             ": every view reads its layer of the same 2D array textures");
+    if (a.historyReset != b.historyReset)
+      return Status::error(StatusCode::InvalidInput, which + "historyReset differs from views[0]'s: the views share one history");
+    // What the plan and the programs are built from must agree: all but the normal transform
+    // (world normals: each view's viewFromWorld) and the projection.
+    shared::SslrSurface sa = constants.surface, sb = c.value().surface;
+    for (shared::SslrSurface* sv : {&sa, &sb})
+      for (glm::vec4* row : {&sv->normalFromStored0, &sv->normalFromStored1, &sv->normalFromStored2})
+        *row = glm::vec4(0.0f, 0.0f, 0.0f, row->w);
+    if (std::memcmp(&sa, &sb, sizeof(sa)) != 0 || std::memcmp(&constants.trace, &c.value().trace, sizeof(constants.trace)) != 0)
+      return Status::error(StatusCode::InvalidInput, which + "differs from views[0] in its depth convention, surface layout, "
+                           "viewport or exposure: views may differ only in their matrices");
+    others.push_back(c.value());
+  }
   return {};
 }
 
@@ -57,10 +111,12 @@ void Context::Impl::setArea(const FrameInputs& in) {
 // program's machine code at its first use, for the textures and samplers bound then (llvmpipe
 // does), so each variant also runs once on the host's inputs, as a frame would; then the frame
 // state is put back as after create() (warmUp, resetFrameState).
-Status Context::Impl::prepare(const FrameInputs& in, const Settings& settings, const PrepareOptions& options) {
+Status Context::Impl::prepare(std::span<const FrameInputs> inputs, const Settings& settings, const PrepareOptions& options) {
   if (Status s = checkCurrentContext("prepare()"); !s) return s;
-  auto constants = frameConstants(in, settings, width, height);  // validates settings + projection
-  if (!constants) return constants.status();
+  shared::SslrFrame constants{};
+  std::vector<shared::SslrFrame> otherViews;
+  if (Status s = viewConstants(inputs, settings, "prepare()", constants, otherViews); !s) return s;
+  const FrameInputs& in = inputs[0];
   if (Status s = checkInputs(in, settings.method); !s) return s;
   if (options.composite) {
     if (settings.output == OutputMode::Radiance)
@@ -69,7 +125,8 @@ Status Context::Impl::prepare(const FrameInputs& in, const Settings& settings, c
     if (Status s = checkCompositeOptions(options.compositeOptions); !s) return s;
   }
   setArea(in);
-  const FramePlan base = planFrame(settings, constants.value(), false);
+  FramePlan base = planFrame(settings, constants, false);
+  base.otherViews = std::move(otherViews);
   const std::uint64_t dispatchesBefore = dispatches;
   const int frameIndexBefore = frameIndex;
   // However prepare ends, the warm-up frames leave nothing behind.
@@ -192,8 +249,9 @@ Context::Impl::FramePlan Context::Impl::planFrame(const Settings& settings,
 // the plan runs and the pyramid's cell counts.
 TrafficModel Context::Impl::trafficModel(const FramePlan& f, TrafficModel formats, const Settings& settings) const {
   TrafficModel m = formats;
+  // Every view's pixels: N views are counted as one frame N times as high.
   m.width = area.rect.width;
-  m.height = area.rect.height;
+  m.height = area.rect.height * views;
   m.pyramid = f.pyramid;
   m.classifyLevels01 = f.pyramid && !f.level1Pass;
   m.levels01Pass = f.level1Pass;
@@ -202,8 +260,8 @@ TrafficModel Context::Impl::trafficModel(const FramePlan& f, TrafficModel format
     const std::uint64_t side = std::uint64_t(1) << level;
     return ((std::uint64_t(area.rect.width) + side - 1) / side) * ((std::uint64_t(area.rect.height) + side - 1) / side);
   };
-  m.level1Cells = f.pyramid ? cells(1) : 0;
-  for (int level = 2; f.pyramid && level <= area.levels; ++level) m.upperCells += cells(level);
+  m.level1Cells = f.pyramid ? cells(1) * views : 0;
+  for (int level = 2; f.pyramid && level <= area.levels; ++level) m.upperCells += cells(level) * views;
   // A counted fetch is a depth, position or pyramid texel; where both depth and pyramid texels are
   // read the larger (the pyramid's RG32F) is the bound.
   m.fetchBytes = f.method == Method::PositionBuffer ? m.positionBytes
@@ -224,7 +282,8 @@ TrafficModel Context::Impl::trafficModel(const FramePlan& f, TrafficModel format
 // in or out rather than branched on: a CPU rasterizer runs an untaken branch under a lane mask.
 Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const Settings& settings) {
   const shared::SslrSurface& surface = f.frame.surface;
-  inputDefines = std::string(in.maskTexture != 0 ? "#define SSLR_HAS_MASK 1\n" : "") +
+  inputDefines = (views > 1 ? "#define SSLR_VIEWS " + std::to_string(views) + "\n" : std::string()) +
+                 std::string(in.maskTexture != 0 ? "#define SSLR_HAS_MASK 1\n" : "") +
                  "#define SSLR_BACK_DEPTH " + (in.backDepthTexture != 0 ? "1\n" : "0\n") +
                  (in.materialTexture != 0 ? "#define SSLR_SEPARATE_MATERIAL 1\n" : "") +
                  (in.baseColorTexture != 0 ? "#define SSLR_COLORED_F0 1\n" : "") +
@@ -330,10 +389,16 @@ void Context::Impl::bindInputs(const FrameInputs& in) const {
 void Context::Impl::beginFrame(FramePlan& f) {
   const float zero[4] = {0, 0, 0, 0};
   if (f.temporal && !f.useHistory) clearTexImage(temporal.key, GL_RED, GL_FLOAT, zero);
-  f.frame.temporal.history = f.useHistory ? 1 : 0;
   frameIndex = frameIndex == 0x7fffffff ? 1 : frameIndex + 1;
+  f.frame.temporal.history = f.useHistory ? 1 : 0;
   f.frame.trace.frameIndex = frameIndex;
   bufferSubData(frameUbo, 0, sizeof(f.frame), &f.frame);
+  for (size_t v = 0; v < f.otherViews.size(); ++v) {  // views 1.. (ContextDesc::views)
+    f.otherViews[v].temporal.history = f.frame.temporal.history;
+    f.otherViews[v].trace.frameIndex = frameIndex;
+    bufferSubData(frameUbo, static_cast<GLintptr>((v + 1) * sizeof(shared::SslrFrame)), sizeof(shared::SslrFrame),
+                  &f.otherViews[v]);
+  }
   writeTileHeader();
   if (area.changed) startNewArea();
   // reflection and resolved are not cleared: the clean-up pass (1_clear_untraced.comp)
@@ -366,7 +431,7 @@ void Context::Impl::beginFrame(FramePlan& f) {
 // clean-up pass's.
 void Context::Impl::writeTileHeader() const {
   // (The tile arrays are laid out for this frame's tile grid, common/tiles.glsl.)
-  const GLsizeiptr capacity = static_cast<GLsizeiptr>(area.tilesX) * area.tilesY;
+  const GLsizeiptr capacity = static_cast<GLsizeiptr>(area.tilesX) * area.tilesY * views;  // every view's tiles
   copyBufferSubData(tileBuffer, tileBuffer, 0, kCleanupDispatchOffset, 3 * sizeof(GLuint));
   copyBufferSubData(tileBuffer, tileBuffer, kTileHeader * sizeof(GLuint),
                     (kTileHeader + 4 * capacity) * sizeof(GLuint), capacity * sizeof(GLuint));
@@ -387,7 +452,7 @@ void Context::Impl::writeTileHeader() const {
     const bool used = level <= area.levels && (level <= 2 || level == kHizBlockTop + 1);
     real[0] = used ? static_cast<GLuint>((2 * area.level1Width + groupPx - 1) / groupPx) : 0u;
     real[1] = used ? static_cast<GLuint>((2 * area.level1Height + groupPx - 1) / groupPx) : 1u;
-    real[2] = 1;
+    real[2] = static_cast<GLuint>(views);  // (z: one a view)
   }
   bufferSubData(tileBuffer, 0, kHeaderUploadBytes, &header);
 }
@@ -399,11 +464,11 @@ void Context::Impl::writeTileHeader() const {
 void Context::Impl::startNewArea() {
   const float zero[4] = {0, 0, 0, 0};
   for (GLuint t : {reflection, resolved}) {
-    gl.ClearTexSubImage(t, 0, lastRect.x, lastRect.y, 0, lastRect.width, lastRect.height, 1, GL_RGBA, GL_FLOAT, zero);
+    gl.ClearTexSubImage(t, 0, lastRect.x, lastRect.y, 0, lastRect.width, lastRect.height, views, GL_RGBA, GL_FLOAT, zero);
     ++recording[recordingPass].uploads;
   }
   const GLuint zeroWord = 0;
-  const GLsizeiptr arrays = static_cast<GLsizeiptr>(kTileArrays) * tilesX() * tilesY();  // (allocated for the context)
+  const GLsizeiptr arrays = static_cast<GLsizeiptr>(kTileArrays) * tilesX() * tilesY() * views;  // (allocated for the context)
   gl.ClearNamedBufferSubData(tileBuffer, GL_R32UI, kTileHeader * sizeof(GLuint), arrays * sizeof(GLuint), GL_RED_INTEGER,
                              GL_UNSIGNED_INT, &zeroWord);
   ++recording[recordingPass].uploads;

@@ -43,6 +43,7 @@ namespace sslr::detail {
   X(PFNGLCREATETEXTURESPROC, CreateTextures)                                     \
   X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                     \
   X(PFNGLTEXTURESTORAGE2DPROC, TextureStorage2D)                                 \
+  X(PFNGLTEXTURESTORAGE3DPROC, TextureStorage3D)                                 \
   X(PFNGLCREATEFRAMEBUFFERSPROC, CreateFramebuffers)                             \
   X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                             \
   X(PFNGLNAMEDFRAMEBUFFERTEXTUREPROC, NamedFramebufferTexture)                   \

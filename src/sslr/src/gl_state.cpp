@@ -27,6 +27,7 @@ StateGuard::StateGuard(const Gl& gl, bool forDraw) : gl_(gl), forDraw_(forDraw) 
   for (int unit = 0; unit < kTextureUnits; ++unit) {
     gl.ActiveTexture(GL_TEXTURE0 + unit);
     gl.GetIntegerv(GL_TEXTURE_BINDING_2D, &textures_[unit]);
+    gl.GetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &arrayTextures_[unit]);  // (a context of several views binds arrays)
     gl.GetIntegerv(GL_SAMPLER_BINDING, &samplers_[unit]);
   }
   gl.ActiveTexture(static_cast<GLenum>(activeTexture_));
@@ -79,6 +80,7 @@ StateGuard::~StateGuard() {
   for (int unit = 0; unit < kTextureUnits; ++unit) {
     gl.ActiveTexture(GL_TEXTURE0 + unit);
     gl.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(textures_[unit]));
+    gl.BindTexture(GL_TEXTURE_2D_ARRAY, static_cast<GLuint>(arrayTextures_[unit]));
     gl.BindSampler(unit, static_cast<GLuint>(samplers_[unit]));
   }
   gl.ActiveTexture(static_cast<GLenum>(activeTexture_));

@@ -47,7 +47,7 @@ class StateGuard {
   const Gl& gl_;
   bool forDraw_;
   GLint program_ = 0, activeTexture_ = GL_TEXTURE0;
-  std::array<GLint, kTextureUnits> textures_{}, samplers_{};
+  std::array<GLint, kTextureUnits> textures_{}, arrayTextures_{}, samplers_{};
   std::array<ImageBinding, kImageUnits> images_{};
   std::array<IndexedBuffer, kSsboBindings> ssbos_{};
   std::array<IndexedBuffer, kUboBindings> ubos_{};

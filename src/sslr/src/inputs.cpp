@@ -73,16 +73,28 @@ const char* integerFormatName(GLint f) {
 }
 }  // namespace
 
-// Checks one host texture: exists, is 2D, has the context's size and a usable format.
+// Checks one host texture: exists, is 2D (of several views: a 2D array with a layer a view), has
+// the context's size and a usable format.
 Status Context::Impl::checkTexture(GLName tex, const char* what, FormatInfo::Kind kind, int minChannels,
-                                   FormatInfo* infoOut) const {
+                                   FormatInfo* infoOut, bool perView) const {
   std::ostringstream where;
   where << "sslr: " << what << " (texture " << tex << ")";
   if (tex == 0) return Status::error(StatusCode::InvalidInput, where.str() + " is 0: the texture is required");
   if (!gl.IsTexture(tex)) return Status::error(StatusCode::InvalidInput, where.str() + " is not a texture name");
   GLint target = 0;
   gl.GetTextureParameteriv(tex, GL_TEXTURE_TARGET, &target);
-  if (target != GL_TEXTURE_2D) return Status::error(StatusCode::InvalidInput, where.str() + " is not a GL_TEXTURE_2D");
+  const bool layered = perView && views > 1;
+  if (!layered && target != GL_TEXTURE_2D) return Status::error(StatusCode::InvalidInput, where.str() + " is not a GL_TEXTURE_2D");
+  if (layered) {
+    if (target != GL_TEXTURE_2D_ARRAY)
+      return Status::error(StatusCode::InvalidInput, where.str() + " is not a GL_TEXTURE_2D_ARRAY: a context of " +
+                           std::to_string(views) + " views (ContextDesc::views) reads layer v of each input for view v");
+    GLint layers = 0;
+    gl.GetTextureLevelParameteriv(tex, 0, GL_TEXTURE_DEPTH, &layers);
+    if (layers < views)
+      return Status::error(StatusCode::InvalidInput, where.str() + " has " + std::to_string(layers) + " layer(s); the context's " +
+                           std::to_string(views) + " views need one each");
+  }
   GLint w = 0, h = 0, format = 0;
   gl.GetTextureLevelParameteriv(tex, 0, GL_TEXTURE_WIDTH, &w);
   gl.GetTextureLevelParameteriv(tex, 0, GL_TEXTURE_HEIGHT, &h);

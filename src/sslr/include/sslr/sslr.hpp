@@ -22,6 +22,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 
@@ -445,6 +446,11 @@ struct ContextDesc {
   GetProcAddress getProcAddress = nullptr;
   LogCallback log;  // optional: shader compile logs, warnings
   DeviceProfile device = DeviceProfile::Auto;
+  // Views traced in the same dispatches (1..4: two for stereo, four for quad views). With more
+  // than one, every input and output is a GL_TEXTURE_2D_ARRAY whose layer v is view v, and frames
+  // go to dispatch(std::span<const FrameInputs>), one FrameInputs a view
+  // (integration.md, "Stereo and multiview").
+  int views = 1;
 };
 
 // The commands one pass of a frame recorded for the GPU, counted as dispatch() records them: the
@@ -530,6 +536,9 @@ struct CompositeOptions {
   // BlendOverFallback only: the host's fallback specular radiance, already weighted by its BRDF
   // (what its lighting added to the framebuffer for reflections). rgb is read; the context's size.
   GLName fallbackSpecularTexture = 0;
+  // The view to composite (ContextDesc::views > 1: one call a view, each into that view's
+  // framebuffer; fallbackSpecularTexture is then that view's, a GL_TEXTURE_2D).
+  int view = 0;
 };
 
 // Context::prepare's warm-up of composite(): its draw run once as the host will call it, into a
@@ -555,6 +564,14 @@ class Context {
 
   // Traces, blurs and resolves one frame. The inputs stay the host's; sizes must match.
   Status dispatch(const FrameInputs& inputs, const Settings& settings);
+  // The same for every view of a context made with ContextDesc::views = N, in the same dispatches:
+  // `views` holds N FrameInputs, view v's matrices (clipFromView, viewFromWorld,
+  // previousClipFromView) in views[v]. Every view names the same textures (2D arrays with at
+  // least N layers, layer v = view v) and the same depth convention, surface layout, viewport,
+  // exposure and historyReset. Each layer of the outputs is then what a one-view context given
+  // that layer as its own textures writes.
+  Status dispatch(std::span<const FrameInputs> views, const Settings& settings);
+  int views() const;  // ContextDesc::views
 
   // Compiles every program dispatch() and composite() may use with these inputs and settings
   // (each variant a frame can choose: after an empty frame, with the traversal inline or in a pass
@@ -566,6 +583,7 @@ class Context {
   // no temporal history, no frame to composite. Optional: dispatch compiles what it needs on first
   // use.
   Status prepare(const FrameInputs& inputs, const Settings& settings, const PrepareOptions& options = {});
+  Status prepare(std::span<const FrameInputs> views, const Settings& settings, const PrepareOptions& options = {});
 
   // Puts the resolved reflection into colour attachment 0 of `framebuffer` (0 = default) over
   // (0, 0, width, height), by options.mode (see CompositeMode); its alpha is kept. Draws only the
@@ -574,7 +592,8 @@ class Context {
 
   // The production output: rgb = reflected radiance already weighted by Fresnel and coverage,
   // a = coverage (0..1, how much of the pixel's specular the trace answers), after the roughness
-  // blur (which blurs both alike). Valid on the tiles a dispatch traced, 0 elsewhere.
+  // blur (which blurs both alike). Valid on the tiles a dispatch traced, 0 elsewhere. Every output
+  // is a GL_TEXTURE_2D, or with ContextDesc::views > 1 a GL_TEXTURE_2D_ARRAY of one layer a view.
   GLName resolvedTexture() const;    // RGBA16F
   GLName reflectionTexture() const;  // RGBA16F, before the blur: rgb as above, a = blur weight
   GLName hitTexture() const;         // RGBA32F (debug.outputs): uvHit, confidence, L (temporal reuse

@@ -13,13 +13,13 @@ void Context::Impl::runBlur(const FramePlan& f) const {
   useProgram(f.programs.blur.horizontal);
   gl.bindTexture2D(SSLR_UNIT_BLUR_INPUT, resolved);
   gl.bindTexture2D(SSLR_UNIT_BLUR_REFLECTION, reflection);
-  gl.BindImageTexture(SSLR_IMAGE_BLUR_OUTPUT, scratch, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  bindImage(SSLR_IMAGE_BLUR_OUTPUT, scratch, 0, GL_RGBA16F);
   dispatchComputeIndirect(kBlurDispatchOffset);
   memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   useProgram(f.programs.blur.vertical);
   gl.bindTexture2D(SSLR_UNIT_BLUR_INPUT, scratch);
   gl.bindTexture2D(SSLR_UNIT_BLUR_UNBLURRED, resolved);  // read where scratch is not written (see 4_blur.comp)
-  gl.BindImageTexture(SSLR_IMAGE_BLUR_OUTPUT, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  bindImage(SSLR_IMAGE_BLUR_OUTPUT, resolved, 0, GL_RGBA16F);
   dispatchComputeIndirect(kBlurDispatchOffset);
 }
 

@@ -23,18 +23,19 @@ void Context::Impl::runClassify(const FramePlan& f, const FrameInputs& in) const
     gl.BindBufferBase(GL_SHADER_STORAGE_BUFFER, SSLR_BINDING_CURVED_SSBO, pyramid.curvedQuads);
   }
   if (f.wideClassify) {  // 2x2 tiles a group, the clean-up inside
-    gl.BindImageTexture(SSLR_IMAGE_CLASSIFY_REFLECTION, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    gl.BindImageTexture(SSLR_IMAGE_CLASSIFY_RESOLVED, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    dispatchCompute(static_cast<GLuint>((area.tilesX + 1) / 2), static_cast<GLuint>((area.tilesY + 1) / 2), 1);
+    bindImage(SSLR_IMAGE_CLASSIFY_REFLECTION, reflection, 0, GL_RGBA16F);
+    bindImage(SSLR_IMAGE_CLASSIFY_RESOLVED, resolved, 0, GL_RGBA16F);
+    dispatchCompute(static_cast<GLuint>((area.tilesX + 1) / 2), static_cast<GLuint>((area.tilesY + 1) / 2),
+                    static_cast<GLuint>(views));  // (z: one a view)
   } else {
-    dispatchCompute(static_cast<GLuint>(area.tilesX), static_cast<GLuint>(area.tilesY), 1);
+    dispatchCompute(static_cast<GLuint>(area.tilesX), static_cast<GLuint>(area.tilesY), static_cast<GLuint>(views));
   }
   memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
                 GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   if (f.wideClassify) return;
   useProgram(f.programs.classify.cleanup);
-  gl.BindImageTexture(SSLR_IMAGE_REFLECTION, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  gl.BindImageTexture(SSLR_IMAGE_RESOLVED, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  bindImage(SSLR_IMAGE_REFLECTION, reflection, 0, GL_RGBA16F);
+  bindImage(SSLR_IMAGE_RESOLVED, resolved, 0, GL_RGBA16F);
   dispatchComputeIndirect(kCleanupDispatchOffset);
   memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
 }

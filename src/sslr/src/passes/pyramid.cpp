@@ -12,13 +12,12 @@ namespace sslr {
 void Context::Impl::createPyramidResources(const FramePlan& f) {
   if (f.curvedSolids && pyramid.curvedQuads == 0) {
     gl.CreateBuffers(1, &pyramid.curvedQuads);  // header (passes/curved_quads.glsl) + one entry per quad
-    gl.NamedBufferStorage(pyramid.curvedQuads, static_cast<GLsizeiptr>((8 + static_cast<size_t>(pyramid.level1Width) * pyramid.level1Height) * sizeof(GLuint)),
+    gl.NamedBufferStorage(pyramid.curvedQuads, static_cast<GLsizeiptr>((8 + static_cast<size_t>(pyramid.level1Width) * pyramid.level1Height * views) * sizeof(GLuint)),
                           nullptr, GL_DYNAMIC_STORAGE_BIT);
     label(GL_BUFFER, pyramid.curvedQuads, "sslr.curvedQuads");
   }
   if (!f.pyramid || pyramid.texture != 0) return;
-  gl.CreateTextures(GL_TEXTURE_2D, 1, &pyramid.texture);
-  gl.TextureStorage2D(pyramid.texture, pyramid.levels + 1, GL_RG32F, 2 * pyramid.level1Width, 2 * pyramid.level1Height);
+  pyramid.texture = createTexture(GL_RG32F, pyramid.levels + 1, 2 * pyramid.level1Width, 2 * pyramid.level1Height);
   label(GL_TEXTURE, pyramid.texture, "sslr.depthPyramid");
   // Levels 0 and 1 past the screen (padding) are never written: neutral once and for all (level
   // 0's are never read either: the traversal stays on the screen).
@@ -63,8 +62,8 @@ void Context::Impl::runPyramid(const FramePlan& f) const {
 // Levels 0 and 1 of the pyramid, as classification, the level-1 pass and the curved pass write
 // them (passes/pyramid_levels01.glsl): image units 1 and 0.
 void Context::Impl::bindPyramidLevels01() const {
-  gl.BindImageTexture(SSLR_IMAGE_PYRAMID_LEVEL1, pyramid.texture, 1, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
-  gl.BindImageTexture(SSLR_IMAGE_PYRAMID_LEVEL0, pyramid.texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+  bindImage(SSLR_IMAGE_PYRAMID_LEVEL1, pyramid.texture, 1, GL_RG32F);
+  bindImage(SSLR_IMAGE_PYRAMID_LEVEL0, pyramid.texture, 0, GL_RG32F);
 }
 
 // The min-max depth pyramid above level 1, indirect: the group counts are zero unless
@@ -77,14 +76,14 @@ void Context::Impl::buildPyramid(GLuint blockProgram, GLuint singleProgram) cons
   gl.BindSampler(SSLR_UNIT_PYRAMID, nearestSampler);
   gl.ProgramUniform1i(blockProgram, 0, area.levels);  // uTopLevel
   for (int level = 2; level <= kHizBlockTop; ++level)  // above the top: the top's image, never stored to
-    gl.BindImageTexture(static_cast<GLuint>(SSLR_IMAGE_PYRAMID_BLOCK + level - 2), pyramid.texture, std::min(level, blockTop), GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+    bindImage(static_cast<GLuint>(SSLR_IMAGE_PYRAMID_BLOCK + level - 2), pyramid.texture, std::min(level, blockTop), GL_RG32F);
   dispatchComputeIndirect(kHizDispatchOffset + 3 * 4 * 1);  // level 2's arguments: the blocks
   memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   const int single = kHizBlockTop + 1;  // (SSLR_HIZ_MAX_LEVELS is 8: one level at most above the blocks)
   if (area.levels < single) return;
   useProgram(singleProgram);
   gl.ProgramUniform1i(singleProgram, 0, single);
-  gl.BindImageTexture(SSLR_IMAGE_PYRAMID_BLOCK, pyramid.texture, single, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+  bindImage(SSLR_IMAGE_PYRAMID_BLOCK, pyramid.texture, single, GL_RG32F);
   dispatchComputeIndirect(kHizDispatchOffset + 3 * 4 * (single - 1));  // its level's arguments
   memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }

@@ -36,18 +36,18 @@ void Context::Impl::runTemporal(const FramePlan& f, const FrameInputs& in) {
   gl.bindTexture2D(SSLR_UNIT_TEMPORAL_CURRENT, resolved);
   gl.bindTexture2D(SSLR_UNIT_HISTORY, temporal.color);
   gl.bindTexture2D(SSLR_UNIT_HISTORY_KEY, temporal.key);
-  gl.BindImageTexture(SSLR_IMAGE_TEMPORAL_OUTPUT, scratch, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  bindImage(SSLR_IMAGE_TEMPORAL_OUTPUT, scratch, 0, GL_RGBA16F);
   if (f.historyConfidence)
-    gl.BindImageTexture(SSLR_IMAGE_HISTORY_CONFIDENCE, temporal.confidence, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8);
+    bindImage(SSLR_IMAGE_HISTORY_CONFIDENCE, temporal.confidence, 0, GL_R8);
   dispatchComputeIndirect(0);
   memoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   useProgram(f.programs.temporal.store);
   gl.bindTexture2D(SSLR_UNIT_TEMPORAL_CURRENT, scratch);
   gl.bindTexture2D(SSLR_UNIT_HISTORY, 0);
   gl.bindTexture2D(SSLR_UNIT_HISTORY_KEY, 0);
-  gl.BindImageTexture(SSLR_IMAGE_TEMPORAL_OUTPUT, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  gl.BindImageTexture(SSLR_IMAGE_HISTORY, temporal.color, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  gl.BindImageTexture(SSLR_IMAGE_HISTORY_KEY, temporal.key, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  bindImage(SSLR_IMAGE_TEMPORAL_OUTPUT, resolved, 0, GL_RGBA16F);
+  bindImage(SSLR_IMAGE_HISTORY, temporal.color, 0, GL_RGBA16F);
+  bindImage(SSLR_IMAGE_HISTORY_KEY, temporal.key, 0, GL_R32F);
   dispatchComputeIndirect(0);
   memoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   useProgram(f.programs.temporal.cleanup);

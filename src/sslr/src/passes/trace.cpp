@@ -8,18 +8,16 @@ namespace sslr {
 void Context::Impl::createTraceResources(const FramePlan& f) {
   if (f.halfResolution && trace.quadHit == 0) {
     const int qw = (width + 1) / 2, qh = (height + 1) / 2;
-    gl.CreateTextures(GL_TEXTURE_2D, 1, &trace.quadHit);
-    gl.TextureStorage2D(trace.quadHit, 1, GL_RGBA32F, qw, qh);
+    trace.quadHit = createTexture(GL_RGBA32F, 1, qw, qh);
     label(GL_TEXTURE, trace.quadHit, "sslr.quadHit");
-    gl.CreateTextures(GL_TEXTURE_2D, 1, &trace.quadSurface);
-    gl.TextureStorage2D(trace.quadSurface, 1, GL_RGBA16F, qw, qh);
+    trace.quadSurface = createTexture(GL_RGBA16F, 1, qw, qh);
     label(GL_TEXTURE, trace.quadSurface, "sslr.quadSurface");
   }
   if ((f.retracePass || f.countTraversal) && trace.retraceList == 0) {
     gl.CreateBuffers(1, &trace.retraceList);
     // Header, then a pixel list (at most every pixel of the traced tiles) or the quad list (a slot
     // and a tile's quads per tile; passes/retrace_list.glsl).
-    const size_t tileCount = static_cast<size_t>(tilesX()) * tilesY();
+    const size_t tileCount = static_cast<size_t>(tilesX()) * tilesY() * views;  // every view's
     gl.NamedBufferStorage(trace.retraceList,
                           static_cast<GLsizeiptr>((4 + tileCount * SSLR_TILE_SIZE * SSLR_TILE_SIZE) * sizeof(GLuint)),
                           nullptr, GL_DYNAMIC_STORAGE_BIT);
@@ -49,12 +47,12 @@ void Context::Impl::runTrace(const FramePlan& f) const {
   }
   if (f.halfResolution) runQuads(f);
   useProgram(f.programs.trace.trace);
-  gl.BindImageTexture(SSLR_IMAGE_REFLECTION, reflection, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  gl.BindImageTexture(SSLR_IMAGE_RESOLVED, resolved, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-  if (f.debugOutputs || f.temporal) gl.BindImageTexture(SSLR_IMAGE_HIT, trace.hit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  if (f.debugOutputs) gl.BindImageTexture(SSLR_IMAGE_ITERATIONS, trace.iterations, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  bindImage(SSLR_IMAGE_REFLECTION, reflection, 0, GL_RGBA16F);
+  bindImage(SSLR_IMAGE_RESOLVED, resolved, 0, GL_RGBA16F);
+  if (f.debugOutputs || f.temporal) bindImage(SSLR_IMAGE_HIT, trace.hit, 0, GL_RGBA32F);
+  if (f.debugOutputs) bindImage(SSLR_IMAGE_ITERATIONS, trace.iterations, 0, GL_R32F);
   if (f.hitDistance)
-    gl.BindImageTexture(SSLR_IMAGE_HIT_DISTANCE, trace.hitDistance, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    bindImage(SSLR_IMAGE_HIT_DISTANCE, trace.hitDistance, 0, GL_R32F);
   dispatchComputeIndirect(0);
   if (f.retracePass) {  // the pixels whose quad's ray did not answer them, or that need the traversal
     memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
@@ -72,8 +70,8 @@ void Context::Impl::runTrace(const FramePlan& f) const {
 void Context::Impl::runQuads(const FramePlan& f) const {
   const GLuint retraceHeader[4] = {0, 1, 1, 0};
   useProgram(f.programs.trace.quads);
-  gl.BindImageTexture(SSLR_IMAGE_QUAD_HIT, trace.quadHit, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  gl.BindImageTexture(SSLR_IMAGE_QUAD_SURFACE, trace.quadSurface, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  bindImage(SSLR_IMAGE_QUAD_HIT, trace.quadHit, 0, GL_RGBA32F);
+  bindImage(SSLR_IMAGE_QUAD_SURFACE, trace.quadSurface, 0, GL_RGBA16F);
   // One group per listed tile (Software: 16 invocations), or per 4 of them (Gpu: 64).
   dispatchComputeIndirect(f.wideClassify ? kQuadDispatchOffset : 0);
   if (f.quadRetracePass) {  // the quads whose ray needs the traversal

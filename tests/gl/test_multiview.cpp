@@ -1,0 +1,288 @@
+// Several views in the same dispatches (ContextDesc::views, integration.md "Stereo and
+// multiview"): a context of N views given a layered G-buffer (2D arrays, layer v = view v, each
+// view with its own matrices) writes into each layer of its outputs exactly what a one-view context
+// given that layer as textures of its own writes, frame after frame; every bad input is refused
+// with what is wrong.
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gl/gl_fixture.hpp"
+#include "sslr/sslr.hpp"
+#include "sslr_shared.h"  // SSLR_MAX_VIEWS
+#include "sslr_host/gbuffer.hpp"
+#include "sslr_host/scene.hpp"
+
+using namespace sslr;
+using namespace sslr::host;
+
+namespace {
+
+constexpr int kW = 96, kH = 64;
+
+std::unique_ptr<Context> makeViewsContext(int views, DeviceProfile device = DeviceProfile::Auto) {
+  ContextDesc d;
+  d.width = kW;
+  d.height = kH;
+  d.getProcAddress = HeadlessContext::getProcAddress();
+  d.device = device;
+  d.views = views;
+  auto c = Context::create(d);
+  EXPECT_TRUE(c) << c.error();
+  return c ? std::move(c.value()) : nullptr;
+}
+
+// Layer `layer` of a 2D array texture (or the texture itself, layer 0, when it is 2D).
+Image readLayer(GLuint texture, int layer, int channels) {
+  Image img;
+  img.width = kW;
+  img.height = kH;
+  img.channels = channels;
+  img.pixels.assign(static_cast<size_t>(kW) * kH * channels, 0.0f);
+  if (texture == 0) return img;
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glGetTextureSubImage(texture, 0, 0, 0, layer, kW, kH, 1, channels == 1 ? GL_RED : GL_RGBA, GL_FLOAT,
+                       static_cast<GLsizei>(img.pixels.size() * sizeof(float)), img.pixels.data());
+  return img;
+}
+
+size_t differing(const Image& a, const Image& b) {
+  size_t n = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) n += a.pixels[i] != b.pixels[i];
+  return n;
+}
+
+// A scene seen by `views` cameras side by side (0.064 units apart, the first at the scene's
+// camera): each camera's G-buffer in textures of its own, and the same G-buffers as 2D arrays.
+struct Views {
+  std::vector<Camera> cameras;
+  std::vector<std::unique_ptr<GBuffer>> own;
+  std::vector<FrameInputs> ownInputs, layeredInputs;
+  std::vector<GLuint> arrays;
+  ~Views() { glDeleteTextures(static_cast<GLsizei>(arrays.size()), arrays.data()); }
+};
+
+std::unique_ptr<Views> makeViews(const char* sceneName, int views, const GBufferOptions& options = {}) {
+  auto scene = makeBuiltinScene(sceneName);
+  EXPECT_TRUE(scene);
+  if (!scene) return nullptr;
+  GpuScene gpu(scene.value());
+  auto out = std::make_unique<Views>();
+  const Camera base = *scene.value().camera;
+  const glm::dvec3 right = glm::normalize(glm::cross(base.target - base.eye, base.up));
+  GBufferOptions o = options;
+  o.width = kW;
+  o.height = kH;
+  for (int v = 0; v < views; ++v) {
+    Camera c = base;
+    c.eye += right * (0.064 * v);
+    c.target += right * (0.064 * v);
+    out->cameras.push_back(c);
+    auto g = GBuffer::create(o);
+    EXPECT_TRUE(g) << g.error();
+    if (!g) return nullptr;
+    EXPECT_TRUE(g.value()->render(gpu, c));
+    out->ownInputs.push_back(g.value()->frameInputs());
+    out->own.push_back(std::move(g.value()));
+  }
+  out->layeredInputs = out->ownInputs;
+  GLName FrameInputs::*const members[] = {&FrameInputs::colorTexture, &FrameInputs::normalTexture,
+                                          &FrameInputs::depthTexture, &FrameInputs::positionTexture,
+                                          &FrameInputs::backDepthTexture};
+  for (const auto member : members) {
+    if (out->ownInputs[0].*member == 0) continue;
+    GLint format = 0;
+    glGetTextureLevelParameteriv(out->ownInputs[0].*member, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    GLuint array = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &array);
+    glTextureStorage3D(array, 1, static_cast<GLenum>(format), kW, kH, views);
+    for (int v = 0; v < views; ++v)
+      glCopyImageSubData(out->ownInputs[v].*member, GL_TEXTURE_2D, 0, 0, 0, 0, array, GL_TEXTURE_2D_ARRAY, 0, 0, 0, v,
+                         kW, kH, 1);
+    for (FrameInputs& in : out->layeredInputs) in.*member = array;
+    out->arrays.push_back(array);
+  }
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  return out;
+}
+
+// The composite (additive) of `view` into a kW x kH framebuffer cleared to zero, read back.
+Image compositeOf(Context& ctx, int view) {
+  GLuint tex = 0, fbo = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+  glTextureStorage2D(tex, 1, GL_RGBA32F, kW, kH);
+  const float zero[4] = {0, 0, 0, 0};
+  glClearTexImage(tex, 0, GL_RGBA, GL_FLOAT, zero);
+  glCreateFramebuffers(1, &fbo);
+  glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex, 0);
+  CompositeOptions o;
+  o.view = view;
+  EXPECT_TRUE(ctx.composite(fbo, o));
+  Image out = readLayer(tex, 0, 4);
+  glDeleteFramebuffers(1, &fbo);
+  glDeleteTextures(1, &tex);
+  return out;
+}
+
+struct Case {
+  const char* name;
+  const char* scene;
+  int views;
+  Settings settings;
+  int frames;
+  DeviceProfile device;
+};
+
+// Each view's outputs, frame after frame, against one-view contexts given that view's textures.
+void expectLayersMatchOwnContexts(const Case& c) {
+  SCOPED_TRACE(c.name);
+  auto views = makeViews(c.scene, c.views);
+  ASSERT_TRUE(views);
+  auto layered = makeViewsContext(c.views, c.device);
+  ASSERT_TRUE(layered);
+  std::vector<std::unique_ptr<Context>> own;
+  for (int v = 0; v < c.views; ++v) {
+    own.push_back(makeViewsContext(1, c.device));
+    ASSERT_TRUE(own.back());
+  }
+  size_t hits = 0;
+  for (int frame = 0; frame < c.frames; ++frame) {
+    // Temporal reuse: a still camera (each view's previous projection is its own).
+    std::vector<FrameInputs> layeredIn = views->layeredInputs, ownIn = views->ownInputs;
+    for (int v = 0; v < c.views; ++v) {
+      layeredIn[v].previousClipFromView = layeredIn[v].clipFromView;
+      ownIn[v].previousClipFromView = ownIn[v].clipFromView;
+    }
+    ASSERT_TRUE(layered->dispatch(std::span<const FrameInputs>(layeredIn), c.settings));
+    for (int v = 0; v < c.views; ++v) ASSERT_TRUE(own[v]->dispatch(ownIn[v], c.settings));
+    for (int v = 0; v < c.views; ++v) {
+      SCOPED_TRACE("frame " + std::to_string(frame) + ", view " + std::to_string(v));
+      EXPECT_EQ(differing(readLayer(layered->reflectionTexture(), v, 4), readLayer(own[v]->reflectionTexture(), 0, 4)), 0u);
+      EXPECT_EQ(differing(readLayer(layered->resolvedTexture(), v, 4), readLayer(own[v]->resolvedTexture(), 0, 4)), 0u);
+      if (c.settings.debug.outputs) {
+        const Image hit = readLayer(layered->hitTexture(), v, 4);
+        EXPECT_EQ(differing(hit, readLayer(own[v]->hitTexture(), 0, 4)), 0u);
+        for (int i = 0; i < kW * kH; ++i) hits += hit.pixels[static_cast<size_t>(i) * 4 + 2] > 0.5f;
+      }
+      if (c.settings.hitDistance)
+        EXPECT_EQ(differing(readLayer(layered->hitDistanceTexture(), v, 1), readLayer(own[v]->hitDistanceTexture(), 0, 1)), 0u);
+      if (c.settings.temporal.outputConfidence)
+        EXPECT_EQ(differing(readLayer(layered->historyConfidenceTexture(), v, 1),
+                            readLayer(own[v]->historyConfidenceTexture(), 0, 1)),
+                  0u);
+    }
+  }
+  for (int v = 0; v < c.views; ++v) {
+    SCOPED_TRACE("composite of view " + std::to_string(v));
+    EXPECT_EQ(differing(compositeOf(*layered, v), compositeOf(*own[v], 0)), 0u);
+  }
+  if (c.settings.debug.outputs) {
+    EXPECT_GT(hits, static_cast<size_t>(c.views * c.frames) * 300u);  // every view sees reflections
+  }
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+class MultiView : public sslr::test::GlTest {};
+
+TEST_F(MultiView, EachLayerIsWhatAOneViewContextMakesOfItsTextures) {
+  Settings debug;
+  debug.debug.outputs = true;
+  debug.hitDistance = true;
+  Settings halfTemporal = debug;
+  halfTemporal.halfResolution = true;
+  halfTemporal.temporal.enabled = true;
+  halfTemporal.temporal.outputConfidence = true;
+  Settings deferred = debug;
+  deferred.traversal.pass = TraversalPass::Deferred;
+  Settings stochastic = debug;
+  stochastic.glossy.mode = GlossyMode::Stochastic;
+  stochastic.temporal.enabled = true;
+  const Case cases[] = {
+      {"stereo, the default with its debug outputs", "mirror-room", 2, debug, 2, DeviceProfile::Auto},
+      {"stereo, curved solids", "sphere-over-mirror-32", 2, debug, 1, DeviceProfile::Auto},
+      {"stereo, half resolution and temporal reuse", "mirror-room", 2, halfTemporal, 3, DeviceProfile::Auto},
+      {"stereo, Gpu profile, half resolution", "mirror-room", 2, halfTemporal, 2, DeviceProfile::Gpu},
+      {"stereo, deferred traversal", "thin-objects", 2, deferred, 1, DeviceProfile::Auto},
+      {"stereo, stochastic glossy", "glossy", 2, stochastic, 2, DeviceProfile::Auto},
+      {"four views", "mirror-walls", 4, debug, 1, DeviceProfile::Auto},
+  };
+  for (const Case& c : cases) expectLayersMatchOwnContexts(c);
+}
+
+TEST_F(MultiView, TheComparisonMethodsTraceEveryLayerAsTheirOwn) {
+  for (Method m : {Method::ScreenSpaceDDA, Method::FidelityFxSssr, Method::HierarchicalDepth}) {
+    Settings s;
+    s.debug.outputs = true;
+    s.method = m;
+    expectLayersMatchOwnContexts({"a comparison method", "mirror-corridor", 2, s, 1, DeviceProfile::Auto});
+  }
+}
+
+TEST_F(MultiView, BadViewsAreRefusedWithWhatIsWrong) {
+  for (int bad : {0, -1, SSLR_MAX_VIEWS + 1}) {
+    ContextDesc d;
+    d.width = kW;
+    d.height = kH;
+    d.getProcAddress = HeadlessContext::getProcAddress();
+    d.views = bad;
+    auto c = Context::create(d);
+    ASSERT_FALSE(c);
+    EXPECT_NE(c.error().find("ContextDesc views"), std::string::npos) << c.error();
+  }
+  auto views = makeViews("mirror-room", 2);
+  ASSERT_TRUE(views);
+  auto ctx = makeViewsContext(2);
+  ASSERT_TRUE(ctx);
+  EXPECT_EQ(ctx->views(), 2);
+  const Settings s;
+  auto refused = [&](const std::vector<FrameInputs>& in, const char* expected) {
+    const Status st = ctx->dispatch(std::span<const FrameInputs>(in), s);
+    EXPECT_FALSE(st) << expected;
+    EXPECT_NE(st.message().find(expected), std::string::npos) << st.message();
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  };
+  // One FrameInputs, or three, for two views.
+  refused({views->layeredInputs[0]}, "1 FrameInputs for a context of 2 view(s)");
+  refused({views->layeredInputs[0], views->layeredInputs[1], views->layeredInputs[1]}, "3 FrameInputs");
+  EXPECT_FALSE(ctx->dispatch(views->layeredInputs[0], s));  // the one-view call
+  // One-view textures (GL_TEXTURE_2D) to a context of two views.
+  refused({views->ownInputs[0], views->ownInputs[0]}, "is not a GL_TEXTURE_2D_ARRAY");
+  // A view naming other textures than the first.
+  std::vector<FrameInputs> mixed = views->layeredInputs;
+  mixed[1].colorTexture = views->ownInputs[1].colorTexture;
+  refused(mixed, "views[1] names colorTexture");
+  // A view with another layout or history reset.
+  mixed = views->layeredInputs;
+  mixed[1].surface.constantRoughness = 0.5f;
+  mixed[1].surface.roughnessChannel = -1;
+  refused(mixed, "views may differ only in their matrices");
+  mixed = views->layeredInputs;
+  mixed[1].historyReset = true;
+  refused(mixed, "historyReset differs");
+  // A bad projection names its view.
+  mixed = views->layeredInputs;
+  mixed[1].clipFromView = glm::dmat4(0.0);
+  refused(mixed, "(view 1)");
+  // Arrays with fewer layers than views.
+  auto three = makeViewsContext(3);
+  ASSERT_TRUE(three);
+  const std::vector<FrameInputs> threeIn = {views->layeredInputs[0], views->layeredInputs[1], views->layeredInputs[1]};
+  const Status st = three->dispatch(std::span<const FrameInputs>(threeIn), s);
+  EXPECT_FALSE(st);
+  EXPECT_NE(st.message().find("has 2 layer(s)"), std::string::npos) << st.message();
+  // A view to composite the context does not have.
+  ASSERT_TRUE(ctx->dispatch(std::span<const FrameInputs>(views->layeredInputs), s));
+  for (int bad : {-1, 2}) {
+    CompositeOptions o;
+    o.view = bad;
+    const Status cs = ctx->composite(0, o);
+    EXPECT_FALSE(cs);
+    EXPECT_NE(cs.message().find("CompositeOptions::view"), std::string::npos) << cs.message();
+  }
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+}  // namespace
