@@ -76,6 +76,12 @@ cxxopts::Options benchOptions() {
       ("temporal-scenes", "scenes of the temporal study, comma-separated (implies --temporal)", cxxopts::value<std::string>())
       ("temporal-size", "size of the temporal study's frames, WxH", cxxopts::value<std::string>()->default_value("480x270"))
       ("no-temporal", "skip the temporal study")
+      ("views", "also run the views study (the full grid always does): stereo eyes on mirror-room, glossy and "
+                "sky-heavy traced by one view's context, by a context a view and by one context of every view")
+      ("views-scenes", "scenes of the views study, comma-separated (implies --views)", cxxopts::value<std::string>())
+      ("views-size", "size of the views study's frames, WxH", cxxopts::value<std::string>()->default_value("480x270"))
+      ("views-count", "eyes of the views study (2..4)", cxxopts::value<std::string>()->default_value("2"))
+      ("no-views", "skip the views study")
       ("glossy", "also run the glossy study (the full grid always does): the roughness blur against a GGX reference "
                  "traced by Embree, on glossy and rough variants of mirror scenes")
       ("glossy-scenes", "scenes of the glossy study, comma-separated, each a scene or NAME@roughR (its mirrors made R "
@@ -169,9 +175,9 @@ void parseGrid(const cxxopts::ParseResult& args, BenchOptions& bo) {
   }
 }
 
-// The cost curves, the glossy and the temporal study, when asked for (the full grid runs them).
-// Every study's options are checked whether or not it runs: a mistyped value is an error even
-// beside --no-curves, --no-glossy or --no-temporal.
+// The cost curves, the glossy, the temporal and the views study, when asked for (the full grid
+// runs them). Every study's options are checked whether or not it runs: a mistyped value is an
+// error even beside --no-curves, --no-glossy, --no-temporal or --no-views.
 void parseStudies(const cxxopts::ParseResult& args, BenchOptions& bo) {
   std::vector<std::pair<int, int>> sizes = {{480, 270}, {960, 540}, {1920, 1080}};
   if (bo.grid == "full") sizes.push_back({3840, 2160});
@@ -239,6 +245,26 @@ void parseStudies(const cxxopts::ParseResult& args, BenchOptions& bo) {
   if (temporal) {
     std::tie(bo.temporalWidth, bo.temporalHeight) = temporalSize;
     bo.temporalScenes = temporalScenes;
+  }
+
+  const auto viewsSize = parseSizeOption(args["views-size"].as<std::string>(), "views-size", 8, 4096);
+  const std::string countText = args["views-count"].as<std::string>();
+  int viewsCount = 0;
+  if (!wholeNumber(countText, viewsCount) || viewsCount < 2 || viewsCount > kMaxViews)
+    throw std::runtime_error("--views-count expects an integer 2.." + std::to_string(kMaxViews) + " (got '" +
+                             countText + "')");
+  std::vector<std::string> viewsScenes = {"mirror-room", "glossy", "sky-heavy"};
+  if (args.count("views-scenes")) {
+    viewsScenes = uniqueItems(args["views-scenes"].as<std::string>(), "views-scenes");
+    for (const std::string& s : viewsScenes)
+      if (auto check = loadScene(s); !check) throw std::runtime_error("--views-scenes: " + check.error());
+  }
+  bool views = bo.grid == "full" || args.count("views") || args.count("views-scenes");
+  if (args.count("no-views")) views = false;
+  if (views) {
+    std::tie(bo.viewsWidth, bo.viewsHeight) = viewsSize;
+    bo.viewsCount = viewsCount;
+    bo.viewsScenes = viewsScenes;
   }
 }
 
@@ -326,6 +352,22 @@ void printStudies(const BenchResult& result, const BenchOptions& bo) {
       std::printf("  %-24s %-27s %8.2f %8.4f %8.4f %9.4f %9.3f %8.4f %10.3f %8zu %9.4f\n", p.scene.c_str(),
                   p.config.c_str(), p.timeMedianMs, p.rmse, p.rmseByFrame.empty() ? 0.0 : p.rmseByFrame.front(),
                   p.rmseAboveNoise, p.relativeRmse, p.displayRmse, p.uncovered, p.scored, p.referenceNoise);
+  }
+  if (!result.views.empty()) {
+    std::printf("\nviews study (%dx%d, %d eyes; median ms of a frame of every eye it traces, ratio to one view; a "
+                "frame's commands):\n",
+                bo.viewsWidth, bo.viewsHeight, bo.viewsCount);
+    std::printf("  %-12s %-26s %9s %7s %10s %8s %8s %8s %8s %10s\n", "scene", "configuration", "ms", "ratio",
+                "dispatches", "indirect", "barriers", "programs", "uploads", "traced px");
+    for (const ViewsPoint& p : result.views) {
+      double one = 0;
+      for (const ViewsPoint& q : result.views)
+        if (q.scene == p.scene && q.views == 1) one = q.timeMedianMs;
+      std::printf("  %-12s %-26s %9.2f %6.2fx %10u %8u %8u %8u %8u %10llu\n", p.scene.c_str(), p.config.c_str(),
+                  p.timeMedianMs, one > 0 ? p.timeMedianMs / one : 0.0, p.commands.dispatches,
+                  p.commands.indirectDispatches, p.commands.barriers, p.commands.programs, p.commands.uploads,
+                  static_cast<unsigned long long>(p.tracedPixels));
+    }
   }
   if (result.temporal.empty()) return;
   std::printf("\ntemporal study (%dx%d; RMSE against the ideal reflection; still = its last 4 frames):\n",

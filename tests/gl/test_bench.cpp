@@ -193,6 +193,11 @@ TEST_F(Bench, SceneFilesDuplicatesAndSwitchedOffOptions) {
       {"--curve-fractions 101 --no-curves", "--curve-fractions expects percentages"},
       {"--temporal-size 1x1 --no-temporal", "--temporal-size expects WxH"},
       {"--temporal-scenes no-such-scene --no-temporal", "--temporal-scenes: "},
+      {"--views-count 1 --no-views", "--views-count expects an integer 2..4"},
+      {"--views-count 5 --no-views", "--views-count expects an integer 2..4"},
+      {"--views-size 4x4 --no-views", "--views-size expects WxH"},
+      {"--views-scenes glossy,glossy --no-views", "--views-scenes lists 'glossy' twice"},
+      {"--views-scenes no-such-scene --no-views", "--views-scenes: "},
   };
   for (const auto& r : refused) {
     EXPECT_EQ(runCommand(std::string(SSLR_BENCH_EXE) + " " + r.args + " --out " + (out / "refused").string(), &log), 2)
@@ -246,6 +251,40 @@ TEST_F(Bench, TemporalStudyScoresEveryFrame) {
   EXPECT_LT(stillRmse["half+temporal"], 0.9 * stillRmse["half"]) << log;
   EXPECT_LT(stillRmse["full"], stillRmse["half"]) << log;
   EXPECT_NE(log.find("temporal study"), std::string::npos);
+}
+
+// The views study: one context of N views records one view's commands for N views' pixels, which
+// a context a view records N times (the point of ContextDesc::views); times are reported, not
+// judged.
+TEST_F(Bench, ViewsStudyCountsOneViewsCommandsForEveryView) {
+  std::string log;
+  const nlohmann::json j = runBench("bench-views",
+                                    "--grid quick --size 64x36 --frames 1 --scenes sky-heavy --no-curves"
+                                    " --no-temporal --no-glossy --views-scenes mirror-room --views-size 96x64"
+                                    " --views-count 3",
+                                    log);
+  ASSERT_TRUE(j.is_object()) << log;
+  ASSERT_EQ(j["views"].size(), 3u) << log;
+  std::map<std::string, nlohmann::json> byConfig;
+  for (const auto& p : j["views"]) {
+    ASSERT_TRUE(p["timeMedianMs"].is_number()) << p.dump();
+    EXPECT_GT(p["timeMedianMs"].get<double>(), 0.0) << p.dump();
+    byConfig[p["config"].get<std::string>()] = p;
+  }
+  const auto& one = byConfig["one view"];
+  const auto& perView = byConfig["a context a view"];
+  const auto& together = byConfig["one context of 3 views"];
+  ASSERT_TRUE(one.is_object() && perView.is_object() && together.is_object()) << j["views"].dump();
+  EXPECT_GT(one["tracedPixels"].get<int>(), 1000) << one.dump();
+  for (const char* count : {"dispatches", "indirectDispatches", "barriers", "programs"}) {
+    EXPECT_EQ(together[count], one[count]) << count;
+    EXPECT_EQ(perView[count].get<int>(), 3 * one[count].get<int>()) << count;
+  }
+  // The same rays either way: every view's pixels.
+  EXPECT_EQ(together["tracedPixels"], perView["tracedPixels"]);
+  EXPECT_EQ(together["tiles"], perView["tiles"]);
+  EXPECT_GT(together["tracedPixels"].get<int>(), 2 * one["tracedPixels"].get<int>());
+  EXPECT_NE(log.find("views study"), std::string::npos);
 }
 
 // The glossy study: every configuration scored against the GGX reference on each scene, with its

@@ -12,7 +12,6 @@
 
 #include "gl/gl_fixture.hpp"
 #include "sslr/sslr.hpp"
-#include "sslr_shared.h"  // SSLR_MAX_VIEWS
 #include "sslr_host/gbuffer.hpp"
 #include "sslr_host/scene.hpp"
 
@@ -222,7 +221,7 @@ TEST_F(MultiView, TheComparisonMethodsTraceEveryLayerAsTheirOwn) {
 }
 
 TEST_F(MultiView, BadViewsAreRefusedWithWhatIsWrong) {
-  for (int bad : {0, -1, SSLR_MAX_VIEWS + 1}) {
+  for (int bad : {0, -1, kMaxViews + 1}) {
     ContextDesc d;
     d.width = kW;
     d.height = kH;
@@ -282,6 +281,44 @@ TEST_F(MultiView, BadViewsAreRefusedWithWhatIsWrong) {
     EXPECT_FALSE(cs);
     EXPECT_NE(cs.message().find("CompositeOptions::view"), std::string::npos) << cs.message();
   }
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+// A context of several views binds 2D arrays to its units: dispatch and composite put back what
+// the host had on both targets of every unit, as a one-view context does for the 2D target.
+TEST_F(MultiView, PutsBackTheHostsTextureBindingsOfBothTargets) {
+  auto views = makeViews("mirror-room", 2);
+  ASSERT_TRUE(views);
+  auto ctx = makeViewsContext(2);
+  ASSERT_TRUE(ctx);
+  constexpr int kUnits = 12;
+  GLuint planes[kUnits] = {}, arrays[kUnits] = {};
+  glCreateTextures(GL_TEXTURE_2D, kUnits, planes);
+  glCreateTextures(GL_TEXTURE_2D_ARRAY, kUnits, arrays);
+  for (int u = 0; u < kUnits; ++u) {
+    glTextureStorage2D(planes[u], 1, GL_RGBA8, 4, 4);
+    glTextureStorage3D(arrays[u], 1, GL_RGBA8, 4, 4, 2);
+    glActiveTexture(GL_TEXTURE0 + u);
+    glBindTexture(GL_TEXTURE_2D, planes[u]);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, arrays[u]);
+  }
+  glActiveTexture(GL_TEXTURE3);
+  ASSERT_TRUE(ctx->dispatch(std::span<const FrameInputs>(views->layeredInputs), Settings{}));
+  compositeOf(*ctx, 1);  // the composite, into a framebuffer of its own (DSA calls: nothing bound)
+  GLint active = 0;
+  glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+  EXPECT_EQ(active, GL_TEXTURE3);
+  for (int u = 0; u < kUnits; ++u) {
+    glActiveTexture(GL_TEXTURE0 + u);
+    GLint plane = 0, array = 0;
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &plane);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &array);
+    EXPECT_EQ(plane, static_cast<GLint>(planes[u])) << "unit " << u;
+    EXPECT_EQ(array, static_cast<GLint>(arrays[u])) << "unit " << u;
+  }
+  glActiveTexture(GL_TEXTURE0);
+  glDeleteTextures(kUnits, planes);
+  glDeleteTextures(kUnits, arrays);
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 

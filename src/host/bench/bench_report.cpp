@@ -404,6 +404,21 @@ json resultsJson(const BenchResult& result) {
                              {"rmseVisible", num(p.rmseVisible)},
                              {"rmseHidden", num(p.rmseHidden)},
                              {"dispatchMs", num(p.dispatchMs)}});
+  j["views"] = json::array();
+  for (const ViewsPoint& p : result.views)
+    j["views"].push_back({{"scene", p.scene},
+                          {"config", p.config},
+                          {"views", p.views},
+                          {"width", result.options.viewsWidth},
+                          {"height", result.options.viewsHeight},
+                          {"timeMedianMs", num(p.timeMedianMs)},
+                          {"dispatches", p.commands.dispatches},
+                          {"indirectDispatches", p.commands.indirectDispatches},
+                          {"barriers", p.commands.barriers},
+                          {"programs", p.commands.programs},
+                          {"uploads", p.commands.uploads},
+                          {"tracedPixels", p.tracedPixels},
+                          {"tiles", p.tiles}});
   j["glossy"] = json::array();
   for (const GlossyPoint& p : result.glossy)
     j["glossy"].push_back({{"scene", p.scene},
@@ -576,8 +591,29 @@ Status reportCurves(std::ostringstream& h, const BenchResult& result, const std:
   return Status{};
 }
 
-// The temporal and glossy studies (the glossy plots also as files).
+// The temporal, views and glossy studies (the glossy plots also as files).
 Status reportStudies(std::ostringstream& h, const BenchResult& result, const std::string& outDir) {
+  // Several views: one context of every view against a context a view and one view alone.
+  if (!result.views.empty()) {
+    h << "<h2>Several views in the same dispatches</h2><p>" << result.options.viewsCount
+      << " eyes 0.064 units apart, " << result.options.viewsWidth << "x" << result.options.viewsHeight
+      << ", the default settings: eye 0 alone, every eye by a context of its own, and every eye by one context of "
+         "every view (ContextDesc::views, 2D-array G-buffers). Time: a frame of every eye the configuration traces, "
+         "median, configurations interleaved; ratio to one view. Commands: one frame's, every context's summed "
+         "(uploads include the stats ring's three).</p>"
+      << "<table><tr><th>scene</th><th>configuration</th><th>ms</th><th>ratio</th><th>dispatches</th>"
+         "<th>indirect</th><th>barriers</th><th>programs</th><th>uploads</th><th>traced px</th></tr>";
+    for (const ViewsPoint& p : result.views) {
+      double one = 0;
+      for (const ViewsPoint& q : result.views)
+        if (q.scene == p.scene && q.views == 1) one = q.timeMedianMs;
+      h << "<tr><td>" << esc(p.scene) << "</td><td>" << esc(p.config) << "</td><td>" << fmt(p.timeMedianMs, 2)
+        << "</td><td>" << fmt(one > 0 ? p.timeMedianMs / one : 0.0, 2) << "&times;</td><td>" << p.commands.dispatches
+        << "</td><td>" << p.commands.indirectDispatches << "</td><td>" << p.commands.barriers << "</td><td>"
+        << p.commands.programs << "</td><td>" << p.commands.uploads << "</td><td>" << p.tracedPixels << "</td></tr>";
+    }
+    h << "</table>";
+  }
   // Temporal reuse over a camera path.
   if (!result.temporal.empty()) {
     h << "<h2>Temporal reuse over a camera path</h2><p>Still for 8 frames, then orbiting 0.25&deg; and 2.5&deg; "

@@ -16,6 +16,7 @@
 #include "glossy_study.hpp"
 #include "sslr_host/cost_model.hpp"
 #include "temporal_study.hpp"
+#include "views_study.hpp"
 #include "sslr_host/embedded_shaders.hpp"
 #include "sslr_host/cpu_tracer.hpp"
 #include "sslr_host/egl_context.hpp"
@@ -336,7 +337,7 @@ Expected<RunRecord> qualityRun(const BenchConfig& c, size_t i, const std::string
   return r;
 }
 
-// The studies after the scenes: cost curves, temporal reuse, glossy reflections.
+// The studies after the scenes: cost curves, temporal reuse, several views, glossy reflections.
 Status runStudies(const BenchOptions& options, const std::vector<BenchConfig>& grid, Timer& timer,
                   const std::string& reportDir, BenchResult& result, int done, int total,
                   const std::function<void(int, int, const std::string&)>& progress) {
@@ -357,6 +358,11 @@ Status runStudies(const BenchOptions& options, const std::vector<BenchConfig>& g
     progress(done, total, "temporal study: " + sceneName);
     if (Status s = runTemporalStudy(sceneName, options, timer, result.temporal); !s)
       return Status::error("temporal study on " + sceneName + ": " + s.message());
+  }
+  for (const std::string& sceneName : options.viewsScenes) {
+    progress(done, total, "views study: " + sceneName);
+    if (Status s = runViewsStudy(sceneName, options, timer, result.views); !s)
+      return Status::error("views study on " + sceneName + ": " + s.message());
   }
   for (const std::string& sceneSpec : options.glossyScenes) {
     progress(done, total, "glossy study: " + sceneSpec);

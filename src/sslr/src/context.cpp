@@ -25,6 +25,7 @@ const char* toString(StatusCode code) {
 }
 
 const char* libraryVersion() { return SSLR_VERSION_STRING; }
+static_assert(kMaxViews == SSLR_MAX_VIEWS, "the public limit is the shaders'");
 
 
 // ---- Render targets -------------------------------------------------------------------------
@@ -146,9 +147,9 @@ Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
   if (desc.width <= 0 || desc.height <= 0 || desc.width > 16384 || desc.height > 16384)
     return Status::error(StatusCode::InvalidSize, "sslr: ContextDesc size " + std::to_string(desc.width) + "x" +
                          std::to_string(desc.height) + " is invalid (must be 1..16384 each)");
-  if (desc.views < 1 || desc.views > SSLR_MAX_VIEWS)
+  if (desc.views < 1 || desc.views > kMaxViews)
     return Status::error(StatusCode::InvalidSettings, "sslr: ContextDesc views = " + std::to_string(desc.views) +
-                         " is invalid (must be 1.." + std::to_string(SSLR_MAX_VIEWS) + ")");
+                         " is invalid (must be 1.." + std::to_string(kMaxViews) + ")");
   if (desc.device != DeviceProfile::Auto && desc.device != DeviceProfile::Gpu && desc.device != DeviceProfile::Software)
     return Status::error(StatusCode::InvalidSettings, "sslr: ContextDesc device = " +
                          std::to_string(static_cast<int>(desc.device)) + " is not a DeviceProfile");

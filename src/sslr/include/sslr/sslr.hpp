@@ -440,13 +440,16 @@ enum class DeviceProfile {
              // chooses inline or deferred from the previous frame's counts
 };
 
+// ContextDesc::views at most (list entries keep their view in two bits).
+inline constexpr int kMaxViews = 4;
+
 struct ContextDesc {
   int width = 0;
   int height = 0;
   GetProcAddress getProcAddress = nullptr;
   LogCallback log;  // optional: shader compile logs, warnings
   DeviceProfile device = DeviceProfile::Auto;
-  // Views traced in the same dispatches (1..4: two for stereo, four for quad views). With more
+  // Views traced in the same dispatches (1..kMaxViews: two for stereo, four for quad views). With more
   // than one, every input and output is a GL_TEXTURE_2D_ARRAY whose layer v is view v, and frames
   // go to dispatch(std::span<const FrameInputs>), one FrameInputs a view
   // (integration.md, "Stereo and multiview").

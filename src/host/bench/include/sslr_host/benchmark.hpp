@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -34,6 +35,12 @@ struct BenchOptions {
   // Temporal reuse over a camera path (empty: not run), at temporalWidth x temporalHeight.
   std::vector<std::string> temporalScenes;
   int temporalWidth = 480, temporalHeight = 270;
+  // Several views (ContextDesc::views; empty: not run): viewsCount eyes 0.064 units apart on each
+  // scene at viewsWidth x viewsHeight, traced by one view's context, by a context a view and by one
+  // context of every view, timed interleaved (frames samples after warmup).
+  std::vector<std::string> viewsScenes;
+  int viewsWidth = 480, viewsHeight = 270;
+  int viewsCount = 2;
   // Glossy reflections against a GGX reference (empty: not run): scenes, each a scene name or
   // "name@roughR" (its mirrors, materials of roughness below 0.1, made R rough), at glossyWidth x
   // glossyHeight with glossySamples reference rays per pixel.
@@ -140,6 +147,17 @@ struct GlossyPoint {
   std::vector<double> rmseByFrame;
 };
 
+// One configuration of the views study on one scene: the default settings on viewsCount eyes.
+struct ViewsPoint {
+  std::string scene;
+  std::string config;  // "one view" (eye 0 alone), "a context a view", "one context of N views"
+  int views = 1;       // eyes traced
+  double timeMedianMs = 0;  // a frame of every eye it traces, configurations interleaved
+  // A frame's commands (dispatch(); every context's summed), its traced pixels and tiles.
+  PassCommands commands;
+  std::uint64_t tracedPixels = 0, tiles = 0;
+};
+
 struct BenchResult {
   BenchOptions options;
   std::string renderer, timingMethod;
@@ -148,6 +166,7 @@ struct BenchResult {
   std::vector<CurvePoint> curves;
   std::vector<TemporalPoint> temporal;
   std::vector<GlossyPoint> glossy;
+  std::vector<ViewsPoint> views;
 };
 
 // The temporal study per scene, configuration and segment: mean errors over the segment's frames

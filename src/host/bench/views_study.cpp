@@ -1,0 +1,169 @@
+// The views study of sslr-bench: a scene seen by N eyes side by side (stereo: 2), traced three
+// ways with the default settings, timed interleaved: eye 0 alone by a one-view context (the unit),
+// every eye by a context of its own (stereo before ContextDesc::views), and every eye by one
+// context of N views over 2D-array G-buffers (ContextDesc::views). Each also reports a frame's
+// commands, the fixed costs that one context of N views pays once.
+#include "views_study.hpp"
+
+#include <algorithm>
+#include <memory>
+#include <utility>
+
+#include <glm/glm.hpp>
+
+#include "sslr_host/egl_context.hpp"
+#include "sslr_host/gbuffer.hpp"
+#include "sslr_host/scene.hpp"
+
+namespace sslr::host {
+
+namespace {
+
+constexpr double kEyeSeparation = 0.064;  // view units between neighbouring eyes (a human's)
+
+PassCommands& operator+=(PassCommands& a, const PassCommands& b) {
+  a.dispatches += b.dispatches;
+  a.indirectDispatches += b.indirectDispatches;
+  a.barriers += b.barriers;
+  a.programs += b.programs;
+  a.uploads += b.uploads;
+  return a;
+}
+
+Expected<std::unique_ptr<Context>> makeContext(int w, int h, int views, DeviceProfile device) {
+  ContextDesc d;
+  d.width = w;
+  d.height = h;
+  d.views = views;
+  d.device = device;
+  d.getProcAddress = HeadlessContext::getProcAddress();
+  return Context::create(d);
+}
+
+// The 2D arrays of a layered G-buffer: one texture per input the eyes' G-buffers have, layer v
+// a copy of eye v's.
+struct LayeredInputs {
+  std::vector<FrameInputs> inputs;
+  std::vector<GLuint> arrays;
+  LayeredInputs() = default;
+  LayeredInputs(const LayeredInputs&) = delete;
+  LayeredInputs& operator=(const LayeredInputs&) = delete;
+  ~LayeredInputs() { glDeleteTextures(static_cast<GLsizei>(arrays.size()), arrays.data()); }
+};
+
+void layer(const std::vector<FrameInputs>& eyes, int w, int h, LayeredInputs& out) {
+  out.inputs = eyes;
+  const int n = static_cast<int>(eyes.size());
+  GLName FrameInputs::*const members[] = {&FrameInputs::colorTexture, &FrameInputs::normalTexture,
+                                          &FrameInputs::depthTexture, &FrameInputs::positionTexture,
+                                          &FrameInputs::backDepthTexture};
+  for (const auto member : members) {
+    if (eyes[0].*member == 0) continue;
+    GLint format = 0;
+    glGetTextureLevelParameteriv(eyes[0].*member, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
+    GLuint array = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &array);
+    glTextureStorage3D(array, 1, static_cast<GLenum>(format), w, h, n);
+    for (int v = 0; v < n; ++v)
+      glCopyImageSubData(eyes[v].*member, GL_TEXTURE_2D, 0, 0, 0, 0, array, GL_TEXTURE_2D_ARRAY, 0, 0, 0, v, w, h, 1);
+    for (FrameInputs& in : out.inputs) in.*member = array;
+    out.arrays.push_back(array);
+  }
+}
+
+}  // namespace
+
+Status runViewsStudy(const std::string& sceneName, const BenchOptions& options, Timer& timer,
+                     std::vector<ViewsPoint>& out) {
+  auto scene = loadScene(sceneName);
+  if (!scene) return Status::error(scene.error());
+  const Camera start = scene.value().camera ? *scene.value().camera : scene.value().defaultCamera();
+  GpuScene gpu(scene.value());
+  const int w = options.viewsWidth, h = options.viewsHeight, n = options.viewsCount;
+  const glm::dvec3 right = glm::normalize(glm::cross(start.target - start.eye, start.up));
+  GBufferOptions g;
+  g.width = w;
+  g.height = h;
+  std::vector<std::unique_ptr<GBuffer>> eyes;
+  std::vector<FrameInputs> eyeInputs;
+  for (int v = 0; v < n; ++v) {
+    Camera c = start;
+    c.eye += right * (kEyeSeparation * v);
+    c.target += right * (kEyeSeparation * v);
+    auto gb = GBuffer::create(g);
+    if (!gb) return Status::error(gb.error());
+    if (Status s = gb.value()->render(gpu, c); !s) return s;
+    eyeInputs.push_back(gb.value()->frameInputs());
+    eyes.push_back(std::move(gb.value()));
+  }
+  LayeredInputs layered;
+  layer(eyeInputs, w, h, layered);
+  // Contexts: eye 0 alone, one a eye, one of every eye.
+  auto alone = makeContext(w, h, 1, options.device);
+  if (!alone) return alone.status();
+  std::vector<std::unique_ptr<Context>> perEye;
+  for (int v = 0; v < n; ++v) {
+    auto c = makeContext(w, h, 1, options.device);
+    if (!c) return c.status();
+    perEye.push_back(std::move(c.value()));
+  }
+  auto together = makeContext(w, h, n, options.device);
+  if (!together) return together.status();
+
+  struct Config {
+    std::string name;
+    int views;
+    std::function<Status(const Settings&)> frame;
+  };
+  const std::vector<Config> configs = {
+      {"one view", 1, [&](const Settings& s) { return alone.value()->dispatch(eyeInputs[0], s); }},
+      {"a context a view", n,
+       [&](const Settings& s) {
+         for (int v = 0; v < n; ++v)
+           if (Status st = perEye[v]->dispatch(eyeInputs[v], s); !st) return st;
+         return Status{};
+       }},
+      {"one context of " + std::to_string(n) + " views", n,
+       [&](const Settings& s) { return together.value()->dispatch(std::span<const FrameInputs>(layered.inputs), s); }},
+  };
+  const Settings settings;
+  // At least two warm-up frames: the first compiles, the second follows the first's feedback
+  // (TraversalPass::Auto).
+  for (int k = 0; k < std::max(2, options.warmup); ++k)
+    for (const Config& c : configs)
+      if (Status st = c.frame(settings); !st) return st;
+  std::vector<std::vector<double>> times(configs.size());
+  const int repeats = timer.repeats(options.batch);
+  for (int sample = 0; sample < options.frames; ++sample)
+    for (size_t i = 0; i < configs.size(); ++i) {
+      Status st;
+      times[i].push_back(timer.timeMs([&] { st = configs[i].frame(settings); }, repeats));
+      if (!st) return st;
+    }
+  // A frame's commands and counts, from one frame with stats after the timed ones.
+  Settings counted = settings;
+  counted.debug.collectStats = true;
+  for (size_t i = 0; i < configs.size(); ++i) {
+    if (Status st = configs[i].frame(counted); !st) return st;
+    ViewsPoint p;
+    p.scene = sceneName;
+    p.config = configs[i].name;
+    p.views = configs[i].views;
+    p.timeMedianMs = median(times[i]);
+    std::vector<const Context*> used;
+    if (i == 0) used = {alone.value().get()};
+    if (i == 1)
+      for (const auto& c : perEye) used.push_back(c.get());
+    if (i == 2) used = {together.value().get()};
+    for (const Context* c : used) {
+      const FrameStats stats = c->waitForStats();
+      p.commands += stats.totalCommands();
+      p.tracedPixels += stats.tracedPixels;
+      p.tiles += stats.tiles;
+    }
+    out.push_back(p);
+  }
+  return {};
+}
+
+}  // namespace sslr::host
