@@ -84,6 +84,12 @@ bench glossy 50 --grid quick --size 64x36 --frames 10 --warmup 2 --scenes sky-he
   --glossy-scenes glossy,mirror-room@rough0.25,curved-mirror@rough0.3,facing-mirror@rough0.3 \
   --glossy-size 960x540 --glossy-samples 64 --glossy-frames 8
 
+# Stereo on a GPU (#40's item 2): one context of two views against a context a view, where a
+# frame's fixed commands weigh more than on llvmpipe. 1920x1080 a eye.
+bench views 40 --grid quick --size 64x36 --frames 10 --warmup 2 --scenes sky-heavy --configs adaptive-l/high \
+  --no-curves --no-temporal --no-glossy --views-scenes mirror-room,glossy,sky-heavy,thin-objects \
+  --views-size 1920x1080
+
 t0=$(date +%s)
 limit=$(left)
 [ "$limit" -gt 10 ] || limit=10

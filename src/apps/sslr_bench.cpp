@@ -354,17 +354,14 @@ void printStudies(const BenchResult& result, const BenchOptions& bo) {
                   p.rmseAboveNoise, p.relativeRmse, p.displayRmse, p.uncovered, p.scored, p.referenceNoise);
   }
   if (!result.views.empty()) {
-    std::printf("\nviews study (%dx%d, %d eyes; median ms of a frame of every eye it traces, ratio to one view; a "
-                "frame's commands):\n",
+    std::printf("\nviews study (%dx%d, %d eyes; median ms of a frame of every eye it traces; ratio to one view, the "
+                "median of each round's; a frame's commands):\n",
                 bo.viewsWidth, bo.viewsHeight, bo.viewsCount);
     std::printf("  %-12s %-26s %9s %7s %10s %8s %8s %8s %8s %10s\n", "scene", "configuration", "ms", "ratio",
                 "dispatches", "indirect", "barriers", "programs", "uploads", "traced px");
     for (const ViewsPoint& p : result.views) {
-      double one = 0;
-      for (const ViewsPoint& q : result.views)
-        if (q.scene == p.scene && q.views == 1) one = q.timeMedianMs;
       std::printf("  %-12s %-26s %9.2f %6.2fx %10u %8u %8u %8u %8u %10llu\n", p.scene.c_str(), p.config.c_str(),
-                  p.timeMedianMs, one > 0 ? p.timeMedianMs / one : 0.0, p.commands.dispatches,
+                  p.timeMedianMs, p.ratioToOneView, p.commands.dispatches,
                   p.commands.indirectDispatches, p.commands.barriers, p.commands.programs, p.commands.uploads,
                   static_cast<unsigned long long>(p.tracedPixels));
     }

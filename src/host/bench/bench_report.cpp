@@ -412,6 +412,7 @@ json resultsJson(const BenchResult& result) {
                           {"width", result.options.viewsWidth},
                           {"height", result.options.viewsHeight},
                           {"timeMedianMs", num(p.timeMedianMs)},
+                          {"ratioToOneView", num(p.ratioToOneView)},
                           {"dispatches", p.commands.dispatches},
                           {"indirectDispatches", p.commands.indirectDispatches},
                           {"barriers", p.commands.barriers},
@@ -599,16 +600,13 @@ Status reportStudies(std::ostringstream& h, const BenchResult& result, const std
       << " eyes 0.064 units apart, " << result.options.viewsWidth << "x" << result.options.viewsHeight
       << ", the default settings: eye 0 alone, every eye by a context of its own, and every eye by one context of "
          "every view (ContextDesc::views, 2D-array G-buffers). Time: a frame of every eye the configuration traces, "
-         "median, configurations interleaved; ratio to one view. Commands: one frame's, every context's summed "
+         "median, configurations interleaved in alternating order; ratio to one view: the median of each round's. Commands: one frame's, every context's summed "
          "(uploads include the stats ring's three).</p>"
       << "<table><tr><th>scene</th><th>configuration</th><th>ms</th><th>ratio</th><th>dispatches</th>"
          "<th>indirect</th><th>barriers</th><th>programs</th><th>uploads</th><th>traced px</th></tr>";
     for (const ViewsPoint& p : result.views) {
-      double one = 0;
-      for (const ViewsPoint& q : result.views)
-        if (q.scene == p.scene && q.views == 1) one = q.timeMedianMs;
       h << "<tr><td>" << esc(p.scene) << "</td><td>" << esc(p.config) << "</td><td>" << fmt(p.timeMedianMs, 2)
-        << "</td><td>" << fmt(one > 0 ? p.timeMedianMs / one : 0.0, 2) << "&times;</td><td>" << p.commands.dispatches
+        << "</td><td>" << fmt(p.ratioToOneView, 2) << "&times;</td><td>" << p.commands.dispatches
         << "</td><td>" << p.commands.indirectDispatches << "</td><td>" << p.commands.barriers << "</td><td>"
         << p.commands.programs << "</td><td>" << p.commands.uploads << "</td><td>" << p.tracedPixels << "</td></tr>";
     }

@@ -132,14 +132,23 @@ Status runViewsStudy(const std::string& sceneName, const BenchOptions& options, 
   for (int k = 0; k < std::max(2, options.warmup); ++k)
     for (const Config& c : configs)
       if (Status st = c.frame(settings); !st) return st;
-  std::vector<std::vector<double>> times(configs.size());
+  // Rounds of every configuration back to back, in alternating order (a machine's drift then
+  // weighs on each alike); the ratio to one view is the median of each round's own ratio.
+  std::vector<std::vector<double>> times(configs.size()), ratios(configs.size());
   const int repeats = timer.repeats(options.batch);
-  for (int sample = 0; sample < options.frames; ++sample)
-    for (size_t i = 0; i < configs.size(); ++i) {
+  for (int sample = 0; sample < options.frames; ++sample) {
+    std::vector<double> round(configs.size());
+    for (size_t k = 0; k < configs.size(); ++k) {
+      const size_t i = sample % 2 == 0 ? k : configs.size() - 1 - k;
       Status st;
-      times[i].push_back(timer.timeMs([&] { st = configs[i].frame(settings); }, repeats));
+      round[i] = timer.timeMs([&] { st = configs[i].frame(settings); }, repeats);
       if (!st) return st;
     }
+    for (size_t i = 0; i < configs.size(); ++i) {
+      times[i].push_back(round[i]);
+      ratios[i].push_back(round[0] > 0.0 ? round[i] / round[0] : 0.0);
+    }
+  }
   // A frame's commands and counts, from one frame with stats after the timed ones.
   Settings counted = settings;
   counted.debug.collectStats = true;
@@ -150,6 +159,7 @@ Status runViewsStudy(const std::string& sceneName, const BenchOptions& options, 
     p.config = configs[i].name;
     p.views = configs[i].views;
     p.timeMedianMs = median(times[i]);
+    p.ratioToOneView = median(ratios[i]);
     std::vector<const Context*> used;
     if (i == 0) used = {alone.value().get()};
     if (i == 1)

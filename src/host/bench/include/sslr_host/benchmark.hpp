@@ -153,6 +153,7 @@ struct ViewsPoint {
   std::string config;  // "one view" (eye 0 alone), "a context a view", "one context of N views"
   int views = 1;       // eyes traced
   double timeMedianMs = 0;  // a frame of every eye it traces, configurations interleaved
+  double ratioToOneView = 0;  // the median over rounds of this time / one view's in the same round
   // A frame's commands (dispatch(); every context's summed), its traced pixels and tiles.
   PassCommands commands;
   std::uint64_t tracedPixels = 0, tiles = 0;
