@@ -19,6 +19,7 @@
 #include "sslr_host/cost_model.hpp"
 #include "sslr_host/egl_context.hpp"
 #include "sslr_host/frame_renderer.hpp"
+#include "sslr_host/views_renderer.hpp"
 #include "sslr_host/gbuffer.hpp"
 #include "sslr_host/gltf_writer.hpp"
 #include "sslr_host/ground_truth.hpp"
@@ -281,6 +282,11 @@ cxxopts::Options renderOptions() {
       ("frames", "render the same view N times; with --stats the pass times are the median of frames 2..N "
                  "(the first compiles shaders)", cxxopts::value<int>()->default_value("1"))
       ("temporal", "temporal reuse (Settings::temporal) from the second frame on")
+      ("views", "views traced in the same dispatches by one context (ContextDesc::views, 1..4): cameras side by "
+                "side along the camera's right axis, --eye-separation apart; writes DIR/final-viewN.png",
+       cxxopts::value<std::string>()->default_value("1"))
+      ("eye-separation", "--views: distance between neighbouring views' cameras, view units (default 0.064)",
+       cxxopts::value<std::string>())
       ("no-prepare", "skip Context::prepare() before the first frame (to see the compile hitch it removes; --stats times both)")
       ("score", "score the traced hits against Embree ground truth (recall, error, false hits), print them and write DIR/error.png (and DIR/truth.exr with --dump)")
       ("h,help", "show this help");
@@ -298,6 +304,8 @@ struct RenderJob {
   fs::path outDir;
   bool dump = false, score = false;
   int frames = 1;
+  int views = 1;                                    // --views: one context of this many views
+  double eyeSeparation = 0.064;                     // --eye-separation
   bool prepare = true;                              // Context::prepare() before the first frame
   std::string device;                               // EGL device (--device)
   DeviceProfile profile = DeviceProfile::Auto;      // sslr's pass shapes (--device-profile)
@@ -377,6 +385,16 @@ void parseTracing(const cxxopts::ParseResult& args, RenderJob& job) {
   job.prepare = args.count("no-prepare") == 0;
   if (job.frames < 1 || job.frames > 10000)
     throw UsageError{"--frames must be 1..10000 (got " + std::to_string(job.frames) + ")"};
+  const std::string views = args["views"].as<std::string>();
+  if (views.size() != 1 || views[0] < '1' || views[0] > char('0' + kMaxViews))
+    throw UsageError{"--views must be 1.." + std::to_string(kMaxViews) + " (got '" + views + "')"};
+  job.views = views[0] - '0';
+  if (args.count("eye-separation")) {
+    if (job.views == 1) throw UsageError{"--eye-separation needs --views 2 or more"};
+    job.eyeSeparation = parsePositive("eye-separation", args["eye-separation"].as<std::string>());
+  }
+  if (job.views > 1 && (job.dump || job.score))
+    throw UsageError{"--views writes each view's final image only: --dump and --score need one view"};
 }
 
 // The scene (loaded, staged) and the camera (throws UsageError).
@@ -640,6 +658,64 @@ void warnIfNothingShows(const RenderJob& job, const GBuffer& gbuffer) {
             << "show the background alone\n";
 }
 
+// --views N: every view's G-buffer, one dispatch of a context of N views, each view's composite
+// (without a tracer: each view's lit colour).
+int renderViews(const RenderJob& job, HeadlessContext& gl) {
+  auto renderer = ViewsRenderer::create(job.gopt, job.views, nullptr, job.profile);
+  if (!renderer) {
+    std::cerr << "sslr-render: " << renderer.error() << "\n";
+    return kExitFailure;
+  }
+  ViewsRenderer& r = *renderer.value();
+  GpuScene gpuScene(job.scene);
+  const std::vector<Camera> cameras = sideBySideCameras(job.camera, job.views, job.eyeSeparation);
+  const Settings* settings = job.reflections ? &job.settings : nullptr;
+  const bool stats = job.settings.debug.collectStats && job.reflections;
+  FrameTimes times;
+  if (settings != nullptr && job.prepare) {
+    const auto start = std::chrono::steady_clock::now();
+    if (Status s = r.prepare(gpuScene, cameras, *settings); !s) {
+      std::cerr << "sslr-render: " << s.message() << "\n";
+      return kExitFailure;
+    }
+    times.prepareMs = millisecondsSince(start);
+  }
+  std::vector<FrameStats> laterStats;
+  for (int frame = 0; frame < job.frames; ++frame) {
+    const auto start = std::chrono::steady_clock::now();
+    if (Status s = r.render(gpuScene, cameras, settings); !s) {
+      std::cerr << "sslr-render: " << s.message() << "\n";
+      return kExitFailure;
+    }
+    if (stats) {
+      glFinish();
+      times.frameMs.push_back(millisecondsSince(start));
+    }
+    if (frame > 0 && stats) laterStats.push_back(r.sslr().waitForStats());
+  }
+  for (int v = 0; v < job.views; ++v) warnIfNothingShows(job, r.gbuffer(v));
+  NamedImages files;
+  for (int v = 0; v < job.views; ++v)
+    files.push_back({"final-view" + std::to_string(v) + ".png", {r.readFinal(v), {}}});
+  if (gl.glErrorCount() > 0) {
+    std::cerr << "sslr-render: " << gl.glErrorCount() << " GL error(s) were reported; no output written\n";
+    return kExitFailure;
+  }
+  if (Status s = writeImages(files, job.outDir); !s) {
+    std::cerr << "sslr-render: " << s.message() << "\n";
+    return kExitFailure;
+  }
+  std::cout << "sslr-render: " << job.scene.name << " " << job.views << " views of " << job.gopt.width << "x"
+            << job.gopt.height << " (" << toString(job.gopt.depth) << " depth, " << job.scene.triangleCount()
+            << " triangles) -> " << (job.outDir / "final-view0.png").string() << " .. final-view" << job.views - 1
+            << ".png\n";
+  if (stats) {
+    printStats(r.sslr().waitForStats(), laterStats, job.frames, gl.isSoftware(), r.sslr().device(), job.settings);
+    printFrameTimes(times);
+  }
+  return 0;
+}
+
 // Renders the job's frames, scores them if asked, writes the images and prints the summary.
 int render(const RenderJob& job) {
   EglOptions eopt;
@@ -649,6 +725,7 @@ int render(const RenderJob& job) {
     std::cerr << "sslr-render: cannot create a headless OpenGL 4.5 context: " << gl.error() << "\n";
     return kExitFailure;
   }
+  if (job.views > 1) return renderViews(job, *gl.value());
   auto renderer = FrameRenderer::create(job.gopt, nullptr, job.profile);
   if (!renderer) {
     std::cerr << "sslr-render: " << renderer.error() << "\n";

@@ -13,7 +13,9 @@
 #include "gl/gl_fixture.hpp"
 #include "sslr/sslr.hpp"
 #include "sslr_host/gbuffer.hpp"
+#include "sslr_host/frame_renderer.hpp"
 #include "sslr_host/scene.hpp"
+#include "sslr_host/views_renderer.hpp"
 
 using namespace sslr;
 using namespace sslr::host;
@@ -281,6 +283,42 @@ TEST_F(MultiView, BadViewsAreRefusedWithWhatIsWrong) {
     EXPECT_FALSE(cs);
     EXPECT_NE(cs.message().find("CompositeOptions::view"), std::string::npos) << cs.message();
   }
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+// The tools' pipeline for several views (ViewsRenderer: sslr-render --views, sslr-bench's views
+// study): each view's final image is bit for bit what the one-view pipeline (FrameRenderer) makes
+// of the same camera, frame after frame with temporal reuse.
+TEST_F(MultiView, TheToolsViewsPipelineGivesEachViewItsOwnFrame) {
+  auto scene = makeBuiltinScene("mirror-walls");
+  ASSERT_TRUE(scene);
+  GpuScene gpu(scene.value());
+  GBufferOptions o;
+  o.width = kW;
+  o.height = kH;
+  auto views = ViewsRenderer::create(o, 2);
+  ASSERT_TRUE(views) << views.error();
+  const std::vector<Camera> cameras = sideBySideCameras(*scene.value().camera, 2, 0.2);
+  EXPECT_NEAR(glm::length(cameras[1].eye - cameras[0].eye), 0.2, 1e-9);
+  EXPECT_NEAR(glm::length(0.5 * (cameras[0].eye + cameras[1].eye) - scene.value().camera->eye), 0.0, 1e-9);
+  std::unique_ptr<FrameRenderer> own[2];
+  for (auto& r : own) {
+    auto created = FrameRenderer::create(o);
+    ASSERT_TRUE(created) << created.error();
+    r = std::move(created.value());
+  }
+  Settings s;
+  s.temporal.enabled = true;
+  for (int frame = 0; frame < 2; ++frame) {
+    ASSERT_TRUE(views.value()->render(gpu, cameras, &s));
+    for (int v = 0; v < 2; ++v) {
+      SCOPED_TRACE("frame " + std::to_string(frame) + ", view " + std::to_string(v));
+      ASSERT_TRUE(own[v]->render(gpu, cameras[static_cast<size_t>(v)], &s));
+      EXPECT_EQ(differing(views.value()->readFinal(v), own[v]->readFinal()), 0u);
+    }
+  }
+  EXPECT_GT(differing(views.value()->readFinal(0), views.value()->readFinal(1)), 1000u);  // parallax
+  EXPECT_FALSE(views.value()->render(gpu, std::span<const Camera>(cameras.data(), 1), &s));  // one camera, two views
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 

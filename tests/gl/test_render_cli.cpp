@@ -96,6 +96,13 @@ TEST(RenderCliNoGl, BadArgumentsExitTwoWithAMessageAndWriteNothing) {
       {"--near 1 --far 1.0000001", "near and far planes are too close"},
       {"--device bogus", "--device: EGL device 'bogus' is not one of"},
       {"--device 99", "--device: EGL device index 99 is out of range"},
+      {"--views 0", "--views must be 1..4"},
+      {"--views 5", "--views must be 1..4"},
+      {"--views two", "--views must be 1..4"},
+      {"--eye-separation 0.1", "--eye-separation needs --views 2 or more"},
+      {"--views 2 --eye-separation -1", "--eye-separation expects a positive number"},
+      {"--views 2 --dump", "--dump and --score need one view"},
+      {"--views 2 --score", "--dump and --score need one view"},
   };
   for (const auto& c : cases) {
     const fs::path out = freshDir("bad");
@@ -438,6 +445,25 @@ double coverage(const fs::path& png) {
         break;
       }
   return double(differ) / n;
+}
+
+// --views 2: one context traces both eyes; each view's final image is its own eye's frame, so the
+// two differ by the eyes' parallax and both hold the reflection.
+TEST_F(RenderCli, ViewsWriteEachViewsFinalImage) {
+  const fs::path out = freshDir("views");
+  const Result r = run("--scene mirror-room --size 96x64 --views 2 --eye-separation 0.3 --stats --out " + out.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("2 views of 96x64"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("frame 2 + 7 / 9 / 9"), std::string::npos) << r.output;  // one view's commands
+  EXPECT_FALSE(fs::exists(out / "final.png"));
+  auto left = sslr::host::readImage((out / "final-view0.png").string());
+  auto right = sslr::host::readImage((out / "final-view1.png").string());
+  ASSERT_TRUE(left && right);
+  ASSERT_EQ(left.value().pixels.size(), right.value().pixels.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < left.value().pixels.size(); ++i)
+    differing += std::abs(left.value().pixels[i] - right.value().pixels[i]) > 0.02f;
+  EXPECT_GT(differing, left.value().pixels.size() / 20) << "the eyes see the room from 0.3 apart";
 }
 
 TEST_F(RenderCli, MovedCameraFitsItsClipPlanes) {

@@ -1,8 +1,9 @@
-// The views study of sslr-bench: a scene seen by N eyes side by side (stereo: 2), traced three
-// ways with the default settings, timed interleaved: eye 0 alone by a one-view context (the unit),
-// every eye by a context of its own (stereo before ContextDesc::views), and every eye by one
-// context of N views over 2D-array G-buffers (ContextDesc::views). Each also reports a frame's
-// commands, the fixed costs that one context of N views pays once.
+// The views study of sslr-bench: a scene seen by N eyes side by side (stereo: 2, 0.064 apart and
+// centred on the scene's camera), traced three ways with the default settings, timed interleaved:
+// eye 0 alone by a one-view context (the unit), every eye by a context of its own (stereo before
+// ContextDesc::views), and every eye by one context of N views over 2D-array G-buffers
+// (ContextDesc::views, ViewsRenderer). Each also reports a frame's commands, the fixed costs that
+// one context of N views pays once.
 #include "views_study.hpp"
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include "sslr_host/egl_context.hpp"
 #include "sslr_host/gbuffer.hpp"
 #include "sslr_host/scene.hpp"
+#include "sslr_host/views_renderer.hpp"
 
 namespace sslr::host {
 
@@ -30,45 +32,13 @@ PassCommands& operator+=(PassCommands& a, const PassCommands& b) {
   return a;
 }
 
-Expected<std::unique_ptr<Context>> makeContext(int w, int h, int views, DeviceProfile device) {
+Expected<std::unique_ptr<Context>> makeContext(int w, int h, DeviceProfile device) {
   ContextDesc d;
   d.width = w;
   d.height = h;
-  d.views = views;
   d.device = device;
   d.getProcAddress = HeadlessContext::getProcAddress();
   return Context::create(d);
-}
-
-// The 2D arrays of a layered G-buffer: one texture per input the eyes' G-buffers have, layer v
-// a copy of eye v's.
-struct LayeredInputs {
-  std::vector<FrameInputs> inputs;
-  std::vector<GLuint> arrays;
-  LayeredInputs() = default;
-  LayeredInputs(const LayeredInputs&) = delete;
-  LayeredInputs& operator=(const LayeredInputs&) = delete;
-  ~LayeredInputs() { glDeleteTextures(static_cast<GLsizei>(arrays.size()), arrays.data()); }
-};
-
-void layer(const std::vector<FrameInputs>& eyes, int w, int h, LayeredInputs& out) {
-  out.inputs = eyes;
-  const int n = static_cast<int>(eyes.size());
-  GLName FrameInputs::*const members[] = {&FrameInputs::colorTexture, &FrameInputs::normalTexture,
-                                          &FrameInputs::depthTexture, &FrameInputs::positionTexture,
-                                          &FrameInputs::backDepthTexture};
-  for (const auto member : members) {
-    if (eyes[0].*member == 0) continue;
-    GLint format = 0;
-    glGetTextureLevelParameteriv(eyes[0].*member, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
-    GLuint array = 0;
-    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &array);
-    glTextureStorage3D(array, 1, static_cast<GLenum>(format), w, h, n);
-    for (int v = 0; v < n; ++v)
-      glCopyImageSubData(eyes[v].*member, GL_TEXTURE_2D, 0, 0, 0, 0, array, GL_TEXTURE_2D_ARRAY, 0, 0, 0, v, w, h, 1);
-    for (FrameInputs& in : out.inputs) in.*member = array;
-    out.arrays.push_back(array);
-  }
 }
 
 }  // namespace
@@ -80,35 +50,26 @@ Status runViewsStudy(const std::string& sceneName, const BenchOptions& options, 
   const Camera start = scene.value().camera ? *scene.value().camera : scene.value().defaultCamera();
   GpuScene gpu(scene.value());
   const int w = options.viewsWidth, h = options.viewsHeight, n = options.viewsCount;
-  const glm::dvec3 right = glm::normalize(glm::cross(start.target - start.eye, start.up));
   GBufferOptions g;
   g.width = w;
   g.height = h;
-  std::vector<std::unique_ptr<GBuffer>> eyes;
+  // Every eye's G-buffer and the layered inputs (ViewsRenderer), traced three ways below.
+  auto views = ViewsRenderer::create(g, n, nullptr, options.device);
+  if (!views) return Status::error(views.error());
+  ViewsRenderer& layered = *views.value();
+  if (Status s = layered.render(gpu, sideBySideCameras(start, n, kEyeSeparation), nullptr); !s) return s;
   std::vector<FrameInputs> eyeInputs;
-  for (int v = 0; v < n; ++v) {
-    Camera c = start;
-    c.eye += right * (kEyeSeparation * v);
-    c.target += right * (kEyeSeparation * v);
-    auto gb = GBuffer::create(g);
-    if (!gb) return Status::error(gb.error());
-    if (Status s = gb.value()->render(gpu, c); !s) return s;
-    eyeInputs.push_back(gb.value()->frameInputs());
-    eyes.push_back(std::move(gb.value()));
-  }
-  LayeredInputs layered;
-  layer(eyeInputs, w, h, layered);
-  // Contexts: eye 0 alone, one a eye, one of every eye.
-  auto alone = makeContext(w, h, 1, options.device);
+  for (int v = 0; v < n; ++v) eyeInputs.push_back(layered.viewInputs(v));
+  // Contexts: eye 0 alone, one an eye; the renderer's own traces every eye.
+  auto alone = makeContext(w, h, options.device);
   if (!alone) return alone.status();
   std::vector<std::unique_ptr<Context>> perEye;
   for (int v = 0; v < n; ++v) {
-    auto c = makeContext(w, h, 1, options.device);
+    auto c = makeContext(w, h, options.device);
     if (!c) return c.status();
     perEye.push_back(std::move(c.value()));
   }
-  auto together = makeContext(w, h, n, options.device);
-  if (!together) return together.status();
+  Context* together = &layered.sslr();
 
   struct Config {
     std::string name;
@@ -124,7 +85,7 @@ Status runViewsStudy(const std::string& sceneName, const BenchOptions& options, 
          return Status{};
        }},
       {"one context of " + std::to_string(n) + " views", n,
-       [&](const Settings& s) { return together.value()->dispatch(std::span<const FrameInputs>(layered.inputs), s); }},
+       [&](const Settings& s) { return together->dispatch(layered.layeredInputs(), s); }},
   };
   const Settings settings;
   // At least two warm-up frames: the first compiles, the second follows the first's feedback
@@ -164,7 +125,7 @@ Status runViewsStudy(const std::string& sceneName, const BenchOptions& options, 
     if (i == 0) used = {alone.value().get()};
     if (i == 1)
       for (const auto& c : perEye) used.push_back(c.get());
-    if (i == 2) used = {together.value().get()};
+    if (i == 2) used = {together};
     for (const Context* c : used) {
       const FrameStats stats = c->waitForStats();
       p.commands += stats.totalCommands();
