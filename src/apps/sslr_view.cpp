@@ -28,6 +28,8 @@ int main(int argc, char** argv) {
        cxxopts::value<std::string>()->default_value("final"))
       ("split", "compare against this method on the right half: " + joined(viewerMethodNames()),
        cxxopts::value<std::string>())
+      ("stereo", "start in stereo: two eyes 0.064 apart traced by one context of two views, the window wiping "
+                 "from the left eye to the right at its middle")
       ("frames", "render this many frames, then exit (0: until the window is closed)",
        cxxopts::value<int>()->default_value("0"))
       ("orbit", "scripted camera: degrees the camera orbits per frame", cxxopts::value<double>()->default_value("0"))
@@ -69,6 +71,8 @@ int main(int argc, char** argv) {
       if (sslr::Status st = checkOutputFile(vo.screenshot); !st) throw std::runtime_error("--screenshot " + st.message());
     }
     vo.hideUi = args.count("hide-ui") > 0;
+    vo.stereo = args.count("stereo") > 0;
+    if (vo.stereo && args.count("split")) throw std::runtime_error("--stereo and --split exclude each other");
   } catch (const std::exception& e) {
     std::cerr << "sslr-view: " << e.what() << "\nTry 'sslr-view --help'.\n";
     return 2;

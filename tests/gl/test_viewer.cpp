@@ -89,6 +89,39 @@ TEST_F(Viewer, WindowShowsWhatTheHeadlessRendererRenders) {
   EXPECT_GE(differing(shot.value(), plain.value(), 8.0f / 255.0f), 0.05) << "no reflections in the window";
 }
 
+// --stereo: one context of two views traces both eyes; the window's left half is the left eye's
+// final image and its right half the right eye's, as sslr-render --views 2 writes them.
+TEST_F(Viewer, StereoShowsEachEyeAsSslrRenderWritesIt) {
+  const fs::path dir = freshDir("stereo");
+  const Result v = view("--size 320x180 --frames 2 --hide-ui --stereo --screenshot " + (dir / "view.png").string());
+  ASSERT_EQ(v.exitCode, 0) << v.output;
+  const Result r = sh(std::string(SSLR_RENDER_EXE) + " --size 320x180 --views 2 --out " + (dir / "render").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  auto shot = readImage((dir / "view.png").string());
+  auto left = readImage((dir / "render" / "final-view0.png").string());
+  auto right = readImage((dir / "render" / "final-view1.png").string());
+  ASSERT_TRUE(shot && left && right);
+  ASSERT_EQ(shot.value().width, 320);
+  // Each half against its eye (the tolerance of WindowShowsWhatTheHeadlessRendererRenders), and
+  // against the other eye, which it must not be.
+  size_t offOwn = 0, offOther = 0, pixels = 0;
+  for (int y = 0; y < 180; ++y)
+    for (int x = 0; x < 320; ++x) {
+      const Image& own = x < 160 ? left.value() : right.value();
+      const Image& other = x < 160 ? right.value() : left.value();
+      bool ownOff = false, otherOff = false;
+      for (int c = 0; c < 3; ++c) {
+        ownOff |= std::abs(shot.value().at(x, y, c) - own.at(x, y, c)) > 8.0f / 255.0f;
+        otherOff |= std::abs(shot.value().at(x, y, c) - other.at(x, y, c)) > 8.0f / 255.0f;
+      }
+      offOwn += ownOff;
+      offOther += otherOff;
+      ++pixels;
+    }
+  EXPECT_LE(double(offOwn) / double(pixels), 0.01) << "a half of the window is not its eye's frame";
+  EXPECT_GE(double(offOther) / double(pixels), 0.02) << "the eyes show no parallax";
+}
+
 TEST_F(Viewer, PanelIsDrawnOverTheView) {
   const fs::path dir = freshDir("panel");
   ASSERT_EQ(view("--size 640x360 --frames 2 --screenshot " + (dir / "ui.png").string()).exitCode, 0);
@@ -196,7 +229,7 @@ TEST_F(Viewer, NoDisplayAndBadArgumentsAreClearErrors) {
   EXPECT_EQ(noDisplay.exitCode, 1) << noDisplay.output;
   EXPECT_NE(noDisplay.output.find("no display"), std::string::npos) << noDisplay.output;
   EXPECT_NE(noDisplay.output.find("xvfb-run"), std::string::npos) << noDisplay.output;
-  for (const char* bad : {"--view bogus", "--split nothing", "--size 0x0", "--screenshot x.png"}) {
+  for (const char* bad : {"--view bogus", "--split nothing", "--size 0x0", "--screenshot x.png", "--stereo --split dda"}) {
     const Result r = sh(std::string(SSLR_VIEW_EXE) + " " + bad);
     EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.output;
     EXPECT_NE(r.output.find("sslr-view:"), std::string::npos) << r.output;

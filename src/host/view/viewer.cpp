@@ -16,6 +16,7 @@
 
 #include "sslr_host/embedded_shaders.hpp"
 #include "sslr_host/frame_renderer.hpp"
+#include "sslr_host/views_renderer.hpp"
 #include "sslr_host/gl.hpp"
 #include "sslr_host/ground_truth.hpp"
 #include "sslr_host/image_io.hpp"
@@ -136,6 +137,11 @@ struct App {
   CameraControl control;
   Side sides[2];
   bool compare = false;
+  // Stereo: side A's settings trace two eyes through one context of two views (ViewsRenderer);
+  // the window wipes from the left eye's final image to the right eye's at `split`.
+  bool stereo = false;
+  float eyeSeparation = 0.064f;
+  std::unique_ptr<ViewsRenderer> eyes;
   float split = 0.5f;
   int editing = 0;
   int view = 0;
@@ -161,21 +167,31 @@ struct App {
     control.camera = scene.camera ? *scene.camera : scene.defaultCamera();
     fitClipPlanes(control.camera, scene.worldBounds());
     for (Side& s : sides) s.renderer.reset();  // fresh histories
+    eyes.reset();
     return {};
   }
 
+  GBufferOptions gbufferOptions() const {
+    GBufferOptions g;
+    g.width = width;
+    g.height = height;
+    const DepthMode modes[] = {DepthMode::Reversed, DepthMode::ReversedInfinite, DepthMode::ZeroToOne,
+                               DepthMode::GlDefault};
+    g.depth = modes[depth];
+    g.normals = normals == 0 ? NormalEncoding::Octahedral : NormalEncoding::XyzUnorm;
+    g.withPosition = true;  // the position-buffer method reads it
+    return g;
+  }
+
   Status ensureRenderers() {
+    if (stereo && !(eyes && eyes->gbuffer(0).width() == width && eyes->gbuffer(0).height() == height)) {
+      auto r = ViewsRenderer::create(gbufferOptions(), 2, reinterpret_cast<GetProcAddress>(&glfwGetProcAddress));
+      if (!r) return Status::error(r.error());
+      eyes = std::move(r.value());
+    }
     for (Side& s : sides) {
       if (s.renderer && s.renderer->gbuffer().width() == width && s.renderer->gbuffer().height() == height) continue;
-      GBufferOptions g;
-      g.width = width;
-      g.height = height;
-      const DepthMode modes[] = {DepthMode::Reversed, DepthMode::ReversedInfinite, DepthMode::ZeroToOne,
-                                 DepthMode::GlDefault};
-      g.depth = modes[depth];
-      g.normals = normals == 0 ? NormalEncoding::Octahedral : NormalEncoding::XyzUnorm;
-      g.withPosition = true;  // the position-buffer method reads it
-      auto r = FrameRenderer::create(g, reinterpret_cast<GetProcAddress>(&glfwGetProcAddress));
+      auto r = FrameRenderer::create(gbufferOptions(), reinterpret_cast<GetProcAddress>(&glfwGetProcAddress));
       if (!r) return Status::error(r.error());
       s.renderer = std::move(r.value());
       for (GLuint* t : {&s.errorTexture, &s.imageErrorTexture}) {
@@ -191,6 +207,12 @@ struct App {
     s.renderer->setCompositeMode(composite == 0 ? CompositeMode::BlendOverFallback : CompositeMode::Add);
     const bool none = s.method == 4;
     const Settings settings = settingsFor(s);
+    if (stereo) {  // both eyes in one dispatch (the window shows their final images)
+      const Status st = eyes->render(*gpu, sideBySideCameras(control.camera, 2, eyeSeparation), none ? nullptr : &settings);
+      s.error = st ? "" : st.message();
+      if (!none) s.stats = eyes->sslr().lastStats();
+      return;
+    }
     const Status st = s.renderer->render(*gpu, control.camera, none ? nullptr : &settings);
     s.error = st ? "" : st.message();
     if (!none) s.stats = s.renderer->sslr().lastStats();
@@ -291,14 +313,14 @@ struct App {
     glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
     glUseProgram(presentProgram);
     glBindVertexArray(presentVao);
-    const View& v = kViews[view];
+    const View& v = stereo ? kViews[0] : kViews[view];  // stereo: the eyes' final images
     Side& b = compare ? sides[1] : sides[0];
-    glBindTextureUnit(0, textureOf(sides[0], v.source));
-    glBindTextureUnit(1, textureOf(b, v.source));
+    glBindTextureUnit(0, stereo ? eyes->finalTexture(0) : textureOf(sides[0], v.source));
+    glBindTextureUnit(1, stereo ? eyes->finalTexture(1) : textureOf(b, v.source));
     glBindSampler(0, presentSampler);
     glBindSampler(1, presentSampler);
     glProgramUniform1i(presentProgram, 0, v.mode);
-    glProgramUniform1f(presentProgram, 1, compare ? split : 1.0f);
+    glProgramUniform1f(presentProgram, 1, compare || stereo ? split : 1.0f);
     glProgramUniform1f(presentProgram, 2, v.scale);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
@@ -459,11 +481,19 @@ struct App {
     bool rebuild = ImGui::Combo("depth", &depth, kDepths, IM_ARRAYSIZE(kDepths));
     const char* encodings[] = {"octahedral (RGBA16)", "xyz (RGBA8)"};
     rebuild |= ImGui::Combo("normals", &normals, encodings, 2);
-    if (rebuild)
+    if (rebuild) {
       for (Side& s : sides) s.renderer.reset();
+      eyes.reset();
+    }
     const char* modes[] = {"blend over fallback", "add"};
     ImGui::Combo("composite", &composite, modes, 2);
-    ImGui::Checkbox("compare (split screen)", &compare);
+    if (ImGui::Checkbox("stereo (two eyes, one context)", &stereo) && stereo) compare = false;
+    if (stereo) {
+      ImGui::SliderFloat("eye separation", &eyeSeparation, 0.0f, 1.0f);
+      ImGui::SliderFloat("split", &split, 0.0f, 1.0f);
+      ImGui::TextDisabled("left of the split: the left eye; right: the right eye (final view)");
+    }
+    if (ImGui::Checkbox("compare (split screen)", &compare) && compare) stereo = false;
     if (compare) {
       ImGui::Text("left A: %s, right B: %s", kMethods[sides[0].method], kMethods[sides[1].method]);
       ImGui::SliderFloat("split", &split, 0.0f, 1.0f);
@@ -663,6 +693,7 @@ void releaseViewer(App& app) {
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
+  app.eyes.reset();
   for (Side& s : app.sides) {
     s.renderer.reset();
     for (GLuint t : {s.errorTexture, s.imageErrorTexture})
@@ -703,6 +734,7 @@ int runViewer(const ViewerOptions& options) {
     }
     for (int i = 0; i < IM_ARRAYSIZE(kViews); ++i)
       if (options.debugView == kViews[i].name) app.view = i;
+    app.stereo = options.stereo;
     if (!options.split.empty()) {
       app.compare = true;
       for (int i = 0; i < IM_ARRAYSIZE(kMethods); ++i)

@@ -39,6 +39,7 @@ class ViewsRenderer {
   // What the last render handed sslr: every view's FrameInputs over the 2D arrays.
   std::span<const FrameInputs> layeredInputs() const { return layered_; }
   Context& sslr() { return *sslr_; }
+  GLuint finalTexture(int view) const { return finals_[static_cast<size_t>(view)]; }  // RGBA16F
   Image readFinal(int view) const;  // RGB, linear
 
  private:

@@ -22,6 +22,7 @@ struct ViewerOptions {
   bool hideUi = false;      // no panel (the window shows the 3D view alone)
   std::string split;        // "" or a method name: compare it on the right half from the start
   std::string debugView;    // "" (final) or a debug view name, see viewer.cpp kViews
+  bool stereo = false;      // two eyes through one context of two views (ContextDesc::views) from the start
 };
 
 // The names --view and --split accept (in the panel's order).
