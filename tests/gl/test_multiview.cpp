@@ -135,12 +135,16 @@ struct Case {
   Settings settings;
   int frames;
   DeviceProfile device;
+  // Odd frames trace this rectangle of the textures (FrameInputs::viewport; width 0: the whole),
+  // even frames the whole: each change starts a new area (outputs cleared, no history).
+  Viewport oddFrames{};
+  GBufferOptions gbuffer{};  // which inputs the G-buffers hand over (position, back-face depth)
 };
 
 // Each view's outputs, frame after frame, against one-view contexts given that view's textures.
 void expectLayersMatchOwnContexts(const Case& c) {
   SCOPED_TRACE(c.name);
-  auto views = makeViews(c.scene, c.views);
+  auto views = makeViews(c.scene, c.views, c.gbuffer);
   ASSERT_TRUE(views);
   auto layered = makeViewsContext(c.views, c.device);
   ASSERT_TRUE(layered);
@@ -156,6 +160,7 @@ void expectLayersMatchOwnContexts(const Case& c) {
     for (int v = 0; v < c.views; ++v) {
       layeredIn[v].previousClipFromView = layeredIn[v].clipFromView;
       ownIn[v].previousClipFromView = ownIn[v].clipFromView;
+      if (frame % 2 == 1) layeredIn[v].viewport = ownIn[v].viewport = c.oddFrames;
     }
     ASSERT_TRUE(layered->dispatch(std::span<const FrameInputs>(layeredIn), c.settings));
     for (int v = 0; v < c.views; ++v) ASSERT_TRUE(own[v]->dispatch(ownIn[v], c.settings));
@@ -198,6 +203,8 @@ TEST_F(MultiView, EachLayerIsWhatAOneViewContextMakesOfItsTextures) {
   halfTemporal.temporal.outputConfidence = true;
   Settings deferred = debug;
   deferred.traversal.pass = TraversalPass::Deferred;
+  GBufferOptions withBackDepth;
+  withBackDepth.withBackDepth = true;
   Settings stochastic = debug;
   stochastic.glossy.mode = GlossyMode::Stochastic;
   stochastic.temporal.enabled = true;
@@ -209,16 +216,20 @@ TEST_F(MultiView, EachLayerIsWhatAOneViewContextMakesOfItsTextures) {
       {"stereo, deferred traversal", "thin-objects", 2, deferred, 1, DeviceProfile::Auto},
       {"stereo, stochastic glossy", "glossy", 2, stochastic, 2, DeviceProfile::Auto},
       {"four views", "mirror-walls", 4, debug, 1, DeviceProfile::Auto},
+      {"stereo in a viewport and out of it", "mirror-room", 2, halfTemporal, 4, DeviceProfile::Auto, {13, 7, 61, 43}},
+      {"stereo with the measured back-face depth", "thin-objects", 2, debug, 1, DeviceProfile::Auto, {}, withBackDepth},
   };
   for (const Case& c : cases) expectLayersMatchOwnContexts(c);
 }
 
 TEST_F(MultiView, TheComparisonMethodsTraceEveryLayerAsTheirOwn) {
-  for (Method m : {Method::ScreenSpaceDDA, Method::FidelityFxSssr, Method::HierarchicalDepth}) {
+  GBufferOptions withPosition;
+  withPosition.withPosition = true;  // the tutorial's method reads a position texture (an array here)
+  for (Method m : {Method::ScreenSpaceDDA, Method::FidelityFxSssr, Method::HierarchicalDepth, Method::PositionBuffer}) {
     Settings s;
     s.debug.outputs = true;
     s.method = m;
-    expectLayersMatchOwnContexts({"a comparison method", "mirror-corridor", 2, s, 1, DeviceProfile::Auto});
+    expectLayersMatchOwnContexts({"a comparison method", "mirror-corridor", 2, s, 1, DeviceProfile::Auto, {}, withPosition});
   }
 }
 
