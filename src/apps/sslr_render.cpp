@@ -658,6 +658,30 @@ void warnIfNothingShows(const RenderJob& job, const GBuffer& gbuffer) {
             << "show the background alone\n";
 }
 
+// The job's prepare() (when tracing) and frames, through one renderer's `prepare` and `frame`
+// calls; with --stats each frame is timed and every frame's stats after the first kept.
+template <typename Prepare, typename Frame>
+Status runFrames(const RenderJob& job, Context& ctx, Prepare&& prepare, Frame&& frame, FrameTimes& times,
+                 std::vector<FrameStats>& laterStats) {
+  const bool stats = job.settings.debug.collectStats && job.reflections;
+  // As an engine does at load time: every program compiled and run once before the first frame.
+  if (job.reflections && job.prepare) {
+    const auto start = std::chrono::steady_clock::now();
+    if (Status s = prepare(); !s) return s;
+    times.prepareMs = millisecondsSince(start);
+  }
+  for (int k = 0; k < job.frames; ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    if (Status s = frame(); !s) return s;
+    if (stats) {
+      glFinish();
+      times.frameMs.push_back(millisecondsSince(start));
+    }
+    if (k > 0 && stats) laterStats.push_back(ctx.waitForStats());  // (the first compiles the shaders)
+  }
+  return {};
+}
+
 // --views N: every view's G-buffer, one dispatch of a context of N views, each view's composite
 // (without a tracer: each view's lit colour).
 int renderViews(const RenderJob& job, HeadlessContext& gl) {
@@ -672,26 +696,13 @@ int renderViews(const RenderJob& job, HeadlessContext& gl) {
   const Settings* settings = job.reflections ? &job.settings : nullptr;
   const bool stats = job.settings.debug.collectStats && job.reflections;
   FrameTimes times;
-  if (settings != nullptr && job.prepare) {
-    const auto start = std::chrono::steady_clock::now();
-    if (Status s = r.prepare(gpuScene, cameras, *settings); !s) {
-      std::cerr << "sslr-render: " << s.message() << "\n";
-      return kExitFailure;
-    }
-    times.prepareMs = millisecondsSince(start);
-  }
   std::vector<FrameStats> laterStats;
-  for (int frame = 0; frame < job.frames; ++frame) {
-    const auto start = std::chrono::steady_clock::now();
-    if (Status s = r.render(gpuScene, cameras, settings); !s) {
-      std::cerr << "sslr-render: " << s.message() << "\n";
-      return kExitFailure;
-    }
-    if (stats) {
-      glFinish();
-      times.frameMs.push_back(millisecondsSince(start));
-    }
-    if (frame > 0 && stats) laterStats.push_back(r.sslr().waitForStats());
+  if (Status s = runFrames(
+          job, r.sslr(), [&] { return r.prepare(gpuScene, cameras, job.settings); },
+          [&] { return r.render(gpuScene, cameras, settings); }, times, laterStats);
+      !s) {
+    std::cerr << "sslr-render: " << s.message() << "\n";
+    return kExitFailure;
   }
   for (int v = 0; v < job.views; ++v) warnIfNothingShows(job, r.gbuffer(v));
   NamedImages files;
@@ -736,28 +747,14 @@ int render(const RenderJob& job) {
   GpuScene gpuScene(job.scene);
   const Settings* settings = job.reflections ? &job.settings : nullptr;
   const bool stats = job.settings.debug.collectStats && job.reflections;
-  // As an engine does at load time: every program compiled and run once before the first frame.
   FrameTimes times;
-  if (settings != nullptr && job.prepare) {
-    const auto start = std::chrono::steady_clock::now();
-    if (Status s = r.prepare(gpuScene, job.camera, *settings); !s) {
-      std::cerr << "sslr-render: " << s.message() << "\n";
-      return kExitFailure;
-    }
-    times.prepareMs = millisecondsSince(start);
-  }
-  std::vector<FrameStats> laterStats;  // every frame after the first (which compiles the shaders)
-  for (int frame = 0; frame < job.frames; ++frame) {
-    const auto start = std::chrono::steady_clock::now();
-    if (Status s = r.render(gpuScene, job.camera, settings); !s) {
-      std::cerr << "sslr-render: " << s.message() << "\n";
-      return kExitFailure;
-    }
-    if (stats) {
-      glFinish();
-      times.frameMs.push_back(millisecondsSince(start));
-    }
-    if (frame > 0 && stats) laterStats.push_back(r.sslr().waitForStats());
+  std::vector<FrameStats> laterStats;
+  if (Status s = runFrames(
+          job, r.sslr(), [&] { return r.prepare(gpuScene, job.camera, job.settings); },
+          [&] { return r.render(gpuScene, job.camera, settings); }, times, laterStats);
+      !s) {
+    std::cerr << "sslr-render: " << s.message() << "\n";
+    return kExitFailure;
   }
   warnIfNothingShows(job, r.gbuffer());
   NamedImages files = collectImages(job, r);
