@@ -23,11 +23,6 @@ SSLR_COORD sslrTexel(ivec2 px) { return SSLR_AT(px + ivec2(frame.surface.originX
 
 // A uv of the frame as a uv of the textures, for a bilinear read: clamped to the frame's edge
 // texels' centres, as the sampler's clamp to edge does at the textures' own edge.
-#if SSLR_VIEWS > 1
-#define SSLR_UV vec3
-#else
-#define SSLR_UV vec2
-#endif
 SSLR_UV sslrTextureUv(vec2 uv) {
   if (frame.surface.viewportInside == 0) return SSLR_UV_AT(uv);  // (uniform: the same branch for every pixel)
   vec2 size = vec2(frame.surface.width, frame.surface.height);

@@ -3,7 +3,8 @@
 
 layout(std430, binding = SSLR_BINDING_TILE_SSBO) buffer SslrTiles {
   SSLR_TILE_HEADER_FIELDS  // sslr_shared.h: the indirect commands and the pyramid's group counts
-  // [0, cap): traced tiles; [cap, 2 cap): tiles to blur (each entry tile x | tile y << 16);
+  // [0, cap): traced tiles; [cap, 2 cap): tiles to blur (each entry sslrPackCoord(tile), its view
+  // in bits 14-15; cap: every view's tiles);
   // [2 cap, 3 cap): per tile, the frame index in which it was last listed for blurring; [3 cap,
   // 4 cap): per tile, the frame index in which classification last listed it for tracing (stamps:
   // no per-frame clear needed); [4 cap, 5 cap): the previous frame's traced tiles (copied);

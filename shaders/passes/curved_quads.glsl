@@ -7,5 +7,5 @@ layout(std430, binding = SSLR_BINDING_CURVED_SSBO) buffer SslrCurvedQuads {
   uint groups;     // groups of 64 listed quads (classification counts them)
   uint count;      // listed quads
   uint pad0, pad1, pad2;
-  uint quads[];    // cell x | cell y << 16
+  uint quads[];    // sslrPackCoord(cell) (its view in bits 14-15)
 } curved;

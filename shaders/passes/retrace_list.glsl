@@ -11,8 +11,8 @@ layout(std430, binding = SSLR_BINDING_RETRACE_SSBO) buffer SslrRetrace {
   uint dispatchZ;
   uint count;  // pixels listed; inline under TraversalPass::Auto: pixels (or quads) the traversal
                // ran for; in the quad passes under Auto: quads listed
-  // Pixels: x | y << 16 in the order listed. Quads: [0, cap) the slots of the tiles with a quad
-  // listed, then per slot a region of its listed quads, x | y << 16, as many as
+  // Pixels: sslrPackCoord(px) in the order listed. Quads: [0, cap) the slots of the tiles with a quad
+  // listed, then per slot a region of its listed quads, sslrPackCoord(quad), as many as
   // sslrQuadRetraceCountIndex says.
   uint entries[];
 } retrace;

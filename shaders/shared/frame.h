@@ -167,8 +167,9 @@ SSLR_FRAME_BLOCK_END
 // With several views every texture and image of a pass is a 2D array, one layer a view, and each
 // invocation serves one view, sslrView: a full-screen pass's gl_WorkGroupID.z, a listed tile's,
 // pixel's or quad's view from its list entry (sslrEnterCoord, common/tiles.glsl). SSLR_AT and
-// SSLR_UV_AT turn a texel or uv of the frame into that view's; with one view they are the texel
-// or uv itself and the textures plain 2D ones, so the single-view shaders are unchanged.
+// SSLR_UV_AT turn a texel or uv of the frame into that view's (of types SSLR_COORD, SSLR_UV);
+// with one view they are the texel or uv itself and the textures plain 2D ones, so the
+// single-view shaders are unchanged.
 #if SSLR_VIEWS > 1
 int sslrView = 0;
 #define frame sslrFrames[sslrView]
@@ -176,6 +177,7 @@ int sslrView = 0;
 #define SSLR_SAMPLER sampler2DArray
 #define SSLR_IMAGE image2DArray
 #define SSLR_COORD ivec3
+#define SSLR_UV vec3
 #define SSLR_AT(p) ivec3(p, sslrView)
 #define SSLR_UV_AT(uv) vec3(uv, float(sslrView))
 #else
@@ -184,6 +186,7 @@ int sslrView = 0;
 #define SSLR_SAMPLER sampler2D
 #define SSLR_IMAGE image2D
 #define SSLR_COORD ivec2
+#define SSLR_UV vec2
 #define SSLR_AT(p) (p)
 #define SSLR_UV_AT(uv) (uv)
 #endif
