@@ -139,6 +139,9 @@ struct Case {
   // even frames the whole: each change starts a new area (outputs cleared, no history).
   Viewport oddFrames{};
   GBufferOptions gbuffer{};  // which inputs the G-buffers hand over (position, back-face depth)
+  // Each view's projection shifted off centre by this much a view (an HMD's asymmetric frusta;
+  // both contexts get the same matrices, so the comparison stays exact).
+  double frustumShift = 0.0;
 };
 
 // Each view's outputs, frame after frame, against one-view contexts given that view's textures.
@@ -161,6 +164,9 @@ void expectLayersMatchOwnContexts(const Case& c) {
       layeredIn[v].previousClipFromView = layeredIn[v].clipFromView;
       ownIn[v].previousClipFromView = ownIn[v].clipFromView;
       if (frame % 2 == 1) layeredIn[v].viewport = ownIn[v].viewport = c.oddFrames;
+      const double shift = c.frustumShift * (v % 2 == 0 ? -1.0 : 1.0);
+      layeredIn[v].clipFromView[2][0] += shift;
+      ownIn[v].clipFromView[2][0] += shift;
     }
     ASSERT_TRUE(layered->dispatch(std::span<const FrameInputs>(layeredIn), c.settings));
     for (int v = 0; v < c.views; ++v) ASSERT_TRUE(own[v]->dispatch(ownIn[v], c.settings));
@@ -218,6 +224,7 @@ TEST_F(MultiView, EachLayerIsWhatAOneViewContextMakesOfItsTextures) {
       {"four views", "mirror-walls", 4, debug, 1, DeviceProfile::Auto},
       {"stereo in a viewport and out of it", "mirror-room", 2, halfTemporal, 4, DeviceProfile::Auto, {13, 7, 61, 43}},
       {"stereo with the measured back-face depth", "thin-objects", 2, debug, 1, DeviceProfile::Auto, {}, withBackDepth},
+      {"stereo with asymmetric frusta", "mirror-room", 2, debug, 1, DeviceProfile::Auto, {}, {}, 0.15},
   };
   for (const Case& c : cases) expectLayersMatchOwnContexts(c);
 }
