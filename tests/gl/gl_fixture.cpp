@@ -43,6 +43,21 @@ void GlTest::TearDown() {
       << "HIGH-severity KHR_debug messages were reported during the test (an engine that stops on them would stop)";
 }
 
+sslr::host::Image compositeImage(sslr::Context& ctx, int w, int h, const sslr::CompositeOptions& options) {
+  GLuint tex = 0, fbo = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+  glTextureStorage2D(tex, 1, GL_RGBA32F, w, h);
+  const float zero[4] = {0, 0, 0, 0};
+  glClearTexImage(tex, 0, GL_RGBA, GL_FLOAT, zero);
+  glCreateFramebuffers(1, &fbo);
+  glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex, 0);
+  EXPECT_TRUE(ctx.composite(fbo, options));
+  sslr::host::Image out = sslr::host::readTexture(tex, w, h, 4);
+  glDeleteFramebuffers(1, &fbo);
+  glDeleteTextures(1, &tex);
+  return out;
+}
+
 std::unique_ptr<sslr::Context> makeSslrContext(int w, int h, sslr::DeviceProfile device) {
   sslr::ContextDesc d;
   d.width = w;

@@ -11,6 +11,7 @@
 
 #include "sslr/sslr.hpp"
 #include "sslr_host/egl_context.hpp"
+#include "sslr_host/gbuffer.hpp"
 #include "sslr_host/gl.hpp"
 
 namespace sslr::test {
@@ -21,6 +22,9 @@ const std::string& glContextError();
 std::vector<GLuint> texturesLabelled(const std::string& label);
 // An sslr context of w x h on the headless context (a failed test and nullptr if none).
 std::unique_ptr<sslr::Context> makeSslrContext(int w, int h, sslr::DeviceProfile device = sslr::DeviceProfile::Auto);
+// `ctx`'s composite (by `options`) into a w x h RGBA32F framebuffer cleared to zero, read back
+// (RGBA). DSA calls only: nothing of the host's GL state is bound or changed.
+sslr::host::Image compositeImage(sslr::Context& ctx, int w, int h, const sslr::CompositeOptions& options = {});
 
 class GlTest : public ::testing::Test {
  protected:

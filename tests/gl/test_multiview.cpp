@@ -112,20 +112,9 @@ std::unique_ptr<Views> makeViews(const char* sceneName, int views, const GBuffer
 
 // The composite (additive) of `view` into a kW x kH framebuffer cleared to zero, read back.
 Image compositeOf(Context& ctx, int view) {
-  GLuint tex = 0, fbo = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-  glTextureStorage2D(tex, 1, GL_RGBA32F, kW, kH);
-  const float zero[4] = {0, 0, 0, 0};
-  glClearTexImage(tex, 0, GL_RGBA, GL_FLOAT, zero);
-  glCreateFramebuffers(1, &fbo);
-  glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex, 0);
   CompositeOptions o;
   o.view = view;
-  EXPECT_TRUE(ctx.composite(fbo, o));
-  Image out = readLayer(tex, 0, 4);
-  glDeleteFramebuffers(1, &fbo);
-  glDeleteTextures(1, &tex);
-  return out;
+  return sslr::test::compositeImage(ctx, kW, kH, o);
 }
 
 struct Case {

@@ -30,21 +30,7 @@ struct Reference {
 
 std::unique_ptr<Context> makeContext(int w, int h) { return sslr::test::makeSslrContext(w, h); }
 
-// The composite (additive) into a w x h framebuffer cleared to zero, read back.
-Image compositeImage(Context& ctx, int w, int h) {
-  GLuint tex = 0, fbo = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-  glTextureStorage2D(tex, 1, GL_RGBA32F, w, h);
-  const float zero[4] = {0, 0, 0, 0};
-  glClearTexImage(tex, 0, GL_RGBA, GL_FLOAT, zero);
-  glCreateFramebuffers(1, &fbo);
-  glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex, 0);
-  EXPECT_TRUE(ctx.composite(fbo));
-  Image out = readTexture(tex, w, h, 4);
-  glDeleteFramebuffers(1, &fbo);
-  glDeleteTextures(1, &tex);
-  return out;
-}
+using sslr::test::compositeImage;
 
 Reference makeReference(const Scene& scene, const GpuScene& gpu, int w, int h, const Settings& s, int frames) {
   Reference r;
