@@ -326,6 +326,7 @@ TEST_F(MultiView, TheToolsViewsPipelineGivesEachViewItsOwnFrame) {
   }
   EXPECT_GT(differing(views.value()->readFinal(0), views.value()->readFinal(1)), 1000u);  // parallax
   EXPECT_FALSE(views.value()->render(gpu, std::span<const Camera>(cameras.data(), 1), &s));  // one camera, two views
+  for (int bad : {1, kMaxViews + 1}) EXPECT_FALSE(ViewsRenderer::create(o, bad)) << bad << " views";
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 

@@ -1,3 +1,4 @@
+// The tools' pipeline for several views (views_renderer.hpp).
 #include "sslr_host/views_renderer.hpp"
 
 #include <glm/glm.hpp>
@@ -28,8 +29,8 @@ std::vector<Camera> sideBySideCameras(const Camera& camera, int views, double se
 
 Expected<std::unique_ptr<ViewsRenderer>> ViewsRenderer::create(const GBufferOptions& options, int views,
                                                               GetProcAddress getProcAddress, DeviceProfile device) {
-  if (views < 1 || views > kMaxViews)
-    return Status::error("views = " + std::to_string(views) + " (must be 1.." + std::to_string(kMaxViews) + ")");
+  if (views < 2 || views > kMaxViews)  // (one view: FrameRenderer, whose context reads 2D textures)
+    return Status::error("views = " + std::to_string(views) + " (must be 2.." + std::to_string(kMaxViews) + ")");
   auto r = std::unique_ptr<ViewsRenderer>(new ViewsRenderer());
   for (int v = 0; v < views; ++v) {
     auto g = GBuffer::create(options);
@@ -115,8 +116,8 @@ Status ViewsRenderer::render(const GpuScene& scene, std::span<const Camera> came
                            GL_COLOR_BUFFER_BIT, GL_NEAREST);
     if (settings == nullptr || settings->output != OutputMode::Weighted) continue;
     CompositeOptions o;
-    o.mode = CompositeMode::BlendOverFallback;
-    o.fallbackSpecularTexture = g.fallbackSpecularTexture();
+    o.mode = compositeMode_;
+    if (compositeMode_ == CompositeMode::BlendOverFallback) o.fallbackSpecularTexture = g.fallbackSpecularTexture();
     o.view = v;
     if (Status s = sslr_->composite(finalFbos_[v], o); !s) return s;
   }
@@ -130,8 +131,9 @@ Status ViewsRenderer::prepare(const GpuScene& scene, std::span<const Camera> cam
   PrepareOptions options;
   options.composite = settings.output == OutputMode::Weighted;
   options.framebuffer = finalFbos_[0];
-  options.compositeOptions.mode = CompositeMode::BlendOverFallback;
-  options.compositeOptions.fallbackSpecularTexture = eyes_[0]->fallbackSpecularTexture();
+  options.compositeOptions.mode = compositeMode_;
+  if (compositeMode_ == CompositeMode::BlendOverFallback)
+    options.compositeOptions.fallbackSpecularTexture = eyes_[0]->fallbackSpecularTexture();
   return sslr_->prepare(layeredInputs(), settings, options);
 }
 

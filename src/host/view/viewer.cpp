@@ -208,6 +208,7 @@ struct App {
     const bool none = s.method == 4;
     const Settings settings = settingsFor(s);
     if (stereo) {  // both eyes in one dispatch (the window shows their final images)
+      eyes->setCompositeMode(composite == 0 ? CompositeMode::BlendOverFallback : CompositeMode::Add);
       const Status st = eyes->render(*gpu, sideBySideCameras(control.camera, 2, eyeSeparation), none ? nullptr : &settings);
       s.error = st ? "" : st.message();
       if (!none) s.stats = eyes->sslr().lastStats();
@@ -466,6 +467,7 @@ struct App {
     ImGui::SameLine();
     if (ImGui::Button("screenshot (P)")) writeSnapshot();
     ImGui::SameLine();
+    ImGui::BeginDisabled(stereo);  // (the error views score one view's frame)
     if (ImGui::Button("error view")) {
       for (int i = 0; i < (compare ? 2 : 1); ++i) computeError(sides[i]);
       view = kErrorView;
@@ -475,6 +477,7 @@ struct App {
       for (int i = 0; i < (compare ? 2 : 1); ++i) computeImageError(sides[i]);
       view = kErrorView + 1;
     }
+    ImGui::EndDisabled();
     std::vector<const char*> names;
     for (const View& v : kViews) names.push_back(v.name);
     ImGui::Combo("view", &view, names.data(), static_cast<int>(names.size()));
@@ -491,7 +494,7 @@ struct App {
     if (stereo) {
       ImGui::SliderFloat("eye separation", &eyeSeparation, 0.0f, 1.0f);
       ImGui::SliderFloat("split", &split, 0.0f, 1.0f);
-      ImGui::TextDisabled("left of the split: the left eye; right: the right eye (final view)");
+      ImGui::TextDisabled("left of the split: the left eye; right: the right eye (final images only)");
     }
     if (ImGui::Checkbox("compare (split screen)", &compare) && compare) stereo = false;
     if (compare) {
@@ -514,7 +517,8 @@ struct App {
     ImGui::End();
   }
 
-  // Writes the window (PNG) and view A's buffers (EXR) into a new folder sslr-view-N.
+  // Writes the window (PNG) and view A's buffers (EXR; stereo: each eye's final image) into a new
+  // folder sslr-view-N.
   void writeSnapshot() {
     int n = 1;
     while (fs::exists("sslr-view-" + std::to_string(n))) ++n;
@@ -522,6 +526,12 @@ struct App {
     fs::create_directories(dir);
     FrameRenderer& r = *sides[0].renderer;
     Status st = writeImage((dir / "window.png").string(), readWindow());
+    if (stereo) {
+      for (int v = 0; v < 2 && st; ++v)
+        st = writeImage((dir / ("final-view" + std::to_string(v) + ".exr")).string(), eyes->readFinal(v), {"R", "G", "B"});
+      status = st ? "wrote " + dir.string() : st.message();
+      return;
+    }
     if (st && sides[0].method != 4) {
       st = writeImage((dir / "resolved.exr").string(), r.readResolved(), {"R", "G", "B", "A"});
       if (st) st = writeImage((dir / "hit.exr").string(), r.readHit(), {"R", "G", "B", "A"});
@@ -653,8 +663,9 @@ FrameResult drawFrame(App& app, const ViewerOptions& options, int frame, int& ex
   if (app.compare) app.renderSide(app.sides[1]);
   glFinish();
   app.frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  // The error views are computed when first shown (and by their buttons after the camera moved).
-  for (int i = 0; i < (app.compare ? 2 : 1); ++i) {
+  // The error views are computed when first shown (and by their buttons after the camera moved);
+  // stereo shows the eyes' final images only.
+  for (int i = 0; i < (app.compare ? 2 : 1) && !app.stereo; ++i) {
     Side& s = app.sides[i];
     if (s.method == 4) continue;
     if (kViews[app.view].source == Source::Error && s.errorTexture == 0) app.computeError(s);

@@ -19,6 +19,7 @@ std::vector<Camera> sideBySideCameras(const Camera& camera, int views, double se
 
 class ViewsRenderer {
  public:
+  // `views`: 2..kMaxViews (one view is FrameRenderer's).
   static Expected<std::unique_ptr<ViewsRenderer>> create(const GBufferOptions& options, int views,
                                                          GetProcAddress getProcAddress = nullptr,
                                                          DeviceProfile device = DeviceProfile::Auto);
@@ -39,6 +40,8 @@ class ViewsRenderer {
   // What the last render handed sslr: every view's FrameInputs over the 2D arrays.
   std::span<const FrameInputs> layeredInputs() const { return layered_; }
   Context& sslr() { return *sslr_; }
+  // How each view's reflection enters its final image (default: over its fallback specular).
+  void setCompositeMode(CompositeMode mode) { compositeMode_ = mode; }
   GLuint finalTexture(int view) const { return finals_[static_cast<size_t>(view)]; }  // RGBA16F
   Image readFinal(int view) const;  // RGB, linear
 
@@ -51,6 +54,7 @@ class ViewsRenderer {
   std::vector<glm::dmat4> previousClipFromWorld_;
   std::unique_ptr<Context> sslr_;
   std::vector<GLuint> finals_, finalFbos_;
+  CompositeMode compositeMode_ = CompositeMode::BlendOverFallback;
 };
 
 }  // namespace sslr::host
