@@ -449,10 +449,10 @@ struct ContextDesc {
   GetProcAddress getProcAddress = nullptr;
   LogCallback log;  // optional: shader compile logs, warnings
   DeviceProfile device = DeviceProfile::Auto;
-  // Views traced in the same dispatches (1..kMaxViews: two for stereo, four for quad views). With more
-  // than one, every input and output is a GL_TEXTURE_2D_ARRAY whose layer v is view v, and frames
-  // go to dispatch(std::span<const FrameInputs>), one FrameInputs a view
-  // (integration.md, "Stereo and multiview").
+  // Views traced in the same dispatches (1..kMaxViews: two for stereo, four for quad views). With
+  // more than one, every input and output is a GL_TEXTURE_2D_ARRAY whose layer v is view v, and
+  // frames go to dispatch(std::span<const FrameInputs>), one FrameInputs a view (integration.md,
+  // "Stereo and multiview").
   int views = 1;
 };
 
