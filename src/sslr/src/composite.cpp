@@ -98,7 +98,7 @@ Status Context::Impl::composite(GLName framebuffer, const CompositeOptions& opti
     fallbackProgram = compositeProgram(true);
     if (!fallbackProgram) return fallbackProgram.status();
   }
-  detail::StateGuard guard(gl, true);
+  detail::StateGuard guard(gl, true, views > 1);
   gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
   if (gl.CheckNamedFramebufferStatus(framebuffer, GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
     return Status::error(StatusCode::InvalidInput, "sslr: composite(): framebuffer " + std::to_string(framebuffer) +
@@ -193,7 +193,7 @@ Status Context::Impl::warmUpComposite(const PrepareOptions& options) {
   gl.NamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, target, 0);
   Status result;
   {
-    detail::StateGuard guard(gl, true);
+    detail::StateGuard guard(gl, true, views > 1);
     if (gl.CheckNamedFramebufferStatus(fbo, GL_DRAW_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE)
       drawComposite(fbo, addProgram.value(), fallbackProgram.value(), co);
     else

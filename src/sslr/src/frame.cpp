@@ -168,7 +168,7 @@ void Context::Impl::warmUp(FramePlan& f, const FrameInputs& in) {
 // The frame's passes in order, under the state guard and a debug group of that name.
 void Context::Impl::recordFrame(FramePlan& f, const FrameInputs& in, const char* debugGroup) {
   createFrameResources(f);
-  detail::StateGuard guard(gl, false);
+  detail::StateGuard guard(gl, false, views > 1);
   gl.PushDebugGroup(GL_DEBUG_SOURCE_THIRD_PARTY, 0, -1, debugGroup);
   beginFrame(f);
   runClassify(f, in);

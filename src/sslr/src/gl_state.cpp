@@ -21,13 +21,14 @@ void restoreIndexed(const Gl& gl, GLenum target, GLuint index, GLint name, GLint
 }
 }  // namespace
 
-StateGuard::StateGuard(const Gl& gl, bool forDraw) : gl_(gl), forDraw_(forDraw) {
+StateGuard::StateGuard(const Gl& gl, bool forDraw, bool arrayTargets)
+    : gl_(gl), forDraw_(forDraw), arrayTargets_(arrayTargets) {
   gl.GetIntegerv(GL_CURRENT_PROGRAM, &program_);
   gl.GetIntegerv(GL_ACTIVE_TEXTURE, &activeTexture_);
   for (int unit = 0; unit < kTextureUnits; ++unit) {
     gl.ActiveTexture(GL_TEXTURE0 + unit);
     gl.GetIntegerv(GL_TEXTURE_BINDING_2D, &textures_[unit]);
-    gl.GetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &arrayTextures_[unit]);  // (a context of several views binds arrays)
+    if (arrayTargets_) gl.GetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &arrayTextures_[unit]);
     gl.GetIntegerv(GL_SAMPLER_BINDING, &samplers_[unit]);
   }
   gl.ActiveTexture(static_cast<GLenum>(activeTexture_));
@@ -80,7 +81,7 @@ StateGuard::~StateGuard() {
   for (int unit = 0; unit < kTextureUnits; ++unit) {
     gl.ActiveTexture(GL_TEXTURE0 + unit);
     gl.BindTexture(GL_TEXTURE_2D, static_cast<GLuint>(textures_[unit]));
-    gl.BindTexture(GL_TEXTURE_2D_ARRAY, static_cast<GLuint>(arrayTextures_[unit]));
+    if (arrayTargets_) gl.BindTexture(GL_TEXTURE_2D_ARRAY, static_cast<GLuint>(arrayTextures_[unit]));
     gl.BindSampler(unit, static_cast<GLuint>(samplers_[unit]));
   }
   gl.ActiveTexture(static_cast<GLenum>(activeTexture_));

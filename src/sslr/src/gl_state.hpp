@@ -29,8 +29,9 @@ inline constexpr GLenum kClipDistances = 8;
 
 class StateGuard {
  public:
-  // `forDraw` additionally saves what the composite draw touches.
-  StateGuard(const Gl& gl, bool forDraw);
+  // `forDraw` additionally saves what the composite draw touches; `arrayTargets` each unit's
+  // GL_TEXTURE_2D_ARRAY binding (a context of several views binds arrays; one view never does).
+  StateGuard(const Gl& gl, bool forDraw, bool arrayTargets = false);
   ~StateGuard();
   StateGuard(const StateGuard&) = delete;
   StateGuard& operator=(const StateGuard&) = delete;
@@ -45,7 +46,7 @@ class StateGuard {
     GLint name = 0, level = 0, layered = 0, layer = 0, access = GL_READ_ONLY, format = GL_R8;
   };
   const Gl& gl_;
-  bool forDraw_;
+  bool forDraw_, arrayTargets_;
   GLint program_ = 0, activeTexture_ = GL_TEXTURE0;
   std::array<GLint, kTextureUnits> textures_{}, arrayTextures_{}, samplers_{};
   std::array<ImageBinding, kImageUnits> images_{};
