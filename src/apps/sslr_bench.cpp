@@ -175,6 +175,29 @@ void parseGrid(const cxxopts::ParseResult& args, BenchOptions& bo) {
   }
 }
 
+// The views study's options (checked whether or not it runs, as every study's).
+void parseViewsStudy(const cxxopts::ParseResult& args, BenchOptions& bo) {
+  const auto viewsSize = parseSizeOption(args["views-size"].as<std::string>(), "views-size", 8, 4096);
+  const std::string countText = args["views-count"].as<std::string>();
+  int viewsCount = 0;
+  if (!wholeNumber(countText, viewsCount) || viewsCount < 2 || viewsCount > kMaxViews)
+    throw std::runtime_error("--views-count expects an integer 2.." + std::to_string(kMaxViews) + " (got '" +
+                             countText + "')");
+  std::vector<std::string> viewsScenes = {"mirror-room", "glossy", "sky-heavy"};
+  if (args.count("views-scenes")) {
+    viewsScenes = uniqueItems(args["views-scenes"].as<std::string>(), "views-scenes");
+    for (const std::string& s : viewsScenes)
+      if (auto check = loadScene(s); !check) throw std::runtime_error("--views-scenes: " + check.error());
+  }
+  bool views = bo.grid == "full" || args.count("views") || args.count("views-scenes");
+  if (args.count("no-views")) views = false;
+  if (views) {
+    std::tie(bo.viewsWidth, bo.viewsHeight) = viewsSize;
+    bo.viewsCount = viewsCount;
+    bo.viewsScenes = viewsScenes;
+  }
+}
+
 // The cost curves, the glossy, the temporal and the views study, when asked for (the full grid
 // runs them). Every study's options are checked whether or not it runs: a mistyped value is an
 // error even beside --no-curves, --no-glossy, --no-temporal or --no-views.
@@ -247,25 +270,7 @@ void parseStudies(const cxxopts::ParseResult& args, BenchOptions& bo) {
     bo.temporalScenes = temporalScenes;
   }
 
-  const auto viewsSize = parseSizeOption(args["views-size"].as<std::string>(), "views-size", 8, 4096);
-  const std::string countText = args["views-count"].as<std::string>();
-  int viewsCount = 0;
-  if (!wholeNumber(countText, viewsCount) || viewsCount < 2 || viewsCount > kMaxViews)
-    throw std::runtime_error("--views-count expects an integer 2.." + std::to_string(kMaxViews) + " (got '" +
-                             countText + "')");
-  std::vector<std::string> viewsScenes = {"mirror-room", "glossy", "sky-heavy"};
-  if (args.count("views-scenes")) {
-    viewsScenes = uniqueItems(args["views-scenes"].as<std::string>(), "views-scenes");
-    for (const std::string& s : viewsScenes)
-      if (auto check = loadScene(s); !check) throw std::runtime_error("--views-scenes: " + check.error());
-  }
-  bool views = bo.grid == "full" || args.count("views") || args.count("views-scenes");
-  if (args.count("no-views")) views = false;
-  if (views) {
-    std::tie(bo.viewsWidth, bo.viewsHeight) = viewsSize;
-    bo.viewsCount = viewsCount;
-    bo.viewsScenes = viewsScenes;
-  }
+  parseViewsStudy(args, bo);
 }
 
 // The output directory, checked before any GL work: a typo or a read-only place costs no run.

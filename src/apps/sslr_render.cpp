@@ -311,6 +311,20 @@ struct RenderJob {
   DeviceProfile profile = DeviceProfile::Auto;      // sslr's pass shapes (--device-profile)
 };
 
+// --views and --eye-separation (throws UsageError).
+void parseViews(const cxxopts::ParseResult& args, RenderJob& job) {
+  const std::string views = args["views"].as<std::string>();
+  if (views.size() != 1 || views[0] < '1' || views[0] > char('0' + kMaxViews))
+    throw UsageError{"--views must be 1.." + std::to_string(kMaxViews) + " (got '" + views + "')"};
+  job.views = views[0] - '0';
+  if (args.count("eye-separation")) {
+    if (job.views == 1) throw UsageError{"--eye-separation needs --views 2 or more"};
+    job.eyeSeparation = parsePositive("eye-separation", args["eye-separation"].as<std::string>());
+  }
+  if (job.views > 1 && (job.dump || job.score))
+    throw UsageError{"--views writes each view's final image only: --dump and --score need one view"};
+}
+
 // The G-buffer layout, the tracer and its settings (throws UsageError).
 void parseTracing(const cxxopts::ParseResult& args, RenderJob& job) {
   parseSize(args["size"].as<std::string>(), job.gopt.width, job.gopt.height);
@@ -385,16 +399,7 @@ void parseTracing(const cxxopts::ParseResult& args, RenderJob& job) {
   job.prepare = args.count("no-prepare") == 0;
   if (job.frames < 1 || job.frames > 10000)
     throw UsageError{"--frames must be 1..10000 (got " + std::to_string(job.frames) + ")"};
-  const std::string views = args["views"].as<std::string>();
-  if (views.size() != 1 || views[0] < '1' || views[0] > char('0' + kMaxViews))
-    throw UsageError{"--views must be 1.." + std::to_string(kMaxViews) + " (got '" + views + "')"};
-  job.views = views[0] - '0';
-  if (args.count("eye-separation")) {
-    if (job.views == 1) throw UsageError{"--eye-separation needs --views 2 or more"};
-    job.eyeSeparation = parsePositive("eye-separation", args["eye-separation"].as<std::string>());
-  }
-  if (job.views > 1 && (job.dump || job.score))
-    throw UsageError{"--views writes each view's final image only: --dump and --score need one view"};
+  parseViews(args, job);
 }
 
 // The scene (loaded, staged) and the camera (throws UsageError).

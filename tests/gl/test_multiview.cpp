@@ -56,14 +56,12 @@ size_t differing(const Image& a, const Image& b) {
   return n;
 }
 
-// A scene seen by `views` cameras side by side (0.064 units apart, the first at the scene's
-// camera): each camera's G-buffer in textures of its own, and the same G-buffers as 2D arrays.
+// A scene seen by `views` cameras side by side, 0.064 units apart: each camera's G-buffer in
+// textures of its own, and the same G-buffers as 2D arrays (the tools' ViewsRenderer, which keeps
+// them).
 struct Views {
-  std::vector<Camera> cameras;
-  std::vector<std::unique_ptr<GBuffer>> own;
+  std::unique_ptr<ViewsRenderer> renderer;
   std::vector<FrameInputs> ownInputs, layeredInputs;
-  std::vector<GLuint> arrays;
-  ~Views() { glDeleteTextures(static_cast<GLsizei>(arrays.size()), arrays.data()); }
 };
 
 std::unique_ptr<Views> makeViews(const char* sceneName, int views, const GBufferOptions& options = {}) {
@@ -71,41 +69,18 @@ std::unique_ptr<Views> makeViews(const char* sceneName, int views, const GBuffer
   EXPECT_TRUE(scene);
   if (!scene) return nullptr;
   GpuScene gpu(scene.value());
-  auto out = std::make_unique<Views>();
-  const Camera base = *scene.value().camera;
-  const glm::dvec3 right = glm::normalize(glm::cross(base.target - base.eye, base.up));
   GBufferOptions o = options;
   o.width = kW;
   o.height = kH;
-  for (int v = 0; v < views; ++v) {
-    Camera c = base;
-    c.eye += right * (0.064 * v);
-    c.target += right * (0.064 * v);
-    out->cameras.push_back(c);
-    auto g = GBuffer::create(o);
-    EXPECT_TRUE(g) << g.error();
-    if (!g) return nullptr;
-    EXPECT_TRUE(g.value()->render(gpu, c));
-    out->ownInputs.push_back(g.value()->frameInputs());
-    out->own.push_back(std::move(g.value()));
-  }
-  out->layeredInputs = out->ownInputs;
-  GLName FrameInputs::*const members[] = {&FrameInputs::colorTexture, &FrameInputs::normalTexture,
-                                          &FrameInputs::depthTexture, &FrameInputs::positionTexture,
-                                          &FrameInputs::backDepthTexture};
-  for (const auto member : members) {
-    if (out->ownInputs[0].*member == 0) continue;
-    GLint format = 0;
-    glGetTextureLevelParameteriv(out->ownInputs[0].*member, 0, GL_TEXTURE_INTERNAL_FORMAT, &format);
-    GLuint array = 0;
-    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &array);
-    glTextureStorage3D(array, 1, static_cast<GLenum>(format), kW, kH, views);
-    for (int v = 0; v < views; ++v)
-      glCopyImageSubData(out->ownInputs[v].*member, GL_TEXTURE_2D, 0, 0, 0, 0, array, GL_TEXTURE_2D_ARRAY, 0, 0, 0, v,
-                         kW, kH, 1);
-    for (FrameInputs& in : out->layeredInputs) in.*member = array;
-    out->arrays.push_back(array);
-  }
+  auto renderer = ViewsRenderer::create(o, views);
+  EXPECT_TRUE(renderer) << renderer.error();
+  if (!renderer) return nullptr;
+  auto out = std::make_unique<Views>();
+  out->renderer = std::move(renderer.value());
+  EXPECT_TRUE(out->renderer->render(gpu, sideBySideCameras(*scene.value().camera, views, 0.064), nullptr));
+  for (int v = 0; v < views; ++v) out->ownInputs.push_back(out->renderer->viewInputs(v));
+  const auto layered = out->renderer->layeredInputs();
+  out->layeredInputs.assign(layered.begin(), layered.end());
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
   return out;
 }

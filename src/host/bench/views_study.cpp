@@ -1,18 +1,17 @@
 // The views study of sslr-bench: a scene seen by N eyes side by side (stereo: 2, 0.064 apart and
 // centred on the scene's camera), traced three ways with the default settings, timed interleaved:
-// eye 0 alone by a one-view context (the unit), every eye by a context of its own (stereo before
+// eye 0 alone by a one-view context (the unit), every eye by a context of its own (stereo without
 // ContextDesc::views), and every eye by one context of N views over 2D-array G-buffers
 // (ContextDesc::views, ViewsRenderer). Each also reports a frame's commands, the fixed costs that
 // one context of N views pays once.
 #include "views_study.hpp"
 
 #include <algorithm>
-#include <memory>
-#include <utility>
+#include <functional>
+#include <string>
+#include <vector>
 
-#include <glm/glm.hpp>
-
-#include "sslr_host/egl_context.hpp"
+#include "bench_contexts.hpp"
 #include "sslr_host/gbuffer.hpp"
 #include "sslr_host/scene.hpp"
 #include "sslr_host/views_renderer.hpp"
@@ -32,70 +31,27 @@ PassCommands& operator+=(PassCommands& a, const PassCommands& b) {
   return a;
 }
 
-Expected<std::unique_ptr<Context>> makeContext(int w, int h, DeviceProfile device) {
-  ContextDesc d;
-  d.width = w;
-  d.height = h;
-  d.device = device;
-  d.getProcAddress = HeadlessContext::getProcAddress();
-  return Context::create(d);
-}
+// One way of tracing the eyes: a frame of it, and the contexts whose stats make up that frame.
+struct ViewsConfig {
+  std::string name;
+  int views;
+  std::function<Status(const Settings&)> frame;
+  std::vector<const Context*> contexts;
+};
 
-}  // namespace
-
-Status runViewsStudy(const std::string& sceneName, const BenchOptions& options, Timer& timer,
-                     std::vector<ViewsPoint>& out) {
-  auto scene = loadScene(sceneName);
-  if (!scene) return Status::error(scene.error());
-  const Camera start = scene.value().camera ? *scene.value().camera : scene.value().defaultCamera();
-  GpuScene gpu(scene.value());
-  const int w = options.viewsWidth, h = options.viewsHeight, n = options.viewsCount;
-  GBufferOptions g;
-  g.width = w;
-  g.height = h;
-  // Every eye's G-buffer and the layered inputs (ViewsRenderer), traced three ways below.
-  auto views = ViewsRenderer::create(g, n, nullptr, options.device);
-  if (!views) return Status::error(views.error());
-  ViewsRenderer& layered = *views.value();
-  if (Status s = layered.render(gpu, sideBySideCameras(start, n, kEyeSeparation), nullptr); !s) return s;
-  std::vector<FrameInputs> eyeInputs;
-  for (int v = 0; v < n; ++v) eyeInputs.push_back(layered.viewInputs(v));
-  // Contexts: eye 0 alone, one an eye; the renderer's own traces every eye.
-  auto alone = makeContext(w, h, options.device);
-  if (!alone) return alone.status();
-  std::vector<std::unique_ptr<Context>> perEye;
-  for (int v = 0; v < n; ++v) {
-    auto c = makeContext(w, h, options.device);
-    if (!c) return c.status();
-    perEye.push_back(std::move(c.value()));
-  }
-  Context* together = &layered.sslr();
-
-  struct Config {
-    std::string name;
-    int views;
-    std::function<Status(const Settings&)> frame;
-  };
-  const std::vector<Config> configs = {
-      {"one view", 1, [&](const Settings& s) { return alone.value()->dispatch(eyeInputs[0], s); }},
-      {"a context a view", n,
-       [&](const Settings& s) {
-         for (int v = 0; v < n; ++v)
-           if (Status st = perEye[v]->dispatch(eyeInputs[v], s); !st) return st;
-         return Status{};
-       }},
-      {"one context of " + std::to_string(n) + " views", n,
-       [&](const Settings& s) { return together->dispatch(layered.layeredInputs(), s); }},
-  };
+// Warm-up, then rounds of every configuration back to back in alternating order (a machine's
+// drift then weighs on each alike): each configuration's times and its ratios to the first's in
+// the same round.
+Status timeRounds(const std::vector<ViewsConfig>& configs, const BenchOptions& options, Timer& timer,
+                  std::vector<std::vector<double>>& times, std::vector<std::vector<double>>& ratios) {
   const Settings settings;
   // At least two warm-up frames: the first compiles, the second follows the first's feedback
   // (TraversalPass::Auto).
   for (int k = 0; k < std::max(2, options.warmup); ++k)
-    for (const Config& c : configs)
+    for (const ViewsConfig& c : configs)
       if (Status st = c.frame(settings); !st) return st;
-  // Rounds of every configuration back to back, in alternating order (a machine's drift then
-  // weighs on each alike); the ratio to one view is the median of each round's own ratio.
-  std::vector<std::vector<double>> times(configs.size()), ratios(configs.size());
+  times.assign(configs.size(), {});
+  ratios.assign(configs.size(), {});
   const int repeats = timer.repeats(options.batch);
   for (int sample = 0; sample < options.frames; ++sample) {
     std::vector<double> round(configs.size());
@@ -110,8 +66,52 @@ Status runViewsStudy(const std::string& sceneName, const BenchOptions& options, 
       ratios[i].push_back(round[0] > 0.0 ? round[i] / round[0] : 0.0);
     }
   }
+  return {};
+}
+
+}  // namespace
+
+Status runViewsStudy(const std::string& sceneName, const BenchOptions& options, Timer& timer,
+                     std::vector<ViewsPoint>& out) {
+  auto scene = loadScene(sceneName);
+  if (!scene) return Status::error(scene.error());
+  const Camera start = scene.value().camera ? *scene.value().camera : scene.value().defaultCamera();
+  GpuScene gpu(scene.value());
+  const int w = options.viewsWidth, h = options.viewsHeight, n = options.viewsCount;
+  GBufferOptions g;
+  g.width = w;
+  g.height = h;
+  // Every eye's G-buffer and the layered inputs (ViewsRenderer, whose context traces every eye).
+  auto views = ViewsRenderer::create(g, n, nullptr, options.device);
+  if (!views) return Status::error(views.error());
+  ViewsRenderer& layered = *views.value();
+  if (Status s = layered.render(gpu, sideBySideCameras(start, n, kEyeSeparation), nullptr); !s) return s;
+  std::vector<FrameInputs> eyeInputs;
+  for (int v = 0; v < n; ++v) eyeInputs.push_back(layered.viewInputs(v));
+  // One-view contexts: 0 for eye 0 alone, 1 + v for eye v.
+  ConfigContexts oneView(w, h);
+  std::vector<Context*> contexts;
+  for (int c = 0; c <= n; ++c) {
+    auto context = oneView.get(static_cast<size_t>(c), options.device);
+    if (!context) return context.status();
+    contexts.push_back(context.value());
+  }
+  const std::vector<ViewsConfig> configs = {
+      {"one view", 1, [&](const Settings& s) { return contexts[0]->dispatch(eyeInputs[0], s); }, {contexts[0]}},
+      {"a context a view", n,
+       [&](const Settings& s) {
+         for (int v = 0; v < n; ++v)
+           if (Status st = contexts[1 + v]->dispatch(eyeInputs[v], s); !st) return st;
+         return Status{};
+       },
+       {contexts.begin() + 1, contexts.end()}},
+      {"one context of " + std::to_string(n) + " views", n,
+       [&](const Settings& s) { return layered.sslr().dispatch(layered.layeredInputs(), s); }, {&layered.sslr()}},
+  };
+  std::vector<std::vector<double>> times, ratios;
+  if (Status st = timeRounds(configs, options, timer, times, ratios); !st) return st;
   // A frame's commands and counts, from one frame with stats after the timed ones.
-  Settings counted = settings;
+  Settings counted;
   counted.debug.collectStats = true;
   for (size_t i = 0; i < configs.size(); ++i) {
     if (Status st = configs[i].frame(counted); !st) return st;
@@ -121,12 +121,7 @@ Status runViewsStudy(const std::string& sceneName, const BenchOptions& options, 
     p.views = configs[i].views;
     p.timeMedianMs = median(times[i]);
     p.ratioToOneView = median(ratios[i]);
-    std::vector<const Context*> used;
-    if (i == 0) used = {alone.value().get()};
-    if (i == 1)
-      for (const auto& c : perEye) used.push_back(c.get());
-    if (i == 2) used = {together};
-    for (const Context* c : used) {
+    for (const Context* c : configs[i].contexts) {
       const FrameStats stats = c->waitForStats();
       p.commands += stats.totalCommands();
       p.tracedPixels += stats.tracedPixels;
