@@ -42,6 +42,9 @@ namespace sslr::shared {
 #define SSLR_THIN_DEPTH_PER_WIDTH 2.0f
 #define SSLR_THIN_MAX_DEPTH_FOOTPRINTS 6.0f
 
+// SslrTraceParams::stochasticFrom when no pixel draws its ray from its lobe: above every roughness.
+#define SSLR_NO_STOCHASTIC_RAYS 2.0f
+
 // Most levels of the min-max depth pyramid above the depth buffer (level l: 2^l-pixel cells).
 #define SSLR_HIZ_MAX_LEVELS 8
 

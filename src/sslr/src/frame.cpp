@@ -392,10 +392,15 @@ void Context::Impl::beginFrame(FramePlan& f) {
   frameIndex = frameIndex == 0x7fffffff ? 1 : frameIndex + 1;
   f.frame.temporal.history = f.useHistory ? 1 : 0;
   f.frame.trace.frameIndex = frameIndex;
+  // Temporal reuse without a history (the first frame, a reset): one lobe sample a pixel would be
+  // all it shows, so every pixel traces its mirror ray and the cone blur smooths it; the frames
+  // after it draw from the lobe and accumulate (docs/results/glossy.md, "0.10.1").
+  if (f.temporal && !f.useHistory) f.frame.trace.stochasticFrom = SSLR_NO_STOCHASTIC_RAYS;
   bufferSubData(frameUbo, 0, sizeof(f.frame), &f.frame);
   for (size_t v = 0; v < f.otherViews.size(); ++v) {  // views 1.. (ContextDesc::views)
     f.otherViews[v].temporal.history = f.frame.temporal.history;
     f.otherViews[v].trace.frameIndex = frameIndex;
+    f.otherViews[v].trace.stochasticFrom = f.frame.trace.stochasticFrom;
     bufferSubData(frameUbo, static_cast<GLintptr>((v + 1) * sizeof(shared::SslrFrame)), sizeof(shared::SslrFrame),
                   &f.otherViews[v]);
   }

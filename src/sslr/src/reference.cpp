@@ -97,7 +97,7 @@ void traceConstants(const FrameInputs& in, const Settings& s, int width, int hei
   t.maxIterations = s.adaptiveL.maxIterations;
   t.fresnelMode = s.fresnel == FresnelMode::Classic ? SSLR_FRESNEL_CLASSIC : SSLR_FRESNEL_SCHLICK;
   t.outputRadiance = s.output == OutputMode::Radiance ? 1 : 0;
-  t.stochasticFrom = s.glossy.mode == GlossyMode::Stochastic ? s.glossy.stochasticFrom : 2.0f;
+  t.stochasticFrom = s.glossy.mode == GlossyMode::Stochastic ? s.glossy.stochasticFrom : SSLR_NO_STOCHASTIC_RAYS;
   // The limit is in display units (luminance x exposure): in the colour texture's, / exposure.
   t.maxHitLuminance = s.radianceClamp.maxLuminance > 0.0f ? s.radianceClamp.maxLuminance / in.exposure : 0.0f;
   t.outlineThinning = s.traversal.outlineThinning ? 1 : 0;

@@ -227,8 +227,10 @@ enum class GlossyMode {
   ConeBlur,
   // Pixels at least Settings::glossy.stochasticFrom rough trace one ray a frame drawn from their
   // GGX lobe (visible normals, Heitz 2018), resolved in space and over frames (Settings::temporal):
-  // by the blur over the same cone where there is no history, and, with the blur on, by a 3x3
-  // filter in the temporal blend once there is one (their reflection's blur weight is then 0).
+  // with the blur on, by a 3x3 filter in the temporal blend once there is a history (their
+  // reflection's blur weight is then 0). With temporal reuse, a frame without history (the first,
+  // a reset) is ConeBlur's: the history starts from the best single-frame estimate. Without
+  // temporal reuse each frame's rays are resolved by the blur over the same cone.
   // Without temporal reuse each frame is one noisy sample per pixel; with blur.enabled = false
   // the samples are left raw (for an engine's own denoiser). Not with halfResolution.
   Stochastic,
