@@ -108,6 +108,15 @@ SSLR_FN float sslrHitValidation(SslrProjection p, SslrSurface s, SslrTraceParams
   return 1.0f - smoothstep(tolerance, 2.0f * tolerance, miss);
 }
 
+// How far a point vsQ lies from the tangent plane of a texel (its surface point and normal), in
+// units of the hit tolerance there: below 1 the point is on that texel's surface.
+SSLR_FN float sslrGapToTexelPlane(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsQ, vec3 vsTexel,
+                                  vec3 vsTexelNormal) {
+  float dist = p.orthographic != 0 ? abs(vsTexel.z) : sslrViewDistance(p, vsTexel);
+  float tolerance = sslrHitTolerance(p, s, t, dist, sslrSlopeTan(p, vsTexel, vsTexelNormal));
+  return abs(dot(vsQ - vsTexel, vsTexelNormal)) / max(tolerance, 1e-30f);
+}
+
 // Sub-pixel refinement (not in the article): the converged L is quantized by the pixel whose
 // centre gave P'. Intersecting the ray with the tangent plane of that pixel (P', N') gives the
 // exact hit on planar surfaces; it is used when it stays within the validated neighbourhood.

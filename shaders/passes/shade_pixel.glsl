@@ -6,6 +6,46 @@
 // handed to a later pass, which writes its outputs. `ranTracer`: whether a ray was traced here.
 bool sslrPixelHit(ivec2 px, SslrPixel q, out SslrHit hit, out bool ranTracer);
 
+// The colour at a hit vsQ, read at uvColor from the texels whose surface holds it. A plain
+// bilinear read also mixes in whatever lies across a silhouette within half a pixel. Where the four
+// texels around uvColor are geometry within 2% of vsQ's depth of each other, nothing does: that read.
+// Elsewhere each texel counts at its bilinear weight times whether vsQ lies on its tangent plane
+// (sslrGapToTexelPlane up to 3, faded out by 6); where none holds vsQ, the plain read again.
+vec3 sslrSurfaceColor(vec2 uvColor, vec3 vsQ) {
+  vec3 blended = textureLod(uColor, sslrTextureUv(uvColor), 0.0f).rgb;
+  vec2 pos = uvColor * sslrSizePx() - 0.5f;
+  ivec2 base = ivec2(floor(pos));
+  vec2 f = pos - vec2(base);
+  ivec2 texel[4];
+  vec3 vsTexel[4];
+  bool geometry[4];
+  float zNear = 1e30f, zFar = 0.0f;
+  bool oneSurface = true;
+  for (int i = 0; i < 4; ++i) {
+    texel[i] = clamp(base + ivec2(i & 1, i >> 1), ivec2(0), ivec2(sslrSizePx()) - 1);
+    float depth = texelFetch(uDepth, sslrTexel(texel[i]), 0).r;
+    geometry[i] = sslrIsGeometryDepth(frame.surface, depth);
+    vsTexel[i] = geometry[i] ? sslrViewAtPixel(texel[i], depth) : vec3(0.0f);
+    oneSurface = oneSurface && geometry[i];
+    zNear = min(zNear, abs(vsTexel[i].z));
+    zFar = max(zFar, abs(vsTexel[i].z));
+  }
+  if (oneSurface && zFar - zNear <= 0.02f * abs(vsQ.z)) return blended;
+  vec3 sum = vec3(0.0f);
+  float weightSum = 0.0f;
+  for (int i = 0; i < 4; ++i) {
+    float w = (i & 1) == 1 ? f.x : 1.0f - f.x;
+    w *= (i >> 1) == 1 ? f.y : 1.0f - f.y;
+    vec3 vsN;
+    if (!(w > 0.0f) || !geometry[i] || !sslrDecodeNormal(frame.surface, texelFetch(uNormal, sslrTexel(texel[i]), 0), vsN))
+      continue;
+    w *= 1.0f - smoothstep(3.0f, 6.0f, sslrGapToTexelPlane(frame.proj, frame.surface, frame.trace, vsQ, vsTexel[i], vsN));
+    sum += texelFetch(uColor, sslrTexel(texel[i]), 0).rgb * w;
+    weightSum += w;
+  }
+  return weightSum > 1e-4f ? sum / weightSum : blended;
+}
+
 // Returns the dependent steps of the tracer run here (0 where none ran: FrameStats' ray work).
 uint sslrShadePixel(ivec2 px) {
   SslrHit hit = sslrNoHit(SSLR_STATUS_NOT_TRACED);
@@ -26,7 +66,12 @@ uint sslrShadePixel(ivec2 px) {
       SslrWeights w = sslrReflectionWeights(frame.proj, frame.surface, frame.trace, hit, q.vsP, q.vsV, q.vsR,
                                             q.cosVN, reflectance, sslrRoughness(frame.surface, q.material));
       vec2 uvColor = sslrColorUv(frame.proj, frame.surface, q.vsP, q.vsR, hit.uvHit);
-      vec3 color = textureLod(uColor, sslrTextureUv(uvColor), 0.0f).rgb;
+      // A ray drawn from the lobe is one sample of many that temporal reuse (or the host's
+      // denoiser) averages: it reads the surface it hit, unmixed (sslrSurfaceColor). A mirror
+      // ray's answer stands alone: the bilinear read, whose blend across a silhouette hedges a
+      // hit that lands on the wrong side of it (docs/design-notes.md, "A surface-aware colour read").
+      vec3 color = q.stochastic ? sslrSurfaceColor(uvColor, q.vsP + q.vsR * hit.L)
+                                : textureLod(uColor, sslrTextureUv(uvColor), 0.0f).rgb;
       if (hit.LBlend > 0.0f && frame.trace.slabBlend > 0.0f) {  // a hit past an assumed slab: also the slab's colour
         vec2 sizePx = vec2(frame.surface.width, frame.surface.height);
         vec3 wSlab = sslrWindowFromView(frame.proj, sizePx, 1.0f, q.vsP + q.vsR * hit.LBlend);

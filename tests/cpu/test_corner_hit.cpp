@@ -10,7 +10,8 @@
 // towards the edge and no extra depth, the rim entry hit (sslrRimEntryHit): the rim and a crease
 // of a curved surface near its outline, and the flat faces and box edges it must refuse. And
 // sslrPlaneHit's contact line, whose plane must come from a pixel touching the mirror pixel, and
-// whose colour comes from the pixel beside it (sslrColorUv). Its own executable:
+// whose colour comes from the pixel beside it (sslrColorUv); a hit beside an outline lies off the
+// nearer face's plane (sslrGapToTexelPlane, which lobe rays read their colour by). Its own executable:
 // it defines the loaders the tracer headers call, which sslr_host also defines for its CPU run.
 #include <gtest/gtest.h>
 
@@ -463,6 +464,33 @@ TEST_F(CornerHit, AContactLinesColourComesFromThePixelTheRayHeadsInto) {
     const vec2 uvFar = vec2(wFar.x, wFar.y) / size;
     EXPECT_EQ(sslrColorUv(gProj, gSurf, vsP, c.vsR, uvFar), uvFar);
   }
+}
+
+// sslrGapToTexelPlane: how far a hit lies from a texel's tangent plane, in hit tolerances there. A
+// ray drawn from a rough pixel's lobe reads its colour from the texels whose plane holds its hit
+// (sslrSurfaceColor in passes/shade_pixel.glsl), not across an outline as a bilinear read does. A
+// hit on the far wall next to the box's outline is on the wall texels' plane wherever along it,
+// and many tolerances off the box's front face.
+TEST_F(CornerHit, AHitBesideTheOutlineIsOffTheBoxFacesPlane) {
+  SslrTraceParams t{};
+  t.hitToleranceRelative = 0.002f;
+  t.hitTolerancePixels = 1.5f;
+  const vec3 towardsCamera(0.0f, 0.0f, 1.0f);
+  const vec3 wallTexel = viewAt(130.5f, 90.5f, kWallZ), boxTexel = viewAt(129.5f, 90.5f, kFrontZ);
+  const vec3 vsHit = viewAt(130.2f, 90.7f, kWallZ);  // on the wall, 0.3 px from the outline
+  EXPECT_NEAR(sslrGapToTexelPlane(gProj, gSurf, t, vsHit, wallTexel, towardsCamera), 0.0f, 1e-3f);
+  EXPECT_GT(sslrGapToTexelPlane(gProj, gSurf, t, vsHit, boxTexel, towardsCamera), 6.0f) << "40 units behind the box";
+  // Off the wall by a fraction of its tolerance: that fraction (in front of it or behind).
+  const float tolerance = sslrHitTolerance(gProj, gSurf, t, sslrViewDistance(gProj, wallTexel),
+                                           sslrSlopeTan(gProj, wallTexel, towardsCamera));
+  ASSERT_GT(tolerance, 0.0f);
+  EXPECT_NEAR(sslrGapToTexelPlane(gProj, gSurf, t, vsHit + towardsCamera * (0.5f * tolerance), wallTexel, towardsCamera),
+              0.5f, 1e-3f);
+  EXPECT_NEAR(sslrGapToTexelPlane(gProj, gSurf, t, vsHit - towardsCamera * (3.0f * tolerance), wallTexel, towardsCamera),
+              3.0f, 1e-3f);
+  // A plane seen at a slant has a wider tolerance (its depth steps more from pixel to pixel).
+  const vec3 slanted = normalize(vec3(0.9f, 0.0f, 0.3f));
+  EXPECT_LT(sslrGapToTexelPlane(gProj, gSurf, t, wallTexel + slanted * tolerance, wallTexel, slanted), 1.0f);
 }
 
 }  // namespace
