@@ -392,9 +392,9 @@ void Context::Impl::beginFrame(FramePlan& f) {
   frameIndex = frameIndex == 0x7fffffff ? 1 : frameIndex + 1;
   f.frame.temporal.history = f.useHistory ? 1 : 0;
   f.frame.trace.frameIndex = frameIndex;
-  // Temporal reuse without a history (the first frame, a reset): one lobe sample a pixel would be
-  // all it shows, so every pixel traces its mirror ray and the cone blur smooths it; the frames
-  // after it draw from the lobe and accumulate (docs/results/glossy.md, "0.10.1").
+  // Temporal reuse without a history (the first frame, a reset, a new viewport): one lobe sample
+  // a pixel would be all it shows, so every pixel traces its mirror ray and the cone blur smooths
+  // it; the frames after it draw from the lobe and accumulate (docs/results/glossy.md, "0.10.1").
   if (f.temporal && !f.useHistory) f.frame.trace.stochasticFrom = SSLR_NO_STOCHASTIC_RAYS;
   bufferSubData(frameUbo, 0, sizeof(f.frame), &f.frame);
   for (size_t v = 0; v < f.otherViews.size(); ++v) {  // views 1.. (ContextDesc::views)

@@ -229,11 +229,11 @@ enum class GlossyMode {
   // GGX lobe (visible normals, Heitz 2018), resolved in space and over frames (Settings::temporal):
   // with the blur on, by a 3x3 filter in the temporal blend once there is a history (their
   // reflection's blur weight is then 0). With temporal reuse, a frame without history (the first,
-  // a reset) is ConeBlur's: the history starts from the best single-frame estimate. Without
-  // temporal reuse each frame's rays are resolved by the blur over the same cone. A lobe ray reads
-  // the colour of the surface it hit, not a bilinear blend across an outline.
-  // Without temporal reuse each frame is one noisy sample per pixel; with blur.enabled = false
-  // the samples are left raw (for an engine's own denoiser). Not with halfResolution.
+  // a reset, a new viewport) is ConeBlur's: the history starts from the best single-frame
+  // estimate. Without temporal reuse each frame is one noisy sample per pixel, blurred over the
+  // same cone; with blur.enabled = false the samples are left raw (for an engine's own denoiser).
+  // A lobe ray reads the colour of the surface it hit, not a bilinear blend across an outline.
+  // Not with halfResolution.
   Stochastic,
 };
 
