@@ -69,7 +69,8 @@ uint sslrShadePixel(ivec2 px) {
       // A ray drawn from the lobe is one sample of many that temporal reuse (or the host's
       // denoiser) averages: it reads the surface it hit, unmixed (sslrSurfaceColor). A mirror
       // ray's answer stands alone: the bilinear read, whose blend across a silhouette hedges a
-      // hit that lands on the wrong side of it (docs/design-notes.md, "A surface-aware colour read").
+      // hit that lands on the wrong side of it (docs/design-notes.md, "A surface-aware colour read at
+      // the hit").
       vec3 color = q.stochastic ? sslrSurfaceColor(uvColor, q.vsP + q.vsR * hit.L)
                                 : textureLod(uColor, sslrTextureUv(uvColor), 0.0f).rgb;
       if (hit.LBlend > 0.0f && frame.trace.slabBlend > 0.0f) {  // a hit past an assumed slab: also the slab's colour
