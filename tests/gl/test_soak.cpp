@@ -175,8 +175,10 @@ TEST_F(Soak, ObjectsErrorsAndMemoryStayFlat) {
               dispatches, composites, resizes, recreations, objectsAtWarmup, objectsAtEnd, memoryAtWarmup, memoryAtEnd);
   // Both points follow the same step of the same sequence: the context alive there was created
   // and resized alike and met the same settings, so it owns the same objects (programs are cached
-  // per variant, targets replaced, not added, on resize).
-  EXPECT_EQ(objectsAtEnd, objectsAtWarmup);
+  // per variant, targets replaced, not added, on resize). TraversalPass::Auto's plan follows
+  // feedback read when its fence has signalled, so a pass can meet a variant the other did not:
+  // a few programs of slack (measured: none).
+  EXPECT_LE(objectsAtEnd, objectsAtWarmup + 4);
   // Memory: the driver's compiled variants, its caches and the allocator's pools were all built in
   // the first pass. A leak of 20 KB a dispatch (a small target, a program's binary) would add
   // 15 MiB over the second pass's 750. Not under AddressSanitizer: its quarantine keeps freed
