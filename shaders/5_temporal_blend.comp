@@ -27,16 +27,12 @@ layout(binding = SSLR_IMAGE_HISTORY_CONFIDENCE, r8) uniform writeonly SSLR_IMAGE
 // The history at uvPrevious, bilinear over the four texels around it whose key matches
 // keyPrevious (the same surface); false when none does.
 bool sslrHistoryAt(vec2 uvPrevious, float keyPrevious, out vec4 history) {
-  vec2 sizePx = sslrSizePx();
-  vec2 f = uvPrevious * sizePx - 0.5f;
-  ivec2 base = ivec2(floor(f));
-  vec2 t = f - floor(f);
+  SslrBilinear b = sslrBilinearTexels(uvPrevious);
   vec4 sum = vec4(0.0f);
   float weightSum = 0.0f;
   for (int i = 0; i < 4; ++i) {
-    ivec2 o = ivec2(i & 1, i >> 1);
-    ivec2 q = clamp(base + o, ivec2(0), ivec2(sizePx) - 1);
-    float w = (o.x == 1 ? t.x : 1.0f - t.x) * (o.y == 1 ? t.y : 1.0f - t.y);
+    ivec2 q = b.texel[i];
+    float w = b.weight[i];
     if (w > 0.0f && sslrHistoryKeyMatches(texelFetch(uHistoryKey, sslrTexel(q), 0).r, keyPrevious, frame.temporal.keyTolerance)) {
       sum += texelFetch(uHistory, sslrTexel(q), 0) * w;
       weightSum += w;

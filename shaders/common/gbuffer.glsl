@@ -61,6 +61,25 @@ bool sslrShouldTracePixel(ivec2 px, float depth, vec4 normalTexel, vec4 material
 
 vec2 sslrSizePx() { return vec2(frame.surface.width, frame.surface.height); }
 
+// The four texels a bilinear read at frame uv mixes (clamped to the frame, as the sampler's clamp
+// to edge) and their weights: texel i is (i & 1, i >> 1) from the lower-left one.
+struct SslrBilinear {
+  ivec2 texel[4];
+  float weight[4];
+};
+SslrBilinear sslrBilinearTexels(vec2 uv) {
+  vec2 f = uv * sslrSizePx() - 0.5f;
+  ivec2 base = ivec2(floor(f));
+  vec2 t = f - floor(f);
+  SslrBilinear b;
+  for (int i = 0; i < 4; ++i) {
+    ivec2 o = ivec2(i & 1, i >> 1);
+    b.texel[i] = clamp(base + o, ivec2(0), ivec2(sslrSizePx()) - 1);
+    b.weight[i] = (o.x == 1 ? t.x : 1.0f - t.x) * (o.y == 1 ? t.y : 1.0f - t.y);
+  }
+  return b;
+}
+
 // ---- A 2x2 quad's texels, one channel per textureGather --------------------------------------
 // Level 1's cell `cell` covers pixels 2 cell + (0..1, 0..1); a gather at their shared corner
 // returns one channel of all four. Where the quad straddles the frame's edge the last column or

@@ -13,19 +13,15 @@ bool sslrPixelHit(ivec2 px, SslrPixel q, out SslrHit hit, out bool ranTracer);
 // (sslrGapToTexelPlane up to 3, faded out by 6); where none holds vsQ, the plain read again.
 vec3 sslrSurfaceColor(vec2 uvColor, vec3 vsQ) {
   vec3 blended = textureLod(uColor, sslrTextureUv(uvColor), 0.0f).rgb;
-  vec2 pos = uvColor * sslrSizePx() - 0.5f;
-  ivec2 base = ivec2(floor(pos));
-  vec2 f = pos - vec2(base);
-  ivec2 texel[4];
+  SslrBilinear b = sslrBilinearTexels(uvColor);
   vec3 vsTexel[4];
   bool geometry[4];
   float zNear = 1e30f, zFar = 0.0f;
   bool oneSurface = true;
   for (int i = 0; i < 4; ++i) {
-    texel[i] = clamp(base + ivec2(i & 1, i >> 1), ivec2(0), ivec2(sslrSizePx()) - 1);
-    float depth = texelFetch(uDepth, sslrTexel(texel[i]), 0).r;
+    float depth = sslrLoadDepth(b.texel[i]);
     geometry[i] = sslrIsGeometryDepth(frame.surface, depth);
-    vsTexel[i] = geometry[i] ? sslrViewAtPixel(texel[i], depth) : vec3(0.0f);
+    vsTexel[i] = geometry[i] ? sslrViewAtPixel(b.texel[i], depth) : vec3(0.0f);
     oneSurface = oneSurface && geometry[i];
     zNear = min(zNear, abs(vsTexel[i].z));
     zFar = max(zFar, abs(vsTexel[i].z));
@@ -34,13 +30,12 @@ vec3 sslrSurfaceColor(vec2 uvColor, vec3 vsQ) {
   vec3 sum = vec3(0.0f);
   float weightSum = 0.0f;
   for (int i = 0; i < 4; ++i) {
-    float w = (i & 1) == 1 ? f.x : 1.0f - f.x;
-    w *= (i >> 1) == 1 ? f.y : 1.0f - f.y;
     vec3 vsN;
-    if (!(w > 0.0f) || !geometry[i] || !sslrDecodeNormal(frame.surface, texelFetch(uNormal, sslrTexel(texel[i]), 0), vsN))
+    if (!(b.weight[i] > 0.0f) || !geometry[i] || !sslrDecodeNormal(frame.surface, sslrLoadNormal(b.texel[i]), vsN))
       continue;
-    w *= 1.0f - smoothstep(3.0f, 6.0f, sslrGapToTexelPlane(frame.proj, frame.surface, frame.trace, vsQ, vsTexel[i], vsN));
-    sum += texelFetch(uColor, sslrTexel(texel[i]), 0).rgb * w;
+    float w = b.weight[i] *
+              (1.0f - smoothstep(3.0f, 6.0f, sslrGapToTexelPlane(frame.proj, frame.surface, frame.trace, vsQ, vsTexel[i], vsN)));
+    sum += texelFetch(uColor, sslrTexel(b.texel[i]), 0).rgb * w;
     weightSum += w;
   }
   return weightSum > 1e-4f ? sum / weightSum : blended;
