@@ -644,6 +644,12 @@ void printScores(const Scores& scores) {
   const std::pair<const char*, const CompositeBreakdown::Kind*> kinds[] = {
       {"hits within 1 px", &b.hit}, {"wrong hits", &b.wrong}, {"missed", &b.missed}, {"unreachable", &b.unreachable}};
   for (const auto& [name, k] : kinds) std::printf(" %s %.4f, %.0f%%, %zu;", name, k->rmse, 100.0 * k->share, k->pixels);
+  std::printf("\n  by where the true reflection lies (the same):");
+  const CompositeBreakdown::ByTruth& t = b.byTruth;
+  const std::pair<const char*, const CompositeBreakdown::Kind*> truths[] = {
+      {"on the screen", &t.visible}, {"a hidden side", &t.occluded}, {"off the screen", &t.offScreen},
+      {"escaped", &t.escaped}};
+  for (const auto& [name, k] : truths) std::printf(" %s %.4f, %.0f%%, %zu;", name, k->rmse, 100.0 * k->share, k->pixels);
   std::printf("\n");
   if (b.wrong.pixels > 0)
     std::printf("  the wrong hits' pixels as misses (the fallback instead): RMSE %.4f, %.0f%% of today's squared error\n",

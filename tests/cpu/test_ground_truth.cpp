@@ -184,8 +184,8 @@ TEST(CompositeImageError, ScoresOnlyMirrorPixelsAndNothingWithoutThem) {
 // The composite error by what the method reported, on five pixels with known answers: a hit within
 // 1 px, a wrong hit (reported where the truth is occluded), a visible reflection missed, an escaped
 // ray left alone, and an unscored pixel that counts nowhere. The wrong hit's pixel is also scored as
-// the colour a miss would have shown there.
-TEST(CompositeBreakdown, SortsTheErrorByWhatWasReportedAndScoresWrongHitsAsMisses) {
+// the colour a miss would have shown there. The same error split by the truth's class.
+TEST(CompositeBreakdown, SortsTheErrorByWhatWasReportedAndByTheTruthAndScoresWrongHitsAsMisses) {
   GroundTruth gt;
   gt.width = 5;
   gt.height = 1;
@@ -234,6 +234,17 @@ TEST(CompositeBreakdown, SortsTheErrorByWhatWasReportedAndScoresWrongHitsAsMisse
   EXPECT_NEAR(b.wrongAsMisses.rmse, std::sqrt(0.01 / 3.0), 1e-6) << "the wrong pixel as a miss: the colour there";
   EXPECT_NEAR(b.wrongAsMisses.share, 0.01 / total, 1e-6);
   EXPECT_LT(b.wrongAsMisses.rmse, b.wrong.rmse) << "here a miss would have served the pixel better";
+  // By where the truth lies: pixels 0 and 2 on the screen (0.03 + 0.27), 1 a hidden side (0.12),
+  // 3 escaped (0.48), none off the screen.
+  EXPECT_EQ(b.byTruth.visible.pixels, 2u);
+  EXPECT_NEAR(b.byTruth.visible.rmse, std::sqrt((0.03 + 0.27) / 6.0), 1e-6);
+  EXPECT_NEAR(b.byTruth.visible.share, 0.30 / total, 1e-6);
+  EXPECT_EQ(b.byTruth.occluded.pixels, 1u);
+  EXPECT_NEAR(b.byTruth.occluded.rmse, 0.2, 1e-6) << "the false hit's pixel counts where its truth lies";
+  EXPECT_EQ(b.byTruth.offScreen.pixels, 0u);
+  EXPECT_EQ(b.byTruth.offScreen.share, 0.0);
+  EXPECT_EQ(b.byTruth.escaped.pixels, 1u);
+  EXPECT_NEAR(b.byTruth.escaped.share, 0.48 / total, 1e-6);
 
   // No wrong hit: nothing to score as a miss.
   hit.pixels[1 * 4 + 2] = 0.0f;

@@ -88,6 +88,16 @@ TEST_F(Bench, QuickGridWritesCompleteResultsAndReport) {
         EXPECT_NEAR(std::sqrt(squared / double(pixels)), r["compositeRmse"].get<double>(), 1e-6) << r.dump();
         EXPECT_NEAR(share, 1.0, 1e-9) << r.dump();
         EXPECT_EQ(b["wrongAsMisses"]["pixels"], b["wrong"]["pixels"]);
+        // Split by where the true reflection lies, the same pixels and error (every scored pixel
+        // is a traced one).
+        double truthShare = 0.0;
+        size_t truthPixels = 0;
+        for (const char* k : {"visible", "occluded", "offScreen", "escaped"}) {
+          truthPixels += b["byTruth"][k]["pixels"].get<size_t>();
+          truthShare += b["byTruth"][k]["share"].get<double>();
+        }
+        EXPECT_EQ(truthPixels, pixels) << r.dump();
+        EXPECT_NEAR(truthShare, 1.0, 1e-9) << r.dump();
       }
       // Pass by pass, classify to finish; their bytes sum to the run's.
       ASSERT_EQ(r["passes"].size(), 6u) << r.dump();
@@ -110,6 +120,7 @@ TEST_F(Bench, QuickGridWritesCompleteResultsAndReport) {
   EXPECT_NE(text.find("<svg"), std::string::npos);
   EXPECT_NE(text.find("Fastest configuration reaching recall"), std::string::npos);
   EXPECT_NE(text.find("its error: hits / wrong / missed / unreachable"), std::string::npos);
+  EXPECT_NE(text.find("by the truth: on screen / hidden side"), std::string::npos);
   const std::regex img("src='([^']+)'");
   int images = 0;
   for (std::sregex_iterator it(text.begin(), text.end(), img), end; it != end; ++it, ++images)
@@ -118,7 +129,12 @@ TEST_F(Bench, QuickGridWritesCompleteResultsAndReport) {
   // CSV: a header and one line per run.
   std::ifstream csv(out / "results.csv");
   size_t lines = 0;
-  for (std::string line; std::getline(csv, line);) ++lines;
+  for (std::string line; std::getline(csv, line);) {
+    if (lines == 0)
+      EXPECT_NE(line.find(",compositeVisibleShare,compositeOccludedShare,compositeOffScreenShare,compositeEscapedShare,"),
+                std::string::npos) << line;
+    ++lines;
+  }
   EXPECT_EQ(lines, j["runs"].size() + 1);
 }
 

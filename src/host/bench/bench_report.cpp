@@ -66,17 +66,29 @@ json breakdownJson(const CompositeBreakdown& b) {
   auto kind = [](const CompositeBreakdown::Kind& k) {
     return json{{"pixels", k.pixels}, {"rmse", k.pixels > 0 ? num(k.rmse) : json(nullptr)}, {"share", num(k.share)}};
   };
-  return {{"hit", kind(b.hit)}, {"wrong", kind(b.wrong)}, {"missed", kind(b.missed)},
-          {"unreachable", kind(b.unreachable)}, {"wrongAsMisses", kind(b.wrongAsMisses)}};
+  const CompositeBreakdown::ByTruth& t = b.byTruth;
+  return {{"hit", kind(b.hit)},
+          {"wrong", kind(b.wrong)},
+          {"missed", kind(b.missed)},
+          {"unreachable", kind(b.unreachable)},
+          {"wrongAsMisses", kind(b.wrongAsMisses)},
+          {"byTruth",
+           {{"visible", kind(t.visible)},
+            {"occluded", kind(t.occluded)},
+            {"offScreen", kind(t.offScreen)},
+            {"escaped", kind(t.escaped)}}}};
 }
 
-// Its CSV columns: the four kinds' shares, the wrong hits' RMSE and theirs as misses (empty where
-// not measured).
+// Its CSV columns: the four kinds' shares, the wrong hits' RMSE and theirs as misses, then the
+// shares by where the true reflection lies (empty where not measured).
 std::string breakdownCsv(const json& b) {
-  if (b.is_null()) return ",,,,,";
+  if (b.is_null()) return ",,,,,,,,,";
   auto v = [](const json& x) { return x.is_null() ? std::string() : x.dump(); };
+  const json& t = b["byTruth"];
   return v(b["hit"]["share"]) + "," + v(b["wrong"]["share"]) + "," + v(b["missed"]["share"]) + "," +
-         v(b["unreachable"]["share"]) + "," + v(b["wrong"]["rmse"]) + "," + v(b["wrongAsMisses"]["rmse"]);
+         v(b["unreachable"]["share"]) + "," + v(b["wrong"]["rmse"]) + "," + v(b["wrongAsMisses"]["rmse"]) + "," +
+         v(t["visible"]["share"]) + "," + v(t["occluded"]["share"]) + "," + v(t["offScreen"]["share"]) + "," +
+         v(t["escaped"]["share"]);
 }
 json nums(const std::vector<double>& v) {
   json a = json::array();
@@ -446,7 +458,8 @@ std::string resultsCsv(const BenchResult& result) {
          "fetchesPerTracedPixel,dispatches,indirectDispatches,barriers,programs,bytesRead,bytesWritten,laneSteps,simt32,"
          "simt64,longestChain,gbufferBytesPerPixel,extraBytesPerPixel,compositeRmse,compositePsnr,predictedH100Ms,"
          "compositeHitShare,compositeWrongShare,compositeMissedShare,compositeUnreachableShare,compositeWrongRmse,"
-         "compositeWrongAsMissesRmse,parameters\n";
+         "compositeWrongAsMissesRmse,compositeVisibleShare,compositeOccludedShare,compositeOffScreenShare,"
+         "compositeEscapedShare,parameters\n";
   for (const RunRecord& r : result.runs) {
     const json rj = runJson(r);
     const RayWork work = r.frameStats.totalRayWork();
@@ -487,7 +500,8 @@ void reportHead(std::ostringstream& h, const BenchResult& result) {
        "the true hit; false hits = occluded/off-screen/escaped reflections reported; RMSE = colour at the reported hit "
        "(0 if none) vs colour at the true hit, over class A; composite RMSE = the final image (the reflection "
        "composited over the fallback) against a ray-traced reference composite, over the mirror pixels, and the share "
-       "of its squared error in hits within 1 px, wrong hits, misses and reflections no screen-space method sees; "
+       "of its squared error in hits within 1 px, wrong hits, misses and reflections no screen-space method sees, "
+       "then by where the true reflection lies (on the screen, a hidden side, off the screen, escaped); "
        "wrong hits as misses = those pixels' RMSE, then as if nothing had been reported there. Large dots: "
        "each method's default.</p>";
 }
@@ -498,6 +512,14 @@ std::string breakdownCell(const RunRecord& r) {
   const CompositeBreakdown& b = r.compositeBreakdown;
   return fmt(100.0 * b.hit.share, 0) + " / " + fmt(100.0 * b.wrong.share, 0) + " / " + fmt(100.0 * b.missed.share, 0) +
          " / " + fmt(100.0 * b.unreachable.share, 0) + "%";
+}
+// The same error by where the true reflection lies: on the screen / a hidden side / off the screen
+// / escaped (%).
+std::string byTruthCell(const RunRecord& r) {
+  if (!std::isfinite(r.compositeRmse)) return "";
+  const CompositeBreakdown::ByTruth& t = r.compositeBreakdown.byTruth;
+  return fmt(100.0 * t.visible.share, 0) + " / " + fmt(100.0 * t.occluded.share, 0) + " / " +
+         fmt(100.0 * t.offScreen.share, 0) + " / " + fmt(100.0 * t.escaped.share, 0) + "%";
 }
 // Its wrong hits' RMSE, then the same pixels' as misses (lower: a miss would have served them better).
 std::string wrongAsMissesCell(const RunRecord& r) {
@@ -511,8 +533,8 @@ void reportSummaries(std::ostringstream& h, const BenchResult& result) {
   // Summary table: the defaults side by side per scene.
   h << "<h2>Summary (defaults)</h2><table><tr><th>scene</th><th>method</th><th>time ms</th><th>time ratio</th>"
        "<th>recall@1px</th><th>p95 px</th><th>false hits</th><th>RMSE</th><th>composite RMSE</th>"
-       "<th>its error: hits / wrong / missed / unreachable</th><th>wrong hits as misses</th><th>fetches/px</th>"
-       "<th>G-buffer B/px</th></tr>";
+       "<th>its error: hits / wrong / missed / unreachable</th><th>by the truth: on screen / hidden side / off "
+       "screen / escaped</th><th>wrong hits as misses</th><th>fetches/px</th><th>G-buffer B/px</th></tr>";
   for (const SceneRecord& sc : result.scenes) {
     // Each method's default; the time ratio is to the tutorial's configuration.
     const SceneDefaults defaults = defaultRuns(result, sc.scene);
@@ -523,7 +545,7 @@ void reportSummaries(std::ostringstream& h, const BenchResult& result) {
         << fmt(r->timeMedianMs, 2) << "</td><td>" << fmt(ratio, 2) << "</td><td>" << fmt(r->metrics.recall1px, 4)
         << "</td><td>" << fmt(r->metrics.p95ErrorPx, 3) << "</td><td>" << fmt(r->metrics.falseHitRate, 4) << "</td><td>"
         << fmt(r->metrics.reflectionRmse, 4) << "</td><td>" << fmt(r->compositeRmse, 4) << "</td><td>"
-        << breakdownCell(*r) << "</td><td>" << wrongAsMissesCell(*r) << "</td><td>"
+        << breakdownCell(*r) << "</td><td>" << byTruthCell(*r) << "</td><td>" << wrongAsMissesCell(*r) << "</td><td>"
         << fmt(r->fetchesPerTracedPixel, 1) << "</td><td>"
         << r->gbufferBytesPerPixel << "</td></tr>";
     }

@@ -134,11 +134,26 @@ ImageError compositeError(const ReferenceImage& reference, const Image& composit
   return e;
 }
 
+namespace {
+// CompositeBreakdown::ByTruth's slot of a traced pixel's class (-1: not traced).
+int truthIndex(TruthClass cls) {
+  switch (cls) {
+    case TruthClass::Visible: return 0;
+    case TruthClass::Occluded: return 1;
+    case TruthClass::OffScreen: return 2;
+    case TruthClass::Escaped: return 3;
+    default: return -1;
+  }
+}
+}  // namespace
+
 CompositeBreakdown compositeBreakdown(const ReferenceImage& reference, const Image& composite, const GroundTruth& truth,
                                       const Image& hit, const Image& withoutReflection) {
   CompositeBreakdown b;
-  double sum[4] = {0, 0, 0, 0}, total = 0.0, wrongAsMisses = 0.0;
+  double sum[4] = {0, 0, 0, 0}, total = 0.0, wrongAsMisses = 0.0, truthSum[4] = {0, 0, 0, 0};
   CompositeBreakdown::Kind* kinds[4] = {&b.hit, &b.wrong, &b.missed, &b.unreachable};
+  CompositeBreakdown::Kind* truths[4] = {&b.byTruth.visible, &b.byTruth.occluded, &b.byTruth.offScreen,
+                                         &b.byTruth.escaped};
   auto squaredError = [&](const Image& image, size_t p) {
     const glm::vec3 d = rgbAt(image, p) - rgbAt(reference.composite, p);
     return double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
@@ -157,10 +172,17 @@ CompositeBreakdown compositeBreakdown(const ReferenceImage& reference, const Ima
     total += e;
     ++kinds[k]->pixels;
     if (k == 1) wrongAsMisses += squaredError(withoutReflection, p);
+    const int t = truthIndex(tp.cls);
+    if (t >= 0) {
+      truthSum[t] += e;
+      ++truths[t]->pixels;
+    }
   }
   for (int k = 0; k < 4; ++k) {
     if (kinds[k]->pixels > 0) kinds[k]->rmse = std::sqrt(sum[k] / (3.0 * double(kinds[k]->pixels)));
     kinds[k]->share = total > 0.0 ? sum[k] / total : 0.0;
+    if (truths[k]->pixels > 0) truths[k]->rmse = std::sqrt(truthSum[k] / (3.0 * double(truths[k]->pixels)));
+    truths[k]->share = total > 0.0 ? truthSum[k] / total : 0.0;
   }
   b.wrongAsMisses.pixels = b.wrong.pixels;
   if (b.wrong.pixels > 0) b.wrongAsMisses.rmse = std::sqrt(wrongAsMisses / (3.0 * double(b.wrong.pixels)));

@@ -69,6 +69,13 @@ struct CompositeBreakdown {
   // composite shows at coverage 0) instead (share: of the total squared error as it is). Below
   // `wrong`, a miss would have served those pixels better than their hits.
   Kind wrongAsMisses;
+  // The same squared error split by where the true reflection lies, whatever was reported: what
+  // the screen shows (visible: the error a screen-space method can avoid), a hidden side
+  // (occluded), off the screen, or the fallback environment (escaped). Where a method loses on
+  // occluded or off-screen pixels, its hedge's colour lost, not its tracing.
+  struct ByTruth {
+    Kind visible, occluded, offScreen, escaped;
+  } byTruth;
 };
 // `withoutReflection`: the frame as the composite leaves it where nothing was found; over the
 // fallback (CompositeMode::BlendOverFallback) that is the G-buffer's colour, which holds the
