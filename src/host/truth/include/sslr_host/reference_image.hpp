@@ -70,9 +70,9 @@ struct CompositeBreakdown {
   // `wrong`, a miss would have served those pixels better than their hits.
   Kind wrongAsMisses;
   // The same squared error split by where the true reflection lies, whatever was reported: what
-  // the screen shows (visible: the error a screen-space method can avoid), a hidden side
-  // (occluded), off the screen, or the fallback environment (escaped). Where a method loses on
-  // occluded or off-screen pixels, its hedge's colour lost, not its tracing.
+  // the screen shows (visible: a screen-space method can get it right), a hidden side (occluded)
+  // or a point off the screen (both only guessed, or left to the fallback), or nothing (escaped:
+  // right where nothing is reported). A scored pixel the truth did not trace counts in none.
   struct ByTruth {
     Kind visible, occluded, offScreen, escaped;
   } byTruth;
