@@ -99,11 +99,17 @@ SSLR_FN float sslrHitTolerance(SslrProjection p, SslrSurface s, SslrTraceParams 
   return t.hitToleranceRelative * abs(dist) + t.hitTolerancePixels * footprint * (1.0f + tanView);
 }
 
+// The hit tolerance at a surface point with its normal (its distance and slope as seen).
+SSLR_FN float sslrSurfaceTolerance(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsSurface,
+                                   vec3 vsSurfaceNormal) {
+  float dist = p.orthographic != 0 ? abs(vsSurface.z) : sslrViewDistance(p, vsSurface);
+  return sslrHitTolerance(p, s, t, dist, sslrSlopeTan(p, vsSurface, vsSurfaceNormal));
+}
+
 SSLR_FN float sslrHitValidation(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsQ,
                                 vec3 vsSurface, vec3 vsSurfaceNormal, vec3 vsR) {
   if (dot(vsSurfaceNormal, vsR) >= 0.0f) return 0.0f;  // the ray would hit the surface's back
-  float dist = p.orthographic != 0 ? abs(vsSurface.z) : sslrViewDistance(p, vsSurface);
-  float tolerance = sslrHitTolerance(p, s, t, dist, sslrSlopeTan(p, vsSurface, vsSurfaceNormal));
+  float tolerance = sslrSurfaceTolerance(p, s, t, vsSurface, vsSurfaceNormal);
   float miss = length(vsQ - vsSurface);
   return 1.0f - smoothstep(tolerance, 2.0f * tolerance, miss);
 }
@@ -112,9 +118,7 @@ SSLR_FN float sslrHitValidation(SslrProjection p, SslrSurface s, SslrTraceParams
 // units of the hit tolerance there: below 1 the point is on that texel's surface.
 SSLR_FN float sslrGapToTexelPlane(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsQ, vec3 vsTexel,
                                   vec3 vsTexelNormal) {
-  float dist = p.orthographic != 0 ? abs(vsTexel.z) : sslrViewDistance(p, vsTexel);
-  float tolerance = sslrHitTolerance(p, s, t, dist, sslrSlopeTan(p, vsTexel, vsTexelNormal));
-  return abs(dot(vsQ - vsTexel, vsTexelNormal)) / max(tolerance, 1e-30f);
+  return abs(dot(vsQ - vsTexel, vsTexelNormal)) / max(sslrSurfaceTolerance(p, s, t, vsTexel, vsTexelNormal), 1e-30f);
 }
 
 // Sub-pixel refinement (not in the article): the converged L is quantized by the pixel whose

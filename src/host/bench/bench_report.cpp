@@ -506,20 +506,22 @@ void reportHead(std::ostringstream& h, const BenchResult& result) {
        "each method's default.</p>";
 }
 
-// A run's composite error by kind (shares of its squared error, %), empty where not measured.
-std::string breakdownCell(const RunRecord& r) {
+// Four kinds' shares of a run's squared composite error, "a / b / c / d%", empty where not measured.
+std::string sharesCell(const RunRecord& r, const CompositeBreakdown::Kind& a, const CompositeBreakdown::Kind& b,
+                       const CompositeBreakdown::Kind& c, const CompositeBreakdown::Kind& d) {
   if (!std::isfinite(r.compositeRmse)) return "";
-  const CompositeBreakdown& b = r.compositeBreakdown;
-  return fmt(100.0 * b.hit.share, 0) + " / " + fmt(100.0 * b.wrong.share, 0) + " / " + fmt(100.0 * b.missed.share, 0) +
-         " / " + fmt(100.0 * b.unreachable.share, 0) + "%";
+  return fmt(100.0 * a.share, 0) + " / " + fmt(100.0 * b.share, 0) + " / " + fmt(100.0 * c.share, 0) + " / " +
+         fmt(100.0 * d.share, 0) + "%";
 }
-// The same error by where the true reflection lies: on the screen / a hidden side / off the screen
-// / escaped (%).
+// By kind: hits within 1 px / wrong / missed / unreachable.
+std::string breakdownCell(const RunRecord& r) {
+  const CompositeBreakdown& b = r.compositeBreakdown;
+  return sharesCell(r, b.hit, b.wrong, b.missed, b.unreachable);
+}
+// By where the true reflection lies: on the screen / a hidden side / off the screen / escaped.
 std::string byTruthCell(const RunRecord& r) {
-  if (!std::isfinite(r.compositeRmse)) return "";
   const CompositeBreakdown::ByTruth& t = r.compositeBreakdown.byTruth;
-  return fmt(100.0 * t.visible.share, 0) + " / " + fmt(100.0 * t.occluded.share, 0) + " / " +
-         fmt(100.0 * t.offScreen.share, 0) + " / " + fmt(100.0 * t.escaped.share, 0) + "%";
+  return sharesCell(r, t.visible, t.occluded, t.offScreen, t.escaped);
 }
 // Its wrong hits' RMSE, then the same pixels' as misses (lower: a miss would have served them better).
 std::string wrongAsMissesCell(const RunRecord& r) {
