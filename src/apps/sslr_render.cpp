@@ -642,7 +642,8 @@ void printScores(const Scores& scores) {
   const CompositeBreakdown& b = *scores.breakdown;
   std::printf("  its error by pixel (RMSE, share of the squared error, pixels):");
   const std::pair<const char*, const CompositeBreakdown::Kind*> kinds[] = {
-      {"hits within 1 px", &b.hit}, {"wrong hits", &b.wrong}, {"missed", &b.missed}, {"unreachable", &b.unreachable}};
+      {"hits within 1 px", &b.hit}, {"wrong hits", &b.wrong}, {"guesses", &b.guessed}, {"missed", &b.missed},
+      {"unreachable", &b.unreachable}};
   for (const auto& [name, k] : kinds) std::printf(" %s %.4f, %.0f%%, %zu;", name, k->rmse, 100.0 * k->share, k->pixels);
   std::printf("\n  by where the true reflection lies (the same):");
   const CompositeBreakdown::ByTruth& t = b.byTruth;

@@ -100,7 +100,7 @@ struct FloorAndWall {
 TEST(GlossyTruth, EachVisibleHitIsShadedWhereItLies) {
   FloorAndWall f;
   const std::vector<std::uint8_t> all(static_cast<size_t>(f.w) * f.h, 1);
-  const GlossyRadianceAt byMesh = [](const RayTracer::Hit& hit, glm::vec2) {
+  const GlossyRadianceAt byMesh = [](const RayTracer::Hit& hit, glm::vec3, glm::vec2) {
     return hit.mesh == 1 ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 0.0f, 1.0f);
   };
   const GlossyTruth g = computeGlossyTruth(*f.tracer, f.clipFromView, byMesh, FloorAndWall::image(1, 0.4f), all, 64);

@@ -181,15 +181,16 @@ TEST(CompositeImageError, ScoresOnlyMirrorPixelsAndNothingWithoutThem) {
   EXPECT_FALSE(std::isfinite(none.psnr));
 }
 
-// The composite error by what the method reported, on five pixels with known answers: a hit within
-// 1 px, a wrong hit (reported where the truth is occluded), a visible reflection missed, an escaped
-// ray left alone, and an unscored pixel that counts nowhere. The wrong hit's pixel is also scored as
-// the colour a miss would have shown there. The same error split by the truth's class.
+// The composite error by what the method reported, on six pixels with known answers: a hit within
+// 1 px, a wrong hit (reported where the truth is occluded), a guess below the reporting threshold,
+// an escaped ray left alone, an unscored pixel that counts nowhere and a visible reflection missed.
+// The wrong hit's pixel is also scored as the colour a miss would have shown there. The same error
+// split by the truth's class.
 TEST(CompositeBreakdown, SortsTheErrorByWhatWasReportedAndByTheTruthAndScoresWrongHitsAsMisses) {
   GroundTruth gt;
-  gt.width = 5;
+  gt.width = 6;
   gt.height = 1;
-  gt.pixels.resize(5);
+  gt.pixels.resize(6);
   gt.pixels[0].cls = TruthClass::Visible;
   gt.pixels[0].uvHit = {0.5f, 0.5f};
   gt.pixels[1].cls = TruthClass::Occluded;
@@ -197,48 +198,55 @@ TEST(CompositeBreakdown, SortsTheErrorByWhatWasReportedAndByTheTruthAndScoresWro
   gt.pixels[2].uvHit = {0.1f, 0.5f};
   gt.pixels[3].cls = TruthClass::Escaped;
   gt.pixels[4].cls = TruthClass::Visible;
-  Image hit{5, 1, 4, std::vector<float>(20, 0.0f)};
-  const float reported[5][3] = {{0.55f, 0.5f, 1.0f},   // 0.25 px off: within 1 px
+  gt.pixels[5].cls = TruthClass::Visible;
+  gt.pixels[5].uvHit = {0.7f, 0.5f};
+  Image hit{6, 1, 4, std::vector<float>(24, 0.0f)};
+  const float reported[6][3] = {{0.55f, 0.5f, 1.0f},   // 0.3 px off: within 1 px
                                 {0.3f, 0.5f, 0.9f},    // a false hit
-                                {0.1f, 0.5f, 0.4f},    // below the reporting threshold: a miss
+                                {0.1f, 0.5f, 0.4f},    // below the reporting threshold: a guess
                                 {0.0f, 0.0f, 0.0f},    // nothing
-                                {0.9f, 0.5f, 1.0f}};   // unscored
-  for (int p = 0; p < 5; ++p)
+                                {0.9f, 0.5f, 1.0f},    // unscored
+                                {0.0f, 0.0f, 0.0f}};   // nothing: a miss
+  for (int p = 0; p < 6; ++p)
     for (int c = 0; c < 3; ++c) hit.pixels[p * 4 + c] = reported[p][c];
   ReferenceImage reference;
-  reference.composite = Image{5, 1, 3, std::vector<float>(15, 0.5f)};
-  reference.scored = {1, 1, 1, 1, 0};
-  reference.scoredCount = 4;
-  // Squared errors (sum over RGB): 0.03, 0.12, 0.27, 0.48; the unscored pixel's 3 counts nowhere.
-  const float off[5] = {0.1f, 0.2f, 0.3f, 0.4f, 1.0f};
-  Image composite{5, 1, 3, {}};
+  reference.composite = Image{6, 1, 3, std::vector<float>(18, 0.5f)};
+  reference.scored = {1, 1, 1, 1, 0, 1};
+  reference.scoredCount = 5;
+  // Squared errors (sum over RGB): 0.03, 0.12, 0.27, 0.48, 0.0075; the unscored pixel's 3 counts
+  // nowhere.
+  const float off[6] = {0.1f, 0.2f, 0.3f, 0.4f, 1.0f, 0.05f};
+  Image composite{6, 1, 3, {}};
   for (float o : off) composite.pixels.insert(composite.pixels.end(), {0.5f + o, 0.5f + o, 0.5f + o});
   // What a miss shows at the wrong hit's pixel: 0.1 off in one channel (squared error 0.01).
-  Image colour{5, 1, 3, std::vector<float>(15, 0.5f)};
+  Image colour{6, 1, 3, std::vector<float>(18, 0.5f)};
   colour.pixels[1 * 3 + 0] = 0.6f;
 
   const CompositeBreakdown b = compositeBreakdown(reference, composite, gt, hit, colour);
   EXPECT_EQ(b.hit.pixels, 1u);
   EXPECT_EQ(b.wrong.pixels, 1u);
+  EXPECT_EQ(b.guessed.pixels, 1u) << "confidence 0.4 blends a guess in: neither a hit nor a miss";
   EXPECT_EQ(b.missed.pixels, 1u);
   EXPECT_EQ(b.unreachable.pixels, 1u);
-  const double total = 0.03 + 0.12 + 0.27 + 0.48;
+  const double total = 0.03 + 0.12 + 0.27 + 0.48 + 0.0075;
   EXPECT_NEAR(b.hit.rmse, 0.1, 1e-6);
   EXPECT_NEAR(b.wrong.rmse, 0.2, 1e-6);
-  EXPECT_NEAR(b.missed.rmse, 0.3, 1e-6);
+  EXPECT_NEAR(b.guessed.rmse, 0.3, 1e-6);
+  EXPECT_NEAR(b.missed.rmse, 0.05, 1e-6);
   EXPECT_NEAR(b.unreachable.rmse, 0.4, 1e-6);
   EXPECT_NEAR(b.hit.share, 0.03 / total, 1e-6);
   EXPECT_NEAR(b.wrong.share, 0.12 / total, 1e-6);
-  EXPECT_NEAR(b.hit.share + b.wrong.share + b.missed.share + b.unreachable.share, 1.0, 1e-9);
+  EXPECT_NEAR(b.guessed.share, 0.27 / total, 1e-6);
+  EXPECT_NEAR(b.hit.share + b.wrong.share + b.guessed.share + b.missed.share + b.unreachable.share, 1.0, 1e-9);
   EXPECT_EQ(b.wrongAsMisses.pixels, 1u);
   EXPECT_NEAR(b.wrongAsMisses.rmse, std::sqrt(0.01 / 3.0), 1e-6) << "the wrong pixel as a miss: the colour there";
   EXPECT_NEAR(b.wrongAsMisses.share, 0.01 / total, 1e-6);
   EXPECT_LT(b.wrongAsMisses.rmse, b.wrong.rmse) << "here a miss would have served the pixel better";
-  // By where the truth lies: pixels 0 and 2 on the screen (0.03 + 0.27), 1 a hidden side (0.12),
-  // 3 escaped (0.48), none off the screen.
-  EXPECT_EQ(b.byTruth.visible.pixels, 2u);
-  EXPECT_NEAR(b.byTruth.visible.rmse, std::sqrt((0.03 + 0.27) / 6.0), 1e-6);
-  EXPECT_NEAR(b.byTruth.visible.share, 0.30 / total, 1e-6);
+  // By where the truth lies: pixels 0, 2 and 5 on the screen (0.03 + 0.27 + 0.0075), 1 a hidden
+  // side (0.12), 3 escaped (0.48), none off the screen.
+  EXPECT_EQ(b.byTruth.visible.pixels, 3u);
+  EXPECT_NEAR(b.byTruth.visible.rmse, std::sqrt((0.03 + 0.27 + 0.0075) / 9.0), 1e-6);
+  EXPECT_NEAR(b.byTruth.visible.share, 0.3075 / total, 1e-6);
   EXPECT_EQ(b.byTruth.occluded.pixels, 1u);
   EXPECT_NEAR(b.byTruth.occluded.rmse, 0.2, 1e-6) << "the false hit's pixel counts where its truth lies";
   EXPECT_EQ(b.byTruth.offScreen.pixels, 0u);
@@ -277,3 +285,48 @@ TEST(StoredColor, IsTheColourBuffersValueTowardsZero) {
 }
 
 }  // namespace
+
+// A reflected ray that meets a box's back face (turned away from the camera) brings back that face
+// lit on its own side and its fallback specular seen along the ray, not the inside of the solid lit
+// from the camera's side. Camera at the origin (view = world) looking down -z at a unit box around
+// (0, 0, -6); the light travels along +z, so only the back face (z = -7, normal -z) is lit by it.
+// Metal, base colour 0.5: reflectance 0.5, diffuse share 0.15, ambient 0.18 on a vertical face.
+TEST(ReferenceShading, ReflectedBackFaceIsLitOnTheSideTheRayMeets) {
+  Scene s;
+  Material metal;
+  metal.baseColor = glm::vec3(0.5f);
+  metal.metallic = 1.0f;
+  s.materials.push_back(metal);
+  s.meshes.push_back(makeBox({0, 0, -6}, {2, 2, 2}, 0));
+  s.lightDirection = {0.0f, 0.0f, 1.0f};
+  s.background = glm::vec3(1.0f);
+  auto rt = RayTracer::create(s, glm::dmat4(1.0));
+  ASSERT_TRUE(rt) << rt.error();
+  // From behind the box, up and towards the camera: meets z = -7 at (0, 0, -7) at 36.9 deg.
+  const glm::vec3 dir(0.0f, 0.6f, 0.8f);
+  const RayTracer::Hit back = rt.value()->intersect({0.0f, -2.25f, -10.0f}, dir);
+  ASSERT_TRUE(back.hit);
+  ASSERT_NEAR(back.vsPosition.z, -7.0f, 1e-5f);
+  // Lit: 0.5 x 0.15 x (0.85 x 1 + 0.18) = 0.07725. Fallback specular along the ray: 0.5 x
+  // 2.8 (1 - 0.8)^2 x the sky (the mirror direction (0, 0.6, -0.8) points up) = 0.056.
+  const float expected = 0.07725f + 0.056f;
+  for (bool cameraSees : {false, true}) {
+    const glm::vec3 got = reflectedRadiance(s, back, dir, glm::dmat4(1.0), false, cameraSees);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], expected, 1e-5f) << "camera sees: " << cameraSees;
+  }
+  // The camera's side of that face (the solid's inside) is dark: ambient only, no Fresnel.
+  const glm::vec3 fromCamera = shadeAsGBuffer(s, back, glm::dmat4(1.0), false);
+  EXPECT_NEAR(fromCamera.r, 0.5f * 0.15f * 0.18f, 1e-5f);
+  // The front face, which the camera sees on the side a ray from the camera's side meets: the
+  // colour buffer's stored shade of it, as a screen-space method reads it.
+  const glm::vec3 toFront = glm::normalize(glm::vec3(0.3f, 0.2f, -1.0f));
+  const RayTracer::Hit front = rt.value()->intersect({0.0f, 0.0f, -2.0f}, toFront);
+  ASSERT_TRUE(front.hit);
+  ASSERT_NEAR(front.vsPosition.z, -5.0f, 1e-5f);
+  EXPECT_EQ(reflectedRadiance(s, front, toFront, glm::dmat4(1.0), false, true),
+            asStoredColor(shadeAsGBuffer(s, front, glm::dmat4(1.0), false)));
+  // Off the screen or hidden: exact, seen along the ray.
+  const glm::vec3 exact = reflectedRadiance(s, front, toFront, glm::dmat4(1.0), false, false);
+  const glm::vec3 alongRay = shadeSeenFrom(s, front, glm::dmat4(1.0), -toFront);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(exact[c], alongRay[c], 1e-6f);
+}

@@ -78,7 +78,7 @@ TEST_F(Bench, QuickGridWritesCompleteResultsAndReport) {
         const auto& b = r["compositeBreakdown"];
         double squared = 0.0, share = 0.0;
         size_t pixels = 0;
-        for (const char* k : {"hit", "wrong", "missed", "unreachable"}) {
+        for (const char* k : {"hit", "wrong", "guessed", "missed", "unreachable"}) {
           const size_t n = b[k]["pixels"].get<size_t>();
           if (n > 0) squared += std::pow(b[k]["rmse"].get<double>(), 2) * double(n);
           pixels += n;
@@ -119,7 +119,7 @@ TEST_F(Bench, QuickGridWritesCompleteResultsAndReport) {
   const std::string text((std::istreambuf_iterator<char>(html)), {});
   EXPECT_NE(text.find("<svg"), std::string::npos);
   EXPECT_NE(text.find("Fastest configuration reaching recall"), std::string::npos);
-  EXPECT_NE(text.find("its error: hits / wrong / missed / unreachable"), std::string::npos);
+  EXPECT_NE(text.find("its error: hits / wrong / guessed / missed / unreachable"), std::string::npos);
   EXPECT_NE(text.find("by the truth: on screen / hidden side"), std::string::npos);
   const std::regex img("src='([^']+)'");
   int images = 0;

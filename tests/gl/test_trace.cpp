@@ -493,6 +493,26 @@ TEST_P(CompositeError, DefaultBelowTheTutorialAndTheFallbackAlone) {
 INSTANTIATE_TEST_SUITE_P(Scenes, CompositeError, ::testing::Values("mirror-room", "thin-objects", "mirror-walls"),
                          sceneParamName);
 
+// A ray that escapes to the environment is answered right by a miss: the frame shows the fallback
+// specular, the environment in the mirror direction, and that scores 0, not the colour format's
+// rounding of it. The frame without reflections on sky-heavy (most of its rays escape).
+class EscapedRay : public sslr::test::GlTest {};
+
+TEST_F(EscapedRay, ACorrectMissScoresZero) {
+  auto scene = loadScene("sky-heavy");
+  ASSERT_TRUE(scene);
+  const ScoredFrame f = renderScored(scene.value(), *scene.value().camera, compositeOptions(), Settings{});
+  ASSERT_TRUE(f.renderer);
+  auto reference = referenceFor(scene.value(), f.renderer->gbuffer(), f.truth);
+  ASSERT_TRUE(reference) << reference.error();
+  const Image colour = f.renderer->gbuffer().readColor();
+  const Image nothing{colour.width, colour.height, 4, std::vector<float>(colour.pixels.size() / 3 * 4, 0.0f)};
+  const CompositeBreakdown b = compositeBreakdown(reference.value(), colour, f.truth, nothing, colour);
+  ASSERT_GT(b.byTruth.escaped.pixels, 100u);
+  EXPECT_EQ(b.byTruth.escaped.rmse, 0.0);
+  EXPECT_GT(b.byTruth.visible.rmse, 0.0) << "a miss of a visible reflection still costs";
+}
+
 // Settings::traversal.hiddenGuess (0.5 by default): rays that end behind what the screen shows
 // take the colour where they went behind, at half weight, where 0 leaves them misses. On scenes
 // whose error is mostly such rays (boxes in front of mirrors, rays crossing the screen behind them)

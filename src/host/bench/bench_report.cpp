@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <map>
 #include <sstream>
 #include <tuple>
@@ -69,6 +70,7 @@ json breakdownJson(const CompositeBreakdown& b) {
   const CompositeBreakdown::ByTruth& t = b.byTruth;
   return {{"hit", kind(b.hit)},
           {"wrong", kind(b.wrong)},
+          {"guessed", kind(b.guessed)},
           {"missed", kind(b.missed)},
           {"unreachable", kind(b.unreachable)},
           {"wrongAsMisses", kind(b.wrongAsMisses)},
@@ -79,13 +81,14 @@ json breakdownJson(const CompositeBreakdown& b) {
             {"escaped", kind(t.escaped)}}}};
 }
 
-// Its CSV columns: the four kinds' shares, the wrong hits' RMSE and theirs as misses, then the
+// Its CSV columns: the five kinds' shares, the wrong hits' RMSE and theirs as misses, then the
 // shares by where the true reflection lies (empty where not measured).
 std::string breakdownCsv(const json& b) {
-  if (b.is_null()) return ",,,,,,,,,";
+  if (b.is_null()) return ",,,,,,,,,,";
   auto v = [](const json& x) { return x.is_null() ? std::string() : x.dump(); };
   const json& t = b["byTruth"];
-  return v(b["hit"]["share"]) + "," + v(b["wrong"]["share"]) + "," + v(b["missed"]["share"]) + "," +
+  return v(b["hit"]["share"]) + "," + v(b["wrong"]["share"]) + "," + v(b["guessed"]["share"]) + "," +
+         v(b["missed"]["share"]) + "," +
          v(b["unreachable"]["share"]) + "," + v(b["wrong"]["rmse"]) + "," + v(b["wrongAsMisses"]["rmse"]) + "," +
          v(t["visible"]["share"]) + "," + v(t["occluded"]["share"]) + "," + v(t["offScreen"]["share"]) + "," +
          v(t["escaped"]["share"]);
@@ -457,7 +460,7 @@ std::string resultsCsv(const BenchResult& result) {
          "reflectionRmse,reflectionPsnr,nonFiniteHitPixels,nonFiniteOutputPixels,tracedPixels,fetches,"
          "fetchesPerTracedPixel,dispatches,indirectDispatches,barriers,programs,bytesRead,bytesWritten,laneSteps,simt32,"
          "simt64,longestChain,gbufferBytesPerPixel,extraBytesPerPixel,compositeRmse,compositePsnr,predictedH100Ms,"
-         "compositeHitShare,compositeWrongShare,compositeMissedShare,compositeUnreachableShare,compositeWrongRmse,"
+         "compositeHitShare,compositeWrongShare,compositeGuessedShare,compositeMissedShare,compositeUnreachableShare,compositeWrongRmse,"
          "compositeWrongAsMissesRmse,compositeVisibleShare,compositeOccludedShare,compositeOffScreenShare,"
          "compositeEscapedShare,parameters\n";
   for (const RunRecord& r : result.runs) {
@@ -500,28 +503,29 @@ void reportHead(std::ostringstream& h, const BenchResult& result) {
        "the true hit; false hits = occluded/off-screen/escaped reflections reported; RMSE = colour at the reported hit "
        "(0 if none) vs colour at the true hit, over class A; composite RMSE = the final image (the reflection "
        "composited over the fallback) against a ray-traced reference composite, over the mirror pixels, and the share "
-       "of its squared error in hits within 1 px, wrong hits, misses and reflections no screen-space method sees, "
+       "of its squared error in hits within 1 px, wrong hits, guesses below the reporting threshold, misses and "
+       "reflections no screen-space method sees, "
        "then by where the true reflection lies (on the screen, a hidden side, off the screen, escaped); "
        "wrong hits as misses = those pixels' RMSE, then as if nothing had been reported there. Large dots: "
        "each method's default.</p>";
 }
 
-// Four kinds' shares of a run's squared composite error, "a / b / c / d%", empty where not measured.
-std::string sharesCell(const RunRecord& r, const CompositeBreakdown::Kind& a, const CompositeBreakdown::Kind& b,
-                       const CompositeBreakdown::Kind& c, const CompositeBreakdown::Kind& d) {
+// Kinds' shares of a run's squared composite error, "a / b / ... %", empty where not measured.
+std::string sharesCell(const RunRecord& r, std::initializer_list<const CompositeBreakdown::Kind*> kinds) {
   if (!std::isfinite(r.compositeRmse)) return "";
-  return fmt(100.0 * a.share, 0) + " / " + fmt(100.0 * b.share, 0) + " / " + fmt(100.0 * c.share, 0) + " / " +
-         fmt(100.0 * d.share, 0) + "%";
+  std::string cell;
+  for (const CompositeBreakdown::Kind* k : kinds) cell += (cell.empty() ? "" : " / ") + fmt(100.0 * k->share, 0);
+  return cell + "%";
 }
-// By kind: hits within 1 px / wrong / missed / unreachable.
+// By kind: hits within 1 px / wrong / guessed / missed / unreachable.
 std::string breakdownCell(const RunRecord& r) {
   const CompositeBreakdown& b = r.compositeBreakdown;
-  return sharesCell(r, b.hit, b.wrong, b.missed, b.unreachable);
+  return sharesCell(r, {&b.hit, &b.wrong, &b.guessed, &b.missed, &b.unreachable});
 }
 // By where the true reflection lies: on the screen / a hidden side / off the screen / escaped.
 std::string byTruthCell(const RunRecord& r) {
   const CompositeBreakdown::ByTruth& t = r.compositeBreakdown.byTruth;
-  return sharesCell(r, t.visible, t.occluded, t.offScreen, t.escaped);
+  return sharesCell(r, {&t.visible, &t.occluded, &t.offScreen, &t.escaped});
 }
 // Its wrong hits' RMSE, then the same pixels' as misses (lower: a miss would have served them better).
 std::string wrongAsMissesCell(const RunRecord& r) {
@@ -535,7 +539,7 @@ void reportSummaries(std::ostringstream& h, const BenchResult& result) {
   // Summary table: the defaults side by side per scene.
   h << "<h2>Summary (defaults)</h2><table><tr><th>scene</th><th>method</th><th>time ms</th><th>time ratio</th>"
        "<th>recall@1px</th><th>p95 px</th><th>false hits</th><th>RMSE</th><th>composite RMSE</th>"
-       "<th>its error: hits / wrong / missed / unreachable</th><th>by the truth: on screen / hidden side / off "
+       "<th>its error: hits / wrong / guessed / missed / unreachable</th><th>by the truth: on screen / hidden side / off "
        "screen / escaped</th><th>wrong hits as misses</th><th>fetches/px</th><th>G-buffer B/px</th></tr>";
   for (const SceneRecord& sc : result.scenes) {
     // Each method's default; the time ratio is to the tutorial's configuration.

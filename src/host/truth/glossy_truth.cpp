@@ -57,7 +57,7 @@ bool visibleOnScreen(const RayTracer& tracer, const glm::dmat4& clipFromView, bo
 GlossyTruth computeGlossyTruth(const RayTracer& tracer, const glm::dmat4& clipFromView, const Image& color,
                                const Image& roughness, const std::vector<std::uint8_t>& mask, int samples) {
   return computeGlossyTruth(
-      tracer, clipFromView, [&color](const RayTracer::Hit&, glm::vec2 uv) { return sampleBilinear(color, uv); },
+      tracer, clipFromView, [&color](const RayTracer::Hit&, glm::vec3, glm::vec2 uv) { return sampleBilinear(color, uv); },
       roughness, mask, samples);
 }
 
@@ -113,7 +113,7 @@ GlossyTruth computeGlossyTruth(const RayTracer& tracer, const glm::dmat4& clipFr
         glm::vec2 uv;
         RayTracer::Hit hit;
         if (!visibleOnScreen(tracer, clipFromView, ortho, start, vsL, hit, uv)) continue;
-        sum[half] += radianceAt(hit, uv) * w;
+        sum[half] += radianceAt(hit, vsL, uv) * w;
         known[half] += w;
       }
       const double totalWeight = weight[0] + weight[1], totalKnown = known[0] + known[1];
@@ -155,12 +155,12 @@ Expected<GlossyTruth> glossyTruthFor(const Scene& scene, const GBuffer& gbuffer,
     rough.pixels[p] = shared::sslrRoughness(frame.value().surface, glm::vec4(n[0], n[1], n[2], n[3]));
   }
   const auto mask = reflectiveMask(depth, packed, in, settings);
-  // Each visible hit shaded as the G-buffer pass lights that point, stored as its colour buffer
-  // stores it (asStoredColor: a screen-space method reads nothing finer).
+  // Each visible hit shaded as the mirror reference shades it (reflectedRadiance): as the colour
+  // buffer stores it where the camera sees the side the lobe ray meets, lit on that side otherwise.
   const glm::dmat4 viewFromWorld = gbuffer.viewFromWorld();
   const bool ortho = gbuffer.clipFromView()[3][3] == 1.0;
-  auto radianceAt = [&](const RayTracer::Hit& hit, glm::vec2) {
-    return asStoredColor(shadeAsGBuffer(scene, hit, viewFromWorld, ortho));
+  auto radianceAt = [&](const RayTracer::Hit& hit, glm::vec3 vsDirection, glm::vec2) {
+    return reflectedRadiance(scene, hit, vsDirection, viewFromWorld, ortho, true);
   };
   return computeGlossyTruth(*tracer.value(), gbuffer.clipFromView(), radianceAt, rough, mask, samples);
 }

@@ -44,8 +44,8 @@ glm::vec3 rgbAt(const Image& image, size_t p) {
 
 }  // namespace
 
-glm::vec3 shadeAsGBuffer(const Scene& scene, const RayTracer::Hit& hit, const glm::dmat4& viewFromWorld,
-                         bool orthographic) {
+glm::vec3 shadeSeenFrom(const Scene& scene, const RayTracer::Hit& hit, const glm::dmat4& viewFromWorld,
+                        glm::vec3 vsToViewer) {
   const Mesh& mesh = scene.meshes.at(hit.mesh);
   const Material& m = scene.materials.at(static_cast<size_t>(mesh.material));
   glm::vec3 base = m.baseColor;
@@ -56,12 +56,27 @@ glm::vec3 shadeAsGBuffer(const Scene& scene, const RayTracer::Hit& hit, const gl
     const glm::vec2 uv = mesh.uvs[tri[0]] * (1.0f - b.x - b.y) + mesh.uvs[tri[1]] * b.x + mesh.uvs[tri[2]] * b.y;
     base *= sampleTexture(scene.textures[static_cast<size_t>(m.baseColorTexture)], uv);
   }
-  const glm::vec3 toCamera = orthographic ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::normalize(-hit.vsPosition);
-  const glm::vec3 n = glm::dot(hit.vsNormal, toCamera) < 0.0f ? -hit.vsNormal : hit.vsNormal;  // the side seen
+  const glm::vec3 n = glm::dot(hit.vsNormal, vsToViewer) < 0.0f ? -hit.vsNormal : hit.vsNormal;  // the side seen
   const glm::vec3 vsLight = viewDirection(viewFromWorld, glm::dvec3(scene.lightDirection));
   const glm::vec3 vsUp = viewDirection(viewFromWorld, glm::dvec3(0.0, 1.0, 0.0));
   return shared::sslrHostLitColor(base, m.metallic, m.baseColor * m.emissive + m.emissiveColor, n, vsLight, vsUp) +
-         shared::sslrHostFallbackSpecular(reflectance(m), toCamera, n, vsUp, scene.background);
+         shared::sslrHostFallbackSpecular(reflectance(m), vsToViewer, n, vsUp, scene.background);
+}
+
+glm::vec3 shadeAsGBuffer(const Scene& scene, const RayTracer::Hit& hit, const glm::dmat4& viewFromWorld,
+                         bool orthographic) {
+  const glm::vec3 toCamera = orthographic ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::normalize(-hit.vsPosition);
+  return shadeSeenFrom(scene, hit, viewFromWorld, toCamera);
+}
+
+glm::vec3 reflectedRadiance(const Scene& scene, const RayTracer::Hit& hit, glm::vec3 vsRayDirection,
+                            const glm::dmat4& viewFromWorld, bool orthographic, bool cameraSeesHit) {
+  const glm::vec3 toCamera = orthographic ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::normalize(-hit.vsPosition);
+  const glm::vec3 toRayOrigin = -glm::normalize(vsRayDirection);
+  // The camera sees the point on the side the ray meets when both lie in front of its face.
+  if (cameraSeesHit && glm::dot(hit.vsNormal, toCamera) * glm::dot(hit.vsNormal, toRayOrigin) > 0.0f)
+    return asStoredColor(shadeSeenFrom(scene, hit, viewFromWorld, toCamera));
+  return shadeSeenFrom(scene, hit, viewFromWorld, toRayOrigin);
 }
 
 glm::vec3 asStoredColor(glm::vec3 rgb) { return glm::unpackF2x11_1x10(glm::packF2x11_1x10(rgb)); }
@@ -79,7 +94,6 @@ ReferenceImage referenceComposite(const Scene& scene, const RayTracer& tracer, c
   const glm::dmat4& clipFromView = gbuffer.clipFromView();
   const bool ortho = clipFromView[3][3] == 1.0;
   const PrimaryRays rays{glm::inverse(clipFromView), ortho, w, h};
-  const glm::vec3 vsUp = viewDirection(gbuffer.viewFromWorld(), glm::dvec3(0.0, 1.0, 0.0));
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const size_t p = static_cast<size_t>(y) * w + x;
@@ -92,18 +106,17 @@ ReferenceImage referenceComposite(const Scene& scene, const RayTracer& tracer, c
                                         : nullptr;
         if (m != nullptr && m->roughness <= kReferenceMaxRoughness) {
           const Reflection reflected = traceReflection(tracer, primary, glm::vec3(dir));
-          // A point the camera sees, as the colour buffer stores it (what a screen-space method can
-          // read of it at best); any other, exact; an escaped ray, the environment.
-          glm::vec3 radiance;
-          if (!reflected.hit.hit) {
-            radiance = shared::sslrHostEnvironment(reflected.direction, vsUp, scene.background);
-          } else {
-            radiance = shadeAsGBuffer(scene, reflected.hit, gbuffer.viewFromWorld(), ortho);
-            if (truth.pixels[p].cls == TruthClass::Visible) radiance = asStoredColor(radiance);
+          // A point the camera sees on the side the ray meets, as the colour buffer stores it (what a
+          // screen-space method can read of it at best); any other, lit on the side the ray meets and
+          // seen along the ray. An escaped ray: the colour as it is, whose fallback specular is the
+          // environment in the mirror direction as the frame stores it, so that a miss scores 0.
+          if (reflected.hit.hit) {
+            const glm::vec3 radiance = reflectedRadiance(scene, reflected.hit, reflected.direction,
+                                                         gbuffer.viewFromWorld(), ortho,
+                                                         truth.pixels[p].cls == TruthClass::Visible);
+            const float cosVN = std::max(glm::dot(-glm::vec3(dir), primary.vsNormal), 0.0f);
+            out += reflectance(*m) * shared::sslrFresnelClassic(cosVN) * radiance - rgbAt(fallback, p);
           }
-          const float cosVN = std::max(glm::dot(-glm::vec3(dir), primary.vsNormal), 0.0f);
-          out += reflectance(*m) * shared::sslrFresnelClassic(cosVN) * radiance -
-                 rgbAt(fallback, p);
           ref.scored[p] = 1;
           ++ref.scoredCount;
         }
@@ -150,8 +163,8 @@ int truthIndex(TruthClass cls) {
 CompositeBreakdown compositeBreakdown(const ReferenceImage& reference, const Image& composite, const GroundTruth& truth,
                                       const Image& hit, const Image& withoutReflection) {
   CompositeBreakdown b;
-  double sum[4] = {0, 0, 0, 0}, total = 0.0, wrongAsMisses = 0.0, truthSum[4] = {0, 0, 0, 0};
-  CompositeBreakdown::Kind* kinds[4] = {&b.hit, &b.wrong, &b.missed, &b.unreachable};
+  double sum[5] = {0, 0, 0, 0, 0}, total = 0.0, wrongAsMisses = 0.0, truthSum[4] = {0, 0, 0, 0};
+  CompositeBreakdown::Kind* kinds[5] = {&b.hit, &b.wrong, &b.guessed, &b.missed, &b.unreachable};
   CompositeBreakdown::Kind* truths[4] = {&b.byTruth.visible, &b.byTruth.occluded, &b.byTruth.offScreen,
                                          &b.byTruth.escaped};
   auto squaredError = [&](const Image& image, size_t p) {
@@ -162,11 +175,11 @@ CompositeBreakdown compositeBreakdown(const ReferenceImage& reference, const Ima
     if (!reference.scored[p]) continue;
     const TruthPixel& tp = truth.pixels[p];
     const float* h = &hit.pixels[p * static_cast<size_t>(hit.channels)];
-    const bool reported = h[2] > kReportedConfidence;
+    const bool reported = h[2] > kReportedConfidence, guessed = !reported && h[2] > 0.0f;
     const bool visible = tp.cls == TruthClass::Visible;
     const bool within1px =
         visible && std::hypot((h[0] - tp.uvHit.x) * truth.width, (h[1] - tp.uvHit.y) * truth.height) <= 1.0f;
-    const int k = reported ? (within1px ? 0 : 1) : (visible ? 2 : 3);
+    const int k = reported ? (within1px ? 0 : 1) : guessed ? 2 : (visible ? 3 : 4);
     const double e = squaredError(composite, p);
     sum[k] += e;
     total += e;
@@ -178,12 +191,12 @@ CompositeBreakdown compositeBreakdown(const ReferenceImage& reference, const Ima
       ++truths[t]->pixels;
     }
   }
-  for (int k = 0; k < 4; ++k) {
-    if (kinds[k]->pixels > 0) kinds[k]->rmse = std::sqrt(sum[k] / (3.0 * double(kinds[k]->pixels)));
-    kinds[k]->share = total > 0.0 ? sum[k] / total : 0.0;
-    if (truths[k]->pixels > 0) truths[k]->rmse = std::sqrt(truthSum[k] / (3.0 * double(truths[k]->pixels)));
-    truths[k]->share = total > 0.0 ? truthSum[k] / total : 0.0;
-  }
+  auto finish = [total](CompositeBreakdown::Kind& kind, double squared) {
+    if (kind.pixels > 0) kind.rmse = std::sqrt(squared / (3.0 * double(kind.pixels)));
+    kind.share = total > 0.0 ? squared / total : 0.0;
+  };
+  for (int k = 0; k < 5; ++k) finish(*kinds[k], sum[k]);
+  for (int t = 0; t < 4; ++t) finish(*truths[t], truthSum[t]);
   b.wrongAsMisses.pixels = b.wrong.pixels;
   if (b.wrong.pixels > 0) b.wrongAsMisses.rmse = std::sqrt(wrongAsMisses / (3.0 * double(b.wrong.pixels)));
   b.wrongAsMisses.share = total > 0.0 ? wrongAsMisses / total : 0.0;

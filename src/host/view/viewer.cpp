@@ -286,10 +286,10 @@ struct App {
       std::snprintf(line, sizeof line, "%s: no mirror pixel to score", kMethods[s.method]);
     else
       std::snprintf(line, sizeof line,
-                    "%s: image RMSE %.4f over %zu mirror pixels; hits %.0f%%, wrong %.0f%%, missed %.0f%%, "
-                    "unreachable %.0f%%",
+                    "%s: image RMSE %.4f over %zu mirror pixels; hits %.0f%%, wrong %.0f%%, guessed %.0f%%, "
+                    "missed %.0f%%, unreachable %.0f%%",
                     kMethods[s.method], e.rmse, e.pixels, 100.0 * b.hit.share, 100.0 * b.wrong.share,
-                    100.0 * b.missed.share, 100.0 * b.unreachable.share);
+                    100.0 * b.guessed.share, 100.0 * b.missed.share, 100.0 * b.unreachable.share);
     s.imageErrorSummary = line;
   }
 

@@ -28,9 +28,9 @@ struct GlossyTruth {
   std::vector<float> roughness;        // the G-buffer's, per pixel
 };
 
-// The radiance a lobe ray brings back from `hit`, a point the camera sees at `uv`. Called from
-// several threads at once.
-using GlossyRadianceAt = std::function<glm::vec3(const RayTracer::Hit& hit, glm::vec2 uv)>;
+// The radiance a lobe ray travelling along `vsDirection` brings back from `hit`, a point the camera
+// sees at `uv`. Called from several threads at once.
+using GlossyRadianceAt = std::function<glm::vec3(const RayTracer::Hit& hit, glm::vec3 vsDirection, glm::vec2 uv)>;
 
 // The lobe at each pixel `mask` marks, from the G-buffer's roughness image (one channel, its size
 // the truth's), `samples` directions per pixel (two Hammersley sets of samples / 2, each rotated

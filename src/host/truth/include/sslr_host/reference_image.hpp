@@ -1,7 +1,7 @@
 // The ray-traced reference of what a user sees: each mirror pixel's composite with its exact
-// reflection, shaded by Embree's hit with the G-buffer pass's own lighting (whether the camera sees
-// that point or not; escaped rays get the fallback environment), and the image error of a
-// method's composite against it (docs/results.md, "How these numbers were obtained").
+// reflection, shaded by Embree's hit with the G-buffer pass's own lighting on the side the reflected
+// ray meets (whether the camera sees that point or not; escaped rays get the fallback environment),
+// and the image error of a method's composite against it (docs/results.md, "How these numbers were obtained").
 #pragma once
 
 #include <cmath>
@@ -35,10 +35,22 @@ ReferenceImage referenceComposite(const Scene& scene, const RayTracer& tracer, c
 // The same, with a ray tracer of its own over `scene` (Embree; an error names what failed).
 Expected<ReferenceImage> referenceFor(const Scene& scene, const GBuffer& gbuffer, const GroundTruth& truth);
 
-// The G-buffer pass's lit colour of a point the tracer hit, as the camera would see it (the G-buffer's
-// shader: a directional light, a sky/ground ambient, emission and the fallback specular).
+// The G-buffer pass's lit colour of a point the tracer hit (its shader: a directional light, a
+// sky/ground ambient, emission and the fallback specular), seen from `vsToViewer` (unit, from the
+// point towards whoever looks): the face turned to the viewer is lit, and the view-dependent
+// fallback specular is the one seen from there.
+glm::vec3 shadeSeenFrom(const Scene& scene, const RayTracer::Hit& hit, const glm::dmat4& viewFromWorld,
+                        glm::vec3 vsToViewer);
+// The same as the camera sees it: what the G-buffer pass wrote for that point.
 glm::vec3 shadeAsGBuffer(const Scene& scene, const RayTracer::Hit& hit, const glm::dmat4& viewFromWorld,
                          bool orthographic);
+// What a ray travelling along `vsRayDirection` brings back from `hit`, the light leaving the face it
+// meets towards its origin. Where the camera sees that face (`cameraSeesHit`: nothing in between,
+// and the camera in front of the same face), the colour buffer's stored shade of it (asStoredColor
+// of shadeAsGBuffer: what a screen-space method reads at best); anywhere else (a hidden side, a
+// point off the screen) shadeSeenFrom the ray's origin.
+glm::vec3 reflectedRadiance(const Scene& scene, const RayTracer::Hit& hit, glm::vec3 vsRayDirection,
+                            const glm::dmat4& viewFromWorld, bool orthographic, bool cameraSeesHit);
 // `rgb` as the G-buffer's colour texture stores it (GBuffer: R11F_G11F_B10F, 6, 6 and 5 mantissa
 // bits, rounded towards zero as glm packs and Mesa stores it): the finest colour a screen-space
 // method can read of a point. Both references pass the shades of points the camera sees through
@@ -63,8 +75,10 @@ struct CompositeBreakdown {
   };
   Kind hit;          // visible reflection, reported within 1 px of the true hit: fades, blur, shading
   Kind wrong;        // reported elsewhere: a false hit, or a visible reflection's hit over 1 px off
-  Kind missed;       // visible reflection not reported: the fallback shows instead
-  Kind unreachable;  // occluded, off screen or escaped, not reported: what no screen-space method sees
+  Kind guessed;      // a guess below the reporting threshold (0 < confidence <= kReportedConfidence),
+                     // whatever the truth: the composite shows a blend of it and the fallback
+  Kind missed;       // visible reflection not reported at all (confidence 0): the fallback shows
+  Kind unreachable;  // occluded, off screen or escaped, confidence 0: what no screen-space method sees
   // The wrong pixels scored as if they had been misses: showing `withoutReflection` (what the
   // composite shows at coverage 0) instead (share: of the total squared error as it is). Below
   // `wrong`, a miss would have served those pixels better than their hits.
