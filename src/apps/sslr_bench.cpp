@@ -278,6 +278,9 @@ void checkOutputDirectory(const std::string& outDir) {
   if (Status s = prepareOutputDirectory(outDir); !s) throw std::runtime_error("--out " + s.message());
   const std::string report = (std::filesystem::path(outDir) / "report").string();
   if (Status s = prepareOutputDirectory(report); !s) throw std::runtime_error("--out: " + s.message());
+  for (const char* file : {"results.json", "results.csv", "report/index.html"})
+    if (Status s = checkReplaceable((std::filesystem::path(outDir) / file).string()); !s)
+      throw std::runtime_error("--out: " + s.message());
 }
 
 // The defaults per scene (with --configs: every configuration run), times as ratios to the
@@ -424,7 +427,7 @@ int main(int argc, char** argv) {
   }
   if (Status s = writeBenchResults(result.value(), outDir); !s) {
     std::cerr << "sslr-bench: " << s.message() << "\n";
-    return 1;
+    return s.code() == StatusCode::InvalidInput ? 2 : 1;  // a target that is no regular file: refused
   }
   printRuns(result.value(), bo);
   printFastest(result.value());

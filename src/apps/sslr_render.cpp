@@ -67,8 +67,20 @@ void parseSize(const std::string& text, int& w, int& h) {
 
 // --out must be a directory we can write to: checked (and created) before any rendering, so a
 // typo or a read-only place costs no render and leaves nothing behind.
-void checkOutputDirectory(const fs::path& dir) {
+// Its final image, too, may not be a device, fifo or socket; the other files are checked when they
+// are written (writeFiles refuses them all, exit 2).
+void checkOutputDirectory(const fs::path& dir, int views) {
   if (Status s = prepareOutputDirectory(dir.string()); !s) throw UsageError{"--out " + s.message()};
+  for (int v = 0; v < views; ++v) {
+    const fs::path final = dir / (views == 1 ? std::string("final.png") : "final-view" + std::to_string(v) + ".png");
+    if (Status s = checkReplaceable(final.string()); !s) throw UsageError{"--out: " + s.message()};
+  }
+}
+
+// A failed write: exit 2 where a target was refused (not a regular file), 1 otherwise.
+int writeFailed(const Status& s) {
+  std::cerr << "sslr-render: " << s.message() << "\n";
+  return s.code() == StatusCode::InvalidInput ? kExitUsage : kExitFailure;
 }
 
 // What a size needs, estimated before anything is allocated: on llvmpipe every texture lives in
@@ -445,10 +457,8 @@ int exportGltf(const RenderJob& job, const std::string& file) {
     std::cerr << "sslr-render: --export-gltf: " << text.error() << "\n";
     return kExitUsage;
   }
-  if (Status st = writeFiles({{file, std::vector<unsigned char>(text.value().begin(), text.value().end())}}); !st) {
-    std::cerr << "sslr-render: " << st.message() << "\n";
-    return kExitFailure;
-  }
+  if (Status st = writeFiles({{file, std::vector<unsigned char>(text.value().begin(), text.value().end())}}); !st)
+    return writeFailed(st);
   std::cout << "wrote " << file << "\n";
   return 0;
 }
@@ -724,10 +734,7 @@ int renderViews(const RenderJob& job, HeadlessContext& gl) {
     std::cerr << "sslr-render: " << gl.glErrorCount() << " GL error(s) were reported; no output written\n";
     return kExitFailure;
   }
-  if (Status s = writeImages(files, job.outDir); !s) {
-    std::cerr << "sslr-render: " << s.message() << "\n";
-    return kExitFailure;
-  }
+  if (Status s = writeImages(files, job.outDir); !s) return writeFailed(s);
   std::cout << "sslr-render: " << job.scene.name << " " << job.views << " views of " << job.gopt.width << "x"
             << job.gopt.height << " (" << toString(job.gopt.depth) << " depth, " << job.scene.triangleCount()
             << " triangles) -> " << (job.outDir / "final-view0.png").string() << " .. final-view" << job.views - 1
@@ -783,10 +790,7 @@ int render(const RenderJob& job) {
     std::cerr << "sslr-render: " << gl.value()->glErrorCount() << " GL error(s) were reported; no output written\n";
     return kExitFailure;
   }
-  if (Status s = writeImages(files, job.outDir); !s) {
-    std::cerr << "sslr-render: " << s.message() << "\n";
-    return kExitFailure;
-  }
+  if (Status s = writeImages(files, job.outDir); !s) return writeFailed(s);
   std::cout << "sslr-render: " << job.scene.name << " " << job.gopt.width << "x" << job.gopt.height << " ("
             << toString(job.gopt.depth) << " depth, " << job.scene.triangleCount() << " triangles) -> "
             << (job.outDir / "final.png").string() << (job.dump ? " + buffers" : "") << "\n";
@@ -832,7 +836,7 @@ int run(int argc, char** argv) {
       return exportGltf(job, file);
     }
     if (Status st = HeadlessContext::checkDevice(job.device); !st) throw UsageError{"--device: " + st.message()};
-    checkOutputDirectory(job.outDir);
+    checkOutputDirectory(job.outDir, job.views);
   } catch (const UsageError& e) {
     std::cerr << "sslr-render: " << e.message << "\n";
     return kExitUsage;

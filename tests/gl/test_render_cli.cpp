@@ -10,6 +10,7 @@
 #include <csignal>
 #include <fcntl.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -541,6 +542,50 @@ TEST_F(RenderCli, OutputsReplaceLinksInsteadOfWritingThroughThem) {
   EXPECT_FALSE(fs::is_symlink(out / "final.png"));
   EXPECT_TRUE(fs::is_regular_file(out / "final.png"));
   EXPECT_EQ(filesIn(out), std::vector<std::string>{"final.png"});
+}
+
+// A target that exists and is not a regular file (a fifo; a link to a character device) is refused
+// with exit 2 and left as it was: --export-gltf and --out's final image before any work, a dumped
+// buffer when the files are written (all of them refused then, none replaced), sslr-bench's
+// results before it runs.
+TEST_F(RenderCli, OutputsThatAreNotRegularFilesAreRefusedAndKept) {
+  const fs::path dir = freshDir("not-regular");
+  fs::create_directories(dir / "out");
+  const fs::path fifo = dir / "scene.gltf", device = dir / "null.gltf";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  fs::create_symlink("/dev/null", device);
+  auto untouched = [](const fs::path& p) { return fs::is_fifo(fs::symlink_status(p)); };
+  Result r = run("--export-gltf " + fifo.string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find(fifo.string() + " exists and is a fifo"), std::string::npos) << r.output;
+  EXPECT_TRUE(untouched(fifo));
+  r = run("--export-gltf " + device.string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("is a character device"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::is_symlink(device));
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  // final.png a fifo: refused before rendering.
+  ASSERT_EQ(::mkfifo((dir / "out" / "final.png").c_str(), 0600), 0);
+  r = run("--size 32x18 --out " + (dir / "out").string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("final.png exists and is a fifo"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("sslr-render: mirror-room"), std::string::npos) << "nothing may be rendered: " << r.output;
+  EXPECT_TRUE(untouched(dir / "out" / "final.png"));
+  // depth.exr a fifo: refused when written, and final.png (a regular file now) not written either.
+  fs::remove(dir / "out" / "final.png");
+  ASSERT_EQ(::mkfifo((dir / "out" / "depth.exr").c_str(), 0600), 0);
+  r = run("--size 32x18 --dump --out " + (dir / "out").string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_TRUE(untouched(dir / "out" / "depth.exr"));
+  EXPECT_EQ(filesIn(dir / "out"), std::vector<std::string>{"depth.exr"}) << "nothing else written, no temporary left";
+  // sslr-bench's results.csv a fifo: refused before any run.
+  fs::create_directories(dir / "bench");
+  ASSERT_EQ(::mkfifo((dir / "bench" / "results.csv").c_str(), 0600), 0);
+  r = sslr::test::runShell(std::string(SSLR_BENCH_EXE) + " --scenes mirror-room --size 32x18 --out " +
+                           (dir / "bench").string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("results.csv exists and is a fifo"), std::string::npos) << r.output;
+  EXPECT_TRUE(untouched(dir / "bench" / "results.csv"));
 }
 
 TEST_F(RenderCli, ConcurrentRunsIntoOneFolderAllSucceed) {

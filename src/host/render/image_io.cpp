@@ -199,12 +199,28 @@ Status prepareOutputDirectory(const std::string& dir) {
   return {};
 }
 
+Status checkReplaceable(const std::string& file) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status target = fs::status(file, ec);  // through a link: what it points to
+  if (!fs::exists(target) || fs::is_regular_file(target)) return {};
+  const char* what = fs::is_directory(target)  ? "a directory"
+                     : fs::is_fifo(target)      ? "a fifo"
+                     : fs::is_character_file(target) ? "a character device"
+                     : fs::is_block_file(target)     ? "a block device"
+                     : fs::is_socket(target)         ? "a socket"
+                                                     : "not a regular file";
+  return Status::error(StatusCode::InvalidInput,
+                       file + " exists and is " + what + ": refused, nothing written (name a new or regular file)");
+}
+
 Status checkOutputFile(const std::string& file) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::path path(file);
   if (file.empty()) return Status::error("the file name is empty");
   if (fs::is_directory(path, ec)) return Status::error(file + " is a directory: name a file");
+  if (Status s = checkReplaceable(file); !s) return s;
   const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
   if (!fs::is_directory(parent, ec)) return Status::error(file + ": its directory " + parent.string() + " does not exist");
   if (Status s = probeWritableDirectory(parent.string()); !s)
@@ -239,6 +255,13 @@ Status writeFiles(const std::vector<std::pair<std::string, std::vector<unsigned 
                            std::to_string(bytes.size()) + " bytes: " + why + " (nothing was written)");
     }
   }
+  // Nothing but regular files (or links to them) is replaced: not a device, a fifo or a socket
+  // that took the name since the tool checked it.
+  for (const auto& file : files)
+    if (Status s = checkReplaceable(file.first); !s) {
+      discard();
+      return s;
+    }
   // rename() replaces a link at the destination itself, never the file it points to.
   for (size_t i = 0; i < files.size(); ++i) {
     std::unique_lock<std::mutex> lock(gTempMutex);

@@ -42,7 +42,8 @@ Expected<std::vector<unsigned char>> encodeImage(const std::string& path, const 
 // Writes every file under a temporary name of its own (a hidden, unique name beside it, created
 // with O_CREAT | O_EXCL | O_NOFOLLOW), checking each write, then renames them all into place; on
 // any failure every temporary is removed and no file is touched. A link at a destination is
-// replaced, never followed.
+// replaced, never followed. A destination that exists and is not a regular file (or a link to one)
+// refuses the whole set (checkReplaceable).
 Status writeFiles(const std::vector<std::pair<std::string, std::vector<unsigned char>>>& files);
 Status writeTextFile(const std::string& path, const std::string& text);
 // Creates and removes a uniquely named file in `dir`: "" if the tools can write there.
@@ -50,7 +51,11 @@ Status probeWritableDirectory(const std::string& dir);
 // An output directory, checked before any work: created if missing, refused (with a message
 // beginning with `dir`) if it is a file, a dangling link, or not writable.
 Status prepareOutputDirectory(const std::string& dir);
-// An output file, checked before any work: not a directory, in an existing, writable directory.
+// "" if writing `file` would replace nothing or a regular file (through a link: what it points to);
+// else StatusCode::InvalidInput, naming what is there (a device, a fifo, a socket, a directory).
+Status checkReplaceable(const std::string& file);
+// An output file, checked before any work: not a directory, nor anything else checkReplaceable
+// refuses, in an existing, writable directory.
 Status checkOutputFile(const std::string& file);
 // SIGINT, SIGTERM, SIGHUP and SIGXFSZ (a file size limit reached mid-write) remove the temporaries
 // being written, then end the process as the signal would have. The first three are blocked in
