@@ -1662,6 +1662,82 @@ TEST_F(Api, CompositeRefusesATargetSmallerThanTheContext) {
   glDeleteTextures(1, &small);
 }
 
+// Host framebuffers as hosts make them: an unsized GL_RGBA texture (glTexImage2D) or renderbuffer
+// is prepared and composited into; integer targets (GL leaves a blended draw into them undefined)
+// and a texture or renderbuffer deleted while attached are refused by both, named; no call leaves a
+// GL error of its own.
+TEST_F(Api, PrepareAndCompositeTakeUnsizedTargetsAndRefuseIntegerAndDeletedOnes) {
+  auto ctx = makeContext();
+  Frame f;
+  auto texture = [](GLenum internalFormat, GLenum format, GLenum type) {
+    GLuint t = 0;
+    glGenTextures(1, &t);
+    glBindTexture(GL_TEXTURE_2D, t);
+    glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internalFormat), W, H, 0, format, type, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    return t;
+  };
+  auto renderbuffer = [](GLenum internalFormat) {
+    GLuint r = 0;
+    glCreateRenderbuffers(1, &r);
+    glNamedRenderbufferStorage(r, internalFormat, W, H);
+    return r;
+  };
+  auto framebufferOf = [](GLuint image, bool isTexture) {
+    GLuint fbo = 0;
+    glCreateFramebuffers(1, &fbo);
+    if (isTexture) glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, image, 0);
+    else glNamedFramebufferRenderbuffer(fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, image);
+    return fbo;
+  };
+  auto both = [&](GLuint fbo) {
+    PrepareOptions warm;
+    warm.composite = true;
+    warm.framebuffer = fbo;
+    Status prepared = ctx->prepare(f.gbuffer->frameInputs(), Settings{}, warm);
+    EXPECT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), Settings{}));  // prepare() leaves no frame
+    return std::pair{prepared, ctx->composite(fbo)};
+  };
+  ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  for (bool isTexture : {true, false}) {
+    const GLuint image = isTexture ? texture(GL_RGBA, GL_RGBA, GL_UNSIGNED_BYTE) : renderbuffer(GL_RGBA);
+    const GLuint fbo = framebufferOf(image, isTexture);
+    ASSERT_EQ(glCheckNamedFramebufferStatus(fbo, GL_DRAW_FRAMEBUFFER), static_cast<GLenum>(GL_FRAMEBUFFER_COMPLETE));
+    const auto [prepared, composited] = both(fbo);
+    EXPECT_TRUE(prepared) << (isTexture ? "unsized texture: " : "unsized renderbuffer: ") << prepared.message();
+    EXPECT_TRUE(composited) << composited.message();
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR)) << (isTexture ? "texture" : "renderbuffer");
+    glDeleteFramebuffers(1, &fbo);
+    isTexture ? glDeleteTextures(1, &image) : glDeleteRenderbuffers(1, &image);
+  }
+  for (bool isTexture : {true, false}) {
+    const GLuint image = isTexture ? texture(GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT) : renderbuffer(GL_RGBA8I);
+    const GLuint fbo = framebufferOf(image, isTexture);
+    const auto [prepared, composited] = both(fbo);
+    for (const Status* st : {&prepared, &composited}) {
+      ASSERT_FALSE(*st) << (isTexture ? "RGBA32UI" : "RGBA8I");
+      EXPECT_EQ(st->code(), StatusCode::InvalidInput);
+      EXPECT_NE(st->message().find("holds integers"), std::string::npos) << st->message();
+    }
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    glDeleteFramebuffers(1, &fbo);
+    isTexture ? glDeleteTextures(1, &image) : glDeleteRenderbuffers(1, &image);
+  }
+  for (bool isTexture : {true, false}) {
+    GLuint image = isTexture ? makeTexture(GL_RGBA8, W, H) : renderbuffer(GL_RGBA8);
+    const GLuint fbo = framebufferOf(image, isTexture);  // not bound: deleting keeps it attached
+    isTexture ? glDeleteTextures(1, &image) : glDeleteRenderbuffers(1, &image);
+    const auto [prepared, composited] = both(fbo);
+    for (const Status* st : {&prepared, &composited}) {
+      if (!*st) EXPECT_NE(st->message().find("was deleted"), std::string::npos) << st->message();
+      else ADD_FAILURE() << "a deleted " << (isTexture ? "texture" : "renderbuffer") << " was accepted";
+    }
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR)) << (isTexture ? "texture" : "renderbuffer");
+    glDeleteFramebuffers(1, &fbo);
+  }
+}
+
 TEST_F(Api, CallsWithoutACurrentContextSaySo) {
   auto ctx = makeContext();
   Frame f;

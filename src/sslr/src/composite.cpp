@@ -17,6 +17,14 @@ Context::Impl::DrawImage Context::Impl::drawBuffer0Image(GLName framebuffer) con
   };
   parameter(GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &image.type);
   parameter(GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME, &image.name);
+  // A name deleted while attached to a framebuffer that was not bound stays attached, but queries
+  // by that name fail (GL_INVALID_OPERATION): asked first.
+  const GLuint name = static_cast<GLuint>(image.name);
+  image.deleted = (image.type == GL_TEXTURE && !gl.IsTexture(name)) ||
+                  (image.type == GL_RENDERBUFFER && !gl.IsRenderbuffer(name));
+  if (image.deleted) return image;
+  if (image.type == GL_TEXTURE || image.type == GL_RENDERBUFFER)
+    parameter(GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &image.componentType);
   if (image.type == GL_TEXTURE) {
     parameter(GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL, &image.level);
     gl.GetTextureLevelParameteriv(static_cast<GLuint>(image.name), image.level, GL_TEXTURE_WIDTH, &image.width);
@@ -30,24 +38,59 @@ Context::Impl::DrawImage Context::Impl::drawBuffer0Image(GLName framebuffer) con
   return image;
 }
 
-// The image draw buffer 0 of `framebuffer` writes must cover the context's size: a smaller one
-// would get only part of the reflection. (The default framebuffer's size is the window system's,
-// which GL does not report: it is the host's to match.)
+std::string Context::Impl::drawImageProblem(const DrawImage& image) const {
+  if (image.type != GL_TEXTURE && image.type != GL_RENDERBUFFER) return "";
+  const std::string what =
+      std::string(image.type == GL_TEXTURE ? "texture " : "renderbuffer ") + std::to_string(image.name);
+  if (image.deleted) return "draw buffer 0's " + what + " was deleted while attached";
+  if (image.componentType == GL_INT || image.componentType == GL_UNSIGNED_INT)
+    return "draw buffer 0 (" + what + ", internal format " + std::to_string(image.format) +
+           ") holds integers, which the composite's blended draw cannot write";
+  return "";
+}
+
+// The image draw buffer 0 of `framebuffer` writes must be a live, non-integer image covering the
+// context's size: a smaller one would get only part of the reflection. (The default framebuffer's
+// size is the window system's, which GL does not report: it is the host's to match.)
 Status Context::Impl::checkCompositeTarget(GLName framebuffer) const {
   if (framebuffer == 0) return {};
   const DrawImage image = drawBuffer0Image(framebuffer);  // (bound by composite())
   if (image.attachment == GL_NONE)
     return Status::error(StatusCode::InvalidInput, "sslr: composite(): framebuffer " + std::to_string(framebuffer) +
                          " has no image on draw buffer 0, where the reflection is written");
+  const std::string fb = "sslr: composite(): framebuffer " + std::to_string(framebuffer) + "'s ";
+  if (const std::string problem = drawImageProblem(image); !problem.empty())
+    return Status::error(StatusCode::InvalidInput, fb + problem);
   if (image.type != GL_TEXTURE && image.type != GL_RENDERBUFFER) return {};
-  const GLint type = image.type, name = image.name, w = image.width, h = image.height;
-  if (w < width || h < height)
-    return Status::error(StatusCode::InvalidInput, "sslr: composite(): framebuffer " + std::to_string(framebuffer) + "'s draw buffer 0 (" +
-                         (type == GL_TEXTURE ? "texture " : "renderbuffer ") + std::to_string(name) + ") is " +
-                         std::to_string(w) + "x" + std::to_string(h) + ", smaller than the context's " +
-                         std::to_string(width) + "x" + std::to_string(height));
+  if (image.width < width || image.height < height)
+    return Status::error(StatusCode::InvalidInput,
+                         fb + "draw buffer 0 (" + (image.type == GL_TEXTURE ? "texture " : "renderbuffer ") +
+                             std::to_string(image.name) + ") is " + std::to_string(image.width) + "x" +
+                             std::to_string(image.height) + ", smaller than the context's " + std::to_string(width) +
+                             "x" + std::to_string(height));
   return {};
 }
+
+// A sized format prepare()'s scratch target can be made with (glTextureStorage2D takes sized
+// formats only): the host's own where it is one of GL's colour-renderable sized formats, the
+// 8-bit one of an unsized base format (glTexImage2D's GL_RGBA), else one of the same component
+// type (the draw's machine code depends on the target's type and blending more than its size).
+namespace {
+GLenum scratchFormat(GLint format, GLint componentType) {
+  switch (format) {
+    case GL_R8: case GL_RG8: case GL_RGB8: case GL_RGBA8: case GL_SRGB8_ALPHA8: case GL_R16: case GL_RG16:
+    case GL_RGBA16: case GL_RGB10_A2: case GL_RGB5_A1: case GL_RGBA4: case GL_RGB565: case GL_R11F_G11F_B10F:
+    case GL_R16F: case GL_RG16F: case GL_RGBA16F: case GL_R32F: case GL_RG32F: case GL_RGBA32F:
+      return static_cast<GLenum>(format);
+    case GL_RED: return GL_R8;
+    case GL_RG: return GL_RG8;
+    case GL_RGB: return GL_RGB8;
+    case GL_RGBA: return GL_RGBA8;
+    case GL_SRGB: case GL_SRGB_ALPHA: case GL_SRGB8: return GL_SRGB8_ALPHA8;
+    default: return componentType == GL_FLOAT ? GL_RGBA16F : GL_RGBA8;
+  }
+}
+}  // namespace
 
 // The composite's program: added (the default), or the fallback's draw (BlendOverFallback).
 Expected<GLuint> Context::Impl::compositeProgram(bool overFallback) {
@@ -180,7 +223,10 @@ Status Context::Impl::warmUpComposite(const PrepareOptions& options) {
     if (image.type != GL_TEXTURE && image.type != GL_RENDERBUFFER)
       return Status::error(StatusCode::InvalidInput, "sslr: prepare(): PrepareOptions::framebuffer " +
                            std::to_string(options.framebuffer) + " has no image on draw buffer 0");
-    format = image.format;
+    if (const std::string problem = drawImageProblem(image); !problem.empty())
+      return Status::error(StatusCode::InvalidInput, "sslr: prepare(): PrepareOptions::framebuffer " +
+                           std::to_string(options.framebuffer) + "'s " + problem);
+    format = static_cast<GLint>(scratchFormat(image.format, image.componentType));
   }
   auto addProgram = compositeProgram(false);
   if (!addProgram) return addProgram.status();

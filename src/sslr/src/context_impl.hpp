@@ -301,7 +301,12 @@ struct Context::Impl {
   Status checkCompositeTarget(GLName framebuffer) const;
   struct DrawImage {
     GLint attachment = GL_NONE, type = GL_NONE, name = 0, level = 0, width = 0, height = 0, format = GL_NONE;
+    GLint componentType = GL_NONE;  // GL_FLOAT, GL_UNSIGNED_NORMALIZED, GL_INT, ...
+    bool deleted = false;           // its texture or renderbuffer name was deleted while attached
   };
+  // The image's problem for composite() to draw into it ("" if none): deleted, or integer (GL
+  // leaves a blended draw into it undefined).
+  std::string drawImageProblem(const DrawImage& image) const;
   DrawImage drawBuffer0Image(GLName framebuffer) const;
   Expected<GLuint> compositeProgram(bool overFallback);
   // An error when no GL context is current on the calling thread (every GL call would then be

@@ -40,6 +40,7 @@ namespace sslr::detail {
   X(PFNGLGETFLOATVPROC, GetFloatv)                                               \
   X(PFNGLISTEXTUREPROC, IsTexture)                                               \
   X(PFNGLISFRAMEBUFFERPROC, IsFramebuffer)                                       \
+  X(PFNGLISRENDERBUFFERPROC, IsRenderbuffer)                                     \
   X(PFNGLCREATETEXTURESPROC, CreateTextures)                                     \
   X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                     \
   X(PFNGLTEXTURESTORAGE2DPROC, TextureStorage2D)                                 \
