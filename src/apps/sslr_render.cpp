@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cerrno>
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include <iostream>
 #include <optional>
 #include <sstream>
+#include <type_traits>
 
 #include "sslr_host/cost_model.hpp"
 #include "sslr_host/egl_context.hpp"
@@ -87,9 +89,9 @@ int writeFailed(const Status& s) {
 // system memory. Per pixel: G-buffer 16 B (+16 position) and the final RGBA8/RGBA16F targets,
 // sslr's targets 51 B (reflection, blur, resolved, hit, iterations, pyramid, the deferred
 // traversal's pixel list), the read-back float images and their encoded files (~30 B; ~250 B
-// more with --dump).
-void checkMemory(int width, int height, bool dump) {
-  const double pixels = double(width) * height;
+// more with --dump); each of --views N has all of it (a layer of every target, its own image).
+void checkMemory(int width, int height, int views, bool dump) {
+  const double pixels = double(width) * height * views;
   const double need = pixels * (16.0 + 16.0 + 16.0 + 51.0 + 30.0 + (dump ? 250.0 : 0.0));
   std::ifstream meminfo("/proc/meminfo");
   std::string key;
@@ -104,8 +106,9 @@ void checkMemory(int width, int height, bool dump) {
   if (availableKiB > 0.0 && need > 0.8 * availableKiB * 1024.0) {
     char text[256];
     std::snprintf(text, sizeof text,
-                  "--size %dx%d needs about %.1f GiB%s; %.1f GiB of memory are available (use a smaller size)",
-                  width, height, need / double(1 << 30), dump ? " with --dump" : "", availableKiB / double(1 << 20));
+                  "--size %dx%d%s needs about %.1f GiB%s; %.1f GiB of memory are available (use a smaller size)",
+                  width, height, views > 1 ? (" x " + std::to_string(views) + " views").c_str() : "",
+                  need / double(1 << 30), dump ? " with --dump" : "", availableKiB / double(1 << 20));
     throw UsageError{text};
   }
 }
@@ -138,9 +141,15 @@ template <typename T>
 void numberOption(const cxxopts::ParseResult& args, const char* name, const char* kind, T& field) {
   if (!args.count(name)) return;
   const std::string text = args[name].as<std::string>();
-  std::istringstream in(text);
-  if (!(in >> field) || !in.eof())
-    throw UsageError{"--" + std::string(name) + " expects " + kind + " (got '" + text + "')"};
+  bool parsed = false;
+  if constexpr (std::is_floating_point_v<T>) {  // "inf" and "nan" too, as the API takes them: validate() judges
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), field);
+    parsed = error == std::errc() && end == text.data() + text.size() && !text.empty();
+  } else {
+    std::istringstream in(text);
+    parsed = static_cast<bool>(in >> field) && in.eof();
+  }
+  if (!parsed) throw UsageError{"--" + std::string(name) + " expects " + kind + " (got '" + text + "')"};
 }
 
 Settings parseSettings(const cxxopts::ParseResult& args) {
@@ -340,7 +349,6 @@ void parseViews(const cxxopts::ParseResult& args, RenderJob& job) {
 // The G-buffer layout, the tracer and its settings (throws UsageError).
 void parseTracing(const cxxopts::ParseResult& args, RenderJob& job) {
   parseSize(args["size"].as<std::string>(), job.gopt.width, job.gopt.height);
-  checkMemory(job.gopt.width, job.gopt.height, job.dump);
   if (!parseDepthMode(args["depth"].as<std::string>(), job.gopt.depth))
     throw UsageError{"--depth must be reversed, reversed-infinite, zero-to-one or gl-default (got '" +
                      args["depth"].as<std::string>() + "')"};
@@ -412,6 +420,7 @@ void parseTracing(const cxxopts::ParseResult& args, RenderJob& job) {
   if (job.frames < 1 || job.frames > 10000)
     throw UsageError{"--frames must be 1..10000 (got " + std::to_string(job.frames) + ")"};
   parseViews(args, job);
+  checkMemory(job.gopt.width, job.gopt.height, job.views, job.dump);
 }
 
 // The scene (loaded, staged) and the camera (throws UsageError).
@@ -446,6 +455,10 @@ void parseScene(const cxxopts::ParseResult& args, RenderJob& job) {
     camera.orthoHeight = parsePositive("ortho", args["ortho"].as<std::string>());
   }
   if (std::string why = camera.validate(); !why.empty()) throw UsageError{"camera: " + why};
+  if (job.views > 1)  // each eye, --eye-separation apart, must be a camera too
+    for (const Camera& eye : sideBySideCameras(camera, job.views, job.eyeSeparation))
+      if (std::string why = eye.validate(); !why.empty())
+        throw UsageError{(std::ostringstream() << "--eye-separation " << job.eyeSeparation << ": an eye's camera: " << why).str()};
 }
 
 // --export-gltf: the scene with the camera as given, instead of rendering.

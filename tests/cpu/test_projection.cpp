@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "projection.hpp"
 #include "sslr/reference.hpp"
@@ -200,6 +201,25 @@ TEST(Projection, UnknownEnumerationsAndBadExposuresAreRefused) {
     EXPECT_EQ(r.status().code(), StatusCode::InvalidInput);
     EXPECT_NE(r.error().find(b.expected), std::string::npos) << r.error();
   }
+}
+
+// The radiance clamp's limit is divided by the exposure: a tiny limit over a huge exposure is still
+// a limit (the smallest normal float), never 0, which reads as "off"; off stays 0.
+TEST(Projection, ARadianceClampThatUnderflowsStaysOn) {
+  Camera cam;
+  FrameInputs in;
+  in.clipFromView = cam.clipFromView(DepthMode::Reversed, 1.5);
+  in.depth = DepthConvention::reversed();
+  in.exposure = 1e30f;
+  Settings s;
+  s.radianceClamp.maxLuminance = 1e-30f;
+  auto r = frameConstants(in, s, 64, 64);
+  ASSERT_TRUE(r) << r.error();
+  EXPECT_EQ(r.value().trace.maxHitLuminance, std::numeric_limits<float>::min());
+  s.radianceClamp.maxLuminance = 0.0f;
+  r = frameConstants(in, s, 64, 64);
+  ASSERT_TRUE(r) << r.error();
+  EXPECT_EQ(r.value().trace.maxHitLuminance, 0.0f);
 }
 
 TEST(Projection, RejectsNearEqualsFarAndConventionMismatch) {

@@ -245,6 +245,10 @@ TEST_F(MultiView, BadViewsAreRefusedWithWhatIsWrong) {
   mixed = views->layeredInputs;
   mixed[1].historyReset = true;
   refused(mixed, "historyReset differs");
+  // Another exposure, with the radiance clamp off (the default), where the uniform block holds none.
+  mixed = views->layeredInputs;
+  mixed[1].exposure = 2.0f;
+  refused(mixed, "views[1] exposure 2.000000 differs from views[0]'s 1.000000");
   // A bad projection names its view.
   mixed = views->layeredInputs;
   mixed[1].clipFromView = glm::dmat4(0.0);

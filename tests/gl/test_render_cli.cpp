@@ -104,6 +104,8 @@ TEST(RenderCliNoGl, BadArgumentsExitTwoWithAMessageAndWriteNothing) {
       {"--views 2 --eye-separation -1", "--eye-separation expects a positive number"},
       {"--views 2 --dump", "--dump and --score need one view"},
       {"--views 2 --score", "--dump and --score need one view"},
+      {"--views 2 --eye-separation 1e16", "--eye-separation 1e+16: an eye's camera: camera eye/target lie"},
+      {"--hidden-passage nan", "traversal.hiddenPassageLimitPx = nan"},
   };
   for (const auto& c : cases) {
     const fs::path out = freshDir("bad");
@@ -512,6 +514,26 @@ TEST(RenderCliNoGl, SizeThatCannotFitInMemoryIsRefusedWithAnEstimate) {
   EXPECT_FALSE(fs::exists(fs::path(SSLR_TEST_TMP) / "cli" / "huge"));
 }
 
+
+// --views N: every view has its own layer of every target and its own read-back image, so the
+// estimate is N times one view's. A size of which one view would need a third of the available
+// memory is refused for four views (that run once peaked at 2.8x one view's memory, unchecked).
+TEST(RenderCliNoGl, ViewsCountInTheMemoryEstimate) {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  double availableKiB = 0.0;
+  while (meminfo >> key)
+    if (key == "MemAvailable:" && meminfo >> availableKiB) break;
+  ASSERT_GT(availableKiB, 0.0);
+  const double onePixel = 16.0 + 16.0 + 16.0 + 51.0 + 30.0;  // sslr-render's estimate per pixel and view
+  const int side = static_cast<int>(std::sqrt(availableKiB * 1024.0 / 3.0 / onePixel));
+  if (side > 16384) GTEST_SKIP() << "this machine has " << availableKiB / 1048576.0 << " GiB available";
+  const std::string size = std::to_string(side) + "x" + std::to_string(side);
+  const Result r = run("--size " + size + " --views 4 --out " + freshDir("huge-views").string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("--size " + size + " x 4 views needs about"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(fs::path(SSLR_TEST_TMP) / "cli" / "huge-views"));
+}
 }  // namespace
 
 namespace {

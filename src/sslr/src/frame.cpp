@@ -83,6 +83,10 @@ Status Context::Impl::viewConstants(std::span<const FrameInputs> in, const Setti
                              ": every view reads its layer of the same 2D array textures");
     if (a.historyReset != b.historyReset)
       return Status::error(StatusCode::InvalidInput, which + "historyReset differs from views[0]'s: the views share one history");
+    // Asked apart: the uniform block holds the exposure only where the radiance clamp reads it.
+    if (a.exposure != b.exposure)
+      return Status::error(StatusCode::InvalidInput, which + "exposure " + std::to_string(b.exposure) + " differs from views[0]'s " +
+                           std::to_string(a.exposure) + ": the views share one exposure");
     // What the plan and the programs are built from must agree: all but the normal transform
     // (world normals: each view's viewFromWorld) and the projection.
     shared::SslrSurface sa = constants.surface, sb = c.value().surface;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 
 #include "projection.hpp"
@@ -99,7 +100,11 @@ void traceConstants(const FrameInputs& in, const Settings& s, int width, int hei
   t.outputRadiance = s.output == OutputMode::Radiance ? 1 : 0;
   t.stochasticFrom = s.glossy.mode == GlossyMode::Stochastic ? s.glossy.stochasticFrom : SSLR_NO_STOCHASTIC_RAYS;
   // The limit is in display units (luminance x exposure): in the colour texture's, / exposure.
-  t.maxHitLuminance = s.radianceClamp.maxLuminance > 0.0f ? s.radianceClamp.maxLuminance / in.exposure : 0.0f;
+  // A limit too small for a float after the division stays a limit (the smallest normal float),
+  // not 0, which would turn the clamp off.
+  t.maxHitLuminance = s.radianceClamp.maxLuminance > 0.0f
+                          ? std::max(s.radianceClamp.maxLuminance / in.exposure, std::numeric_limits<float>::min())
+                          : 0.0f;
   t.outlineThinning = s.traversal.outlineThinning ? 1 : 0;
   // A measured thickness (back-face depth) replaces the curved solids' estimate.
   t.curvedSolids = s.traversal.curvedSolids && in.backDepthTexture == 0 && s.method != Method::FidelityFxSssr ? 1 : 0;
