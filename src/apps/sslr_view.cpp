@@ -73,6 +73,8 @@ int main(int argc, char** argv) {
     vo.hideUi = args.count("hide-ui") > 0;
     vo.stereo = args.count("stereo") > 0;
     if (vo.stereo && args.count("split")) throw std::runtime_error("--stereo and --split exclude each other");
+    if (vo.stereo && vo.debugView != "final")  // the window shows the eyes' final images only
+      throw std::runtime_error("--stereo shows the eyes' final images: --view " + vo.debugView + " needs one view");
   } catch (const std::exception& e) {
     std::cerr << "sslr-view: " << e.what() << "\nTry 'sslr-view --help'.\n";
     return 2;

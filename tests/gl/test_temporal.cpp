@@ -164,9 +164,25 @@ TEST_F(Temporal, MissingOrBadInputsAreRefused) {
   FrameInputs in = q.gbuffer->frameInputs();
   Settings s;
   s.temporal.enabled = true;
+  // All zeros says "no previous frame": taken on the first frame and after a reset, where none
+  // exists (nothing is reprojected), refused once a history does.
   Status st = q.ctx->dispatch(in, s);
+  ASSERT_TRUE(st) << "the first temporal frame has no previous one: " << st.message();
+  {
+    Sequence given;  // the same first frame, given its own projection as the previous one
+    ASSERT_TRUE(given.gbuffer->render(*given.gpu, given.camera));
+    FrameInputs own = given.gbuffer->frameInputs();
+    own.previousClipFromView = own.clipFromView;
+    ASSERT_TRUE(given.ctx->dispatch(own, s));
+    EXPECT_EQ(q.resolved().pixels, given.resolved().pixels);
+  }
+  st = q.ctx->dispatch(in, s);
   ASSERT_FALSE(st);
   EXPECT_NE(st.message().find("previousClipFromView"), std::string::npos) << st.message();
+  in.historyReset = true;
+  st = q.ctx->dispatch(in, s);
+  EXPECT_TRUE(st) << "after a reset: " << st.message();
+  in.historyReset = false;
   in.previousClipFromView = in.clipFromView;
   in.previousClipFromView[1][1] = NAN;
   st = q.ctx->dispatch(in, s);

@@ -229,11 +229,14 @@ TEST_F(Viewer, NoDisplayAndBadArgumentsAreClearErrors) {
   EXPECT_EQ(noDisplay.exitCode, 1) << noDisplay.output;
   EXPECT_NE(noDisplay.output.find("no display"), std::string::npos) << noDisplay.output;
   EXPECT_NE(noDisplay.output.find("xvfb-run"), std::string::npos) << noDisplay.output;
-  for (const char* bad : {"--view bogus", "--split nothing", "--size 0x0", "--screenshot x.png", "--stereo --split dda"}) {
+  for (const char* bad : {"--view bogus", "--split nothing", "--size 0x0", "--screenshot x.png", "--stereo --split dda",
+                          "--stereo --view image-error"}) {
     const Result r = sh(std::string(SSLR_VIEW_EXE) + " " + bad);
     EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.output;
     EXPECT_NE(r.output.find("sslr-view:"), std::string::npos) << r.output;
   }
+  const Result stereoError = sh(std::string(SSLR_VIEW_EXE) + " --stereo --view image-error");
+  EXPECT_NE(stereoError.output.find("--view image-error needs one view"), std::string::npos) << stereoError.output;
   // A screenshot that cannot be written is refused before any window opens (no display needed).
   const struct {
     const char* args;

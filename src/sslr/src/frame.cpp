@@ -26,6 +26,15 @@ Status Context::Impl::dispatch(std::span<const FrameInputs> inputs, const Settin
   bool hadHistory = temporal.valid && !inputs.empty() && !inputs[0].historyReset;
   temporal.valid = false;
   if (Status s = checkCurrentContext("dispatch()"); !s) return s;
+  // Without a history (the first temporal frame, a reset) no previous frame exists: a host's
+  // all-zero previousClipFromView says so and is taken as this frame's own (nothing is reprojected).
+  std::vector<FrameInputs> firstFrame;
+  if (settings.temporal.enabled && !hadHistory) {
+    firstFrame.assign(inputs.begin(), inputs.end());
+    for (FrameInputs& view : firstFrame)
+      if (view.previousClipFromView == glm::dmat4(0.0)) view.previousClipFromView = view.clipFromView;
+    inputs = firstFrame;
+  }
   shared::SslrFrame constants{};
   std::vector<shared::SslrFrame> otherViews;
   if (Status s = viewConstants(inputs, settings, "dispatch()", constants, otherViews); !s) return s;

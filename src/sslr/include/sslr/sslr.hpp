@@ -15,8 +15,13 @@
 //
 // The library loads its own GL function table from the host's getProcAddress (no global gl*
 // symbols, no loader clash), owns only the objects it creates, and restores every piece of GL
-// state it touches (see docs/integration.md, "GL state").
+// state it touches (see docs/integration.md, "GL state"). C++20 (std::span, requires-expressions):
+// the CMake target sslr::sslr asks its users' compilers for it.
 #pragma once
+
+#if !defined(__cplusplus) || (__cplusplus < 202002L && !(defined(_MSVC_LANG) && _MSVC_LANG >= 202002L))
+#error "sslr/sslr.hpp needs C++20 (-std=c++20, /std:c++20, or link the CMake target sslr::sslr)"
+#endif
 
 #include <cstdint>
 #include <functional>
@@ -183,7 +188,8 @@ struct FrameInputs {
   glm::dmat4 viewFromWorld{0.0}; // NormalSpace::World only: the view matrix of the frame (all zeros = not given: an error then)
   // Settings::temporal only: where this frame's view-space points were in the previous frame's
   // clip space = previous clipFromView (its jitter included) x previous viewFromWorld x this
-  // frame's worldFromView (the inverse of viewFromWorld). All zeros = not given.
+  // frame's worldFromView (the inverse of viewFromWorld). All zeros = not given: taken where no
+  // previous frame exists (the context's first temporal frame, historyReset), refused after that.
   glm::dmat4 previousClipFromView{0.0};
   // Scene-to-display scale of colorTexture's values (an engine's exposure), for
   // Settings::radianceClamp's limit; finite, > 0.
