@@ -169,8 +169,15 @@ void parseGrid(const cxxopts::ParseResult& args, BenchOptions& bo) {
   positiveInt("warmup", bo.warmup, 0, 100);
   positiveInt("batch", bo.batch, 1, 64);
   if (args.count("size")) std::tie(bo.width, bo.height) = parseSizeOption(args["size"].as<std::string>(), "size", 8, 8192);
+  std::vector<std::string> identities;  // a file by its canonical path: two spellings, one scene
   for (const std::string& s : uniqueItems(args["scenes"].as<std::string>(), "scenes")) {
     if (auto check = loadScene(s); !check) throw std::runtime_error(check.error());
+    std::error_code ec;
+    const std::string identity = std::filesystem::exists(s, ec) ? std::filesystem::weakly_canonical(s, ec).string() : s;
+    for (size_t j = 0; j < identities.size(); ++j)
+      if (identities[j] == identity)
+        throw std::runtime_error("--scenes lists '" + bo.scenes[j] + "' and '" + s + "', the same scene");
+    identities.push_back(identity);
     bo.scenes.push_back(s);
   }
 }
@@ -432,6 +439,11 @@ int main(int argc, char** argv) {
   printRuns(result.value(), bo);
   printFastest(result.value());
   printStudies(result.value(), bo);
+  for (const SceneRecord& sr : result.value().scenes)
+    if (sr.showsNothing)
+      std::fprintf(stderr, "sslr-bench: warning: no pixel of the %dx%d frame shows %s: the geometry projects to nothing "
+                   "from its camera (a zero or tiny scale, degenerate triangles, or a camera looking away); its rows "
+                   "score the background alone\n", bo.width, bo.height, sr.scene.c_str());
   std::printf("timing: %s on %s\nwrote %s/results.json, %s/results.csv, %s/report/index.html\n",
               result.value().timingMethod.c_str(), renderer.c_str(), outDir.c_str(), outDir.c_str(), outDir.c_str());
   return 0;

@@ -683,10 +683,7 @@ void printScores(const Scores& scores) {
 // A frame in which no pixel shows the scene (a model scaled to nothing, a zero node scale, only
 // degenerate triangles, a camera looking away) renders the background alone: said, not silent.
 void warnIfNothingShows(const RenderJob& job, const GBuffer& gbuffer) {
-  const Image depth = gbuffer.readDepth();
-  const float clearDepth = gbuffer.frameInputs().depth.reversedZ ? 0.0f : 1.0f;
-  for (float d : depth.pixels)
-    if (d != clearDepth) return;
+  if (!gbuffer.showsNothing(gbuffer.readDepth())) return;
   std::cerr << "sslr-render: warning: no pixel of the " << job.gopt.width << "x" << job.gopt.height << " frame shows "
             << job.scene.name << " (" << job.scene.triangleCount() << " triangles): the geometry projects to nothing "
             << "from this camera (a zero or tiny scale, degenerate triangles, or a camera looking away); the images "

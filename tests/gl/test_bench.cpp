@@ -14,6 +14,7 @@
 #include <set>
 #include <utility>
 
+#include "common/gltf_writer.hpp"
 #include "common/shell.hpp"
 #include "gl/gl_fixture.hpp"
 #include "sslr_host/benchmark.hpp"
@@ -220,6 +221,43 @@ TEST_F(Bench, SceneFilesDuplicatesAndSwitchedOffOptions) {
         << r.args << ": " << log;
     EXPECT_NE(log.find(r.message), std::string::npos) << r.args << ": " << log;
   }
+}
+
+// A scene file deep in a long path runs (its report files get a shortened, hashed name), one that
+// shows nothing is warned of, and one file under two spellings is refused as the same scene.
+TEST_F(Bench, LongPathsEmptyScenesAndOneSceneSpelledTwice) {
+  const fs::path out = fs::path(SSLR_TEST_TMP) / "bench-long-path";
+  fs::remove_all(out);
+  const fs::path deep = out / std::string(200, 'd');
+  fs::create_directories(deep);
+  fs::copy_file(std::string(SSLR_SOURCE_DIR) + "/assets/scenes/sky-heavy.gltf", deep / "sky-heavy.gltf");
+  { std::ofstream(deep / "nothing.gltf") << sslr::test::meshGltf({0, 0, 0, 1, 0, 0, 2, 0, 0}, {0, 1, 2}); }
+  const std::string scenes = (deep / "sky-heavy.gltf").string() + "," + (deep / "nothing.gltf").string();
+  std::string log;
+  ASSERT_EQ(runCommand(std::string(SSLR_BENCH_EXE) + " --configs adaptive-l/high --scenes " + scenes +
+                           " --size 48x27 --frames 1 --no-curves --out " + (out / "run").string(),
+                       &log),
+            0)
+      << log;
+  EXPECT_NE(log.find("warning: no pixel of the 48x27 frame shows " + (deep / "nothing.gltf").string()), std::string::npos)
+      << log;
+  EXPECT_EQ(log.find("shows " + (deep / "sky-heavy.gltf").string()), std::string::npos) << log;
+  size_t truths = 0;
+  for (const auto& entry : fs::directory_iterator(out / "run" / "report")) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_LT(name.size(), 128u) << name;
+    truths += name.ends_with("-truth.png");
+  }
+  EXPECT_EQ(truths, 2u) << "one truth image a scene, under names of their own";
+  std::ifstream json(out / "run" / "results.json");
+  const auto j = nlohmann::json::parse(json);
+  ASSERT_EQ(j["scenes"].size(), 2u);
+  EXPECT_FALSE(j["scenes"][0]["showsNothing"].get<bool>());
+  EXPECT_TRUE(j["scenes"][1]["showsNothing"].get<bool>());
+  const std::string twice = (deep / "sky-heavy.gltf").string() + "," + (deep / "." / "sky-heavy.gltf").string();
+  EXPECT_EQ(runCommand(std::string(SSLR_BENCH_EXE) + " --scenes " + twice + " --out " + (out / "twice").string(), &log), 2)
+      << log;
+  EXPECT_NE(log.find("the same scene"), std::string::npos) << log;
 }
 
 // a name that selects nothing is refused before anything runs, and the error lists the grid.

@@ -3,11 +3,23 @@
 #include "sslr_host/benchmark.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstdio>
 #include <sstream>
 
 namespace sslr::host {
 
 std::string fileSlug(std::string name) {
+  // Long names (a scene's full path) keep their first 64 characters and a hash of the whole, so
+  // that a report file's name stays far below the file system's 255 bytes and unique.
+  constexpr size_t kKept = 64;
+  if (name.size() > kKept + 17) {
+    std::uint64_t hash = 1469598103934665603ull;  // FNV-1a
+    for (unsigned char c : name) hash = (hash ^ c) * 1099511628211ull;
+    char suffix[18];
+    std::snprintf(suffix, sizeof suffix, "-%016llx", static_cast<unsigned long long>(hash));
+    name = name.substr(0, kKept) + suffix;
+  }
   for (char& c : name)
     if (!std::isalnum(static_cast<unsigned char>(c))) c = '-';
   return name;

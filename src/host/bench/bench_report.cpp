@@ -399,7 +399,8 @@ json resultsJson(const BenchResult& result) {
                            {"positionErrorMaxRelative", num(s.positionErrorMaxRelative)},
                            {"hitAgreementDepthVsStored", num(s.hitAgreement)},
                            {"recall1pxDepth", num(s.recallDepth)},
-                           {"recall1pxStored", num(s.recallStored)}});
+                           {"recall1pxStored", num(s.recallStored)},
+                           {"showsNothing", s.showsNothing}});
   j["costCurves"] = json::array();
   for (const CurvePoint& p : result.curves)
     j["costCurves"].push_back({{"curve", p.curve},

@@ -431,6 +431,7 @@ Expected<BenchResult> runBenchmark(const BenchOptions& options, bool software, c
     const ReferenceImage reference = referenceComposite(sf.scene, *tracer.value(), gb, gt);
 
     SceneRecord sr = sceneRecordOf(sceneName, gt);
+    sr.showsNothing = gb.showsNothing(depth);
     measureRepresentations(sr, gt, sf, depth, normal, positions, options);
     const std::string prefix = fileSlug(sceneName);
     if (Status s = writeImage((fs::path(reportDir) / (prefix + "-truth.png")).string(), truthImage(gt, color)); !s)

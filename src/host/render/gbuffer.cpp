@@ -1,5 +1,7 @@
 #include "sslr_host/gbuffer.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 #include <cstring>
 
@@ -263,6 +265,11 @@ Image readTexture(GLuint texture, int width, int height, int channels, GLenum fo
 Image GBuffer::readColor() const { return readTexture(color_, width(), height(), 3); }
 Image GBuffer::readFallbackSpecular() const { return readTexture(fallback_, width(), height(), 3); }
 Image GBuffer::readNormalPacked() const { return readTexture(normal_, width(), height(), 4); }
+bool GBuffer::showsNothing(const Image& depth) const {
+  const float clearDepth = frameInputs().depth.reversedZ ? 0.0f : 1.0f;
+  return std::all_of(depth.pixels.begin(), depth.pixels.end(), [clearDepth](float d) { return d == clearDepth; });
+}
+
 Image GBuffer::readDepth() const { return readTexture(depth_, width(), height(), 1, GL_DEPTH_COMPONENT); }
 Image GBuffer::readBackDepth() const {
   return backDepth_ != 0 ? readTexture(backDepth_, width(), height(), 1, GL_DEPTH_COMPONENT) : Image{};

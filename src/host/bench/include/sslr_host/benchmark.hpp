@@ -101,6 +101,7 @@ struct SceneRecord {
   double positionErrorMedian = 0, positionErrorMax = 0, positionErrorMaxRelative = 0;
   double hitAgreement = 0;  // pixels whose hit decision and uv (within 1 px) agree
   double recallDepth = 0, recallStored = 0;
+  bool showsNothing = false;        // no pixel of the frame shows the scene (GBuffer::showsNothing)
   std::vector<std::string> images;  // image strip files, relative to the report folder
 };
 
@@ -182,7 +183,8 @@ std::vector<TemporalSummary> summarizeTemporal(const std::vector<TemporalPoint>&
 // below 0.1) made R rough; "name" as loadScene gives it.
 Expected<Scene> loadGlossyScene(const std::string& sceneSpec);
 
-// A name made safe for a file name: every character but letters and digits a '-'.
+// A name made safe for a file name: every character but letters and digits a '-'; past 81
+// characters, its first 64 and a hash of the whole (16 hex digits).
 std::string fileSlug(std::string name);
 
 std::vector<BenchConfig> benchGrid(const std::string& grid);

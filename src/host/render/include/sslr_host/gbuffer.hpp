@@ -92,6 +92,9 @@ class GBuffer {
   Image readPosition() const;      // RGBA32F position texture (withPosition only)
   Image readBackDepth() const;     // 1 channel, raw window depth of the nearest back face (withBackDepth only)
   Image readFallbackSpecular() const;  // RGB
+  // Whether no pixel shows the scene: every depth the clear value (`depth`: readDepth()'s). A
+  // model scaled to nothing, degenerate triangles or a camera looking away render the background.
+  bool showsNothing(const Image& depth) const;
 
  private:
   GBuffer() = default;
