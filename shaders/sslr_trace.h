@@ -210,10 +210,14 @@ SSLR_FN float sslrPlaneHitWith(SslrProjection p, SslrSurface s, SslrTraceParams 
     // a one-pixel row without reflection along every contact. Its length tells it from the
     // reflecting surface itself (whose own plane the ray leaves at L = 0). The plane's pixel must
     // touch the reflecting one: a plane from farther away reaches it only by extension (the
-    // pixels between show something else).
+    // pixels between show something else). And the surface must rise from the reflecting one, not
+    // face it (normals over 120 degrees apart): a face turned towards the mirror, a sphere's
+    // underside, meets it at a point at most, and its plane extended down to the mirror is a gap
+    // the ray passes through. (The reflecting surface's normal is R - V's direction.)
     if (pxQ.x == pxOrigin.x && pxQ.y == pxOrigin.y) {
       ivec2 fromOrigin = abs(pxPlane - pxOrigin);
-      if (max(fromOrigin.x, fromOrigin.y) <= 1 &&
+      vec3 vsOriginNormal = normalize(vsR - sslrViewDirection(p, vsP));
+      if (max(fromOrigin.x, fromOrigin.y) <= 1 && dot(vsPlaneNormal, vsOriginNormal) >= -0.5f &&
           L > 0.05f * sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : sslrViewDistance(p, vsP)))
         break;
       return 0.0f;

@@ -10,7 +10,7 @@ cd "$(dirname "$0")"
 render=${1:-../../build/release/src/apps/sslr-render}
 for name in mirror-room grazing-plane thin-objects sky-heavy mirror-box tilted-mirror facing-mirror mirror-walls \
             curved-mirror glossy turned-mirror mirror-corridor mirrors-from-above sphere-over-mirror-32 \
-            sphere-over-mirror-128 bright-emitter; do
+            sphere-over-mirror-128 objects-on-mirror bright-emitter; do
   "$render" --scene "$name" --export-gltf "$name.gltf" > /dev/null
 done
 

@@ -329,7 +329,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DefaultAgainstTraversal,
                          ::testing::Values("mirror-room", "grazing-plane", "thin-objects", "sky-heavy", "facing-mirror",
                                            "mirror-walls", "curved-mirror", "glossy", "mirror-box", "tilted-mirror",
                                            "turned-mirror", "mirror-corridor", "mirrors-from-above", "spider-on-mirror",
-                                           "wuson-as-mirror", "sphere-over-mirror-32", "sphere-over-mirror-128"),
+                                           "wuson-as-mirror", "sphere-over-mirror-32", "sphere-over-mirror-128",
+                                           "objects-on-mirror"),
                          sceneParamName);
 
 // Traversal first (the default order) reaches the verified order's hits (adaptive L first, the
@@ -1711,6 +1712,44 @@ TEST_F(ContactLine, ReflectionsWithinTwoPixelsAreFound) {
                 found);
     ASSERT_GT(contact, 20u) << "the scene must have contact lines";
     EXPECT_GE(double(found) / contact, 0.9);
+  }
+}
+
+// A contact line is another surface rising from the mirror. A sphere resting on a mirror floor
+// meets it at a point: beside that point the sphere's underside faces the floor, and its plane
+// extended down to the floor is a gap, not a contact, that rays pass through to the wall or under
+// the sphere. No hit inside its own pixel may be confident there unless it is the true one (within
+// 1 px of the true hit): on objects-on-mirror at 320x180, 2 such hits (4 at 960x540) before the
+// contact line asked that the surface not face the mirror; with the back-face depth too.
+TEST_F(ContactLine, ASurfaceFacingTheMirrorIsNoContact) {
+  auto scene = makeBuiltinScene("objects-on-mirror");
+  ASSERT_TRUE(scene) << scene.error();
+  for (bool backDepth : {false, true}) {
+    GBufferOptions o;
+    o.width = 320;
+    o.height = 180;
+    o.withBackDepth = backDepth;
+    const ScoredFrame f = renderScored(scene.value(), *scene.value().camera, o, Settings{});
+    ASSERT_TRUE(f.renderer);
+    size_t contactHits = 0, wrong = 0;
+    for (int y = 0; y < o.height; ++y)
+      for (int x = 0; x < o.width; ++x) {
+        if (f.hit.at(x, y, 2) <= kReportedConfidence) continue;
+        if (int(std::floor(f.hit.at(x, y, 0) * o.width)) != x || int(std::floor(f.hit.at(x, y, 1) * o.height)) != y)
+          continue;
+        ++contactHits;
+        const TruthPixel& t = f.truth.pixels[static_cast<size_t>(y) * o.width + x];
+        const float errorPx = glm::length((glm::vec2(f.hit.at(x, y, 0), f.hit.at(x, y, 1)) - t.uvHit) *
+                                          glm::vec2(o.width, o.height));
+        if (t.cls != TruthClass::Visible || errorPx > 1.0f) {
+          ++wrong;
+          ADD_FAILURE() << "pixel (" << x << ", " << y << "): a confident hit in its own pixel, truth class "
+                        << int(t.cls) << ", " << errorPx << " px from it" << (backDepth ? " (back-face depth)" : "");
+        }
+      }
+    std::printf("objects-on-mirror%s: %zu confident hits inside their own pixel, %zu wrong\n",
+                backDepth ? " (back-face depth)" : "", contactHits, wrong);
+    EXPECT_GT(contactHits, 10u) << "the boxes' feet are contact lines";
   }
 }
 

@@ -32,7 +32,7 @@ std::vector<std::string> defaultBenchScenes() {
   // glossy study scores it in display space too).
   return {"turned-mirror", "mirror-corridor", "mirrors-from-above", "spider-on-mirror", "wuson-as-mirror",
           "facing-mirror", "thin-objects",    "mirror-walls",       "curved-mirror",    "sphere-over-mirror-32",
-          "sphere-over-mirror-128",           "glossy",
+          "sphere-over-mirror-128",           "objects-on-mirror",  "glossy",
           "mirror-room",   "grazing-plane",   "sky-heavy"};
 }
 

@@ -244,6 +244,27 @@ Scene sphereOverMirror(int segments) {
   return s;
 }
 
+// A sphere resting on a silver mirror floor (touching it: a contact line, not a gap) and boxes
+// standing on it, a wall far behind: rays leaving the floor beside an object's foot pass over the
+// floor pixels around it on their way to the wall, and a floor mirror can never reflect the floor
+// (issue #56's scene of a renderer written from scratch, where hits landed on floor pixels).
+Scene objectsOnMirror() {
+  Scene s;
+  s.name = "objects-on-mirror";
+  const int silver = addMaterial(s, glm::vec3(0.92f), 1.0f, 0.0f);
+  const int matte = addMaterial(s, glm::vec3(0.7f, 0.45f, 0.3f), 0.0f, 0.8f);
+  const int wall = addMaterial(s, glm::vec3(0.55f, 0.6f, 0.68f), 0.0f, 0.9f, 0.1f);
+  const BoxColours box = addBoxColours(s, 0.2f);
+  s.meshes.push_back(makeQuad({0, 0, -3}, {14, 14}, {0, 1, 0}, silver));
+  s.meshes.push_back(makeQuad({0, 3, -10}, {14, 6}, {0, 0, 1}, wall));
+  s.meshes.push_back(makeSphere({-0.9, 0.7, -2.0}, 0.7, matte, 32, 64));
+  s.meshes.push_back(makeBox({1.2, 0.5, -2.6}, {1.0, 1.0, 1.0}, box.red, 30.0));
+  s.meshes.push_back(makeBox({0.2, 0.3, -0.6}, {0.6, 0.6, 0.6}, box.blue, -20.0));
+  s.camera = perspectiveCamera({0.0, 1.5, 3.5}, {0.0, 0.4, -2.0}, 55.0, 0.1, 100.0);
+  s.background = glm::vec3(0.3f, 0.33f, 0.4f);
+  return s;
+}
+
 // A mirror wall on the right, turned 20 degrees about the vertical away from the view: rays
 // meeting it leave straight along the view direction, away from the camera, towards the boxes
 // standing along it deep in the scene (screen-space steps shrink towards the vanishing point).
@@ -404,7 +425,7 @@ std::vector<std::string> builtinSceneNames() {
   return {"mirror-room",   "grazing-plane", "thin-objects",  "sky-heavy",       "mirror-box",
           "tilted-mirror", "facing-mirror", "mirror-walls",  "curved-mirror",   "glossy",
           "turned-mirror", "mirror-corridor", "mirrors-from-above", "sphere-over-mirror-32", "sphere-over-mirror-128",
-          "bright-emitter"};
+          "objects-on-mirror", "bright-emitter"};
 }
 
 std::vector<std::string> assetSceneNames() { return {"spider-on-mirror", "wuson-as-mirror"}; }
@@ -431,6 +452,7 @@ Expected<Scene> makeBuiltinScene(const std::string& name) {
   if (name == "mirrors-from-above") return mirrorsFromAbove();
   if (name == "sphere-over-mirror-32") return sphereOverMirror(32);
   if (name == "sphere-over-mirror-128") return sphereOverMirror(128);
+  if (name == "objects-on-mirror") return objectsOnMirror();
   if (name.rfind("reflective-", 0) == 0) {
     const std::string digits = name.substr(11);
     if (!digits.empty() && digits.size() <= 3 && std::all_of(digits.begin(), digits.end(), ::isdigit) &&
