@@ -99,7 +99,9 @@ uint sslrShadePixel(ivec2 px) {
   imageStore(uIterations, sslrTexel(px), vec4(float(hit.iterations)));
 #endif
 #ifdef SSLR_HIT_DISTANCE
-  imageStore(uHitDistance, sslrTexel(px), vec4(coverage > 0.0f ? hit.L : 0.0f));
+  // A guess (sslrHiddenGuess, sslrSlabGuess) is stored negated: |value| is where the ray went out
+  // of sight, short of the hidden point it meets, and a denoiser can tell it from a crossing.
+  imageStore(uHitDistance, sslrTexel(px), vec4(coverage > 0.0f ? (hit.guessed != 0 ? -hit.L : hit.L) : 0.0f));
 #endif
 #ifdef SSLR_COLLECT_STATS
   if (ranTracer) atomicAdd(stats.tracedPixels, 1u);

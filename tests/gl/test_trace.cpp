@@ -867,7 +867,7 @@ TEST_P(HitDistance, IsTheTrueRayLengthOnTheMirrorBox) {
     const double along = 1.5 / pxPerUnit;
     return std::isfinite(along) ? std::max(along, 1.5 * pixelWidth) : 1.5 * pixelWidth;
   };
-  size_t compared = 0, zeros = 0;
+  size_t compared = 0, zeros = 0, guesses = 0;
   std::vector<double> relative;
   for (int y = 0; y < o.height; ++y)
     for (int x = 0; x < o.width; ++x) {
@@ -879,9 +879,14 @@ TEST_P(HitDistance, IsTheTrueRayLengthOnTheMirrorBox) {
         ++zeros;
         continue;
       }
-      EXPECT_EQ(d, f.hit.at(x, y, 3)) << x << "," << y << ": the hit record's length";
-      // A guess (below the reported confidence: sslrHiddenGuess, sslrSlabGuess) holds the length
-      // where the ray went out of sight, not a crossing's.
+      EXPECT_EQ(std::abs(d), f.hit.at(x, y, 3)) << x << "," << y << ": the hit record's length";
+      // A guess (sslrHiddenGuess, sslrSlabGuess: weights of at most 0.5 by default) holds the length
+      // where the ray went out of sight, negated.
+      if (d < 0.0f) {
+        EXPECT_LE(f.hit.at(x, y, 2), kReportedConfidence) << x << "," << y << ": a guess";
+        ++guesses;
+        continue;
+      }
       if (t.cls != TruthClass::Visible || GetParam() || !(f.hit.at(x, y, 2) > kReportedConfidence)) continue;
       const glm::vec2 err = (glm::vec2(f.hit.at(x, y, 0), f.hit.at(x, y, 1)) - t.uvHit) * glm::vec2(o.width, o.height);
       if (glm::length(err) > 1.0f) continue;
@@ -901,8 +906,8 @@ TEST_P(HitDistance, IsTheTrueRayLengthOnTheMirrorBox) {
   const double p95 = relative.empty() ? 0.0 : relative[relative.size() * 95 / 100];
   const double worst = relative.empty() ? 0.0 : relative.back();
   EXPECT_LE(p95, 0.02) << compared << " hits compared";
-  std::printf("hit distance (%s): %zu hits, relative error: 95th percentile %.5f, largest %.5f\n",
-              GetParam() ? "half" : "full", compared, p95, worst);
+  std::printf("hit distance (%s): %zu hits, relative error: 95th percentile %.5f, largest %.5f; %zu guesses\n",
+              GetParam() ? "half" : "full", compared, p95, worst, guesses);
   // Off: no texture, and the same reflection.
   const Image with = f.renderer->readReflection();
   s.hitDistance = false;
@@ -914,6 +919,41 @@ TEST_P(HitDistance, IsTheTrueRayLengthOnTheMirrorBox) {
 
 INSTANTIATE_TEST_SUITE_P(Resolution, HitDistance, ::testing::Values(false, true),
                          [](const ::testing::TestParamInfo<bool>& info) { return info.param ? "Half" : "Full"; });
+
+// A guess's hit distance is negated (the length to where the ray went out of sight), so that a
+// denoiser can tell guesses from crossings without the debug hit texture: on mirror-walls, whose
+// rays cross behind boxes, every negative value is a guess's (confidence at most 0.5, the hit
+// record's length), and there are such values; a crossing reported above 0.5 is positive.
+class HitDistanceOfGuesses : public sslr::test::GlTest {};
+
+TEST_F(HitDistanceOfGuesses, AreNegative) {
+  auto scene = makeBuiltinScene("mirror-walls");
+  ASSERT_TRUE(scene);
+  GBufferOptions o;
+  o.width = 160;
+  o.height = 90;
+  Settings s;
+  s.hitDistance = true;
+  const ScoredFrame f = renderScored(scene.value(), *scene.value().camera, o, s);
+  ASSERT_TRUE(f.renderer);
+  const Image distance = readTexture(f.renderer->sslr().hitDistanceTexture(), o.width, o.height, 1);
+  size_t guesses = 0, crossings = 0;
+  for (int y = 0; y < o.height; ++y)
+    for (int x = 0; x < o.width; ++x) {
+      const float d = distance.at(x, y, 0), confidence = f.hit.at(x, y, 2);
+      if (d < 0.0f) {
+        ++guesses;
+        EXPECT_LE(confidence, kReportedConfidence) << x << "," << y;
+        EXPECT_EQ(-d, f.hit.at(x, y, 3)) << x << "," << y;
+      } else if (confidence > kReportedConfidence) {
+        ++crossings;
+        EXPECT_GT(d, 0.0f) << x << "," << y;
+      }
+    }
+  std::printf("mirror-walls 160x90: %zu guesses (negative), %zu reported crossings\n", guesses, crossings);
+  EXPECT_GT(guesses, 20u);
+  EXPECT_GT(crossings, 1000u);
+}
 
 // The built-in sphere-over-mirror scenes: a faceted sphere (32 or 128 segments, interpolated
 // normals) above a mirror floor. Inside its reflection, pixels whose ray hits the sphere right were
