@@ -779,6 +779,55 @@ TEST_F(Api, SignedNormalFormatsGiveTheSameHits) {
   }
 }
 
+// A float normal texture holds whatever the host wrote: [0, 1] on the unsigned default decode is
+// right, -1..1 on it finds almost no hit. Not refusable from the format, so said: one warning in
+// the log per texture naming the format and the fix; none with the signed decode (1/0), which then
+// finds the unsigned G-buffer's hits.
+TEST_F(Api, FloatNormalsOnTheUnsignedDecodeAreWarnedOfOnce) {
+  std::vector<std::string> warnings;
+  ContextDesc d;
+  d.width = W;
+  d.height = H;
+  d.getProcAddress = HeadlessContext::getProcAddress();
+  d.log = [&](LogLevel level, const std::string& text) {
+    if (level == LogLevel::Warning) warnings.push_back(text);
+  };
+  auto created = Context::create(d);
+  ASSERT_TRUE(created) << created.error();
+  Context& ctx = *created.value();
+  Frame f;
+  const FrameInputs unsignedIn = f.gbuffer->frameInputs();
+  Settings s;
+  s.debug.outputs = true;
+  ASSERT_TRUE(ctx.dispatch(unsignedIn, s));
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  const Image hitUnsigned = readAll(ctx.hitTexture(), 4);
+  const Image packed = readAll(unsignedIn.normalTexture, 4);
+  std::vector<float> signedValues(static_cast<size_t>(W) * H * 2, 0.0f);
+  for (int p = 0; p < W * H; ++p)
+    for (int c = 0; c < 2; ++c)
+      signedValues[static_cast<size_t>(p) * 2 + c] = packed.pixels[static_cast<size_t>(p) * 4 + c] * 2.0f - 1.0f;
+  const GLuint floatTex = makeTexture(GL_RG16F);
+  glTextureSubImage2D(floatTex, 0, 0, 0, W, H, GL_RG, GL_FLOAT, signedValues.data());
+  FrameInputs floatIn = unsignedIn;
+  floatIn.normalTexture = floatTex;
+  floatIn.materialTexture = unsignedIn.normalTexture;
+  ASSERT_TRUE(ctx.dispatch(floatIn, s));
+  ASSERT_TRUE(ctx.dispatch(floatIn, s));
+  ASSERT_EQ(warnings.size(), 1u) << "once per texture";
+  EXPECT_NE(warnings[0].find("is RG16F, a float format, decoded as holding [0, 1]"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("if it holds -1..1, set 1/0"), std::string::npos) << warnings[0];
+  floatIn.surface.normalScale = 1.0f;
+  floatIn.surface.normalBias = 0.0f;
+  ASSERT_TRUE(ctx.dispatch(floatIn, s));
+  EXPECT_EQ(warnings.size(), 1u) << "the signed decode is not warned of";
+  const SameHits same = sameHits(hitUnsigned, readAll(ctx.hitTexture(), 4));
+  ASSERT_GT(same.traced, 500u);
+  EXPECT_GE(same.share(), 0.98) << same.same << " of " << same.traced;
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  glDeleteTextures(1, &floatTex);
+}
+
 // GlossyMode::Stochastic with temporal reuse: the first frame (no history) blurs its rough pixels'
 // rays as the cone blur does; a frame with history gives them no blur weight, so the blur runs over
 // none of their tiles (the temporal blend filters them instead: 5_temporal_blend.comp). Measured

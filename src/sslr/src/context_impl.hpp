@@ -182,6 +182,7 @@ struct Context::Impl {
   // (SSLR_HAS_MASK, SSLR_SEPARATE_MATERIAL: common/gbuffer.glsl).
   std::string inputDefines;
   bool haveFrame = false;  // a dispatch filled the tile list, so composite has work to draw
+  mutable GLName warnedFloatNormals = 0;  // the float normal texture last warned of (checkNormalDecode)
   bool frameIsRadiance = false;  // ... traced with OutputMode::Radiance (composite refuses it)
   int frameIndex = 0;      // per-dispatch stamp for the blur tile list (1, 2, ...)
 

@@ -139,10 +139,24 @@ Status Context::Impl::checkNormalDecode(const SurfaceLayout& sl, const FormatInf
   GLint componentType = GL_NONE;
   gl.GetTextureLevelParameteriv(tex, 0, GL_TEXTURE_RED_TYPE, &componentType);
   const bool snorm = componentType == GL_SIGNED_NORMALIZED;
+  auto decodesToUnit = [&](float stored0) {
+    const float a = stored0 * sl.normalScale + sl.normalBias, b = sl.normalScale + sl.normalBias;
+    return std::abs(std::min(a, b) + 1.0f) <= 0.05f && std::abs(std::max(a, b) - 1.0f) <= 0.05f;
+  };
+  // A float format holds whatever the host wrote: [0, 1] decoded as unsigned is right, -1..1 so
+  // decoded finds almost no hit. Said once per texture (the log), not refused.
+  if (componentType == GL_FLOAT && decodesToUnit(0.0f) && warnedFloatNormals != tex) {
+    warnedFloatNormals = tex;
+    std::ostringstream why;
+    why << "sslr: FrameInputs::normalTexture (texture " << tex << ") is " << info.name
+        << ", a float format, decoded as holding [0, 1] (SurfaceLayout::normalScale/normalBias = " << sl.normalScale
+        << "/" << sl.normalBias << "); if it holds -1..1, set 1/0, or reflections point the wrong way";
+    message(LogLevel::Warning, why.str());
+  }
   if (!snorm && componentType != GL_UNSIGNED_NORMALIZED) return {};
+  if (decodesToUnit(snorm ? -1.0f : 0.0f)) return {};
   const float a = (snorm ? -1.0f : 0.0f) * sl.normalScale + sl.normalBias, b = sl.normalScale + sl.normalBias;
   const float lo = std::min(a, b), hi = std::max(a, b);
-  if (std::abs(lo + 1.0f) <= 0.05f && std::abs(hi - 1.0f) <= 0.05f) return {};
   std::ostringstream why;
   why << "sslr: FrameInputs::normalTexture (texture " << tex << ") is " << info.name << ", whose "
       << (snorm ? "[-1, 1]" : "[0, 1]") << " values SurfaceLayout::normalScale/normalBias = " << sl.normalScale << "/"

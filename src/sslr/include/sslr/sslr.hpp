@@ -125,8 +125,11 @@ struct DepthConvention {
 };
 
 enum class NormalEncoding {
-  Octahedral,  // channels R,G (unorm or float in [0,1]) = octahedral normal (see NormalSpace)
-  XyzUnorm,    // channels R,G,B = normal * 0.5 + 0.5 (the article's packing)
+  Octahedral,  // channels R,G = the octahedral normal's two coordinates (see NormalSpace), stored
+               // as SurfaceLayout::normalScale/normalBias unpack them: [0, 1] by default (UNORM,
+               // or floats holding 0..1), -1..1 with scale 1, bias 0 (SNORM, or floats holding -1..1)
+  XyzUnorm,    // channels R,G,B = the normal's components, stored the same way (by default
+               // normal * 0.5 + 0.5, the article's packing)
 };
 
 enum class NormalSpace {
@@ -145,7 +148,9 @@ struct SurfaceLayout {
   // How a stored normal channel unpacks to [-1, 1]: value * normalScale + normalBias (finite, scale
   // not 0). The default suits unsigned formats (RGBA8, RGBA16, RG16, float textures holding 0..1);
   // signed normalized formats (RG16_SNORM, RGBA16_SNORM, RGBA8_SNORM) and float textures holding
-  // -1..1 take scale 1, bias 0. Octahedral: the two coordinates; xyz: the three components.
+  // -1..1 take scale 1, bias 0. Octahedral: the two coordinates; xyz: the three components. A
+  // normalized format on the wrong decode is refused; a float one on the unsigned decode is said
+  // once in ContextDesc::log (its values are the host's to know).
   float normalScale = 2.0f;
   float normalBias = -1.0f;
   // Coloured F0 (metalness workflow): the channel of the material texture (else of the normal
@@ -620,8 +625,8 @@ class Context {
   // hit, in view units, where the pixel has a hit (coverage > 0); 0 (the sentinel: no hit, or not
   // traced) elsewhere. Negative where the answer is a guess (the ray went out of sight behind what
   // the screen shows, traversal.hiddenGuess / slabBlend / deepSlabGuess): -(the length to where it
-  // went out of sight), short of the true hit (a median 52-89% on the built-in scenes). This
-  // frame's ray, before the blur and temporal reuse. 0 until a dispatch with hitDistance created it.
+  // went out of sight), short of the true hit. This frame's ray, before the blur and temporal
+  // reuse. 0 until a dispatch with hitDistance created it.
   GLName hitDistanceTexture() const;
   // R8 (Settings::temporal.outputConfidence): the history's share of each pixel's resolved value,
   // 0..temporal.historyWeight: 0 where history was not found (disocclusion, a camera cut, a new
