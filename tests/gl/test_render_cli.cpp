@@ -498,15 +498,21 @@ TEST(RenderCliNoGl, AbsurdExtentsAndCamerasAreRefused) {
   EXPECT_NE(r.output.find("1e+300 units from the origin"), std::string::npos) << r.output;
 }
 
+// MemAvailable of /proc/meminfo, in KiB (0 where it cannot be read): what sslr-render's estimate
+// is held against.
+double availableMemoryKiB() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  double kib = 0.0;
+  while (meminfo >> key)
+    if (key == "MemAvailable:" && meminfo >> kib) break;
+  return kib;
+}
+
 TEST(RenderCliNoGl, SizeThatCannotFitInMemoryIsRefusedWithAnEstimate) {
   // 16384x16384 with --dump needs about 98 GiB (sslr-render's estimate); it is refused where
   // that exceeds 80% of the available memory, and rightly rendered where it does not.
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key;
-  double availableGiB = 0.0;
-  while (meminfo >> key)
-    if (key == "MemAvailable:" && meminfo >> availableGiB) break;
-  availableGiB /= 1024.0 * 1024.0;
+  const double availableGiB = availableMemoryKiB() / (1024.0 * 1024.0);
   if (0.8 * availableGiB >= 98.0) GTEST_SKIP() << "this machine has " << availableGiB << " GiB available: 16384x16384 fits";
   const Result r = run("--size 16384x16384 --dump --out " + freshDir("huge").string());
   EXPECT_EQ(r.exitCode, 2) << r.output;
@@ -514,16 +520,11 @@ TEST(RenderCliNoGl, SizeThatCannotFitInMemoryIsRefusedWithAnEstimate) {
   EXPECT_FALSE(fs::exists(fs::path(SSLR_TEST_TMP) / "cli" / "huge"));
 }
 
-
 // --views N: every view has its own layer of every target and its own read-back image, so the
 // estimate is N times one view's. A size of which one view would need a third of the available
 // memory is refused for four views (that run once peaked at 2.8x one view's memory, unchecked).
 TEST(RenderCliNoGl, ViewsCountInTheMemoryEstimate) {
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key;
-  double availableKiB = 0.0;
-  while (meminfo >> key)
-    if (key == "MemAvailable:" && meminfo >> availableKiB) break;
+  const double availableKiB = availableMemoryKiB();
   ASSERT_GT(availableKiB, 0.0);
   const double onePixel = 16.0 + 16.0 + 16.0 + 51.0 + 30.0;  // sslr-render's estimate per pixel and view
   const int side = static_cast<int>(std::sqrt(availableKiB * 1024.0 / 3.0 / onePixel));
