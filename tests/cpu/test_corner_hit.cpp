@@ -417,16 +417,20 @@ TEST_F(RimEntryHit, HitsACreaseOfOneCurvedSurfaceButNotABoxsEdge) {
 // sslrPlaneHit's contact line: a ray from a mirror pixel meets the plane of the surface standing on
 // the mirror inside the mirror pixel itself. That holds when the plane's pixel touches the mirror
 // pixel; from four pixels away the plane reaches the mirror pixel only by extension (the pixels
-// between show something else: a thin leg's tangent plane, not a foot).
+// between show something else: a thin leg's tangent plane, not a foot); and when the surface rises
+// from the mirror rather than facing it.
 TEST_F(CornerHit, AContactLinesPlaneMustComeFromANeighbouringPixel) {
   const ivec2 pxOrigin(200, 90);
   const vec3 vsP = viewAt(200.5f, 90.5f, kFrontZ);
   const float footprint = sslrPixelFootprint(gProj, float(kHeight), -kFrontZ);
-  // A wall facing the ray 0.3 footprints to the right of vsP: the ray meets it inside the mirror
-  // pixel. The same wall point is given as the plane's surface sample for either pixel, so only
-  // where the plane comes from differs.
-  const vec3 vsWall = vsP + vec3(0.3f * footprint, 0.0f, 0.0f), vsWallNormal(-1.0f, 0.0f, 0.0f);
+  // A wall standing on the mirror (perpendicular to it, facing the ray) that the ray meets 0.3
+  // footprints to the right of vsP, inside the mirror pixel. The mirror's normal is the one that
+  // reflects the view into vsR. The same wall point is given as the plane's surface sample for
+  // either pixel, so only where the plane comes from differs.
   const vec3 vsR = normalize(vec3(1.0f, 0.0f, -1.0f));
+  const vec3 vsMirrorNormal = normalize(vsR - normalize(vsP));
+  const vec3 vsWallNormal = -normalize(vsR - dot(vsR, vsMirrorNormal) * vsMirrorNormal);
+  const vec3 vsWall = vsP + vsR * (0.3f * footprint * std::sqrt(2.0f));
   SslrTraceParams t = params(0.75f);
   t.hitToleranceRelative = 0.002f;
   t.hitTolerancePixels = 1.5f;
@@ -434,6 +438,11 @@ TEST_F(CornerHit, AContactLinesPlaneMustComeFromANeighbouringPixel) {
   EXPECT_GE(sslrPlaneHit(gProj, gSurf, t, pxOrigin, vsP, vsR, ivec2(201, 90), vsWall, vsWallNormal, L), 0.5f);
   EXPECT_NEAR(L, 0.3f * footprint * std::sqrt(2.0f), 0.01f * footprint);
   EXPECT_EQ(sslrPlaneHit(gProj, gSurf, t, pxOrigin, vsP, vsR, ivec2(204, 90), vsWall, vsWallNormal, L), 0.0f);
+  // The same point on a surface that faces the mirror (160 degrees from its normal: a sphere's
+  // underside beside where it rests) is no contact: its plane reaches the mirror across a gap.
+  const vec3 vsFacing = normalize(-vsMirrorNormal + 0.35f * vsWallNormal);
+  ASSERT_LT(dot(vsR, vsFacing), -0.05f);
+  EXPECT_EQ(sslrPlaneHit(gProj, gSurf, t, pxOrigin, vsP, vsR, ivec2(201, 90), vsWall, vsFacing, L), 0.0f);
 }
 
 // A contact line's hit lies inside the mirror pixel, which shows the mirror: its colour comes from

@@ -441,9 +441,9 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceShading,
 
 // What the user sees, against the ray-traced reference: the default's composite error on the mirror
 // pixels lies below the tutorial's march and at least 5% below no reflection at all (the fallback
-// alone). Measured at 256x144 on llvmpipe (default / tutorial / fallback): mirror-room 0.038 / 0.077
-// / 0.116, thin-objects 0.106 / 0.121 / 0.127, mirror-walls 0.047 / 0.069 / 0.085 (0.059 without
-// the hidden guess).
+// alone). Measured at 256x144 on llvmpipe (default / tutorial / fallback), on the reference fixed in
+// 0.10.3: mirror-room 0.037 / 0.076 / 0.116, thin-objects 0.058 / 0.075 / 0.083, mirror-walls
+// 0.046 / 0.068 / 0.084 (0.057 without the hidden guess).
 // One frame's composite against its ray-traced reference: RMSE over the mirror pixels, the same
 // for no reflection at all (the G-buffer's colour holds the fallback specular), and the hits'
 // metrics.
@@ -517,8 +517,8 @@ TEST_F(EscapedRay, ACorrectMissScoresZero) {
 // Settings::traversal.hiddenGuess (0.5 by default): rays that end behind what the screen shows
 // take the colour where they went behind, at half weight, where 0 leaves them misses. On scenes
 // whose error is mostly such rays (boxes in front of mirrors, rays crossing the screen behind them)
-// the composite comes closer to the ray-traced reference: 320x180, 0.0584 -> 0.0460
-// (mirror-walls), 0.1202 -> 0.0985 (turned-mirror), 0.0063 -> 0.0050 (facing-mirror). At a weight
+// the composite comes closer to the ray-traced reference: 256x144 on the fixed reference, 0.0570 ->
+// 0.0462 (mirror-walls), 0.1182 -> 0.0974 (turned-mirror), 0.0063 -> 0.0050 (facing-mirror). At a weight
 // of 0.5 the guesses are not reported hits: recall and false hits stay the same.
 class HiddenGuess : public sslr::test::GlTest, public ::testing::WithParamInterface<const char*> {};
 
@@ -531,7 +531,7 @@ TEST_P(HiddenGuess, TheDefaultsGuessBringsTheCompositeCloserWithoutReportedHits)
   const CompositeScore with = scoreComposite(scene.value(), compositeOptions(), Settings{});
   ASSERT_TRUE(without.ok && with.ok);
   std::printf("%s composite RMSE: misses %.4f, hidden guesses at 0.5 %.4f\n", GetParam(), without.rmse, with.rmse);
-  // 10%: the smallest gain measured at 320x180 is 20% (facing-mirror).
+  // 10%: the smallest gain measured at 256x144 is 18% (mirror-walls, turned-mirror).
   EXPECT_LT(with.rmse, 0.9 * without.rmse);
   EXPECT_EQ(with.metrics.recall1px, without.metrics.recall1px);
   EXPECT_EQ(with.metrics.falseHitRate, without.metrics.falseHitRate);
@@ -680,11 +680,12 @@ TEST_F(SlabBlend, ARayDeepInsideTheSlabShowsItAtTheDeepWeight) {
 // footprints, met the object's hidden side, so its answer is where it went in, at full confidence,
 // instead of what adaptive L finds beyond. thin-objects' bars seen from close by (2-4 px across at
 // 256x144): the mirror shows the rails' undersides, which the camera cannot see; their visible
-// fronts stand in for them instead of the wall behind. Measured on llvmpipe (off -> on): composite
-// RMSE 0.1324 -> 0.1247; at 480x270 0.1346 -> 0.1231, at 960x540 0.1340 -> 0.1225.
+// fronts stand in for them instead of the wall behind. The image error is not asserted: the gain
+// once measured here came from a reference that lit the undersides from above; on the fixed one
+// the rule costs this view 4-19% (results/composite.md, "0.10.3"), a row of issue #57's ledger.
 class ThinObjectHits : public sslr::test::GlTest {};
 
-TEST_F(ThinObjectHits, ABarsHiddenSideShowsItsFrontAndTheImageComesCloser) {
+TEST_F(ThinObjectHits, ABarsHiddenSideShowsItsFront) {
   auto scene = loadScene("thin-objects");
   ASSERT_TRUE(scene);
   scene.value().camera->eye = {0.0, 1.2, -1.5};
@@ -692,12 +693,6 @@ TEST_F(ThinObjectHits, ABarsHiddenSideShowsItsFrontAndTheImageComesCloser) {
   const GBufferOptions o = compositeOptions();
   Settings off;
   off.traversal.thinObjectHits = false;
-  const CompositeScore without = scoreComposite(scene.value(), o, off);
-  const CompositeScore with = scoreComposite(scene.value(), o, Settings{});
-  ASSERT_TRUE(with.ok && without.ok);
-  std::printf("thin-objects close up: composite RMSE thin object hits off %.4f, on %.4f\n", without.rmse, with.rmse);
-  // 3%: the gain measured is 6% here and 8-9% at 480x270 and 960x540.
-  EXPECT_LT(with.rmse, 0.97 * without.rmse);
 
   // Each answer that changed lies no further than the old one (where the ray went into the bar's
   // slab: in front of adaptive L's hit beyond, where the slab guess was), at full confidence, on
