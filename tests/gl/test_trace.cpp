@@ -531,7 +531,7 @@ TEST_P(HiddenGuess, TheDefaultsGuessBringsTheCompositeCloserWithoutReportedHits)
   const CompositeScore with = scoreComposite(scene.value(), compositeOptions(), Settings{});
   ASSERT_TRUE(without.ok && with.ok);
   std::printf("%s composite RMSE: misses %.4f, hidden guesses at 0.5 %.4f\n", GetParam(), without.rmse, with.rmse);
-  // 10%: the smallest gain measured at 256x144 is 18% (mirror-walls, turned-mirror).
+  // 10%: the smallest gain measured at 256x144 is 18% (turned-mirror).
   EXPECT_LT(with.rmse, 0.9 * without.rmse);
   EXPECT_EQ(with.metrics.recall1px, without.metrics.recall1px);
   EXPECT_EQ(with.metrics.falseHitRate, without.metrics.falseHitRate);
