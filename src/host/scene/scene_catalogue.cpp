@@ -244,10 +244,10 @@ Scene sphereOverMirror(int segments) {
   return s;
 }
 
-// A sphere resting on a silver mirror floor (touching it: a contact line, not a gap) and boxes
-// standing on it, a wall far behind: rays leaving the floor beside an object's foot pass over the
-// floor pixels around it on their way to the wall, and a floor mirror can never reflect the floor
-// (issue #56's scene of a renderer written from scratch, where hits landed on floor pixels).
+// A sphere resting on a silver mirror floor (touching it at a point: beside it, a gap under its
+// underside) and boxes standing on it (contact lines), a wall far behind: rays leaving the floor
+// beside an object's foot pass over the floor pixels around it on their way to the wall or under
+// the sphere, and a floor mirror can never reflect the floor.
 Scene objectsOnMirror() {
   Scene s;
   s.name = "objects-on-mirror";
