@@ -37,6 +37,11 @@ glm::vec3 viewDirection(const glm::dmat4& viewFromWorld, glm::dvec3 world) {
   return glm::normalize(glm::vec3(viewFromWorld * glm::dvec4(world, 0.0)));
 }
 
+// From a point towards the camera (orthographic: along +z).
+glm::vec3 toCameraFrom(const RayTracer::Hit& hit, bool orthographic) {
+  return orthographic ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::normalize(-hit.vsPosition);
+}
+
 glm::vec3 rgbAt(const Image& image, size_t p) {
   const float* v = &image.pixels[p * static_cast<size_t>(image.channels)];
   return glm::vec3(v[0], v[1], v[2]);
@@ -65,13 +70,12 @@ glm::vec3 shadeSeenFrom(const Scene& scene, const RayTracer::Hit& hit, const glm
 
 glm::vec3 shadeAsGBuffer(const Scene& scene, const RayTracer::Hit& hit, const glm::dmat4& viewFromWorld,
                          bool orthographic) {
-  const glm::vec3 toCamera = orthographic ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::normalize(-hit.vsPosition);
-  return shadeSeenFrom(scene, hit, viewFromWorld, toCamera);
+  return shadeSeenFrom(scene, hit, viewFromWorld, toCameraFrom(hit, orthographic));
 }
 
 glm::vec3 reflectedRadiance(const Scene& scene, const RayTracer::Hit& hit, glm::vec3 vsRayDirection,
                             const glm::dmat4& viewFromWorld, bool orthographic, bool cameraSeesHit) {
-  const glm::vec3 toCamera = orthographic ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::normalize(-hit.vsPosition);
+  const glm::vec3 toCamera = toCameraFrom(hit, orthographic);
   const glm::vec3 toRayOrigin = -glm::normalize(vsRayDirection);
   // The camera sees the point on the side the ray meets when both lie in front of its face.
   if (cameraSeesHit && glm::dot(hit.vsNormal, toCamera) * glm::dot(hit.vsNormal, toRayOrigin) > 0.0f)

@@ -38,10 +38,16 @@ Context::Impl::DrawImage Context::Impl::drawBuffer0Image(GLName framebuffer) con
   return image;
 }
 
+namespace {
+// "texture 7" or "renderbuffer 7": the image named in messages.
+std::string imageName(GLint type, GLint name) {
+  return std::string(type == GL_TEXTURE ? "texture " : "renderbuffer ") + std::to_string(name);
+}
+}  // namespace
+
 std::string Context::Impl::drawImageProblem(const DrawImage& image) const {
   if (image.type != GL_TEXTURE && image.type != GL_RENDERBUFFER) return "";
-  const std::string what =
-      std::string(image.type == GL_TEXTURE ? "texture " : "renderbuffer ") + std::to_string(image.name);
+  const std::string what = imageName(image.type, image.name);
   if (image.deleted) return "draw buffer 0's " + what + " was deleted while attached";
   if (image.componentType == GL_INT || image.componentType == GL_UNSIGNED_INT)
     return "draw buffer 0 (" + what + ", internal format " + std::to_string(image.format) +
@@ -64,8 +70,8 @@ Status Context::Impl::checkCompositeTarget(GLName framebuffer) const {
   if (image.type != GL_TEXTURE && image.type != GL_RENDERBUFFER) return {};
   if (image.width < width || image.height < height)
     return Status::error(StatusCode::InvalidInput,
-                         fb + "draw buffer 0 (" + (image.type == GL_TEXTURE ? "texture " : "renderbuffer ") +
-                             std::to_string(image.name) + ") is " + std::to_string(image.width) + "x" +
+                         fb + "draw buffer 0 (" + imageName(image.type, image.name) + ") is " +
+                             std::to_string(image.width) + "x" +
                              std::to_string(image.height) + ", smaller than the context's " + std::to_string(width) +
                              "x" + std::to_string(height));
   return {};

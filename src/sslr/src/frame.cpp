@@ -29,10 +29,11 @@ Status Context::Impl::dispatch(std::span<const FrameInputs> inputs, const Settin
   // Without a history (the first temporal frame, a reset) no previous frame exists: a host's
   // all-zero previousClipFromView says so and is taken as this frame's own (nothing is reprojected).
   std::vector<FrameInputs> firstFrame;
-  if (settings.temporal.enabled && !hadHistory) {
+  const auto givesNoPrevious = [](const FrameInputs& view) { return view.previousClipFromView == glm::dmat4(0.0); };
+  if (settings.temporal.enabled && !hadHistory && std::any_of(inputs.begin(), inputs.end(), givesNoPrevious)) {
     firstFrame.assign(inputs.begin(), inputs.end());
     for (FrameInputs& view : firstFrame)
-      if (view.previousClipFromView == glm::dmat4(0.0)) view.previousClipFromView = view.clipFromView;
+      if (givesNoPrevious(view)) view.previousClipFromView = view.clipFromView;
     inputs = firstFrame;
   }
   shared::SslrFrame constants{};
