@@ -86,11 +86,8 @@ SSLR_FN int sslrHiZMode(SslrTraceParams t) {
 #endif
 }
 
-// Whether the hierarchical traversal stands behind adaptive L (answers what it leaves).
-SSLR_FN bool sslrHasHiZFallback(SslrTraceParams t) {
-  return sslrHiZMode(t) == SSLR_HIZ_FALLBACK || sslrHiZMode(t) == SSLR_HIZ_VERIFY ||
-         sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST;
-}
+// Whether adaptive L and the hierarchical traversal both trace (the traversal first).
+SSLR_FN bool sslrHasHiZFallback(SslrTraceParams t) { return sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST; }
 
 // Hit tolerance (view units) on a surface at view depth `dist` seen at tan(angle) `tanView`: a
 // fraction of the distance (depth precision) plus pixel footprints stretched by the slope.
@@ -149,47 +146,14 @@ SSLR_FN vec3 sslrWindowDirection(SslrProjection p, SslrSurface s, float keySign,
   return sslrWindowFromView(p, vec2(s.width, s.height), keySign, vsP + vsR * probeL) - wP;
 }
 
-// The normal of the surface the depth buffer holds at px, from the positions of its neighbours:
-// on each axis the neighbour whose depth lies closer to px's (one across an outline would tilt
-// it). A mesh with interpolated normals shows flat facets in depth whose shading normal tilts
-// away from them; this is the facet's. false where an axis has no neighbour on geometry.
-SSLR_FN bool sslrDepthNormal(SslrProjection p, SslrSurface s, ivec2 px, vec3 vsCenter, SSLR_OUT(vec3) vsN) {
-  vsN = vec3(0.0f, 0.0f, 1.0f);
-  vec3 axes[2];
-  for (int axis = 0; axis < 2; ++axis) {
-    ivec2 step = axis == 0 ? ivec2(1, 0) : ivec2(0, 1);
-    int size = axis == 0 ? int(s.width) : int(s.height);
-    int at = axis == 0 ? px.x : px.y;
-    vec3 after = vsCenter, before = vsCenter;
-    bool hasAfter = at + 1 < size && sslrLoadSurface(px + step, after);
-    bool hasBefore = at > 0 && sslrLoadSurface(px - step, before);
-    if (hasAfter && (!hasBefore || abs(after.z - vsCenter.z) <= abs(vsCenter.z - before.z)))
-      axes[axis] = after - vsCenter;
-    else if (hasBefore)
-      axes[axis] = vsCenter - before;
-    else
-      return false;
-  }
-  vec3 n = cross(axes[0], axes[1]);
-  float len = length(n);
-  if (!(len > 0.0f)) return false;
-  vsN = n / len;
-  if (dot(vsN, sslrViewDirection(p, vsCenter)) > 0.0f) vsN = -vsN;  // the side the camera sees
-  return true;
-}
-
 // The hit a candidate pixel stands for: where the ray meets the pixel's tangent plane, checked
 // against the pixel it lands in. A pixel holds one depth sample, so a ray running along a surface
 // seen at a grazing angle shows its crossing a few pixels late: the plane's hit is then re-planed
 // once on the pixel it lands in (at most 4 px away). A silhouette the ray passes behind meets its
-// plane far away: no hit. `depthNormals`: the planes are the depth buffer's own (sslrDepthNormal)
-// instead of the shading normals' (on a faceted curved mesh the shading normal's plane misses the
-// facet the depth shows, and a true hit was refused: a pixel-sized hole in its reflection).
-// Returns the validation (sslrHitValidation) and L; the caller handles planes seen nearly edge-on
+// plane far away: no hit. Returns the validation (sslrHitValidation) and L; the caller handles planes seen nearly edge-on
 // by the ray (dot(R, N) >= -0.05) itself.
-SSLR_FN float sslrPlaneHitWith(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
-                               vec3 vsR, ivec2 px, vec3 vsSurface, vec3 vsSurfaceNormal, bool depthNormals,
-                               SSLR_OUT(float) L) {
+SSLR_FN float sslrPlaneHit(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP, vec3 vsR,
+                           ivec2 px, vec3 vsSurface, vec3 vsSurfaceNormal, SSLR_OUT(float) L) {
   vec2 sizePx = vec2(s.width, s.height);
   float keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
   ivec2 pxPlane = px;
@@ -228,30 +192,9 @@ SSLR_FN float sslrPlaneHitWith(SslrProjection p, SslrSurface s, SslrTraceParams 
       return 0.0f;
     pxPlane = pxQ;
     if (!sslrLoadSurface(pxPlane, vsPlane)) return 0.0f;
-    bool normalOk = depthNormals ? sslrDepthNormal(p, s, pxPlane, vsPlane, vsPlaneNormal)
-                                 : sslrDecodeNormal(s, sslrLoadNormal(pxPlane), vsPlaneNormal);
-    if (!normalOk) return 0.0f;
+    if (!sslrDecodeNormal(s, sslrLoadNormal(pxPlane), vsPlaneNormal)) return 0.0f;
   }
   return sslrHitValidation(p, s, t, vsP + vsR * L, vsPlane, vsPlaneNormal, vsR);
-}
-
-SSLR_FN float sslrPlaneHit(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP, vec3 vsR,
-                           ivec2 px, vec3 vsSurface, vec3 vsSurfaceNormal, SSLR_OUT(float) L) {
-  return sslrPlaneHitWith(p, s, t, pxOrigin, vsP, vsR, px, vsSurface, vsSurfaceNormal, false, L);
-}
-
-// Adaptive L's converged point, checked on the shading normal's plane and, where that disagrees,
-// on the depth buffer's own plane (its bracket already holds a crossing there; the traversal's
-// pixel tests keep the shading plane alone: a hit accepted there stops the ray).
-SSLR_FN float sslrPlaneHitOrDepthPlane(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
-                                       vec3 vsR, ivec2 px, vec3 vsSurface, vec3 vsSurfaceNormal, SSLR_OUT(float) L) {
-  float valid = sslrPlaneHitWith(p, s, t, pxOrigin, vsP, vsR, px, vsSurface, vsSurfaceNormal, false, L);
-  vec3 vsDepthNormal;
-  if (valid > 0.0f || !sslrDepthNormal(p, s, px, vsSurface, vsDepthNormal)) return valid;
-  float depthL = 0.0f;
-  float depthValid = sslrPlaneHitWith(p, s, t, pxOrigin, vsP, vsR, px, vsSurface, vsDepthNormal, true, depthL);
-  if (depthValid > 0.0f) L = depthL;
-  return depthValid;
 }
 
 // Fills in a tracer's final answer: the hit Q = P + R L, its uv, and the validation as the
@@ -277,7 +220,7 @@ SSLR_FN SslrHit sslrFinishHit(SslrProjection p, SslrHit hit, vec3 vsP, vec3 vsR,
   return hit;
 }
 
-// Where a hit's colour is read: its uv, except for a contact line's hit (sslrPlaneHitWith), which
+// Where a hit's colour is read: its uv, except for a contact line's hit (sslrPlaneHit), which
 // lies inside the reflecting pixel itself. That pixel shows the mirror, not the surface standing on
 // it (a box's foot, a sphere just above the floor), so its colour is read from the neighbouring
 // pixel the ray heads into on screen (the larger axis of its window direction), at its centre.
@@ -395,7 +338,7 @@ SSLR_FN SslrHit sslrAdaptiveLAnswer(SslrProjection p, SslrSurface s, SslrTracePa
                     : 0.0f;
   if (valid > 0.0f && sslrHasHiZFallback(t) && dot(vsR, vsSurfaceNormal) < -0.05f) {
     float planeL;
-    valid = sslrPlaneHitOrDepthPlane(p, s, t, pxOrigin, vsP, vsR, pxSurface, vsSurface, vsSurfaceNormal, planeL);
+    valid = sslrPlaneHit(p, s, t, pxOrigin, vsP, vsR, pxSurface, vsSurface, vsSurfaceNormal, planeL);
     if (valid > 0.0f) L = planeL;
   } else if (valid > 0.0f) {
     L = sslrRefineOnPlane(vsP, vsR, vsSurface, vsSurfaceNormal, L);

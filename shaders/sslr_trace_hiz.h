@@ -214,9 +214,6 @@ struct SslrWalk {
   bool slabShallow;
   ivec2 slabPx;
   float slabBehind, slabTolerance;
-  // Pixels travelled behind what the screen shows (Settings::traversal.hiddenPassageLimitPx): there
-  // hidden geometry may stop the ray unseen, and a hit found after a long passage is a guess.
-  float hiddenPx;
   bool hidden;  // the ray is behind what the screen shows now (its last pixel or cell)
   // The pixel sslrWalkToPixel reached: its cell, where the ray leaves it, the ray's nearest and
   // farthest depth keys in it, the cell's nearest key and the pixel's extra depth (level 0's .y).
@@ -373,7 +370,6 @@ SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   w.slabPx = ivec2(0);
   w.slabBehind = 0.0f;
   w.slabTolerance = 0.0f;
-  w.hiddenPx = 0.0f;
   w.hidden = false;
   w.cell = vec2(0.0f);
   w.tExit = 0.0f;
@@ -460,12 +456,6 @@ SSLR_FN int sslrWalkStep(SslrProjection p, SslrSurface s, SslrTraceParams t, vec
   if (behindSkip) {
     w.hidden = true;
     sslrNoteHiddenStart(p, t, w, vec2(pos.x, pos.y) / w.sizePx, vsP, vsR, hit);
-    w.hiddenPx += w.tExit - w.tRay;
-    if (w.hiddenPx > t.hiddenPassageLimitPx) {
-      hit.status = SSLR_STATUS_HIDDEN;
-      hit.L = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRay, vsP, vsR);
-      return SSLR_WALK_ANSWERED;
-    }
   } else if (skip) {
     hit.LGuess = 0.0f;  // in front again (or over background): not hidden
     w.hidden = false;
@@ -599,12 +589,6 @@ SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, iv
   if (behind > 0.0f && behindNear >= slab && !ownPixel) {  // passed behind what the pixel shows
     w.hidden = true;
     sslrNoteHiddenStart(p, t, w, (vec2(px) + 0.5f) / w.sizePx, vsP, vsR, hit);
-    w.hiddenPx += w.tExit - w.tRay;
-    if (w.hiddenPx > t.hiddenPassageLimitPx) {
-      hit.status = SSLR_STATUS_HIDDEN;
-      hit.L = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRay, vsP, vsR);
-      return SSLR_WALK_ANSWERED;
-    }
   }
   w.tRay = w.tExit + SSLR_HIZ_NUDGE;
   w.level = sslrHiZNextLevel(w.o, w.d, w.tRay, w.cell, 0, w.topLevel);
@@ -642,7 +626,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   }
   // Out of steps in front of what the screen shows: adaptive L may resume there
   // (sslrProbeAfterWalk), the segment before it walked.
-  if (t.resumeAtStepCap != 0 && w.i >= t.hizMaxSteps && !w.inSlab && !w.hidden)
+  if (w.i >= t.hizMaxSteps && !w.inSlab && !w.hidden)
     hit.LResume = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRay, vsP, vsR);
   // Ended inside an object's slab: its side, if the ray crossed an outline onto it.
   float Lc = 0.0f;
@@ -672,30 +656,20 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   return hit;
 }
 
-// The depth-only tracer of a pixel: adaptive L (the article's method), the hierarchical traversal
-// wherever adaptive L has no confident hit (t.hizMode = SSLR_HIZ_FALLBACK), or the traversal
-// alone. "Off the screen" and "into the background" are adaptive L's guesses too: its probes
-// sample the ray, and a ray can pass over geometry between two probes, so those exits go to the
-// traversal like a miss (the default then never finds less than the traversal alone).
+// The depth-only tracer of a pixel (t.hizMode): adaptive L alone (SSLR_HIZ_OFF), the traversal
+// alone (SSLR_HIZ_ONLY), or both (SSLR_HIZ_TRAVERSAL_FIRST, the default): the traversal on every
+// ray, adaptive L only where the traversal has no confident hit. The traversal walks every cell,
+// so its hit is the first crossing; adaptive L converges on *a* crossing, not always the first
+// (its probes can step over a thin occluder onto the surface behind), so it only answers rays the
+// traversal left without one (docs/results/ray-work.md).
 //
-// SSLR_HIZ_VERIFY also traces every adaptive-L hit: adaptive L converges on *an* intersection,
-// not always the first (its probes can step over a thin occluder onto the surface behind). The
-// traversal walks every cell, so a hit it finds clearly earlier (L 3% shorter: the same surface
-// found twice differs by less) replaces adaptive L's. Anything else keeps adaptive L's hit: the
-// traversal's own misses (a slab it stopped in, steps run out) are no better evidence.
-//
-// SSLR_HIZ_TRAVERSAL_FIRST (the default) reaches verification's answers the other way round: the
-// traversal on every ray, adaptive L only where the traversal has no hit. Verification paid for
-// both tracers on every ray; this pays for the traversal and a few adaptive-L rays
-// (docs/results/ray-work.md).
-//
-// Two stages, so that a pass can run the first alone and leave the second (the traversal; with
-// traversal first, adaptive L) to a pass of its own (Settings::traversal.pass):
+// Two stages, so that a pass can run the first alone and leave the second (with traversal first:
+// adaptive L; traversal alone: the traversal) to a pass of its own (Settings::traversal.pass):
 // sslrTraceFirstStage answers the pixel or says it needs the second.
 
 // Rays that come back towards the camera, or run within ~17 degrees of the image plane, are where
 // adaptive L jumps over what stands between (its probes see the front of the occluders, not the
-// ray): they go to the traversal at once.
+// ray): the traversal's answer is final for them.
 SSLR_FN bool sslrTraversalOnly(SslrProjection p, SslrTraceParams t, vec3 vsP, vec3 vsR) {
   return sslrHiZMode(t) == SSLR_HIZ_ONLY ||
          (sslrHasHiZFallback(t) && dot(vsR, -sslrViewDirection(p, vsP)) > -0.3f);
@@ -713,8 +687,8 @@ SSLR_FN bool sslrConfidentHit(SslrHit h) { return h.status == SSLR_STATUS_HIT &&
 
 // A ray the traversal walked off the screen (or out of the depth range) crossed nothing it could
 // take: adaptive L there finds little and spends its whole iteration budget (design-notes.md,
-// "Traversal first"). A ray that ran out of steps in front of what the screen shows
-// (Settings::traversal.resumeAtStepCap) gets adaptive L from there, whatever its direction: the
+// "Traversal first"). A ray that ran out of steps in front of what the screen shows gets adaptive
+// L from there, whatever its direction: the
 // segment before is walked, so its probes cannot jump over what stands there (the step cap's
 // graceful answer; results/ray-work.md).
 SSLR_FN bool sslrWalkedNeedsProbes(SslrProjection p, SslrTraceParams t, vec3 vsP, vec3 vsR, SslrHit walked) {
@@ -800,42 +774,26 @@ SSLR_FN bool sslrRanSecondStage(SslrTraceParams t, SslrHit h) {
   return sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST ? h.hierarchical == 2 : h.hierarchical != 0;
 }
 
-// The first stage's answer (adaptive L's; traversal first: the traversal's); needsTraversal: the
-// pixel's answer is sslrTraceSecondStage's instead.
+// The first stage's answer (traversal first: the traversal's; adaptive L alone: adaptive L's);
+// needsTraversal: the pixel's answer is sslrTraceSecondStage's instead.
 SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
                                     vec3 vsR, SSLR_OUT(bool) needsTraversal) {
-  needsTraversal = true;
+  needsTraversal = sslrHiZMode(t) != SSLR_HIZ_OFF;
   if (sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST) {  // the traversal first; the second stage probes
     SslrHit walked = sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
     needsTraversal = sslrWalkedNeedsProbes(p, t, vsP, vsR, walked);
     return needsTraversal ? walked : sslrHiddenGuess(s, t, walked);
   }
-  if (sslrTraversalOnly(p, t, vsP, vsR)) return sslrNoHit(SSLR_STATUS_MISS);
-  SslrHit first = sslrTraceAdaptiveL(p, s, t, pxOrigin, vsP, vsR);
-  bool firstHit = sslrConfidentHit(first);
-  needsTraversal = sslrHasHiZFallback(t) && (!firstHit || sslrHiZMode(t) == SSLR_HIZ_VERIFY);
-  return first;
+  return needsTraversal ? sslrNoHit(SSLR_STATUS_MISS) : sslrTraceAdaptiveL(p, s, t, pxOrigin, vsP, vsR);
 }
 
-// The second stage (the traversal; traversal first: adaptive L), given the first stage's answer
-// `first` for a pixel that needs it.
+// The second stage (traversal first: adaptive L after the walk; the traversal alone: the walk),
+// given the first stage's answer `first` for a pixel that needs it.
 SSLR_FN SslrHit sslrTraceSecondStage(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
                                      vec3 vsR, SslrHit first) {
   if (sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST)
     return sslrSlabGuess(p, t, vsP, vsR, sslrHiddenGuess(s, t, sslrProbeAfterWalk(p, s, t, pxOrigin, vsP, vsR, first)));
-  SslrHit second = sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
-  if (sslrTraversalOnly(p, t, vsP, vsR)) return sslrHiddenGuess(s, t, second);
-  second.iterations += first.iterations;
-  if (sslrConfidentHit(first)) {  // verification (SSLR_HIZ_VERIFY)
-    if (sslrConfidentHit(second) && second.L < 0.97f * first.L) return second;
-    // With a back-face depth: the ray ran into a measured solid before adaptive L's hit.
-    if (second.status == SSLR_STATUS_HIDDEN && second.L < 0.97f * first.L) return second;
-  } else if (second.status == SSLR_STATUS_HIT && second.confidence > first.confidence) {
-    return second;
-  }
-  first.iterations = second.iterations;
-  first.hierarchical = 1;
-  return first;
+  return sslrHiddenGuess(s, t, sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR));
 }
 
 SSLR_FN SslrHit sslrTraceDepthOnly(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,

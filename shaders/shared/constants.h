@@ -21,17 +21,13 @@ namespace sslr::shared {
 #define SSLR_STATUS_OFF_SCREEN 2  // the probe left the screen or crossed the near plane
 #define SSLR_STATUS_MISS 3        // did not converge, or the hit failed validation
 #define SSLR_STATUS_SKY 4         // the ray ran into the background (nothing on screen to hit)
-#define SSLR_STATUS_HIDDEN 5      // the traversal ran into a solid the back-face depth measured, or
-                                  // past Settings::traversal.hiddenPassageLimitPx behind the depth buffer: what
-                                  // the ray meets is hidden (L: where that was known)
+#define SSLR_STATUS_HIDDEN 5      // the traversal ran into a solid the back-face depth measured:
+                                  // what the ray meets is hidden (L: where that was known)
 
-#define SSLR_HIZ_OFF 0       // adaptive L alone (the article's method, made robust)
-#define SSLR_HIZ_FALLBACK 1  // adaptive L first; the hierarchical traversal where it finds no hit
-#define SSLR_HIZ_ONLY 2      // the hierarchical traversal alone (Method::HierarchicalDepth)
-#define SSLR_HIZ_VERIFY 3    // as FALLBACK, and the traversal also checks every adaptive-L hit for an
-                             // earlier crossing (Settings::traversal.verify)
-#define SSLR_HIZ_TRAVERSAL_FIRST 4  // the traversal on every ray; adaptive L where it has no hit
-                                    // (Settings::traversal.order, the default)
+#define SSLR_HIZ_OFF 0              // adaptive L alone (the article's method, made robust)
+#define SSLR_HIZ_TRAVERSAL_FIRST 1  // the traversal on every ray; adaptive L where it has no hit
+                                    // (Settings::traversal.fallback, the default)
+#define SSLR_HIZ_ONLY 2             // the hierarchical traversal alone (Method::HierarchicalDepth)
 
 // Settings::traversal.thinObjectHits: a ray met the hidden side of what a pixel shows when that
 // object is at most SSLR_THIN_MAX_WIDTH_PX and SSLR_THIN_MAX_WIDTH_SCREEN x the screen height

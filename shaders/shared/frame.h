@@ -94,7 +94,6 @@ struct SslrTraceParams {
                               // behind a surface is inside the object (stops); farther: behind it
   int outlineThinning;        // 1: that depth shrinks near the object's outline (sslrSlabNearOutline)
   int curvedSolids;           // 1: ... and grows behind convex curved surfaces (sslrCurvedExtraDepth)
-  float hiddenPassageLimitPx; // hierarchical: pixels a ray may travel behind the depth buffer
   float ffxDepthBufferThickness;  // Method::FidelityFxSssr (sslr_trace_ffx.h)
   int ffxMaxIntersections;
   int outputRadiance;         // 1: Settings::output is Radiance (no Fresnel term in the reflection)
@@ -102,10 +101,11 @@ struct SslrTraceParams {
   float maxHitLuminance;      // Settings::radianceClamp: a hit colour's luminance at most this
                               // (colour-texture units; 0 = no clamp)
   float hiddenGuessWeight;    // Settings::traversal.hiddenGuess: a hidden ray's guess, its weight (0 = none)
-  int resumeAtStepCap;        // Settings::traversal.resumeAtStepCap: 1 = adaptive L resumes where the traversal ran out of steps
   float slabBlend;            // Settings::traversal.slabBlend: the slab's share of a hit past it (none: its confidence)
   int thinObjectHits;         // Settings::traversal.thinObjectHits (traversal first): 1 = on
   float deepSlabGuess;        // Settings::traversal.deepSlabGuess: the slab guess's confidence after a deep entry
+  int tracePad0;
+  int tracePad1;
   int tracePad2;
 };
 

@@ -172,7 +172,6 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
     else throw UsageError{"--glossy must be cone or stochastic (got '" + glossy + "')"};
   }
   numberOption(args, "object-thickness", "a number", s.traversal.objectDepthRelative);
-  numberOption(args, "hidden-passage", "a number", s.traversal.hiddenPassageLimitPx);
   numberOption(args, "hidden-guess", "a number in 0..1", s.traversal.hiddenGuess);
   numberOption(args, "slab-blend", "a number in 0..1", s.traversal.slabBlend);
   numberOption(args, "deep-slab-guess", "a number in 0..1", s.traversal.deepSlabGuess);
@@ -200,18 +199,11 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
 }
 
 // Every option, with its help.
-// The tracer's options: method, preset, order, caps, where the traversal runs, the thickness rules.
+// The tracer's options: method, preset, caps, where the traversal runs, the thickness rules.
 void addTracerOptions(cxxopts::Options& options) {
   options.add_options()
       ("method", "tracer: adaptive-l (depth-only SSLR, hierarchical fallback), hiz (the depth pyramid traversal alone), dda (McGuire & Mara 2014's screen-space DDA), ffx-sssr (AMD FidelityFX SSSR's hierarchical raymarch) or position-buffer (the tutorial's), for comparison, or none", cxxopts::value<std::string>()->default_value("adaptive-l"))
       ("no-hiz-fallback", "adaptive-l alone, without the hierarchical traversal where it finds nothing")
-      ("order", "adaptive-l: which tracer runs first: traversal-first (the traversal on every ray, adaptive L where "
-                "it has no hit; the high and ultra presets' choice) or adaptive-l-first (the article's order)",
-       cxxopts::value<std::string>())
-      ("hiz-verify", "adaptive-l, adaptive L first: also run the hierarchical traversal over every hit and keep an "
-                     "earlier one it finds (same hits as traversal-first, at both tracers' cost)")
-      ("no-hiz-verify", "adaptive-l, adaptive L first: take adaptive L's hits unchecked (the low and medium presets' "
-                        "choice; below the traversal alone where a ray passes behind something)")
       ("preset", "quality preset: low, medium, high, ultra", cxxopts::value<std::string>()->default_value("high"))
       ("fresnel", "weighting: classic (the article) or schlick", cxxopts::value<std::string>()->default_value("classic"))
       ("iterations", "override the preset's adaptive-L iteration cap", cxxopts::value<std::string>())
@@ -235,14 +227,10 @@ void addTracerOptions(cxxopts::Options& options) {
       ("composite", "how the reflection enters final.png: blend (over the fallback specular, a sky/ground environment, by coverage) or add (on top of it)",
        cxxopts::value<std::string>()->default_value("blend"))
       ("half-res", "one ray per 2x2 quad, reused by the quad's pixels on the same surface")
-      ("no-resume-at-step-cap", "a ray that runs out of traversal steps gets adaptive L from its start, not "
-                                "from where the traversal stopped (Settings::traversal.resumeAtStepCap = false)")
       ("one-body-traversal", "the traversal's walk and pixel tests in one loop body (for timing on a GPU; the "
                              "same hits: Settings::debug.oneBodyTraversal)")
       ("error-k", "classic Fresnel's error term: weight 1 - saturate(L / distance x K) (default 0.15; 0 = off)",
        cxxopts::value<std::string>())
-      ("hidden-passage", "refuse hits of rays that travelled more than this many pixels behind the depth buffer "
-                         "(Settings::traversal.hiddenPassageLimitPx; default off)", cxxopts::value<std::string>())
       ("hidden-guess", "a ray that ends behind what the screen shows gets the colour where it went behind, "
                        "at this weight 0..1 (Settings::traversal.hiddenGuess; 0.5 in the high and ultra presets, "
                        "0 = a miss)",
@@ -385,32 +373,9 @@ void parseTracing(const cxxopts::ParseResult& args, RenderJob& job) {
   if (composite == "blend") job.compositeMode = CompositeMode::BlendOverFallback;
   else if (composite == "add") job.compositeMode = CompositeMode::Add;
   else throw UsageError{"--composite must be blend or add (got '" + composite + "')"};
-  if (args.count("hiz-verify") && args.count("no-hiz-verify"))
-    throw UsageError{"--hiz-verify and --no-hiz-verify exclude each other"};
-  if (args.count("hiz-verify") || args.count("no-hiz-verify")) {
-    settings.traversal.order = TraversalOrder::AdaptiveLFirst;  // verification is that order's
-    settings.traversal.verify = args.count("hiz-verify") != 0;
-  }
-  if (args.count("order")) {
-    const std::string order = args["order"].as<std::string>();
-    if (order == "traversal-first") {
-      if (args.count("hiz-verify") || args.count("no-hiz-verify"))
-        throw UsageError{"--order traversal-first excludes --hiz-verify and --no-hiz-verify (adaptive L first only)"};
-      settings.traversal.order = TraversalOrder::TraversalFirst;
-    } else if (order == "adaptive-l-first") {
-      settings.traversal.order = TraversalOrder::AdaptiveLFirst;
-    } else {
-      throw UsageError{"--order must be traversal-first or adaptive-l-first (got '" + order + "')"};
-    }
-  }
-  if (args.count("no-hiz-fallback")) {  // adaptive L alone: no traversal at all
-    if (args.count("hiz-verify")) throw UsageError{"--hiz-verify and --no-hiz-fallback exclude each other"};
-    settings.traversal.fallback = false;
-    settings.traversal.verify = false;
-  }
+  if (args.count("no-hiz-fallback")) settings.traversal.fallback = false;  // adaptive L alone: no traversal
   if (args.count("half-res")) settings.halfResolution = true;
   if (args.count("one-body-traversal")) settings.debug.oneBodyTraversal = true;
-  if (args.count("no-resume-at-step-cap")) settings.traversal.resumeAtStepCap = false;
   settings.debug.outputs = job.dump || job.score;
   settings.debug.collectStats = args.count("stats") > 0;
   if (args.count("temporal")) settings.temporal.enabled = true;

@@ -219,22 +219,6 @@ TEST_F(CornerHit, RefusesASideSeenNearlyEdgeOn) {
 
 namespace {
 
-// The depth buffer's own normal (sslr_trace.h, sslrDepthNormal) of the box's front face, seen
-// square on: (0, 0, 1) in its middle and in its last column before the outline, where one
-// neighbour shows the far wall (the neighbour on the face's side is taken, not the one across
-// the outline); the wall behind is square on too.
-TEST_F(CornerHit, DepthNormalKeepsToTheFaceAtItsOutline) {
-  for (const int x : {60, 129, 131, 200}) {
-    const ivec2 px(x, 90);
-    vec3 vsCenter, vsN;
-    ASSERT_TRUE(sslrLoadSurface(px, vsCenter));
-    ASSERT_TRUE(sslrDepthNormal(gProj, gSurf, px, vsCenter, vsN)) << x;
-    EXPECT_NEAR(vsN.x, 0.0f, 1e-3f) << x;
-    EXPECT_NEAR(vsN.y, 0.0f, 1e-3f) << x;
-    EXPECT_NEAR(vsN.z, 1.0f, 1e-3f) << x;
-  }
-}
-
 // FidelityFX SSSR's depth hierarchy as AMD ships it: mip sizes max(1, size >> level) from the
 // render size, rounded down; a cell past a mip's size reads as background (its loads return 0)
 // without a fetch. 320x180: level 3 is 40x22 (180 / 8 = 22.5), so row 22 is no cell of FFX's,

@@ -23,14 +23,6 @@ TEST(Settings, PresetsGrowInEffort) {
                  high = Settings::preset(Preset::High), ultra = Settings::preset(Preset::Ultra);
   EXPECT_FALSE(low.traversal.fallback);
   EXPECT_TRUE(med.traversal.fallback && high.traversal.fallback && ultra.traversal.fallback);
-  EXPECT_FALSE(low.traversal.verify || med.traversal.verify);
-  EXPECT_TRUE(high.traversal.verify);
-  EXPECT_TRUE(ultra.traversal.verify);
-  // High and ultra: the traversal on every ray, adaptive L where it has no hit (verification's hits
-  // for less work); medium: adaptive L first, the traversal only where it has no hit.
-  EXPECT_EQ(med.traversal.order, TraversalOrder::AdaptiveLFirst);
-  EXPECT_EQ(high.traversal.order, TraversalOrder::TraversalFirst);
-  EXPECT_EQ(ultra.traversal.order, TraversalOrder::TraversalFirst);
   EXPECT_LT(low.adaptiveL.maxIterations, med.adaptiveL.maxIterations);
   EXPECT_LE(med.adaptiveL.maxIterations, high.adaptiveL.maxIterations);
   EXPECT_LT(high.adaptiveL.maxIterations, ultra.adaptiveL.maxIterations);
@@ -53,8 +45,6 @@ TEST(Settings, EveryInvalidFieldIsNamed) {
   const Bad cases[] = {
       {"adaptiveL.maxIterations", [](Settings& s) { s.adaptiveL.maxIterations = 0; }},
       {"adaptiveL.maxIterations", [](Settings& s) { s.adaptiveL.maxIterations = 100000; }},
-      {"traversal.verify", [](Settings& s) { s.traversal.verify = true; s.traversal.fallback = false; }},
-      {"traversal.hiddenPassageLimitPx", [](Settings& s) { s.traversal.hiddenPassageLimitPx = -1.0f; }},
       {"traversal.hiddenGuess", [](Settings& s) { s.traversal.hiddenGuess = 1.5f; }},
       {"traversal.hiddenGuess", [](Settings& s) { s.traversal.hiddenGuess = NAN; }},
       {"traversal.slabBlend", [](Settings& s) { s.traversal.slabBlend = -0.1f; }},
@@ -63,9 +53,7 @@ TEST(Settings, EveryInvalidFieldIsNamed) {
       {"traversal.deepSlabGuess", [](Settings& s) { s.traversal.deepSlabGuess = NAN; }},
       {"ffx.depthBufferThickness", [](Settings& s) { s.ffx.depthBufferThickness = 0.0f; }},
       {"ffx.maxTraversalIntersections", [](Settings& s) { s.ffx.maxTraversalIntersections = 0; }},
-      {"traversal.hiddenPassageLimitPx", [](Settings& s) { s.traversal.hiddenPassageLimitPx = NAN; }},
       {"traversal.pass", [](Settings& s) { s.traversal.pass = static_cast<TraversalPass>(7); }},
-      {"traversal.order", [](Settings& s) { s.traversal.order = static_cast<TraversalOrder>(7); }},
       {"output", [](Settings& s) { s.output = static_cast<OutputMode>(7); }},
       {"adaptiveL.convergenceEps", [](Settings& s) { s.adaptiveL.convergenceEps = -1.0f; }},
       {"adaptiveL.initialLengthScreen", [](Settings& s) { s.adaptiveL.initialLengthScreen = 0.0f; }},

@@ -494,7 +494,6 @@ TEST_F(Api, FrameStatsCountEachPassCommands) {
 
     Settings alone = s;
     alone.traversal.fallback = false;  // adaptive L alone needs no pyramid
-    alone.traversal.verify = false;
     ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), alone));
     st = ctx->waitForStats();
     expect(st.pyramidCommands, 0, 0, 0, 0, "no pyramid for adaptive L alone");
@@ -1119,17 +1118,13 @@ TEST_F(Api, PrepareCompilesEveryProgramFramesUse) {
     };
     Frame f(DepthMode::Reversed, NormalEncoding::Octahedral, true);
     const FrameInputs in = f.gbuffer->frameInputs();
-    for (TraversalOrder order : {TraversalOrder::TraversalFirst, TraversalOrder::AdaptiveLFirst}) {
-      // A context of its own per order: one that prepared the other order already holds most of
-      // the programs (on a GPU profile both orders trace inline, with the same programs).
+    {  // TraversalPass::Auto switches passes from frame to frame
       auto ctx = Context::create(d);
       ASSERT_TRUE(ctx) << ctx.error();
       compiled = 0;
       Settings s;
       s.halfResolution = half;
       s.debug.collectStats = true;
-      s.traversal.order = order;  // adaptive L first: TraversalPass::Auto switches passes
-      s.traversal.verify = false;
       ASSERT_TRUE(ctx.value()->prepare(in, s));
       const int prepared = compiled;
       EXPECT_GT(prepared, 2) << "half " << half;  // classify, pyramid, trace at least
@@ -1204,13 +1199,11 @@ TEST_F(Api, RayWorkIsTheIterationsImageRegroupedAsTheGroupsRun) {
   hiz.method = Method::HierarchicalDepth;
   expectRegrouped(hiz, "the traversal alone");
   Settings alone = s;
-  alone.traversal.verify = false;
   alone.traversal.fallback = false;
   expectRegrouped(alone, "adaptive L alone");
-  // Deferred: the trace dispatch counts adaptive L's steps, the retrace dispatch the listed pixels'
-  // whole tracer; every listed pixel is a lane there, 64 to a group.
+  // Deferred: the trace dispatch counts the traversal's steps, the retrace dispatch the listed
+  // pixels' adaptive L; every listed pixel is a lane there, 64 to a group.
   Settings deferred = s;
-  deferred.traversal.order = TraversalOrder::AdaptiveLFirst;  // most pixels listed: adaptive L first
   deferred.traversal.pass = TraversalPass::Deferred;
   ASSERT_TRUE(ctx->dispatch(in, deferred));
   const FrameStats st = ctx->waitForStats();
@@ -1503,7 +1496,6 @@ TEST_F(Api, MemoryIsAllocatedOnlyForWhatAFrameUses) {
   Frame f;
   Settings alone;
   alone.traversal.fallback = false;
-  alone.traversal.verify = false;
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), alone));
   EXPECT_EQ(pyramidCount(), before) << "adaptive L alone traces no pyramid";
   EXPECT_EQ(ctx->hitTexture(), 0u);

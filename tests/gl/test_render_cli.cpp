@@ -78,13 +78,7 @@ TEST(RenderCliNoGl, BadArgumentsExitTwoWithAMessageAndWriteNothing) {
       {"--max-luminance bright", "--max-luminance expects a number"},
       {"--hiz-steps many", "--hiz-steps expects an integer"},
       {"--traversal-pass sideways", "--traversal-pass must be"},
-      {"--hiz-verify --no-hiz-fallback", "exclude each other"},
-      {"--preset low --hiz-verify", "traversal.verify needs traversal.fallback"},
-      {"--hiz-verify --no-hiz-verify", "exclude each other"},
-      {"--order sideways", "--order must be traversal-first or adaptive-l-first"},
-      {"--order traversal-first --no-hiz-verify", "--order traversal-first excludes"},
-      {"--hidden-passage -3", "traversal.hiddenPassageLimitPx"},
-      {"--hidden-passage far", "--hidden-passage expects a number"},
+      {"--hidden-guess far", "--hidden-guess expects a number"},
       {"--error-k -1", "fades.errorK"},
       {"--error-k strong", "--error-k expects a number"},
       {"--stage sideways", "--stage must be on-mirror or as-mirror"},
@@ -105,7 +99,7 @@ TEST(RenderCliNoGl, BadArgumentsExitTwoWithAMessageAndWriteNothing) {
       {"--views 2 --dump", "--dump and --score need one view"},
       {"--views 2 --score", "--dump and --score need one view"},
       {"--views 2 --eye-separation 1e16", "--eye-separation 1e+16: an eye's camera: camera eye/target lie"},
-      {"--hidden-passage nan", "traversal.hiddenPassageLimitPx = nan"},
+      {"--hidden-guess nan", "traversal.hiddenGuess = nan"},
   };
   for (const auto& c : cases) {
     const fs::path out = freshDir("bad");

@@ -111,7 +111,6 @@ TEST_F(Soak, ObjectsErrorsAndMemoryStayFlat) {
     s.method = static_cast<Method>(pick(4));
     s.fresnel = pick(2) ? FresnelMode::Classic : FresnelMode::Schlick;
     s.traversal.fallback = pick(2) == 0;
-    s.traversal.verify = s.traversal.fallback && pick(2) == 0;  // verify without fallback is refused
     s.traversal.pass = static_cast<TraversalPass>(pick(3));
     s.traversal.outlineThinning = pick(2) == 0;
     s.traversal.curvedSolids = pick(2) == 0;

@@ -333,15 +333,15 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DefaultAgainstTraversal,
                                            "objects-on-mirror"),
                          sceneParamName);
 
-// Traversal first (the default order) reaches the verified order's hits (adaptive L first, the
-// traversal over every hit) for the traversal's work and adaptive L on the rays the traversal
-// stopped on screen without a hit. Recall within 0.002 of verification's (a pixel or two where
-// the two find the reflection a pixel's rounding apart), false hits no more than verification's
-// plus the same margin, and less SIMT work than verification: FrameStats' ray work, a count of
-// dependent steps summed over 32-lane groups' slowest lanes (counted, not timed).
+// Traversal first (the default) finds at least the traversal alone's hits: adaptive L only answers
+// rays the traversal stopped on screen without a confident hit. Recall at least the traversal
+// alone's minus 0.002 (a pixel or two found a pixel's rounding apart), and at least its SIMT
+// work: FrameStats' ray work, dependent steps summed over 32-lane groups' slowest lanes (counted,
+// not timed). Measured at 256x144 (0.10.3): thin-objects 0.9250 against 0.8986, mirror-walls
+// 0.9544 / 0.9526.
 class TraversalFirst : public sslr::test::GlTest, public ::testing::WithParamInterface<const char*> {};
 
-TEST_P(TraversalFirst, VerifiedHitsForLessWork) {
+TEST_P(TraversalFirst, FindsWhatTheTraversalAloneFinds) {
   auto scene = loadScene(GetParam());
   ASSERT_TRUE(scene) << GetParam();
   GBufferOptions o;
@@ -353,27 +353,20 @@ TEST_P(TraversalFirst, VerifiedHitsForLessWork) {
   };
   auto run = [&](Settings s) {
     s.debug.collectStats = true;
-    s.traversal.pass = TraversalPass::Inline;  // verification's groups as the trace pass runs them
+    s.traversal.pass = TraversalPass::Inline;  // the groups as the trace pass runs them
     const ScoredFrame f = renderScored(scene.value(), *scene.value().camera, o, s);
     EXPECT_TRUE(f.renderer);
     if (!f.renderer) return Run{};
     return Run{compareHits(f.truth, f.hit), f.renderer->sslr().waitForStats().totalRayWork()};
   };
-  Settings verified;
-  verified.traversal.order = TraversalOrder::AdaptiveLFirst;
   Settings hiz;
   hiz.method = Method::HierarchicalDepth;
-  const Run first = run(Settings{}), verify = run(verified), alone = run(hiz);
-  std::printf("%s: traversal first %.4f (false hits %.4f, simt32 %llu), verified %.4f (%.4f, %llu), traversal alone "
-              "%.4f (%.4f, %llu)\n",
+  const Run first = run(Settings{}), alone = run(hiz);
+  std::printf("%s: traversal first %.4f (false hits %.4f, simt32 %llu), traversal alone %.4f (%.4f, %llu)\n",
               GetParam(), first.m.recall1px, first.m.falseHitRate, (unsigned long long)first.work.simt32,
-              verify.m.recall1px, verify.m.falseHitRate, (unsigned long long)verify.work.simt32, alone.m.recall1px,
-              alone.m.falseHitRate, (unsigned long long)alone.work.simt32);
+              alone.m.recall1px, alone.m.falseHitRate, (unsigned long long)alone.work.simt32);
   ASSERT_GT(first.work.laneSteps, 0u);
-  EXPECT_GE(first.m.recall1px, verify.m.recall1px - 0.002);
   EXPECT_GE(first.m.recall1px, alone.m.recall1px - 0.002);
-  EXPECT_LE(first.m.falseHitRate, verify.m.falseHitRate + 0.002);
-  EXPECT_LT(first.work.simt32, verify.work.simt32);
   EXPECT_GE(first.work.simt32, alone.work.simt32) << "the traversal runs on every ray";
 }
 
@@ -722,9 +715,10 @@ TEST_F(ThinObjectHits, ABarsHiddenSideShowsItsFront) {
   EXPECT_EQ(notInFront, 0u);
   EXPECT_EQ(offGeometry, 0u);
 
-  // The traversal alone (a peer) and the adaptive-L-first order (Preset::Low/Medium) ignore it.
-  for (Settings s : {Settings{}, Settings::preset(Preset::Medium)}) {
-    if (s.traversal.order == TraversalOrder::TraversalFirst) s.method = Method::HierarchicalDepth;
+  // The traversal alone (a peer) ignores it.
+  {
+    Settings s;
+    s.method = Method::HierarchicalDepth;
     Settings sOff = s;
     sOff.traversal.thinObjectHits = false;
     const ScoredFrame c = renderScored(scene.value(), *scene.value().camera, o, s);
@@ -761,57 +755,34 @@ TEST_P(BackDepth, MeasuredThicknessFindsMoreAndFalseHitsNoMore) {
 INSTANTIATE_TEST_SUITE_P(Scenes, BackDepth, ::testing::Values("facing-mirror", "turned-mirror", "mirror-walls"),
                          sceneParamName);
 
-// Settings::traversal.resumeAtStepCap (on by default): a ray that runs out of traversal steps in
-// front of what the screen shows gets adaptive L from where the walk stopped, where it used to get
-// adaptive L from its start (or, running sideways or towards the camera, nothing). A tight cap
-// shows it: at 24 steps, 192x108, recall without -> with the resume: mirror-walls 0.780 -> 0.870,
-// facing-mirror 0.566 -> 0.861, curved-mirror 0.881 -> 0.952; false hits +0.001, +0.012, 0. On
-// the GPU pass and the CPU run of the same headers.
+// The step cap's answer: a ray that runs out of traversal steps in front of what the screen shows
+// gets adaptive L from where the walk stopped (the walked segment as its lower bound), not from
+// its start (or, running sideways or towards the camera, nothing). A tight cap shows it: at 24
+// steps, 192x108, recall stays within 0.1 of 112 steps' (measured: mirror-walls 0.869 against
+// 0.960, facing-mirror 0.861 / 0.905, curved-mirror 0.947 / 0.988); adaptive L from the start
+// fell 0.18, 0.34 and 0.11 short (0.10.3's Settings::traversal.resumeAtStepCap = false). On the
+// GPU pass and the CPU run of the same headers.
 class StepCap : public sslr::test::GlTest, public ::testing::WithParamInterface<const char*> {};
 
 TEST_P(StepCap, AdaptiveLResumingWhereTheTraversalStoppedKeepsTheCappedRaysHits) {
-  Settings resumed;
-  resumed.traversal.maxSteps = 24;
-  Settings restarted = resumed;
-  restarted.traversal.resumeAtStepCap = false;
-  Settings uncapped;
-  const GpuCpuScores with = scoreOnGpuAndCpu(GetParam(), resumed), without = scoreOnGpuAndCpu(GetParam(), restarted);
-  const GpuCpuScores full = scoreOnGpuAndCpu(GetParam(), uncapped);
-  ASSERT_TRUE(with.ok && without.ok && full.ok);
-  for (const auto& [where, a, b, c] : {std::tuple{"gpu", without.gpu, with.gpu, full.gpu},
-                                       std::tuple{"cpu", without.cpu, with.cpu, full.cpu}}) {
-    std::printf("%s %s, 24 steps: restarted %.4f (false hits %.4f), resumed %.4f (%.4f); 112 steps %.4f\n",
-                GetParam(), where, a.recall1px, a.falseHitRate, b.recall1px, b.falseHitRate, c.recall1px);
-    EXPECT_GT(b.recall1px, a.recall1px + 0.04) << where;  // the smallest gain measured: 0.071
+  Settings capped;
+  capped.traversal.maxSteps = 24;
+  const GpuCpuScores with = scoreOnGpuAndCpu(GetParam(), capped), full = scoreOnGpuAndCpu(GetParam(), Settings{});
+  ASSERT_TRUE(with.ok && full.ok);
+  for (const auto& [where, b, c] : {std::tuple{"gpu", with.gpu, full.gpu}, std::tuple{"cpu", with.cpu, full.cpu}}) {
+    std::printf("%s %s: 24 steps %.4f (false hits %.4f); 112 steps %.4f (%.4f)\n", GetParam(), where, b.recall1px,
+                b.falseHitRate, c.recall1px, c.falseHitRate);
+    EXPECT_GT(b.recall1px, c.recall1px - 0.1) << where;
     EXPECT_LE(b.recall1px, c.recall1px + 0.002) << where;  // no more than the steps would find
     // 0.02: the largest rise measured is 0.012 (facing-mirror), rays towards the camera that adaptive
-    // L now probes past the cap.
-    EXPECT_LE(b.falseHitRate, a.falseHitRate + 0.02) << where;
+    // L probes past the cap.
+    EXPECT_LE(b.falseHitRate, c.falseHitRate + 0.02) << where;
     EXPECT_EQ(b.nonFinite, 0u) << where;
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, StepCap, ::testing::Values("mirror-walls", "facing-mirror", "curved-mirror"),
                          sceneParamName);
-
-// Settings::traversal.hiddenPassageLimitPx refuses hits of rays that travelled far behind the depth buffer,
-// where hidden geometry may have stopped them unseen: false hits fall, and recall with them (the
-// trade docs/results.md measures; off by default). turned-mirror at 192x108 with the back depth:
-// 8 px -> recall 0.9714 -> 0.8978, false hits 13.6% -> 0.93%.
-TEST_F(BackDepth, HiddenPassageLimitTradesRecallForFalseHits) {
-  Settings limited;
-  limited.traversal.hiddenPassageLimitPx = 8.0f;
-  const GpuCpuScores open = scoreOnGpuAndCpu("turned-mirror", Settings{}, 192, 108, true);
-  const GpuCpuScores closed = scoreOnGpuAndCpu("turned-mirror", limited, 192, 108, true);
-  ASSERT_TRUE(open.ok && closed.ok);
-  for (const auto& [where, a, b] : {std::tuple{"gpu", open.gpu, closed.gpu}, std::tuple{"cpu", open.cpu, closed.cpu}}) {
-    std::printf("turned-mirror %s: unlimited %.4f (false hits %.4f), 8 px %.4f (%.4f)\n", where, a.recall1px,
-                a.falseHitRate, b.recall1px, b.falseHitRate);
-    EXPECT_LT(b.falseHitRate, 0.25 * a.falseHitRate) << where;
-    EXPECT_LT(b.recall1px, a.recall1px) << where;
-    EXPECT_GT(b.recall1px, 0.85) << where;
-  }
-}
 
 // Settings::hitDistance: hitDistanceTexture() holds each hit's reflected ray length (view units):
 // the hit record's, and 0 wherever there is no hit, at full and half resolution. At full
@@ -954,11 +925,10 @@ TEST_F(HitDistanceOfGuesses, AreNegative) {
 // normals) above a mirror floor. Inside its reflection, pixels whose ray hits the sphere right were
 // refused (a miss whose eight neighbours all hit: a sparkle once the bright fallback shows through
 // and the blur spreads it). The depth shows flat facets while the shading normal's plane tilts away
-// from them, so adaptive L's converged hit failed its plane check; it is now checked on the depth
-// buffer's own plane too (sslrPlaneHitOrDepthPlane). The traversal refused the same crossings, and
-// crossings at the creases between facets, where the depth steps from pixel to pixel: a ray that
-// ends inside a curved surface's solid now hits where it entered it through the surface
-// (sslrCurvedEntryHit). Counted on the GPU pass at 256x144: 24 -> 14 -> 2 at 32 segments, 2 -> 2
+// from them, so the pixel tests refused such crossings, and crossings at the creases between
+// facets, where the depth steps from pixel to pixel: a ray that ends inside a curved surface's
+// solid now hits where it entered it through the surface (sslrCurvedEntryHit; 0.11 dropped
+// adaptive L's second check on the depth buffer's own plane, which no longer changed the image). Counted on the GPU pass at 256x144: 24 -> 14 -> 2 at 32 segments, 2 -> 2
 // -> 2 at 128 (results/curved-objects.md has 320x180 to 960x540; 0.9's sslrCurvedSurfaceEntryHit
 // took 960x540 from 9 and 5 to 2 and 2).
 int isolatedRejections(const GroundTruth& truth, const Image& hit) {
@@ -1079,12 +1049,6 @@ INSTANTIATE_TEST_SUITE_P(
     DepthOnly, TracerOptions,
     ::testing::Values(OptionCase{"outline_thinning", "facing-mirror", 480, 270,
                                  [](Settings& s, bool on) { s.traversal.outlineThinning = on; }, 0.004, 0.003},
-                      OptionCase{"hit_verification", "thin-objects", 320, 180,
-                                 [](Settings& s, bool on) {
-                                   s.traversal.order = TraversalOrder::AdaptiveLFirst;
-                                   s.traversal.verify = on;
-                                 },
-                                 0.01, 0.0005},
                       // Fewer false hits, not more recall: rays into a sphere's hidden side no longer
                       // pass behind it (2.2% -> 0.85%; recall may lose one pixel in a thousand).
                       OptionCase{"curved_solids", "curved-mirror", 320, 180,
@@ -1148,9 +1112,6 @@ TEST_P(TraversalPasses, DeferredAndInlineGiveTheSameHits) {
   inlined.halfResolution = c.half;
   inlined.debug.outputs = true;
   inlined.debug.collectStats = true;
-  // thin-objects: adaptive L first with ultra's verification (its second stage the traversal);
-  // the others traversal first (its second stage adaptive L).
-  if (std::string(c.scene) == "thin-objects") inlined.traversal.order = TraversalOrder::AdaptiveLFirst;
   inlined.traversal.pass = TraversalPass::Inline;
   Settings deferred = inlined;
   deferred.traversal.pass = TraversalPass::Deferred;
@@ -1240,10 +1201,11 @@ INSTANTIATE_TEST_SUITE_P(Scenes, OneBodyTraversal,
                                            PassCase{"thin-objects", false}, PassCase{"mirror-room", true}),
                          passCaseName);
 
-// TraversalPass::Auto on a software renderer defers the traversal, and runs it inline while the
-// last frame had most of its traced tiles' pixels (at half resolution: quads) needing it
-// (facing-mirror: all of them; then mirror-room, ~5%: deferred again one frame later). On a GPU it
-// is always inline. The answers are the same whichever pass runs them.
+// TraversalPass::Auto on a software renderer defers the second stage (adaptive L after the
+// traversal), and runs it inline while the last frame had most of its traced tiles' pixels (at
+// half resolution: quads) needing it (mirror-room with a 2-step cap: nearly all of them; then at
+// the default cap, a few: deferred again one frame later). On a GPU it is always inline. The
+// answers are the same whichever pass runs them.
 class TraversalAuto : public sslr::test::GlTest, public ::testing::WithParamInterface<bool> {};
 
 TEST_P(TraversalAuto, FollowsTheLastFramesShareOfTraversalPixels) {
@@ -1257,19 +1219,18 @@ TEST_P(TraversalAuto, FollowsTheLastFramesShareOfTraversalPixels) {
   s.debug.collectStats = true;
   s.debug.outputs = true;
   s.halfResolution = GetParam();
-  // Verification sends every hit to the traversal: mirror-room's share would stay above half.
-  s.traversal.order = TraversalOrder::AdaptiveLFirst;
-  s.traversal.verify = false;
-  auto facing = makeBuiltinScene("facing-mirror");
+  // Two steps: nearly every ray runs out of them in front of what the screen shows, and adaptive
+  // L resumes there.
+  Settings capped = s;
+  capped.traversal.maxSteps = 2;
   auto room = makeBuiltinScene("mirror-room");
-  ASSERT_TRUE(facing && room);
-  GpuScene facingGpu(facing.value()), roomGpu(room.value());
-  const bool isFacing[] = {true, true, true, false, false};
+  ASSERT_TRUE(room);
+  GpuScene roomGpu(room.value());
+  const bool isCapped[] = {true, true, true, false, false};
   const bool deferredOnSoftware[] = {true, false, false, false, true};
   Image hits[5];
   for (int k = 0; k < 5; ++k) {
-    const Scene& scene = isFacing[k] ? facing.value() : room.value();
-    ASSERT_TRUE(r.value()->render(isFacing[k] ? facingGpu : roomGpu, *scene.camera, &s));
+    ASSERT_TRUE(r.value()->render(roomGpu, *room.value().camera, isCapped[k] ? &capped : &s));
     hits[k] = r.value()->readHit();
     const FrameStats st = r.value()->sslr().waitForStats();
     EXPECT_GT(st.hierarchicalPixels, 0u) << "frame " << k;
@@ -1364,7 +1325,6 @@ TEST_P(DeviceProfiles, SameOutputsFrameAfterFrame) {
   s.halfResolution = c.half;
   s.temporal.enabled = c.temporal;
   s.traversal.pass = c.pass;
-  if (c.pass == TraversalPass::Deferred) s.traversal.order = TraversalOrder::AdaptiveLFirst;
   s.debug.outputs = true;
   s.debug.collectStats = true;
   Settings empty = s;

@@ -38,19 +38,11 @@ std::vector<std::string> defaultBenchScenes() {
 
 namespace {
 
-// The full grid's variants of the high preset: adaptive L first (verified, unchecked), measured
-// thickness and the hidden-passage rule, each device profile's pass shapes, the second stage's pass.
+// The full grid's variants of the high preset: measured thickness, the guesses, each device
+// profile's pass shapes, the second stage's pass.
 void highVariants(std::vector<BenchConfig>& configs) {
   const Preset preset = Preset::High;
-  // adaptive L first: its hits verified (0.4's default), unchecked (medium's choice)
-  for (bool verify : {true, false}) {
-    BenchConfig alFirst{"adaptive-l", verify ? "high-verify" : "high-no-verify", Settings::preset(preset),
-                        false};
-    alFirst.settings.traversal.order = TraversalOrder::AdaptiveLFirst;
-    alFirst.settings.traversal.verify = verify;
-    configs.push_back(alFirst);
-  }
-  // Measured thickness (a back-face depth input), and the hidden-passage rule with and without it.
+  // Measured thickness (a back-face depth input).
   BenchConfig measured{"adaptive-l", "high-back-depth", Settings::preset(preset), false, true};
   configs.push_back(measured);
   // A hidden ray's guess (the occluder's colour; the default weighs it 0.5): none, and at full weight.
@@ -71,19 +63,6 @@ void highVariants(std::vector<BenchConfig>& configs) {
   BenchConfig noThin{"adaptive-l", "high-no-thin-hits", Settings::preset(preset), false};
   noThin.settings.traversal.thinObjectHits = false;
   configs.push_back(noThin);
-  // The step cap's graceful answer (adaptive L resuming where the traversal ran out of steps): off.
-  BenchConfig noResume{"adaptive-l", "high-no-resume", Settings::preset(preset), false};
-  noResume.settings.traversal.resumeAtStepCap = false;
-  configs.push_back(noResume);
-  for (float limit : {16.0f, 8.0f}) {
-    for (bool back : {false, true}) {
-      BenchConfig hidden{"adaptive-l", std::string(back ? "high-back-depth" : "high") + "-hidden" +
-                                           std::to_string(static_cast<int>(limit)),
-                         Settings::preset(preset), false, back};
-      hidden.settings.traversal.hiddenPassageLimitPx = limit;
-      configs.push_back(hidden);
-    }
-  }
   // The pass shapes of each device profile (the Auto profile's is one of the two).
   // The traversal's walk and pixel tests in one loop body, in the Gpu profile's shapes: the same
   // hits; what a GPU's warps pay for the two phases (results/gpu-h100.md).
@@ -97,12 +76,10 @@ void highVariants(std::vector<BenchConfig>& configs) {
     shaped.device = device;
     configs.push_back(shaped);
   }
-  // Where adaptive L first's second stage (the traversal) runs: Settings::traversal.pass.
-  for (auto [label, pass] : {std::pair{"high-no-verify-inline", TraversalPass::Inline},
-                             std::pair{"high-no-verify-deferred", TraversalPass::Deferred}}) {
+  // Where the second stage (adaptive L after the walk) runs: Settings::traversal.pass.
+  for (auto [label, pass] : {std::pair{"high-inline", TraversalPass::Inline},
+                             std::pair{"high-deferred", TraversalPass::Deferred}}) {
     BenchConfig where{"adaptive-l", label, Settings::preset(preset), false};
-    where.settings.traversal.order = TraversalOrder::AdaptiveLFirst;
-    where.settings.traversal.verify = false;
     where.settings.traversal.pass = pass;
     configs.push_back(where);
   }
@@ -119,7 +96,6 @@ void adaptiveLConfigs(std::vector<BenchConfig>& configs, bool full) {
     if (preset == Preset::High) {  // the article's tracer alone, without the hierarchical fallback
       BenchConfig alone{"adaptive-l", "high-no-fallback", Settings::preset(preset), false};
       alone.settings.traversal.fallback = false;
-      alone.settings.traversal.verify = false;
       configs.push_back(alone);
       BenchConfig half{"adaptive-l", "high-half", Settings::preset(preset), false};  // one ray per quad
       half.settings.halfResolution = true;

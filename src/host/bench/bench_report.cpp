@@ -39,8 +39,7 @@ json settingsJson(const BenchConfig& c) {
                               : s.traversal.pass == TraversalPass::Inline ? "inline"
                                                                          : "deferred";
   return {{"adaptiveL.maxIterations", s.adaptiveL.maxIterations},       {"traversal.fallback", s.traversal.fallback},
-          {"traversal.order", s.traversal.order == TraversalOrder::TraversalFirst ? "traversal-first" : "adaptive-l-first"},
-          {"traversal.verify", s.traversal.verify}, {"traversal.maxSteps", s.traversal.maxSteps},
+          {"traversal.maxSteps", s.traversal.maxSteps},
           {"traversal.pass", traversalPass},         {"traversal.objectDepthRelative", s.traversal.objectDepthRelative},
           {"traversal.outlineThinning", s.traversal.outlineThinning},   {"traversal.curvedSolids", s.traversal.curvedSolids},
           {"backDepth", c.backDepth},
@@ -49,9 +48,7 @@ json settingsJson(const BenchConfig& c) {
           {"traversal.slabBlend", s.traversal.slabBlend},
           {"traversal.deepSlabGuess", s.traversal.deepSlabGuess},
           {"traversal.thinObjectHits", s.traversal.thinObjectHits},
-          {"traversal.resumeAtStepCap", s.traversal.resumeAtStepCap},
           {"debug.oneBodyTraversal", s.debug.oneBodyTraversal},
-          {"traversal.hiddenPassageLimitPx", s.traversal.hiddenPassageLimitPx < 1e29f ? json(s.traversal.hiddenPassageLimitPx) : json("off")},
           {"adaptiveL.convergenceEps", s.adaptiveL.convergenceEps},
           {"adaptiveL.initialLengthScreen", s.adaptiveL.initialLengthScreen}, {"hitTolerance.relative", s.hitTolerance.relative},
           {"hitTolerance.pixels", s.hitTolerance.pixels},   {"blur.maxRadiusPx", s.blur.maxRadiusPx},

@@ -343,19 +343,7 @@ struct App {
     }
     Settings& t = s.settings;
     if (s.method != 0) return;
-    ImGui::Checkbox("hierarchical fallback", &t.traversal.fallback);
-    if (!t.traversal.fallback) {
-      t.traversal.verify = false;  // verification runs the fallback's traversal
-      return;
-    }
-    bool traversalFirst = t.traversal.order == TraversalOrder::TraversalFirst;
-    ImGui::SameLine();
-    if (ImGui::Checkbox("traversal first", &traversalFirst))
-      t.traversal.order = traversalFirst ? TraversalOrder::TraversalFirst : TraversalOrder::AdaptiveLFirst;
-    if (!traversalFirst) {
-      ImGui::SameLine();
-      ImGui::Checkbox("verify hits", &t.traversal.verify);
-    }
+    ImGui::Checkbox("hierarchical traversal", &t.traversal.fallback);
   }
 
   // The modes: half resolution, temporal reuse, blur, Fresnel, rough surfaces.
@@ -386,7 +374,6 @@ struct App {
     if (!ImGui::TreeNode("tracer")) return;
     ImGui::SliderInt("adaptiveL.maxIterations", &t.adaptiveL.maxIterations, 1, 64);
     ImGui::SliderInt("traversal.maxSteps", &t.traversal.maxSteps, 1, 256);
-    ImGui::Checkbox("resume at step cap", &t.traversal.resumeAtStepCap);
     ImGui::SliderFloat("traversal.objectDepthRelative", &t.traversal.objectDepthRelative, 0.0f, 0.5f);
     ImGui::Checkbox("outline thinning", &t.traversal.outlineThinning);
     ImGui::Checkbox("curved solids", &t.traversal.curvedSolids);

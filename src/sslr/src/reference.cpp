@@ -111,19 +111,13 @@ void traceConstants(const FrameInputs& in, const Settings& s, int width, int hei
   // FidelityFX SSSR's raymarch reads the pyramid too (its nearest depths).
   t.hizMode = s.method == Method::HierarchicalDepth || s.method == Method::FidelityFxSssr
                   ? SSLR_HIZ_ONLY
-                  : (s.method == Method::AdaptiveL && s.traversal.fallback
-                         ? (s.traversal.order == TraversalOrder::TraversalFirst
-                                ? SSLR_HIZ_TRAVERSAL_FIRST
-                                : (s.traversal.verify ? SSLR_HIZ_VERIFY : SSLR_HIZ_FALLBACK))
-                         : SSLR_HIZ_OFF);
+                  : (s.method == Method::AdaptiveL && s.traversal.fallback ? SSLR_HIZ_TRAVERSAL_FIRST : SSLR_HIZ_OFF);
   t.hizMaxSteps = s.traversal.maxSteps;
   t.objectDepthRelative = s.traversal.objectDepthRelative;
-  t.hiddenPassageLimitPx = s.traversal.hiddenPassageLimitPx;
   t.hiddenGuessWeight = s.traversal.hiddenGuess;
   t.slabBlend = s.traversal.slabBlend;
   t.deepSlabGuess = s.traversal.deepSlabGuess;
   t.thinObjectHits = s.traversal.thinObjectHits && t.hizMode == SSLR_HIZ_TRAVERSAL_FIRST ? 1 : 0;
-  t.resumeAtStepCap = s.traversal.resumeAtStepCap ? 1 : 0;
   t.ffxDepthBufferThickness = s.ffx.depthBufferThickness;
   t.ffxMaxIntersections = s.ffx.maxTraversalIntersections;
   t.hizLevels = shared::sslrHiZLevelCount(width, height);

@@ -15,18 +15,14 @@ Settings Settings::preset(Preset preset) {
       // Adaptive L alone: with 8 iterations it fails often enough that a fallback would make the
       // cheapest preset the slowest.
       s.traversal.fallback = false;
-      s.traversal.order = TraversalOrder::AdaptiveLFirst;
-      s.traversal.verify = false;
       s.traversal.hiddenGuess = 0.0f;
       s.blur.maxRadiusPx = 4.0f;
       s.selection.roughnessCutoff = 0.3f;
       break;
     case Preset::Medium:
-      // Adaptive L first with the traversal where it has no hit, a 96-step cap, hits unchecked, a
-      // narrower blur and fewer rough pixels traced (docs/design-notes.md, "Presets").
+      // A 96-step cap, no guesses, a narrower blur and fewer rough pixels traced
+      // (docs/design-notes.md, "Presets").
       s.traversal.maxSteps = 96;
-      s.traversal.order = TraversalOrder::AdaptiveLFirst;
-      s.traversal.verify = false;  // adaptive L's hits unchecked: cheaper, below the traversal alone
       s.traversal.hiddenGuess = 0.0f;
       s.blur.maxRadiusPx = 6.0f;
       s.selection.roughnessCutoff = 0.4f;
@@ -53,10 +49,6 @@ bool finite(float v) { return std::isfinite(v); }
 void checkTracer(const Settings& s, std::ostringstream& why) {
   if (s.adaptiveL.maxIterations < 1 || s.adaptiveL.maxIterations > 256)
     why << "adaptiveL.maxIterations = " << s.adaptiveL.maxIterations << " (must be 1..256); ";
-  if (s.method == Method::AdaptiveL && s.traversal.verify && !s.traversal.fallback)
-    why << "traversal.verify needs traversal.fallback (both run the hierarchical traversal); ";
-  if (s.traversal.order != TraversalOrder::TraversalFirst && s.traversal.order != TraversalOrder::AdaptiveLFirst)
-    why << "traversal.order = " << static_cast<int>(s.traversal.order) << " (not a TraversalOrder); ";
   if (s.traversal.pass != TraversalPass::Auto && s.traversal.pass != TraversalPass::Inline &&
       s.traversal.pass != TraversalPass::Deferred)
     why << "traversal.pass = " << static_cast<int>(s.traversal.pass) << " (not a TraversalPass); ";
@@ -68,8 +60,6 @@ void checkTracer(const Settings& s, std::ostringstream& why) {
     why << "traversal.slabBlend = " << s.traversal.slabBlend << " (must be 0..1); ";
   if (!(s.traversal.deepSlabGuess >= 0.0f && s.traversal.deepSlabGuess <= 1.0f))
     why << "traversal.deepSlabGuess = " << s.traversal.deepSlabGuess << " (must be 0..1); ";
-  if (std::isnan(s.traversal.hiddenPassageLimitPx) || s.traversal.hiddenPassageLimitPx < 0.0f)
-    why << "traversal.hiddenPassageLimitPx = " << s.traversal.hiddenPassageLimitPx << " (must be >= 0; 1e30 = off); ";
   if (!finite(s.traversal.objectDepthRelative) || s.traversal.objectDepthRelative < 0.0f)
     why << "traversal.objectDepthRelative = " << s.traversal.objectDepthRelative << " (must be >= 0); ";
   if (!finite(s.adaptiveL.convergenceEps) || s.adaptiveL.convergenceEps < 0.0f)

@@ -251,8 +251,9 @@ enum class GlossyMode {
 enum class Preset { Low, Medium, High, Ultra };
 
 enum class Method {
-  AdaptiveL,           // depth-only, sslr's method: the SSLR article's adaptive-L iteration and the
-                       // hierarchical traversal (traversal.fallback), in traversal.order
+  AdaptiveL,           // depth-only, sslr's method: the hierarchical traversal on every ray and the
+                       // SSLR article's adaptive-L iteration where it has no hit (traversal.fallback;
+                       // without it, adaptive L alone)
   HierarchicalDepth,   // depth-only: the min-max depth pyramid traversal alone (for comparison)
   PositionBuffer,      // comparison: "3D Game Shaders For Beginners" march on a position texture
   ScreenSpaceDDA,      // comparison, depth-only: McGuire & Mara 2014's perspective-correct DDA
@@ -260,17 +261,8 @@ enum class Method {
                        // and hit validation for mirror rays (shaders/sslr_trace_ffx.h)
 };
 
-// Which of Method::AdaptiveL's two tracers runs first (with Settings::traversal.fallback).
-enum class TraversalOrder {
-  TraversalFirst,  // the hierarchical traversal traces every ray; adaptive L answers only the rays
-                   // it leaves without a hit (a ray it stopped inside an object's assumed slab, a
-                   // hit it refused): the verified order's hits for the traversal's work
-  AdaptiveLFirst,  // the article's order: adaptive L first, the traversal where it has no hit and,
-                   // with traversal.verify, over every hit it has
-};
-
-// Where Method::AdaptiveL's second tracer runs (the traversal; with TraversalOrder::
-// TraversalFirst, adaptive L). The answers are the same.
+// Where Method::AdaptiveL's second tracer (adaptive L after the traversal) runs. The answers are
+// the same.
 enum class TraversalPass {
   Auto,      // Inline under DeviceProfile::Gpu. Under DeviceProfile::Software Deferred,
              // but Inline while more than about half the pixels (half resolution: quads) of the
@@ -312,17 +304,9 @@ struct Settings {
   // The min-max depth pyramid traversal: AdaptiveL's fallback and check, HierarchicalDepth's
   // tracer (docs/algorithm.md, "The hierarchical traversal").
   struct Traversal {
-    bool fallback = true;  // AdaptiveL: trace the pyramid where adaptive L finds no hit
-    TraversalOrder order = TraversalOrder::TraversalFirst;  // AdaptiveL with fallback: which
-                           // tracer runs first (AdaptiveLFirst in Preset::Low/Medium)
-    bool verify = true;    // AdaptiveL, AdaptiveLFirst: the traversal also over every adaptive-L
-                           // hit, keeping an earlier crossing it finds (a ray adaptive L carried
-                           // behind something): then never less than the traversal alone. Needs
-                           // fallback; off in Preset::Low/Medium
+    bool fallback = true;  // AdaptiveL: the traversal on every ray, adaptive L where it has no hit
+                           // (from where it ran out of steps); false: adaptive L alone (Preset::Low)
     int maxSteps = 112;    // 1..1024 pyramid cells visited per ray, each one fetch
-    bool resumeAtStepCap = true;  // TraversalFirst: a ray that runs out of steps in front of what
-                                  // the screen shows gets adaptive L from there (the walked segment
-                                  // as its lower bound) instead of adaptive L from the start
     TraversalPass pass = TraversalPass::Auto;  // inline or in a pass of its own (same hits)
     float objectDepthRelative = 0.075f;  // >= 0, fraction of the view depth: how deep what a
                                          // pixel shows is assumed to be (without a back-face
@@ -332,9 +316,6 @@ struct Settings {
                                   // is no deeper at its edge than its faces' corner allows)
     bool curvedSolids = true;     // ... deeper behind convex curved surfaces: a sphere of the
                                   // surface's own curvature
-    float hiddenPassageLimitPx = 1.0e30f;  // >= 0 pixels: a ray that travels further behind what
-                                           // the screen shows (where hidden geometry may stop it,
-                                           // unseen) reports no hit; 1e30 = off (the default)
     float hiddenGuess = 0.5f;  // 0..1. A ray that ends without a hit (off the screen, out of steps)
                                // while behind what the screen shows gets, weighted by this, the
                                // colour where it went behind (not where it went behind a curved
