@@ -63,7 +63,7 @@ bool sslrReuseQuadHit(ivec2 px, vec3 vsP, vec3 vsN, vec3 vsR, out SslrHit hit) {
     vec3 vsSurface;
     if (!sslrLoadSurface(landed, vsSurface)) return false;
     float dist = frame.proj.orthographic != 0 ? abs(vsSurface.z) : sslrViewDistance(frame.proj, vsSurface);
-    float tolerance = sslrHitTolerance(frame.proj, frame.surface, frame.trace, dist,
+    float tolerance = sslrHitTolerance(frame.proj, frame.surface, dist,
                                        sslrSlopeTan(frame.proj, vsSurface, vsHitNormal));
     if (length(vsQ - vsSurface) > tolerance) return false;
   }

@@ -37,9 +37,6 @@ struct SslrHit {
                      // ray's length there, where adaptive L resumes (0: it did not)
   float LSlab;       // the traversal ended inside what a pixel shows (an assumed slab): the ray's
                      // length where it went in (0: it did not)
-  int slabShallow;   // 1: it went into that slab less deep than sslrThinEntryShallow allows
-  float LBlend;      // a hit found past such a slab: the slab's entry, whose colour the hit's is
-                     // blended with (Settings::traversal.slabBlend; 0: none)
   int guessed;       // 1: the answer is a guess where the ray went out of sight (sslrHiddenGuess,
                      // sslrSlabGuess), not a crossing: half resolution's other pixels do not reuse it
 };
@@ -58,8 +55,6 @@ SSLR_FN SslrHit sslrNoHit(int status) {
   hit.LGuess = 0.0f;
   hit.LResume = 0.0f;
   hit.LSlab = 0.0f;
-  hit.slabShallow = 0;
-  hit.LBlend = 0.0f;
   hit.guessed = 0;
   return hit;
 }
@@ -90,32 +85,33 @@ SSLR_FN int sslrHiZMode(SslrTraceParams t) {
 SSLR_FN bool sslrHasHiZFallback(SslrTraceParams t) { return sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST; }
 
 // Hit tolerance (view units) on a surface at view depth `dist` seen at tan(angle) `tanView`: a
-// fraction of the distance (depth precision) plus pixel footprints stretched by the slope.
-SSLR_FN float sslrHitTolerance(SslrProjection p, SslrSurface s, SslrTraceParams t, float dist, float tanView) {
+// fraction of the distance (depth precision) plus pixel footprints stretched by the slope (pixel
+// snapping on a steep surface moves the sample along the view ray).
+SSLR_FN float sslrHitTolerance(SslrProjection p, SslrSurface s, float dist, float tanView) {
   float footprint = sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : dist);
-  return t.hitToleranceRelative * abs(dist) + t.hitTolerancePixels * footprint * (1.0f + tanView);
+  return SSLR_HIT_TOLERANCE_RELATIVE * abs(dist) + SSLR_HIT_TOLERANCE_PIXELS * footprint * (1.0f + tanView);
 }
 
 // The hit tolerance at a surface point with its normal (its distance and slope as seen).
-SSLR_FN float sslrSurfaceTolerance(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsSurface,
+SSLR_FN float sslrSurfaceTolerance(SslrProjection p, SslrSurface s, vec3 vsSurface,
                                    vec3 vsSurfaceNormal) {
   float dist = p.orthographic != 0 ? abs(vsSurface.z) : sslrViewDistance(p, vsSurface);
-  return sslrHitTolerance(p, s, t, dist, sslrSlopeTan(p, vsSurface, vsSurfaceNormal));
+  return sslrHitTolerance(p, s, dist, sslrSlopeTan(p, vsSurface, vsSurfaceNormal));
 }
 
-SSLR_FN float sslrHitValidation(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsQ,
+SSLR_FN float sslrHitValidation(SslrProjection p, SslrSurface s, vec3 vsQ,
                                 vec3 vsSurface, vec3 vsSurfaceNormal, vec3 vsR) {
   if (dot(vsSurfaceNormal, vsR) >= 0.0f) return 0.0f;  // the ray would hit the surface's back
-  float tolerance = sslrSurfaceTolerance(p, s, t, vsSurface, vsSurfaceNormal);
+  float tolerance = sslrSurfaceTolerance(p, s, vsSurface, vsSurfaceNormal);
   float miss = length(vsQ - vsSurface);
   return 1.0f - smoothstep(tolerance, 2.0f * tolerance, miss);
 }
 
 // How far a point vsQ lies from the tangent plane of a texel (its surface point and normal), in
 // units of the hit tolerance there: below 1 the point is on that texel's surface.
-SSLR_FN float sslrGapToTexelPlane(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsQ, vec3 vsTexel,
+SSLR_FN float sslrGapToTexelPlane(SslrProjection p, SslrSurface s, vec3 vsQ, vec3 vsTexel,
                                   vec3 vsTexelNormal) {
-  return abs(dot(vsQ - vsTexel, vsTexelNormal)) / max(sslrSurfaceTolerance(p, s, t, vsTexel, vsTexelNormal), 1e-30f);
+  return abs(dot(vsQ - vsTexel, vsTexelNormal)) / max(sslrSurfaceTolerance(p, s, vsTexel, vsTexelNormal), 1e-30f);
 }
 
 // Sub-pixel refinement (not in the article): the converged L is quantized by the pixel whose
@@ -150,9 +146,9 @@ SSLR_FN vec3 sslrWindowDirection(SslrProjection p, SslrSurface s, float keySign,
 // against the pixel it lands in. A pixel holds one depth sample, so a ray running along a surface
 // seen at a grazing angle shows its crossing a few pixels late: the plane's hit is then re-planed
 // once on the pixel it lands in (at most 4 px away). A silhouette the ray passes behind meets its
-// plane far away: no hit. Returns the validation (sslrHitValidation) and L; the caller handles planes seen nearly edge-on
-// by the ray (dot(R, N) >= -0.05) itself.
-SSLR_FN float sslrPlaneHit(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP, vec3 vsR,
+// plane far away: no hit. Returns the validation (sslrHitValidation) and L; a plane seen nearly
+// edge-on by the ray (dot(R, N) >= -0.05) gives none.
+SSLR_FN float sslrPlaneHit(SslrProjection p, SslrSurface s, ivec2 pxOrigin, vec3 vsP, vec3 vsR,
                            ivec2 px, vec3 vsSurface, vec3 vsSurfaceNormal, SSLR_OUT(float) L) {
   vec2 sizePx = vec2(s.width, s.height);
   float keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
@@ -194,7 +190,7 @@ SSLR_FN float sslrPlaneHit(SslrProjection p, SslrSurface s, SslrTraceParams t, i
     if (!sslrLoadSurface(pxPlane, vsPlane)) return 0.0f;
     if (!sslrDecodeNormal(s, sslrLoadNormal(pxPlane), vsPlaneNormal)) return 0.0f;
   }
-  return sslrHitValidation(p, s, t, vsP + vsR * L, vsPlane, vsPlaneNormal, vsR);
+  return sslrHitValidation(p, s, vsP + vsR * L, vsPlane, vsPlaneNormal, vsR);
 }
 
 // Fills in a tracer's final answer: the hit Q = P + R L, its uv, and the validation as the
@@ -334,11 +330,11 @@ SSLR_FN SslrHit sslrAdaptiveLAnswer(SslrProjection p, SslrSurface s, SslrTracePa
   bool normalOk = sslrDecodeNormal(s, sslrLoadNormal(pxSurface), vsSurfaceNormal);
   bool selfHit = pxSurface.x == pxOrigin.x && pxSurface.y == pxOrigin.y;
   float valid = (normalOk && !selfHit && L <= t.maxDistance)
-                    ? sslrHitValidation(p, s, t, vsQ, vsSurface, vsSurfaceNormal, vsR)
+                    ? sslrHitValidation(p, s, vsQ, vsSurface, vsSurfaceNormal, vsR)
                     : 0.0f;
   if (valid > 0.0f && sslrHasHiZFallback(t) && dot(vsR, vsSurfaceNormal) < -0.05f) {
     float planeL;
-    valid = sslrPlaneHit(p, s, t, pxOrigin, vsP, vsR, pxSurface, vsSurface, vsSurfaceNormal, planeL);
+    valid = sslrPlaneHit(p, s, pxOrigin, vsP, vsR, pxSurface, vsSurface, vsSurfaceNormal, planeL);
     if (valid > 0.0f) L = planeL;
   } else if (valid > 0.0f) {
     L = sslrRefineOnPlane(vsP, vsR, vsSurface, vsSurfaceNormal, L);
@@ -414,7 +410,7 @@ SSLR_FN SslrHit sslrTraceAdaptiveLFrom(SslrProjection p, SslrSurface s, SslrTrac
     // Done when Q lies on the surface its pixel shows (within the hit tolerance, without the
     // slope term; the final validation and the plane refinement do the rest).
     float distS = p.orthographic != 0 ? abs(vsSurface.z) : -vsSurface.z;
-    if (length(vsQ - vsSurface) <= sslrHitTolerance(p, s, t, distS, 0.0f)) break;
+    if (length(vsQ - vsSurface) <= sslrHitTolerance(p, s, distS, 0.0f)) break;
     // The article's update has settled (|P' - P| = L) but Q is not on the surface: a spurious
     // fixed point (the sphere of radius L around P meets the surface elsewhere). Not a hit:
     // move on with the bracket instead.

@@ -108,7 +108,7 @@ SSLR_FN bool sslrThinEntryShallow(float footprint, float entryBehind) {
   return entryBehind < SSLR_THIN_MAX_DEPTH_FOOTPRINTS * footprint;
 }
 
-// Settings::traversal.thinObjectHits: whether a ray that went `entryBehind` (view units) into the
+// Thin objects (traversal first): whether a ray that went `entryBehind` (view units) into the
 // assumed slab of what pixel px shows met that object's hidden side rather than passing behind it.
 // Without a thickness the depth buffer cannot tell; the prior is that a thin object (a bar, a rail,
 // a leg: at most 16 px and a 30th of the screen height across, its narrower extent around px) is
@@ -240,14 +240,14 @@ struct SslrWalk {
 //   surface recedes from the pixel inwards to the rim (the part that turns away within the pixel).
 // Curved: the two pixels' shading normals turn as on one curved surface (sslrNormalsTurnAsCurved),
 // not as on a flat face (one normal), which ends at its outline, or at an edge between two faces.
-SSLR_FN bool sslrRimEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 wEntry, vec3 d, vec3 vsP,
+SSLR_FN bool sslrRimEntryHit(SslrProjection p, SslrSurface s, vec3 wEntry, vec3 d, vec3 vsP,
                              vec3 vsR, ivec2 px, ivec2 npx, float keyIn, float depthOut, SSLR_OUT(float) L) {
   L = 0.0f;
   float keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
   bool outGeometry = sslrIsGeometryDepth(s, depthOut);
   if (outGeometry && !(wEntry.z <= keySign * depthOut)) return false;
   float distIn = sslrViewDepthFromDepth(p, keySign * keyIn);
-  float tolerance = sslrHitTolerance(p, s, t, distIn, 16.0f);
+  float tolerance = sslrHitTolerance(p, s, distIn, 16.0f);
   bool crease = outGeometry && abs(sslrViewDepthFromDepth(p, depthOut) - distIn) <= tolerance;
   ivec2 other = npx;
   if (!crease) {  // the rim: the pixel inwards, the same surface and nearer
@@ -276,33 +276,6 @@ SSLR_FN bool sslrRimEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t,
   return L > 0.0f;
 }
 
-// sslrCurvedEntryHit's last test for a ray that went behind inside px (no boundary crossed: a
-// crossing is the rim and crease rules' case) at vsQ, where its other tests refuse it: px has no
-// curved extra depth (the quad's radius estimate found none: a facet edge, near a rim), or the
-// slope-free tolerance was too tight. On a curved surface (px's shading normal turning against a
-// same-surface neighbour's) a hit there if vsQ lies on px's surface vsSurface within the hit
-// tolerance at the surface's slope, counted up to 45 degrees (steeper, near the silhouette, the
-// tolerance would take rays that pass just behind a thin curved object: a leg).
-SSLR_FN bool sslrCurvedSurfaceEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 px, vec3 vsSurface,
-                                       vec3 vsQ) {
-  vec3 nSurface;
-  if (!sslrDecodeNormal(s, sslrLoadNormal(px), nSurface)) return false;
-  float distS = p.orthographic != 0 ? abs(vsSurface.z) : -vsSurface.z;
-  float sameSurface = sslrHitTolerance(p, s, t, distS, 16.0f);
-  bool curved = false;
-  for (int k = 0; k < 4 && !curved; ++k) {
-    ivec2 q = px + (k == 0 ? ivec2(1, 0) : k == 1 ? ivec2(-1, 0) : k == 2 ? ivec2(0, 1) : ivec2(0, -1));
-    vec3 vsN, nN;
-    if (q.x < 0 || q.y < 0 || q.x >= int(s.width) || q.y >= int(s.height) || !sslrLoadSurface(q, vsN) ||
-        !sslrDecodeNormal(s, sslrLoadNormal(q), nN))
-      continue;
-    float distN = p.orthographic != 0 ? abs(vsN.z) : -vsN.z;
-    curved = abs(distN - distS) <= sameSurface && sslrNormalsTurnAsCurved(s, nSurface, nN);
-  }
-  return curved &&
-         length(vsQ - vsSurface) <= sslrHitTolerance(p, s, t, distS, min(sslrSlopeTan(p, vsSurface, nSurface), 1.0f));
-}
-
 // Where a ray that ended inside a curved surface's solid entered it (w.tRun, window space wEntry;
 // the pixel there is px): a hit if it entered through the surface the pixel shows. A faceted mesh
 // with interpolated normals holds flat facets in depth while its shading normals tilt away from
@@ -315,8 +288,7 @@ SSLR_FN bool sslrCurvedSurfaceEntryHit(SslrProjection p, SslrSurface s, SslrTrac
 //   steps further);
 // - otherwise it went behind inside px: a hit where it did, if that point lies on px's surface
 //   within the hit tolerance (adaptive L's convergence test).
-// Where it has none (near an outline), sslrRimEntryHit; where the ray went behind inside px and
-// the tests above refuse it, sslrCurvedSurfaceEntryHit. With the back-face depth, level 0 holds
+// Where it has none (near an outline), sslrRimEntryHit. With the back-face depth, level 0 holds
 // the measured extra depth instead, and the same two rules run on it: a measured solid thicker
 // than the slab, or the rim where it is thinner (a ray that ended inside it entered somewhere).
 SSLR_FN bool sslrCurvedEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 wEntry, vec3 d, vec3 vsP,
@@ -333,7 +305,7 @@ SSLR_FN bool sslrCurvedEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams
                    npx.x < s.width && npx.y < s.height;
   bool curvedPixel = sslrLoadPyramidTexel(0, px).y > 0.0f;
   if (!curvedPixel && crossedIn)
-    return sslrRimEntryHit(p, s, t, wEntry, d, vsP, vsR, px, npx, keyIn, sslrLoadDepth(npx), L);
+    return sslrRimEntryHit(p, s, wEntry, d, vsP, vsR, px, npx, keyIn, sslrLoadDepth(npx), L);
   vec3 vsSurface;
   if (!sslrLoadSurface(px, vsSurface)) return false;
   L = sslrRayLengthAt(p, vec2(s.width, s.height), keySign, wEntry, d, 0.0f, vsP, vsR);
@@ -341,13 +313,12 @@ SSLR_FN bool sslrCurvedEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams
   if (!crossedIn) {
     vec3 vsQ = vsP + vsR * L;
     float distS = p.orthographic != 0 ? abs(vsSurface.z) : -vsSurface.z;
-    return (curvedPixel && length(vsQ - vsSurface) <= sslrHitTolerance(p, s, t, distS, 0.0f)) ||
-           sslrCurvedSurfaceEntryHit(p, s, t, px, vsSurface, vsQ);
+    return curvedPixel && length(vsQ - vsSurface) <= sslrHitTolerance(p, s, distS, 0.0f);
   }
   float depthOut = sslrLoadDepth(npx);
   if (!sslrIsGeometryDepth(s, depthOut) || !(wEntry.z <= keySign * depthOut)) return false;
   float distIn = sslrViewDepthFromDepth(p, keySign * keyIn);
-  return abs(sslrViewDepthFromDepth(p, depthOut) - distIn) <= sslrHitTolerance(p, s, t, distIn, 16.0f);
+  return abs(sslrViewDepthFromDepth(p, depthOut) - distIn) <= sslrHitTolerance(p, s, distIn, 16.0f);
 }
 
 // The ray from vsP along vsR in window space, just out of its own pixel. False for a ray along the
@@ -405,7 +376,7 @@ SSLR_FN bool sslrPassesBehindCell(SslrProjection p, SslrSurface s, SslrTracePara
   if (!(segNear > keyFar && sslrIsGeometryDepth(s, farDepth))) return false;
   float distFar = sslrViewDepthFromDepth(p, farDepth);
   float distRay = sslrViewDepthFromDepth(p, keySign * segNear);
-  float tolerance16 = sslrHitTolerance(p, s, t, distFar, 16.0f);
+  float tolerance16 = sslrHitTolerance(p, s, distFar, 16.0f);
   float passBehind = sslrBackDepth(s) ? max(tolerance16, t.objectDepthRelative * distFar + extra)
                                       : max(tolerance16, t.objectDepthRelative * distFar) + extra;
   return distRay - distFar > passBehind;
@@ -489,26 +460,6 @@ SSLR_FN int sslrWalkToPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, 
   return SSLR_WALK_ENDED;
 }
 
-// The hit on pixel px, whose surface vsSurface the ray reaches inside the pixel: where the ray
-// meets the pixel's tangent plane (validity in [0, 1], L its length). A pixel holds one depth
-// sample, so a ray running along a surface seen at a grazing angle shows its crossing a few pixels
-// late: the plane's hit is then checked against the pixel it lands in (re-planed once there). A
-// silhouette the ray passes behind meets its plane far away: no hit. Nearly edge-on planes say
-// little: there the point where the ray reaches the pixel's depth is used.
-SSLR_FN float sslrCrossingInPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
-                                  vec3 vsR, SslrWalk w, ivec2 px, vec3 vsSurface, vec3 vsSurfaceNormal,
-                                  SSLR_OUT(float) L) {
-  L = 0.0f;
-  float denom = dot(vsR, vsSurfaceNormal);
-  if (denom < -0.05f) return sslrPlaneHit(p, s, t, pxOrigin, vsP, vsR, px, vsSurface, vsSurfaceNormal, L);
-  if (!(denom < 0.0f)) return 0.0f;
-  float tCross = w.d.z != 0.0f ? clamp((w.keyNear - w.o.z) / w.d.z, w.tRay - SSLR_HIZ_NUDGE, w.tExit) : w.tRay;
-  vec3 wCross = w.o + w.d * tCross;
-  vec3 vsCross = sslrViewFromUvDepth(p, vec2(wCross.x, wCross.y) / w.sizePx, w.keySign * wCross.z);
-  L = dot(vsCross - vsP, vsR);
-  return L > 0.0f ? sslrHitValidation(p, s, t, vsP + vsR * L, vsSurface, vsSurfaceNormal, vsR) : 0.0f;
-}
-
 // The test of the pixel the walk reached (level 0): a hit (SSLR_WALK_ANSWERED), the ray inside
 // what the pixel shows (SSLR_WALK_ENDED, w.inSlab), or on past it (SSLR_WALK_PIXEL: walk on).
 // The walk ends inside what pixel px shows (vsSurface), behindNear deep behind it where the ray's
@@ -540,9 +491,9 @@ SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, iv
   bool normalOk = sslrDecodeNormal(s, sslrLoadNormal(px), vsSurfaceNormal);
   bool ownPixel = px.x == pxOrigin.x && px.y == pxOrigin.y;
   float L = 0.0f;
-  float valid = normalOk && !ownPixel
-                    ? sslrCrossingInPixel(p, s, t, pxOrigin, vsP, vsR, w, px, vsSurface, vsSurfaceNormal, L)
-                    : 0.0f;
+  // The hit: where the ray meets the pixel's tangent plane (sslrPlaneHit).
+  float valid = normalOk && !ownPixel ? sslrPlaneHit(p, s, pxOrigin, vsP, vsR, px, vsSurface, vsSurfaceNormal, L)
+                                      : 0.0f;
   if (valid >= 0.5f) {
     if (!(L > t.maxDistance)) hit = sslrFinishHit(p, hit, vsP, vsR, L, valid);
     return SSLR_WALK_ANSWERED;
@@ -551,7 +502,7 @@ SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, iv
   float distSurface = -vsSurface.z;  // view depth, as sslrViewDepthFromDepth measures it
   float behind = sslrViewDepthFromDepth(p, w.keySign * w.segFar) - distSurface;
   float tolerance =
-      sslrHitTolerance(p, s, t, distSurface, normalOk ? sslrSlopeTan(p, vsSurface, vsSurfaceNormal) : 16.0f);
+      sslrHitTolerance(p, s, distSurface, normalOk ? sslrSlopeTan(p, vsSurface, vsSurfaceNormal) : 16.0f);
   // What the pixel shows is taken to fill [surface, surface + slab] along the view: the slab is
   // objectDepthRelative x distance, thinner near the object's outline (sslrSlabNearOutline). A ray
   // inside it (deeper than the hit tolerance: pixel snapping) ran into the hidden part of the
@@ -569,7 +520,7 @@ SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, iv
     // outline rule reads the pyramid's far keys, which on curved surfaces hold their backs).
     if (measured) slab = max(slab + w.extra, 0.0f);
     else if (w.extra > 0.0f) slab += w.extra;
-    else if (t.outlineThinning != 0 && normalOk && behind > tolerance && behind < slab)
+    else if (normalOk && behind > tolerance && behind < slab)
       slab = sslrSlabNearOutline(p, s, t, px, vsSurface, vsSurfaceNormal, w.segFar, w.keySign, slab);
     if (w.tRun < 0.0f) w.tRun = w.tRay;
     // A measured solid thinner than twice the tolerance (a face seen at a grazing angle has a
@@ -651,7 +602,6 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
     hit.L = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRun, vsP, vsR);
   } else if (w.inSlab) {
     hit.LSlab = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRun, vsP, vsR);
-    hit.slabShallow = w.slabShallow ? 1 : 0;
   }
   return hit;
 }
@@ -705,18 +655,12 @@ SSLR_FN SslrHit sslrProbeAfterWalk(SslrProjection p, SslrSurface s, SslrTracePar
   bool useProbed = sslrConfidentHit(probed) ||
                    (probed.status == SSLR_STATUS_HIT && !(walked.status == SSLR_STATUS_HIT &&
                                                           walked.confidence >= probed.confidence));
-  // Known hidden from walked.L on (a measured solid, the hidden-passage limit): a hit beyond that
-  // (by verification's 3%) lies behind what hid the ray.
+  // Known hidden from walked.L on (a measured solid): a hit beyond that (by 3%: the same surface
+  // found twice differs by less) lies behind what hid the ray.
   if (walked.status == SSLR_STATUS_HIDDEN && walked.L < 0.97f * probed.L) useProbed = false;
   SslrHit answer = useProbed ? probed : walked;
-  // Past an assumed slab the ray either went behind a thinner object (the hit) or met its hidden
-  // side (the slab's colour): the image takes both (Settings::traversal.slabBlend).
-  if (useProbed && sslrConfidentHit(probed) && walked.LSlab > 0.0f) answer.LBlend = walked.LSlab;
-  // ... and where it found nothing beyond, the slab's colour at that share (sslrSlabGuess).
-  if (answer.status != SSLR_STATUS_HIT) {
-    answer.LSlab = walked.LSlab;
-    answer.slabShallow = walked.slabShallow;
-  }
+  // Where it found nothing beyond an assumed slab, the slab's colour as a guess (sslrSlabGuess).
+  if (answer.status != SSLR_STATUS_HIT) answer.LSlab = walked.LSlab;
   answer.iterations = walked.iterations + probed.iterations;
   answer.hierarchical = 2;
   return answer;
@@ -725,10 +669,8 @@ SSLR_FN SslrHit sslrProbeAfterWalk(SslrProjection p, SslrSurface s, SslrTracePar
 // Settings::traversal.hiddenGuess: a final answer without a hit whose traversal ended behind what
 // the screen shows (off the screen, out of steps) takes the colour where the ray last went behind,
 // at confidence hiddenGuessWeight: the occluder's visible side for its hidden one, fading towards
-// the fallback. Not where the ray went behind a curved surface (curved solids, level 0's extra
-// depth): a convex object's back faces away from what its front shows. The hit metrics count hits
-// above 0.5 confidence, so a weight up to 0.5 changes the image, not recall or false hits.
-SSLR_FN SslrHit sslrHiddenGuess(SslrSurface s, SslrTraceParams t, SslrHit answer) {
+// the fallback. The hit metrics count hits above 0.5 confidence, so a weight up to 0.5 changes the image, not recall or false hits.
+SSLR_FN SslrHit sslrHiddenGuess(SslrTraceParams t, SslrHit answer) {
   if (!(t.hiddenGuessWeight > 0.0f) || answer.status == SSLR_STATUS_HIT) return answer;
   // Finite, on the screen and within the reflection's reach (a poisoned depth buffer can make
   // neither: then no guess, as no hit). isnan/isinf explicitly: shader compilers may assume that
@@ -738,8 +680,6 @@ SSLR_FN SslrHit sslrHiddenGuess(SslrSurface s, SslrTraceParams t, SslrHit answer
   if (isnan(uv.x) || isnan(uv.y) || isnan(L) || isinf(uv.x) || isinf(uv.y) || isinf(L)) return answer;
   if (!(L > 0.0f && L <= t.maxDistance)) return answer;
   if (!(uv.x >= 0.0f && uv.x <= 1.0f && uv.y >= 0.0f && uv.y <= 1.0f)) return answer;
-  ivec2 px = min(ivec2(uv * vec2(float(s.width), float(s.height))), ivec2(s.width - 1, s.height - 1));
-  if (sslrCurvedSolids(t) && !sslrBackDepth(s) && sslrLoadPyramidTexel(0, px).y > 0.0f) return answer;
   answer.status = SSLR_STATUS_HIT;
   answer.uvHit = answer.uvGuess;
   answer.L = answer.LGuess;
@@ -748,19 +688,13 @@ SSLR_FN SslrHit sslrHiddenGuess(SslrSurface s, SslrTraceParams t, SslrHit answer
   return answer;
 }
 
-// Settings::traversal.slabBlend for a ray the traversal stopped inside an object's assumed slab and
-// adaptive L carried nowhere: it passed behind the object (a miss: the fallback) or met its hidden
-// side (the slab's colour), so the answer is the slab's entry at confidence slabBlend, as a hit
-// past the slab takes that share of its colour. A ray that went in deeper than a thin object's
-// test allows (sslrThinEntryShallow: 6 pixel footprints) is well inside the object rather than
-// just past its outline, where rays mostly pass a corner: its confidence is
-// Settings::traversal.deepSlabGuess. It runs after sslrHiddenGuess, whose guess (where the ray
-// first went behind something) takes precedence.
-SSLR_FN float sslrSlabGuessWeight(SslrTraceParams t, SslrHit answer) {
-  return answer.slabShallow != 0 ? t.slabBlend : t.deepSlabGuess;
-}
+// A ray the traversal stopped inside an object's assumed slab, past which adaptive L found nothing,
+// passed behind the object (a miss: the fallback) or met its hidden side (the slab's colour): the
+// answer is where it went into the slab, at the guesses' confidence (Settings::traversal.
+// hiddenGuess). It runs after sslrHiddenGuess, whose guess (where the ray first went behind
+// something) takes precedence.
 SSLR_FN SslrHit sslrSlabGuess(SslrProjection p, SslrTraceParams t, vec3 vsP, vec3 vsR, SslrHit answer) {
-  float weight = sslrSlabGuessWeight(t, answer);
+  float weight = t.hiddenGuessWeight;
   if (answer.status == SSLR_STATUS_HIT || !(answer.LSlab > 0.0f) || !(weight > 0.0f) ||
       !(answer.LSlab <= t.maxDistance))
     return answer;
@@ -782,7 +716,7 @@ SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTracePa
   if (sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST) {  // the traversal first; the second stage probes
     SslrHit walked = sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
     needsTraversal = sslrWalkedNeedsProbes(p, t, vsP, vsR, walked);
-    return needsTraversal ? walked : sslrHiddenGuess(s, t, walked);
+    return needsTraversal ? walked : sslrHiddenGuess(t, walked);
   }
   return needsTraversal ? sslrNoHit(SSLR_STATUS_MISS) : sslrTraceAdaptiveL(p, s, t, pxOrigin, vsP, vsR);
 }
@@ -792,8 +726,8 @@ SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTracePa
 SSLR_FN SslrHit sslrTraceSecondStage(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
                                      vec3 vsR, SslrHit first) {
   if (sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST)
-    return sslrSlabGuess(p, t, vsP, vsR, sslrHiddenGuess(s, t, sslrProbeAfterWalk(p, s, t, pxOrigin, vsP, vsR, first)));
-  return sslrHiddenGuess(s, t, sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR));
+    return sslrSlabGuess(p, t, vsP, vsR, sslrHiddenGuess(t, sslrProbeAfterWalk(p, s, t, pxOrigin, vsP, vsR, first)));
+  return sslrHiddenGuess(t, sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR));
 }
 
 SSLR_FN SslrHit sslrTraceDepthOnly(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,

@@ -34,7 +34,7 @@ vec3 sslrSurfaceColor(vec2 uvColor, vec3 vsQ) {
     if (!(b.weight[i] > 0.0f) || !geometry[i] || !sslrDecodeNormal(frame.surface, sslrLoadNormal(b.texel[i]), vsN))
       continue;
     float w = b.weight[i] *
-              (1.0f - smoothstep(3.0f, 6.0f, sslrGapToTexelPlane(frame.proj, frame.surface, frame.trace, vsQ, vsTexel[i], vsN)));
+              (1.0f - smoothstep(3.0f, 6.0f, sslrGapToTexelPlane(frame.proj, frame.surface, vsQ, vsTexel[i], vsN)));
     sum += texelFetch(uColor, sslrTexel(b.texel[i]), 0).rgb * w;
     weightSum += w;
   }
@@ -68,12 +68,6 @@ uint sslrShadePixel(ivec2 px) {
       // the hit").
       vec3 color = q.stochastic ? sslrSurfaceColor(uvColor, q.vsP + q.vsR * hit.L)
                                 : textureLod(uColor, sslrTextureUv(uvColor), 0.0f).rgb;
-      if (hit.LBlend > 0.0f && frame.trace.slabBlend > 0.0f) {  // a hit past an assumed slab: also the slab's colour
-        vec2 sizePx = vec2(frame.surface.width, frame.surface.height);
-        vec3 wSlab = sslrWindowFromView(frame.proj, sizePx, 1.0f, q.vsP + q.vsR * hit.LBlend);
-        vec3 slabColor = textureLod(uColor, sslrTextureUv(vec2(wSlab.x, wSlab.y) / sizePx), 0.0f).rgb;
-        color = mix(color, slabColor, frame.trace.slabBlend);
-      }
       // Poisoned colour must not spread through the blur: NaN/Inf become 0, and the value is
       // kept inside RGBA16F's range.
       if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0f);

@@ -134,7 +134,7 @@ bool sslrFilteredByTemporalBlend(SslrPixel q) {
 }
 
 // The trace parameters of pixel q's ray. A ray drawn from the lobe takes no guess
-// (Settings::traversal.hiddenGuess, thinObjectHits) where temporal reuse has a history: the pixel's
+// (Settings::traversal.hiddenGuess, thin objects' hits) where temporal reuse has a history: the pixel's
 // colour is then the mean over the frames' rays that found something (rgb / a), which a miss leaves
 // alone and a guessed colour pulls away. A frame without history (temporal reuse off, the first frame, a
 // reset) keeps the guess: its one ray is all the pixel shows (docs/results/glossy.md, "0.9.1").

@@ -29,7 +29,13 @@ namespace sslr::shared {
                                     // (Settings::traversal.fallback, the default)
 #define SSLR_HIZ_ONLY 2             // the hierarchical traversal alone (Method::HierarchicalDepth)
 
-// Settings::traversal.thinObjectHits: a ray met the hidden side of what a pixel shows when that
+// The hit tolerance (sslrHitTolerance): a ray point Q counts as on the surface P' a pixel shows
+// within this fraction of the view distance (depth precision) plus this many pixel footprints,
+// stretched by the surface's slope as seen (1 + tan).
+#define SSLR_HIT_TOLERANCE_RELATIVE 0.002f
+#define SSLR_HIT_TOLERANCE_PIXELS 1.5f
+
+// Thin objects (sslrMetThinObject, traversal first): a ray met the hidden side of what a pixel shows when that
 // object is at most SSLR_THIN_MAX_WIDTH_PX and SSLR_THIN_MAX_WIDTH_SCREEN x the screen height
 // across, and the ray went in less deep than SSLR_THIN_DEPTH_PER_WIDTH times its width and
 // SSLR_THIN_MAX_DEPTH_FOOTPRINTS pixel footprints (sslrMetThinObject; docs/algorithm.md, "Thin objects").

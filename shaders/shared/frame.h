@@ -73,8 +73,8 @@ struct SslrTraceParams {
   float convergenceEps;       // stop once |L_new - L| <= eps * L
   float errorK;               // the article's "LDelmiter": error = 1 - saturate(L / distance * k)
   float maxDistance;          // reflections longer than this (view units) get zero confidence
-  float hitToleranceRelative; // hit tolerance: this fraction of the hit's view distance ...
-  float hitTolerancePixels;   // ... plus this many pixel footprints (scaled by surface slope)
+  int tracePad4;
+  int tracePad5;
   float edgeFade;             // fade width at the screen border, fraction of the screen [0,0.5]
   float cameraFadeStart;      // rays with dot(R, toCamera) above start fade out ...
   float cameraFadeEnd;        // ... and are gone at end
@@ -92,7 +92,7 @@ struct SslrTraceParams {
   int hizLevels;              // pyramid levels above the depth buffer (sslrHiZLevelCount)
   float objectDepthRelative;  // hierarchical: a ray less than this fraction of the view depth
                               // behind a surface is inside the object (stops); farther: behind it
-  int outlineThinning;        // 1: that depth shrinks near the object's outline (sslrSlabNearOutline)
+  int tracePad3;
   int curvedSolids;           // 1: ... and grows behind convex curved surfaces (sslrCurvedExtraDepth)
   float ffxDepthBufferThickness;  // Method::FidelityFxSssr (sslr_trace_ffx.h)
   int ffxMaxIntersections;
@@ -101,9 +101,9 @@ struct SslrTraceParams {
   float maxHitLuminance;      // Settings::radianceClamp: a hit colour's luminance at most this
                               // (colour-texture units; 0 = no clamp)
   float hiddenGuessWeight;    // Settings::traversal.hiddenGuess: a hidden ray's guess, its weight (0 = none)
-  float slabBlend;            // Settings::traversal.slabBlend: the slab's share of a hit past it (none: its confidence)
-  int thinObjectHits;         // Settings::traversal.thinObjectHits (traversal first): 1 = on
-  float deepSlabGuess;        // Settings::traversal.deepSlabGuess: the slab guess's confidence after a deep entry
+  int thinObjectHits;         // 1: thin objects' hits (sslrMetThinObject): traversal first, not lobe rays with history
+  int tracePad6;
+  int tracePad7;
   int tracePad0;
   int tracePad1;
   int tracePad2;

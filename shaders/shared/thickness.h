@@ -18,8 +18,8 @@ namespace sslr::shared {
 // behind the pixel along the view ray (a: the view ray's angle to the normal). A mirror sphere of
 // radius 1 seen from 8 units is 2 deep at its centre, the default slab 0.6: rays that run into its
 // hidden side would be let through to the wall behind.
-// Flat faces (a box) keep the slab. Settings::curvedSolids (default on); the GPU passes get it
-// compiled in (SSLR_CURVED_SOLIDS). Classification only lists the quads whose normals turn and a
+// Flat faces (a box) keep the slab. Off where a back-face depth measures the solids, and for
+// FidelityFX SSSR; the GPU passes get it compiled in (SSLR_CURVED_SOLIDS). Classification only lists the quads whose normals turn and a
 // pass of its own computes their cells, so that the math costs the listed quads alone.
 SSLR_FN bool sslrCurvedSolids(SslrTraceParams t) {
 #ifdef SSLR_CURVED_SOLIDS

@@ -173,8 +173,6 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
   }
   numberOption(args, "object-thickness", "a number", s.traversal.objectDepthRelative);
   numberOption(args, "hidden-guess", "a number in 0..1", s.traversal.hiddenGuess);
-  numberOption(args, "slab-blend", "a number in 0..1", s.traversal.slabBlend);
-  numberOption(args, "deep-slab-guess", "a number in 0..1", s.traversal.deepSlabGuess);
   numberOption(args, "max-luminance", "a number >= 0", s.radianceClamp.maxLuminance);
   numberOption(args, "ffx-thickness", "a number", s.ffx.depthBufferThickness);
   numberOption(args, "dda-thickness", "a number", s.dda.objectDepth);
@@ -185,9 +183,6 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
   numberOption(args, "error-k", "a number", s.fades.errorK);
   numberOption(args, "iterations", "an integer", s.adaptiveL.maxIterations);
   numberOption(args, "hiz-steps", "an integer", s.traversal.maxSteps);
-  if (args.count("no-outline-thinning")) s.traversal.outlineThinning = false;
-  if (args.count("no-curved-solids")) s.traversal.curvedSolids = false;
-  if (args.count("no-thin-object-hits")) s.traversal.thinObjectHits = false;
   if (args.count("traversal-pass")) {
     const std::string pass = args["traversal-pass"].as<std::string>();
     if (pass == "auto") s.traversal.pass = TraversalPass::Auto;
@@ -213,13 +208,6 @@ void addTracerOptions(cxxopts::Options& options) {
        cxxopts::value<std::string>())
       ("device-profile", "sslr's pass shapes: auto (software on a CPU rasterizer, else gpu), gpu or software; the "
                          "outputs are the same", cxxopts::value<std::string>())
-      ("no-outline-thinning", "keep the assumed object thickness constant up to objects' outlines (hierarchical "
-                              "traversal)")
-      ("no-curved-solids", "keep the assumed object thickness behind convex curved surfaces too, instead of "
-                           "the depth of a sphere of their curvature (hierarchical traversal)")
-      ("no-thin-object-hits", "traversal first: a ray that went just behind a thin object (at most 16 px and a "
-                              "30th of the screen height across) is not taken to have met its hidden side; "
-                              "adaptive L answers beyond it (Settings::traversal.thinObjectHits = false)")
       ("no-blur", "skip the roughness blur")
       ("glossy", "rough surfaces: cone (the mirror reflection blurred over the roughness cone, the default) or "
                  "stochastic (rays drawn from the GGX lobe, resolved by the blur and --temporal)",
@@ -231,17 +219,9 @@ void addTracerOptions(cxxopts::Options& options) {
                              "same hits: Settings::debug.oneBodyTraversal)")
       ("error-k", "classic Fresnel's error term: weight 1 - saturate(L / distance x K) (default 0.15; 0 = off)",
        cxxopts::value<std::string>())
-      ("hidden-guess", "a ray that ends behind what the screen shows gets the colour where it went behind, "
-                       "at this weight 0..1 (Settings::traversal.hiddenGuess; 0.5 in the high and ultra presets, "
-                       "0 = a miss)",
-       cxxopts::value<std::string>())
-      ("slab-blend", "traversal first: a hit adaptive L finds past an object's assumed slab takes this share "
-                     "0..1 of the colour where the ray went into the slab, and one with nothing beyond shows "
-                     "the slab at that confidence (Settings::traversal.slabBlend; default 0.25, 0 = the hit's "
-                     "colour alone, a miss)",
-       cxxopts::value<std::string>())
-      ("deep-slab-guess", "traversal first: that confidence 0..1 where the ray went at least 6 pixel footprints "
-                          "into the slab (Settings::traversal.deepSlabGuess; default 0.5, 0.25 = 0.9.3's)",
+      ("hidden-guess", "a ray that ends without a hit where it went out of sight (behind what the screen shows, "
+                       "or into an object's assumed thickness) gets the colour where it did, at this weight 0..1 "
+                       "(Settings::traversal.hiddenGuess; 0.5 in the high and ultra presets, 0 = a miss)",
        cxxopts::value<std::string>())
       ("max-luminance", "HDR-safe radiance: hit colours brighter than this luminance (display units) are scaled "
                         "down to it before the blur and temporal reuse (Settings::radianceClamp; default 0 = off)",

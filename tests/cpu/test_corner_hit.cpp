@@ -35,9 +35,11 @@ SslrSurface gSurf{};
 // of its edge), at view depth 10; the far wall covers the rest.
 float gEdgePx = 130.0f;
 bool gBoxOnLeft = true;
+float gBarWidthPx = 0.0f;  // > 0: the box is a bar this many columns wide, ending at its edge
 
 bool showsBox(ivec2 px) {
   const float xc = float(px.x) + 0.5f;
+  if (gBarWidthPx > 0.0f && std::abs(xc - gEdgePx) > gBarWidthPx) return false;
   return gBoxOnLeft ? xc < gEdgePx : xc >= gEdgePx;
 }
 // The box's surface recedes towards its edge by gRimRecede view units a pixel column (the outline
@@ -88,6 +90,7 @@ class CornerHit : public ::testing::Test {
     gSurf.reversedZ = 1;
     gEdgePx = 130.0f;
     gBoxOnLeft = true;
+    gBarWidthPx = 0.0f;
     gWallZ = kWallZ;
     gCurvedExtra = 0.0f;
     gRimRecede = 0.0f;
@@ -219,6 +222,31 @@ TEST_F(CornerHit, RefusesASideSeenNearlyEdgeOn) {
 
 namespace {
 
+// Thin objects (sslrMetThinObject): a ray that went into the assumed slab of what a pixel shows met
+// the object's hidden side when the object is at most 16 px and a 30th of the screen height (here
+// 6 px) across around that pixel, and the ray went in less deep than twice its width and than 6
+// pixel footprints. The width is counted in steps of 1, 2, 4, 8 and 16 px each way from the pixel.
+// A 4-column bar seen square on: 3 footprints deep is a hit, 7 is not (past 6), and neither is 3
+// behind a 12-column bar (counted 10 wide from its second column) or the wide box.
+TEST_F(CornerHit, ThinObjectsAreAsDeepAsTheyAreWide) {
+  const ivec2 px(int(gEdgePx) - 2, 90);
+  const vec3 vsN(0.0f, 0.0f, 1.0f);
+  auto met = [&](float footprintsBehind) {
+    vec3 vsSurface;
+    EXPECT_TRUE(sslrLoadSurface(px, vsSurface));
+    const float footprint = sslrPixelFootprint(gProj, gSurf.height, sslrClipW(gProj, vsSurface));
+    const float tolerance = sslrHitTolerance(gProj, gSurf, -vsSurface.z, 0.0f);
+    return sslrMetThinObject(gProj, gSurf, px, vsSurface, vsN, tolerance, footprintsBehind * footprint);
+  };
+  gBarWidthPx = 4.0f;
+  EXPECT_TRUE(met(3.0f));
+  EXPECT_FALSE(met(7.0f));
+  gBarWidthPx = 12.0f;
+  EXPECT_FALSE(met(3.0f));
+  gBarWidthPx = 0.0f;
+  EXPECT_FALSE(met(3.0f));
+}
+
 // FidelityFX SSSR's depth hierarchy as AMD ships it: mip sizes max(1, size >> level) from the
 // render size, rounded down; a cell past a mip's size reads as background (its loads return 0)
 // without a fetch. 320x180: level 3 is 40x22 (180 / 8 = 22.5), so row 22 is no cell of FFX's,
@@ -253,8 +281,6 @@ class CurvedEntryHit : public CornerHit {
   static SslrTraceParams curvedParams() {
     SslrTraceParams t = params(0.75f);
     t.curvedSolids = 1;
-    t.hitToleranceRelative = 0.002f;  // Settings{}'s hit tolerance
-    t.hitTolerancePixels = 1.5f;
     return t;
   }
   // The rule for a ray from vsP towards vsTarget, entering the edge's pixel column through the edge
@@ -370,21 +396,6 @@ TEST_F(RimEntryHit, LeavesCurvedPixelsToTheCurvedEntryRule) {
   EXPECT_FALSE(rimHit(rayFrom(vsQ), vsQ, L, wHit));
 }
 
-// A ray that went behind inside the rim pixel (no boundary crossed) on a curved surface, whose
-// normals turn against the neighbour's: a hit where it went behind if that point lies on the
-// pixel's surface within the hit tolerance (sslrCurvedSurfaceEntryHit, ~0.12 here), not 0.5 behind
-// it, and not on a flat face (one normal: the plane tests' case).
-TEST_F(RimEntryHit, InsideACurvedPixelHitsOnlyOnItsSurface) {
-  const vec3 vsNear = viewAt(gEdgePx - 0.3f, 90.5f, kFrontZ - 0.01f);
-  float L = 0.0f;
-  ASSERT_TRUE(entryHit(rayFrom(vsNear), vsNear, L, 0.3f));
-  EXPECT_NEAR(L, length(vsNear - rayFrom(vsNear)), 2e-3f * length(vsNear - rayFrom(vsNear)));
-  const vec3 vsFar = viewAt(gEdgePx - 0.3f, 90.5f, kFrontZ - 0.5f);
-  EXPECT_FALSE(entryHit(rayFrom(vsFar), vsFar, L, 0.3f));
-  gNormalTurn = 0.0f;
-  EXPECT_FALSE(entryHit(rayFrom(vsNear), vsNear, L, 0.3f));
-}
-
 TEST_F(RimEntryHit, HitsACreaseOfOneCurvedSurfaceButNotABoxsEdge) {
   // The wall 0.05 behind the rim's sample: the same surface, its normal turned 3 degrees further.
   gWallZ = kFrontZ - 0.05f;
@@ -416,17 +427,15 @@ TEST_F(CornerHit, AContactLinesPlaneMustComeFromANeighbouringPixel) {
   const vec3 vsWallNormal = -normalize(vsR - dot(vsR, vsMirrorNormal) * vsMirrorNormal);
   const vec3 vsWall = vsP + vsR * (0.3f * footprint * std::sqrt(2.0f));
   SslrTraceParams t = params(0.75f);
-  t.hitToleranceRelative = 0.002f;
-  t.hitTolerancePixels = 1.5f;
   float L = 0.0f;
-  EXPECT_GE(sslrPlaneHit(gProj, gSurf, t, pxOrigin, vsP, vsR, ivec2(201, 90), vsWall, vsWallNormal, L), 0.5f);
+  EXPECT_GE(sslrPlaneHit(gProj, gSurf, pxOrigin, vsP, vsR, ivec2(201, 90), vsWall, vsWallNormal, L), 0.5f);
   EXPECT_NEAR(L, 0.3f * footprint * std::sqrt(2.0f), 0.01f * footprint);
-  EXPECT_EQ(sslrPlaneHit(gProj, gSurf, t, pxOrigin, vsP, vsR, ivec2(204, 90), vsWall, vsWallNormal, L), 0.0f);
+  EXPECT_EQ(sslrPlaneHit(gProj, gSurf, pxOrigin, vsP, vsR, ivec2(204, 90), vsWall, vsWallNormal, L), 0.0f);
   // The same point on a surface that faces the mirror (160 degrees from its normal: a sphere's
   // underside beside where it rests) is no contact: its plane reaches the mirror across a gap.
   const vec3 vsFacing = normalize(-vsMirrorNormal + 0.35f * vsWallNormal);
   ASSERT_LT(dot(vsR, vsFacing), -0.05f);
-  EXPECT_EQ(sslrPlaneHit(gProj, gSurf, t, pxOrigin, vsP, vsR, ivec2(201, 90), vsWall, vsFacing, L), 0.0f);
+  EXPECT_EQ(sslrPlaneHit(gProj, gSurf, pxOrigin, vsP, vsR, ivec2(201, 90), vsWall, vsFacing, L), 0.0f);
 }
 
 // A contact line's hit lies inside the mirror pixel, which shows the mirror: its colour comes from
@@ -466,24 +475,22 @@ TEST_F(CornerHit, AContactLinesColourComesFromThePixelTheRayHeadsInto) {
 // and many tolerances off the box's front face.
 TEST_F(CornerHit, AHitBesideTheOutlineIsOffTheBoxFacesPlane) {
   SslrTraceParams t{};
-  t.hitToleranceRelative = 0.002f;
-  t.hitTolerancePixels = 1.5f;
   const vec3 towardsCamera(0.0f, 0.0f, 1.0f);
   const vec3 wallTexel = viewAt(130.5f, 90.5f, kWallZ), boxTexel = viewAt(129.5f, 90.5f, kFrontZ);
   const vec3 vsHit = viewAt(130.2f, 90.7f, kWallZ);  // on the wall, 0.3 px from the outline
-  EXPECT_NEAR(sslrGapToTexelPlane(gProj, gSurf, t, vsHit, wallTexel, towardsCamera), 0.0f, 1e-3f);
-  EXPECT_GT(sslrGapToTexelPlane(gProj, gSurf, t, vsHit, boxTexel, towardsCamera), 6.0f) << "40 units behind the box";
+  EXPECT_NEAR(sslrGapToTexelPlane(gProj, gSurf, vsHit, wallTexel, towardsCamera), 0.0f, 1e-3f);
+  EXPECT_GT(sslrGapToTexelPlane(gProj, gSurf, vsHit, boxTexel, towardsCamera), 6.0f) << "40 units behind the box";
   // Off the wall by a fraction of its tolerance: that fraction (in front of it or behind).
-  const float tolerance = sslrHitTolerance(gProj, gSurf, t, sslrViewDistance(gProj, wallTexel),
+  const float tolerance = sslrHitTolerance(gProj, gSurf, sslrViewDistance(gProj, wallTexel),
                                            sslrSlopeTan(gProj, wallTexel, towardsCamera));
   ASSERT_GT(tolerance, 0.0f);
-  EXPECT_NEAR(sslrGapToTexelPlane(gProj, gSurf, t, vsHit + towardsCamera * (0.5f * tolerance), wallTexel, towardsCamera),
+  EXPECT_NEAR(sslrGapToTexelPlane(gProj, gSurf, vsHit + towardsCamera * (0.5f * tolerance), wallTexel, towardsCamera),
               0.5f, 1e-3f);
-  EXPECT_NEAR(sslrGapToTexelPlane(gProj, gSurf, t, vsHit - towardsCamera * (3.0f * tolerance), wallTexel, towardsCamera),
+  EXPECT_NEAR(sslrGapToTexelPlane(gProj, gSurf, vsHit - towardsCamera * (3.0f * tolerance), wallTexel, towardsCamera),
               3.0f, 1e-3f);
   // A plane seen at a slant has a wider tolerance (its depth steps more from pixel to pixel).
   const vec3 slanted = normalize(vec3(0.9f, 0.0f, 0.3f));
-  EXPECT_LT(sslrGapToTexelPlane(gProj, gSurf, t, wallTexel + slanted * tolerance, wallTexel, slanted), 1.0f);
+  EXPECT_LT(sslrGapToTexelPlane(gProj, gSurf, wallTexel + slanted * tolerance, wallTexel, slanted), 1.0f);
 }
 
 }  // namespace

@@ -112,12 +112,9 @@ TEST_F(Soak, ObjectsErrorsAndMemoryStayFlat) {
     s.fresnel = pick(2) ? FresnelMode::Classic : FresnelMode::Schlick;
     s.traversal.fallback = pick(2) == 0;
     s.traversal.pass = static_cast<TraversalPass>(pick(3));
-    s.traversal.outlineThinning = pick(2) == 0;
-    s.traversal.curvedSolids = pick(2) == 0;
     s.traversal.maxSteps = 1 + pick(200);
     s.adaptiveL.maxIterations = 1 + pick(40);
     s.traversal.objectDepthRelative = uniform(0.0f, 0.5f);
-    s.hitTolerance.pixels = uniform(0.1f, 4.0f);
     s.blur.enabled = pick(4) != 0;
     s.blur.maxRadiusPx = uniform(0.0f, 16.0f);
     s.selection.roughnessCutoff = uniform(0.0f, 1.0f);

@@ -533,66 +533,25 @@ TEST_P(HiddenGuess, TheDefaultsGuessBringsTheCompositeCloserWithoutReportedHits)
 INSTANTIATE_TEST_SUITE_P(Scenes, HiddenGuess, ::testing::Values("mirror-walls", "turned-mirror", "facing-mirror"),
                          sceneParamName);
 
-// Settings::traversal.slabBlend (0.25 by default): a hit adaptive L finds past an object's assumed
-// slab takes that share of the colour where the ray went into the slab (the object's hidden side,
-// if the ray met it instead of passing behind). The hits do not change, only the image, and only
-// where such hits are: thin-objects' poles and bars. The traversal alone runs no adaptive L after
-// its walk, so the setting leaves it as it was. (Its image error: results/composite.md, "0.8".)
-class SlabBlend : public sslr::test::GlTest {
- protected:
-  // Scenes with objects standing on the mirror, where rays stop inside slabs, at a size whose
-  // slab guesses number in the hundreds.
-  static constexpr const char* kStandingObjects[] = {"mirror-corridor", "mirror-walls"};
-  static GBufferOptions slabTestSize() {
+// A ray the traversal stopped inside an object's assumed slab, past which adaptive L finds nothing,
+// passed behind the object (the fallback) or met its hidden side: it shows the slab's entry at the
+// guesses' confidence (Settings::traversal.hiddenGuess, sslrSlabGuess), below the 0.5 the hit
+// metrics count. An odd weight marks the guesses in the hit texture: each lies on geometry, and
+// with the weight at 0 there are none. The image error falls (measured at 256x144, weight 0 ->
+// 0.5: mirror-corridor and mirror-walls, results/composite.md).
+class SlabGuess : public sslr::test::GlTest {};
+
+TEST_F(SlabGuess, ARayWithNothingPastTheSlabShowsTheSlabAtTheGuessWeight) {
+  constexpr float kShare = 0.3125f;
+  for (const char* name : {"mirror-corridor", "mirror-walls"}) {
+    auto scene = loadScene(name);
+    ASSERT_TRUE(scene) << scene.error();
     GBufferOptions o;
     o.width = 256;
     o.height = 144;
-    return o;
-  }
-};
-
-TEST_F(SlabBlend, ChangesTheColourOfHitsPastASlabAndNothingElse) {
-  auto scene = loadScene("thin-objects");
-  ASSERT_TRUE(scene);
-  // Thin objects' hits (Settings::traversal.thinObjectHits) answer some of these rays before adaptive
-  // L runs; off, every slab ray reaches the blend.
-  Settings hitColourAlone, blendedSettings;
-  hitColourAlone.traversal.thinObjectHits = blendedSettings.traversal.thinObjectHits = false;
-  hitColourAlone.traversal.slabBlend = 0.0f;
-  const CompositeScore alone = scoreComposite(scene.value(), compositeOptions(), hitColourAlone);
-  const CompositeScore blended = scoreComposite(scene.value(), compositeOptions(), blendedSettings);
-  ASSERT_TRUE(alone.ok && blended.ok);
-  std::printf("thin-objects composite RMSE: slab blend 0 %.5f, 0.25 %.5f\n", alone.rmse, blended.rmse);
-  EXPECT_NE(blended.rmse, alone.rmse);
-  EXPECT_EQ(blended.metrics.recall1px, alone.metrics.recall1px);
-  EXPECT_EQ(blended.metrics.falseHitRate, alone.metrics.falseHitRate);
-  Settings traversal, traversalBlended;
-  traversal.method = traversalBlended.method = Method::HierarchicalDepth;
-  traversal.traversal.slabBlend = 0.0f;
-  traversalBlended.traversal.slabBlend = 1.0f;
-  const CompositeScore t0 = scoreComposite(scene.value(), compositeOptions(), traversal);
-  const CompositeScore t1 = scoreComposite(scene.value(), compositeOptions(), traversalBlended);
-  ASSERT_TRUE(t0.ok && t1.ok);
-  EXPECT_EQ(t0.rmse, t1.rmse);
-}
-
-// ... and a ray the traversal stopped inside a slab, past which adaptive L finds nothing, passed
-// behind the object (the fallback) or met its hidden side: it shows the slab's entry at confidence
-// slabBlend (sslrSlabGuess), below the 0.5 the hit metrics count. An odd share marks those pixels
-// in the hit texture: each lies on geometry, and with the share at 0 there are none. The image
-// error falls (measured at 256x144, share 0 -> 0.25, deep entries too: mirror-corridor 0.0662 ->
-// 0.0646, 543 guesses; mirror-walls 0.0471 -> 0.0467, 143).
-TEST_F(SlabBlend, ARayWithNothingPastTheSlabShowsTheSlabAtThatConfidence) {
-  constexpr float kShare = 0.3125f;
-  for (const char* name : kStandingObjects) {
-    auto scene = loadScene(name);
-    ASSERT_TRUE(scene) << scene.error();
-    const GBufferOptions o = slabTestSize();
-    Settings marked, none, shareAlone;
-    marked.traversal.thinObjectHits = none.traversal.thinObjectHits = shareAlone.traversal.thinObjectHits = false;
-    marked.traversal.slabBlend = marked.traversal.deepSlabGuess = kShare;
-    none.traversal.slabBlend = none.traversal.deepSlabGuess = 0.0f;
-    shareAlone.traversal.deepSlabGuess = shareAlone.traversal.slabBlend;
+    Settings marked, none;
+    marked.traversal.hiddenGuess = kShare;
+    none.traversal.hiddenGuess = 0.0f;
     size_t guessesMarked = 0, guessesNone = 0, offGeometry = 0;
     for (const Settings* settings : {&marked, &none}) {
       const ScoredFrame f = renderScored(scene.value(), *scene.value().camera, o, *settings);
@@ -608,123 +567,16 @@ TEST_F(SlabBlend, ARayWithNothingPastTheSlabShowsTheSlabAtThatConfidence) {
           offGeometry += settings == &marked && !(d > 0.0f);
         }
     }
-    const CompositeScore with = scoreComposite(scene.value(), compositeOptions(), shareAlone);
+    const CompositeScore with = scoreComposite(scene.value(), compositeOptions(), Settings{});
     const CompositeScore without = scoreComposite(scene.value(), compositeOptions(), none);
     ASSERT_TRUE(with.ok && without.ok);
-    std::printf("%s: %zu slab guesses; composite RMSE without %.5f, with %.5f\n", name, guessesMarked, without.rmse,
+    std::printf("%s: %zu guesses; composite RMSE without %.5f, with %.5f\n", name, guessesMarked, without.rmse,
                 with.rmse);
     EXPECT_GT(guessesMarked, 20u) << name;
     EXPECT_EQ(guessesNone, 0u) << name;
     EXPECT_EQ(offGeometry, 0u) << name;
     EXPECT_LT(with.rmse, without.rmse) << name;
     EXPECT_EQ(with.metrics.recall1px, without.metrics.recall1px) << name;
-  }
-}
-
-// Settings::traversal.deepSlabGuess (0.5): of those rays, one that went at least 6 pixel footprints
-// into the slab shows it at this confidence instead of slabBlend's. The same rays and the same
-// points: only their confidence moves, so with the two weights equal every deep guess is a shallow
-// one's weight at the same uv (0.9.3's answers). The image error falls where objects stand on the
-// mirror (measured at 256x144, 0.25 -> 0.5: mirror-corridor 0.0646 -> 0.0641; at 960x540 -2.1%,
-// results/composite.md, "0.9.4").
-TEST_F(SlabBlend, ARayDeepInsideTheSlabShowsItAtTheDeepWeight) {
-  constexpr float kShallow = 0.3125f, kDeep = 0.4375f;
-  for (const char* name : kStandingObjects) {
-    auto scene = loadScene(name);
-    ASSERT_TRUE(scene) << scene.error();
-    const GBufferOptions o = slabTestSize();
-    Settings apart, together;
-    apart.traversal.slabBlend = together.traversal.slabBlend = together.traversal.deepSlabGuess = kShallow;
-    apart.traversal.deepSlabGuess = kDeep;
-    const ScoredFrame a = renderScored(scene.value(), *scene.value().camera, o, apart);
-    const ScoredFrame b = renderScored(scene.value(), *scene.value().camera, o, together);
-    ASSERT_TRUE(a.renderer && b.renderer);
-    size_t deep = 0, shallow = 0, moved = 0, otherwise = 0;
-    for (int y = 0; y < o.height; ++y)
-      for (int x = 0; x < o.width; ++x) {
-        const float ca = a.hit.at(x, y, 2), cb = b.hit.at(x, y, 2);
-        const bool sameUv = a.hit.at(x, y, 0) == b.hit.at(x, y, 0) && a.hit.at(x, y, 1) == b.hit.at(x, y, 1);
-        if (ca == kDeep) {
-          ++deep;
-          moved += !(cb == kShallow && sameUv);
-        } else {
-          shallow += ca == kShallow;
-          otherwise += !(ca == cb && sameUv);
-        }
-      }
-    Settings shallowWeight;
-    shallowWeight.traversal.deepSlabGuess = shallowWeight.traversal.slabBlend;
-    const CompositeScore with = scoreComposite(scene.value(), compositeOptions(), Settings{});
-    const CompositeScore without = scoreComposite(scene.value(), compositeOptions(), shallowWeight);
-    ASSERT_TRUE(with.ok && without.ok);
-    std::printf("%s: %zu deep and %zu shallow slab guesses; composite RMSE deep at 0.25 %.5f, at 0.5 %.5f\n", name,
-                deep, shallow, without.rmse, with.rmse);
-    EXPECT_GT(deep, 20u) << name;
-    EXPECT_EQ(moved, 0u) << name;
-    EXPECT_EQ(otherwise, 0u) << name;
-    EXPECT_EQ(with.metrics.recall1px, without.metrics.recall1px) << name;
-    EXPECT_EQ(with.metrics.falseHitRate, without.metrics.falseHitRate) << name;
-    if (std::string(name) == "mirror-corridor") EXPECT_LT(with.rmse, without.rmse) << name;
-  }
-}
-
-// Settings::traversal.thinObjectHits (on by default; traversal first): a ray that went into the
-// slab of an object at most 16 px across, less deep than twice its width and than 6 pixel
-// footprints, met the object's hidden side, so its answer is where it went in, at full confidence,
-// instead of what adaptive L finds beyond. thin-objects' bars seen from close by (2-4 px across at
-// 256x144): the mirror shows the rails' undersides, which the camera cannot see; their visible
-// fronts stand in for them instead of the wall behind. The image error is not asserted: the gain
-// once measured here came from a reference that lit the undersides from above; on the fixed one
-// the rule costs this view 4-19% (results/composite.md, "0.10.3"), a row of issue #57's ledger.
-class ThinObjectHits : public sslr::test::GlTest {};
-
-TEST_F(ThinObjectHits, ABarsHiddenSideShowsItsFront) {
-  auto scene = loadScene("thin-objects");
-  ASSERT_TRUE(scene);
-  scene.value().camera->eye = {0.0, 1.2, -1.5};
-  scene.value().camera->target = {0.0, 0.5, -4.5};
-  const GBufferOptions o = compositeOptions();
-  Settings off;
-  off.traversal.thinObjectHits = false;
-
-  // Each answer that changed lies no further than the old one (where the ray went into the bar's
-  // slab: in front of adaptive L's hit beyond, where the slab guess was), at full confidence, on
-  // geometry.
-  const ScoredFrame a = renderScored(scene.value(), *scene.value().camera, o, off);
-  const ScoredFrame b = renderScored(scene.value(), *scene.value().camera, o, Settings{});
-  ASSERT_TRUE(a.renderer && b.renderer);
-  const Image depth = b.renderer->gbuffer().readDepth();
-  size_t changed = 0, notInFront = 0, notConfident = 0, offGeometry = 0;
-  for (int y = 0; y < o.height; ++y)
-    for (int x = 0; x < o.width; ++x) {
-      bool same = true;
-      for (int c = 0; c < 4; ++c) same = same && a.hit.at(x, y, c) == b.hit.at(x, y, c);
-      if (same) continue;
-      ++changed;
-      notConfident += b.hit.at(x, y, 2) != 1.0f;
-      // 3%: where adaptive L's crossing was on the bar itself, the entry is the same place (as in
-      // verification, the same surface found twice differs by less).
-      notInFront += a.hit.at(x, y, 2) > 0.0f && !(b.hit.at(x, y, 3) <= 1.03f * a.hit.at(x, y, 3));
-      const int hx = std::min(int(b.hit.at(x, y, 0) * o.width), o.width - 1);
-      const int hy = std::min(int(b.hit.at(x, y, 1) * o.height), o.height - 1);
-      offGeometry += !(depth.at(hx, hy, 0) > 0.0f);  // reversed Z: background 0
-    }
-  std::printf("  %zu answers changed\n", changed);
-  EXPECT_GT(changed, 50u);
-  EXPECT_EQ(notConfident, 0u);
-  EXPECT_EQ(notInFront, 0u);
-  EXPECT_EQ(offGeometry, 0u);
-
-  // The traversal alone (a peer) ignores it.
-  {
-    Settings s;
-    s.method = Method::HierarchicalDepth;
-    Settings sOff = s;
-    sOff.traversal.thinObjectHits = false;
-    const ScoredFrame c = renderScored(scene.value(), *scene.value().camera, o, s);
-    const ScoredFrame d = renderScored(scene.value(), *scene.value().camera, o, sOff);
-    ASSERT_TRUE(c.renderer && d.renderer);
-    EXPECT_EQ(c.hit.pixels, d.hit.pixels);
   }
 }
 
@@ -927,10 +779,9 @@ TEST_F(HitDistanceOfGuesses, AreNegative) {
 // and the blur spreads it). The depth shows flat facets while the shading normal's plane tilts away
 // from them, so the pixel tests refused such crossings, and crossings at the creases between
 // facets, where the depth steps from pixel to pixel: a ray that ends inside a curved surface's
-// solid now hits where it entered it through the surface (sslrCurvedEntryHit; 0.11 dropped
-// adaptive L's second check on the depth buffer's own plane, which no longer changed the image). Counted on the GPU pass at 256x144: 24 -> 14 -> 2 at 32 segments, 2 -> 2
-// -> 2 at 128 (results/curved-objects.md has 320x180 to 960x540; 0.9's sslrCurvedSurfaceEntryHit
-// took 960x540 from 9 and 5 to 2 and 2).
+// solid now hits where it entered it through the surface (sslrCurvedEntryHit). Counted on the GPU
+// pass at 256x144: 24 -> 2 at 32 segments, 2 -> 2 at 128 (results/curved-objects.md has 320x180
+// to 960x540).
 int isolatedRejections(const GroundTruth& truth, const Image& hit) {
   auto hits = [&](int x, int y) { return hit.at(x, y, 2) >= kReportedConfidence; };
   int count = 0;
@@ -1010,50 +861,6 @@ TEST_P(FfxSssr, GpuAndCpuAgreeAndThicknessDecides) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, FfxSssr, ::testing::Values("mirror-room", "glossy"), sceneParamName);
-
-// Two options of the depth-only tracer, each judged against itself switched off on the scene that
-// needs it, on the GPU pass and the CPU run (relative floors: they hold on any rasterizer).
-// - Outline thinning: facing-mirror's rays pass just behind the boxes' edges, where a box is
-//   thinner than traversal.objectDepthRelative. Measured at 480x270: recall 0.935 -> 0.943, false hits 0.0449
-//   -> 0.0461 (960x540: 0.943 -> 0.953, 0.0169 -> 0.0184).
-// - Hit verification: adaptive L steps over thin-objects' poles onto the wall behind. Measured at
-//   320x180: recall 0.918 -> 0.934, false hits 0.0184 both (960x540: 0.963 -> 0.978).
-struct OptionCase {
-  const char* name;
-  const char* scene;
-  int width, height;
-  void (*set)(Settings&, bool on);
-  double minRecallGain, maxFalseHitGain;
-};
-void PrintTo(const OptionCase& c, std::ostream* os) { *os << c.name; }
-
-class TracerOptions : public sslr::test::GlTest, public ::testing::WithParamInterface<OptionCase> {};
-
-TEST_P(TracerOptions, EachOptionFindsMoreThanWithoutIt) {
-  const OptionCase c = GetParam();
-  Settings on, off;
-  c.set(on, true);
-  c.set(off, false);
-  const GpuCpuScores a = scoreOnGpuAndCpu(c.scene, on, c.width, c.height);
-  const GpuCpuScores b = scoreOnGpuAndCpu(c.scene, off, c.width, c.height);
-  ASSERT_TRUE(a.ok && b.ok);
-  for (const auto& [where, with, without] : {std::tuple{"gpu", a.gpu, b.gpu}, std::tuple{"cpu", a.cpu, b.cpu}}) {
-    std::printf("%s %s: recall %.4f -> %.4f, false hits %.4f -> %.4f\n", c.name, where, without.recall1px,
-                with.recall1px, without.falseHitRate, with.falseHitRate);
-    EXPECT_GE(with.recall1px, without.recall1px + c.minRecallGain) << where;
-    EXPECT_LE(with.falseHitRate, without.falseHitRate + c.maxFalseHitGain) << where;
-  }
-}
-
-INSTANTIATE_TEST_SUITE_P(
-    DepthOnly, TracerOptions,
-    ::testing::Values(OptionCase{"outline_thinning", "facing-mirror", 480, 270,
-                                 [](Settings& s, bool on) { s.traversal.outlineThinning = on; }, 0.004, 0.003},
-                      // Fewer false hits, not more recall: rays into a sphere's hidden side no longer
-                      // pass behind it (2.2% -> 0.85%; recall may lose one pixel in a thousand).
-                      OptionCase{"curved_solids", "curved-mirror", 320, 180,
-                                 [](Settings& s, bool on) { s.traversal.curvedSolids = on; }, -0.002, -0.008}),
-    [](const ::testing::TestParamInfo<OptionCase>& info) { return std::string(info.param.name); });
 
 // The traversal inline or in a pass of its own (Settings::traversal.pass) runs the same functions on
 // the same pixels: the hit images must agree, and so must the reflections and the stats' count
@@ -1267,7 +1074,6 @@ TEST_F(Level1Pass, FollowsAnEmptyFrameWithTheSameHits) {
   Settings s;
   s.debug.collectStats = true;
   s.debug.outputs = true;
-  ASSERT_TRUE(s.traversal.curvedSolids);
   Settings empty = s;
   empty.selection.minReflectance = 1.0f;  // no pixel reflects enough to be traced
   auto fresh = FrameRenderer::create(o);
@@ -1793,7 +1599,7 @@ namespace {
 // the depth buffer read back: every level, cell for cell, on sizes whose halvings leave odd
 // remainders (padded cells must be neutral), with both float depth conventions, and with 7 and 8
 // levels (2_pyramid_levels2to7.comp's blocks several across; level 8 a dispatch of its own). Level 0
-// holds each pixel's depth exactly. With Settings::curvedSolids, level 1 holds the backs of curved
+// holds each pixel's depth exactly. With curved solids (thickness.h), level 1 holds the backs of curved
 // surfaces' solids and level 0 the pixels' extra depths (sslrHiZLevel1Cell on the CPU, from the
 // depth and normals read back): the same function, within float rounding of its math; the levels
 // above are checked exactly against the GPU's level 1.
@@ -1812,7 +1618,6 @@ TEST_P(DepthPyramid, EveryLevelIsTheMinMaxOfItsChildren) {
   ASSERT_TRUE(r);
   GpuScene gpu(scene.value());
   Settings s;  // adaptive L with the traversal behind it: the pyramid is built
-  s.traversal.curvedSolids = curved;
   ASSERT_TRUE(r.value()->render(gpu, *scene.value().camera, &s));
   const std::vector<GLuint> pyramids = sslr::test::texturesLabelled("sslr.depthPyramid");
   ASSERT_FALSE(pyramids.empty());

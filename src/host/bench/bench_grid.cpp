@@ -51,18 +51,6 @@ void highVariants(std::vector<BenchConfig>& configs) {
     guess.settings.traversal.hiddenGuess = weight;
     configs.push_back(guess);
   }
-  // A hit past an assumed slab in the hit's colour alone (traversal.slabBlend 0).
-  BenchConfig noSlabBlend{"adaptive-l", "high-no-slab-blend", Settings::preset(preset), false};
-  noSlabBlend.settings.traversal.slabBlend = 0.0f;
-  configs.push_back(noSlabBlend);
-  // A ray deep inside a slab with nothing beyond at the shallow ones' confidence (0.9.3's answers).
-  BenchConfig shallowWeight{"adaptive-l", "high-deep-slab-0.25", Settings::preset(preset), false};
-  shallowWeight.settings.traversal.deepSlabGuess = shallowWeight.settings.traversal.slabBlend;
-  configs.push_back(shallowWeight);
-  // A ray just behind a thin object answered by adaptive L beyond it (traversal.thinObjectHits off).
-  BenchConfig noThin{"adaptive-l", "high-no-thin-hits", Settings::preset(preset), false};
-  noThin.settings.traversal.thinObjectHits = false;
-  configs.push_back(noThin);
   // The pass shapes of each device profile (the Auto profile's is one of the two).
   // The traversal's walk and pixel tests in one loop body, in the Gpu profile's shapes: the same
   // hits; what a GPU's warps pay for the two phases (results/gpu-h100.md).

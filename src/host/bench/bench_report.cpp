@@ -41,17 +41,13 @@ json settingsJson(const BenchConfig& c) {
   return {{"adaptiveL.maxIterations", s.adaptiveL.maxIterations},       {"traversal.fallback", s.traversal.fallback},
           {"traversal.maxSteps", s.traversal.maxSteps},
           {"traversal.pass", traversalPass},         {"traversal.objectDepthRelative", s.traversal.objectDepthRelative},
-          {"traversal.outlineThinning", s.traversal.outlineThinning},   {"traversal.curvedSolids", s.traversal.curvedSolids},
           {"backDepth", c.backDepth},
           {"device", c.device == DeviceProfile::Gpu ? "gpu" : c.device == DeviceProfile::Software ? "software" : "auto"},
           {"traversal.hiddenGuess", s.traversal.hiddenGuess},
-          {"traversal.slabBlend", s.traversal.slabBlend},
-          {"traversal.deepSlabGuess", s.traversal.deepSlabGuess},
-          {"traversal.thinObjectHits", s.traversal.thinObjectHits},
           {"debug.oneBodyTraversal", s.debug.oneBodyTraversal},
           {"adaptiveL.convergenceEps", s.adaptiveL.convergenceEps},
-          {"adaptiveL.initialLengthScreen", s.adaptiveL.initialLengthScreen}, {"hitTolerance.relative", s.hitTolerance.relative},
-          {"hitTolerance.pixels", s.hitTolerance.pixels},   {"blur.maxRadiusPx", s.blur.maxRadiusPx},
+          {"adaptiveL.initialLengthScreen", s.adaptiveL.initialLengthScreen}, 
+          {"blur.maxRadiusPx", s.blur.maxRadiusPx},
           {"selection.roughnessCutoff", s.selection.roughnessCutoff},   {"fresnel", s.fresnel == FresnelMode::Classic ? "classic" : "schlick"}};
 }
 

@@ -84,8 +84,6 @@ void traceConstants(const FrameInputs& in, const Settings& s, int width, int hei
   t.convergenceEps = s.adaptiveL.convergenceEps;
   t.errorK = s.fades.errorK;
   t.maxDistance = s.fades.maxDistance;
-  t.hitToleranceRelative = s.hitTolerance.relative;
-  t.hitTolerancePixels = s.hitTolerance.pixels;
   t.edgeFade = s.fades.screenEdge;
   t.cameraFadeStart = s.fades.cameraStart;
   t.cameraFadeEnd = s.fades.cameraEnd;
@@ -105,9 +103,8 @@ void traceConstants(const FrameInputs& in, const Settings& s, int width, int hei
   t.maxHitLuminance = s.radianceClamp.maxLuminance > 0.0f
                           ? std::max(s.radianceClamp.maxLuminance / in.exposure, std::numeric_limits<float>::min())
                           : 0.0f;
-  t.outlineThinning = s.traversal.outlineThinning ? 1 : 0;
   // A measured thickness (back-face depth) replaces the curved solids' estimate.
-  t.curvedSolids = s.traversal.curvedSolids && in.backDepthTexture == 0 && s.method != Method::FidelityFxSssr ? 1 : 0;
+  t.curvedSolids = in.backDepthTexture == 0 && s.method != Method::FidelityFxSssr ? 1 : 0;
   // FidelityFX SSSR's raymarch reads the pyramid too (its nearest depths).
   t.hizMode = s.method == Method::HierarchicalDepth || s.method == Method::FidelityFxSssr
                   ? SSLR_HIZ_ONLY
@@ -115,9 +112,7 @@ void traceConstants(const FrameInputs& in, const Settings& s, int width, int hei
   t.hizMaxSteps = s.traversal.maxSteps;
   t.objectDepthRelative = s.traversal.objectDepthRelative;
   t.hiddenGuessWeight = s.traversal.hiddenGuess;
-  t.slabBlend = s.traversal.slabBlend;
-  t.deepSlabGuess = s.traversal.deepSlabGuess;
-  t.thinObjectHits = s.traversal.thinObjectHits && t.hizMode == SSLR_HIZ_TRAVERSAL_FIRST ? 1 : 0;
+  t.thinObjectHits = t.hizMode == SSLR_HIZ_TRAVERSAL_FIRST ? 1 : 0;
   t.ffxDepthBufferThickness = s.ffx.depthBufferThickness;
   t.ffxMaxIntersections = s.ffx.maxTraversalIntersections;
   t.hizLevels = shared::sslrHiZLevelCount(width, height);

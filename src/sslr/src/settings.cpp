@@ -56,22 +56,12 @@ void checkTracer(const Settings& s, std::ostringstream& why) {
     why << "traversal.maxSteps = " << s.traversal.maxSteps << " (must be 1..1024); ";
   if (!(s.traversal.hiddenGuess >= 0.0f && s.traversal.hiddenGuess <= 1.0f))
     why << "traversal.hiddenGuess = " << s.traversal.hiddenGuess << " (must be 0..1); ";
-  if (!(s.traversal.slabBlend >= 0.0f && s.traversal.slabBlend <= 1.0f))
-    why << "traversal.slabBlend = " << s.traversal.slabBlend << " (must be 0..1); ";
-  if (!(s.traversal.deepSlabGuess >= 0.0f && s.traversal.deepSlabGuess <= 1.0f))
-    why << "traversal.deepSlabGuess = " << s.traversal.deepSlabGuess << " (must be 0..1); ";
   if (!finite(s.traversal.objectDepthRelative) || s.traversal.objectDepthRelative < 0.0f)
     why << "traversal.objectDepthRelative = " << s.traversal.objectDepthRelative << " (must be >= 0); ";
   if (!finite(s.adaptiveL.convergenceEps) || s.adaptiveL.convergenceEps < 0.0f)
     why << "adaptiveL.convergenceEps = " << s.adaptiveL.convergenceEps << " (must be >= 0); ";
   if (!finite(s.adaptiveL.initialLengthScreen) || s.adaptiveL.initialLengthScreen <= 0.0f || s.adaptiveL.initialLengthScreen > 1.0f)
     why << "adaptiveL.initialLengthScreen = " << s.adaptiveL.initialLengthScreen << " (must be in (0, 1]); ";
-  if (!finite(s.hitTolerance.relative) || s.hitTolerance.relative < 0.0f)
-    why << "hitTolerance.relative = " << s.hitTolerance.relative << " (must be >= 0); ";
-  if (!finite(s.hitTolerance.pixels) || s.hitTolerance.pixels < 0.0f)
-    why << "hitTolerance.pixels = " << s.hitTolerance.pixels << " (must be >= 0); ";
-  if (s.hitTolerance.relative == 0.0f && s.hitTolerance.pixels == 0.0f)
-    why << "hitTolerance.relative and hitTolerance.pixels are both 0 (no hit could validate); ";
 }
 
 // What weighs, blurs and reuses the hits: fades, selection, blur, output, glossy, temporal.

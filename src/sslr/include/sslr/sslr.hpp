@@ -311,48 +311,17 @@ struct Settings {
     float objectDepthRelative = 0.075f;  // >= 0, fraction of the view depth: how deep what a
                                          // pixel shows is assumed to be (without a back-face
                                          // depth). A ray less deep behind it ran into it (no
-                                         // hit), a deeper one passes behind
-    bool outlineThinning = true;  // ... less deep near the outline of what a pixel shows (a box
-                                  // is no deeper at its edge than its faces' corner allows)
-    bool curvedSolids = true;     // ... deeper behind convex curved surfaces: a sphere of the
-                                  // surface's own curvature
-    float hiddenGuess = 0.5f;  // 0..1. A ray that ends without a hit (off the screen, out of steps)
-                               // while behind what the screen shows gets, weighted by this, the
-                               // colour where it went behind (not where it went behind a curved
-                               // surface): an occluder's visible side standing in for its hidden
-                               // one, half faded to the fallback. 0 = a miss (Preset::Low/Medium;
-                               // results/composite.md). Not for GlossyMode::Stochastic's rays once
+                                         // hit), a deeper one passes behind. Less deep near
+                                         // an object's outline, deeper behind convex curved
+                                         // surfaces (docs/algorithm.md, "Thickness")
+    float hiddenGuess = 0.5f;  // 0..1: the confidence of a guess. A ray that ends without a hit
+                               // where it went out of sight (behind what the screen shows, or into
+                               // an object's assumed thickness) gets the colour where it did, at
+                               // this weight: what the screen shows of the occluder standing in for
+                               // its hidden side, the rest the fallback. 0 = a miss
+                               // (Preset::Low/Medium). Not for GlossyMode::Stochastic's rays once
                                // temporal reuse has a history (their mean over frames takes misses)
-    float slabBlend = 0.25f;   // 0..1, traversal first. Where the traversal ended inside an object's
-                               // assumed slab (a pole thinner than objectDepthRelative assumes) and
-                               // adaptive L then hit beyond it, the ray either passed behind the
-                               // object (the hit) or met its hidden side: the reflection takes this
-                               // share of the colour where the ray went into the slab (at half
-                               // resolution: on the pixels that trace their own ray). Where adaptive
-                               // L finds nothing beyond, the slab's colour at this confidence (the
-                               // rest the fallback; deepSlabGuess where the ray went in deep).
-                               // 0 = the hit's colour alone, a miss (results/composite.md, "0.8", "0.9")
-    float deepSlabGuess = 0.5f;  // 0..1, traversal first. That confidence where the ray went into the
-                                 // slab at least 6 pixel footprints behind what the pixel shows and
-                                 // adaptive L found nothing beyond: so deep inside an object the ray
-                                 // more likely met its hidden side than passed a corner. Equal to
-                                 // slabBlend: 0.9.3's answers (results/composite.md, "0.9.4")
-    bool thinObjectHits = true;  // traversal first. A ray that went into the slab of an object at
-                                 // most 16 px and a 30th of the screen height across (a bar, a
-                                 // rail, a leg), less deep than twice its width and than 6 pixel
-                                 // footprints, met its hidden side: the answer is where it went in,
-                                 // at full confidence, instead of what adaptive L finds beyond (which
-                                 // then does not run). Thin objects are taken to be about as deep
-                                 // as they are wide (docs/algorithm.md, "Thin objects";
-                                 // results/composite.md, "0.9.2")
   } traversal;
-
-  // When a crossing counts as a hit (all depth-only tracers): the ray point Q and the surface
-  // point P' it meets lie within relative * distance + pixels * footprint * (1 + tan(slope)).
-  struct HitTolerance {
-    float relative = 0.002f;  // >= 0: fraction of the hit's view distance
-    float pixels = 1.5f;      // >= 0: pixel footprints at the hit (not both 0)
-  } hitTolerance;
 
   // What weighs a hit's reflection down (never the hit itself).
   struct Fades {
@@ -605,7 +574,7 @@ class Context {
   // R32F (Settings::hitDistance): the reflected ray's length from the pixel's surface point to its
   // hit, in view units, where the pixel has a hit (coverage > 0); 0 (the sentinel: no hit, or not
   // traced) elsewhere. Negative where the answer is a guess (the ray went out of sight behind what
-  // the screen shows, traversal.hiddenGuess / slabBlend / deepSlabGuess): -(the length to where it
+  // the screen shows, traversal.hiddenGuess): -(the length to where it
   // went out of sight), short of the true hit. This frame's ray, before the blur and temporal
   // reuse. 0 until a dispatch with hitDistance created it.
   GLName hitDistanceTexture() const;

@@ -13,7 +13,7 @@ struct PyramidPass {
   GLuint texture = 0;
   int levels = 0;                         // levels above level 0
   int level1Width = 0, level1Height = 0;  // level 1's size (padded)
-  // Settings::traversal.curvedSolids: the list of quads whose normals turn, whose level-1 cells
+  // The curved solids (thickness.h): the list of quads whose normals turn, whose level-1 cells
   // and level-0 texels the curved pass (2_pyramid_curved.comp) writes (created on first use).
   GLuint curvedQuads = 0;
 
