@@ -39,7 +39,7 @@ shared vec4 sValue[SSLR_TILE_SIZE][SSLR_BLUR_SPAN];
 shared vec4 sGuide[SSLR_TILE_SIZE][SSLR_BLUR_SPAN];  // xyz = view-space normal, w = view distance (< 0: not a neighbour)
 shared uint sTaps;
 
-float sslrBlurRadiusAt(ivec2 px) { return texelFetch(uReflectionIn, sslrTexel(px), 0).a * frame.trace.blurMaxRadiusPx; }
+float sslrBlurRadiusAt(ivec2 px) { return texelFetch(uReflectionIn, sslrTexel(px), 0).a * frame.trace.maxRadiusPx; }
 
 void main() {
   ivec2 local = ivec2(gl_LocalInvocationID.xy);

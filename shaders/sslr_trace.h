@@ -450,18 +450,18 @@ SSLR_FN SslrWeights sslrReflectionWeights(SslrProjection p, SslrSurface s, SslrT
                                           vec3 vsP, vec3 vsV, vec3 vsR, float cosVN, float reflectance,
                                           float roughness) {
   float distP = sslrViewDistance(p, vsP);
-  bool classic = t.fresnelMode == SSLR_FRESNEL_CLASSIC;
+  bool classic = t.fresnel == SSLR_FRESNEL_CLASSIC;
   float fresnel = classic ? reflectance * sslrFresnelClassic(cosVN) : sslrFresnelSchlick(reflectance, cosVN);
   float errorWeight = classic ? sslrErrorWeight(p, vsP, hit.L, t.errorK) : 1.0f;
-  float radius = sslrBlurRadiusPx(p, s.height, distP, hit.L, roughness, t.blurConeScale);
+  float radius = sslrBlurRadiusPx(p, s.height, distP, hit.L, roughness, t.coneScale);
   SslrWeights w;
-  w.coverage = sslrSaturate(hit.confidence * hit.fade * errorWeight * sslrEdgeFade(hit.uvHit, t.edgeFade) *
-                            sslrCameraFacingFade(vsR, vsV, t.cameraFadeStart, t.cameraFadeEnd));
+  w.coverage = sslrSaturate(hit.confidence * hit.fade * errorWeight * sslrEdgeFade(hit.uvHit, t.screenEdge) *
+                            sslrCameraFacingFade(vsR, vsV, t.cameraStart, t.cameraEnd));
   // A surface rebuilt from a poisoned depth can make a fade NaN: then no reflection, not NaN.
   if (isnan(w.coverage) || isinf(w.coverage)) w.coverage = 0.0f;
   w.reflection = (t.outputRadiance != 0 ? 1.0f : fresnel) * w.coverage;
   if (isnan(w.reflection) || isinf(w.reflection)) w.reflection = 0.0f;
-  w.blurWeight = t.blurMaxRadiusPx > 0.0f ? sslrSaturate(radius / t.blurMaxRadiusPx) : 0.0f;
+  w.blurWeight = t.maxRadiusPx > 0.0f ? sslrSaturate(radius / t.maxRadiusPx) : 0.0f;
   return w;
 }
 
@@ -470,7 +470,7 @@ SSLR_FN SslrWeights sslrReflectionWeights(SslrProjection p, SslrSurface s, SslrT
 // `reflection` with the coverage.)
 SSLR_FN vec3 sslrFresnelColored(SslrTraceParams t, vec3 f0, float cosVN) {
   if (t.outputRadiance != 0) return vec3(1.0f);
-  if (t.fresnelMode == SSLR_FRESNEL_CLASSIC) return f0 * sslrFresnelClassic(cosVN);
+  if (t.fresnel == SSLR_FRESNEL_CLASSIC) return f0 * sslrFresnelClassic(cosVN);
   return vec3(sslrFresnelSchlick(f0.x, cosVN), sslrFresnelSchlick(f0.y, cosVN), sslrFresnelSchlick(f0.z, cosVN));
 }
 

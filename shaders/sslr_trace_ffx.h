@@ -97,7 +97,7 @@ SSLR_FN SslrHit sslrTraceFfx(SslrProjection p, SslrSurface s, SslrTraceParams t,
   vec3 pos = o + d * tRay;
   int level = 0;
   int i = 0;
-  while (i < t.ffxMaxIntersections && level >= 0) {
+  while (i < t.maxTraversalIntersections && level >= 0) {
     float cellSize = float(1 << level);
     vec2 cell = floor(vec2(pos.x, pos.y) / cellSize);
     float surfaceKey = sslrFfxNearKey(s, level, cell, keySign, t.hizLevels);
@@ -143,7 +143,7 @@ SSLR_FN SslrHit sslrTraceFfx(SslrProjection p, SslrSurface s, SslrTraceParams t,
   vec2 uv = vec2(pos.x, pos.y) / sizePx;
   vec2 fov = 0.05f * vec2(sizePx.y / sizePx.x, 1.0f);
   vec2 border = smoothstep(vec2(0.0f), fov, uv) * (vec2(1.0f) - smoothstep(vec2(1.0f) - fov, vec2(1.0f), uv));
-  float confidence = 1.0f - smoothstep(0.0f, t.ffxDepthBufferThickness, distance);
+  float confidence = 1.0f - smoothstep(0.0f, t.depthBufferThickness, distance);
   confidence *= confidence;
   hit.confidence = border.x * border.y * confidence;
   hit.uvHit = uv;

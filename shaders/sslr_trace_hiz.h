@@ -385,7 +385,7 @@ SSLR_FN bool sslrPassesBehindCell(SslrProjection p, SslrSurface s, SslrTracePara
 // A hidden passage begins (Settings::traversal.hiddenGuess): where, and the ray's length there.
 SSLR_FN void sslrNoteHiddenStart(SslrProjection p, SslrTraceParams t, SslrWalk w, vec2 uv, vec3 vsP, vec3 vsR,
                                  SSLR_INOUT(SslrHit) hit) {
-  if (!(t.hiddenGuessWeight > 0.0f) || hit.LGuess != 0.0f) return;
+  if (!(t.hiddenGuess > 0.0f) || hit.LGuess != 0.0f) return;
   hit.uvGuess = uv;
   hit.LGuess = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRay, vsP, vsR);
 }
@@ -453,7 +453,7 @@ SSLR_FN int sslrWalkStep(SslrProjection p, SslrSurface s, SslrTraceParams t, vec
 // answered.
 SSLR_FN int sslrWalkToPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsP, vec3 vsR,
                             SSLR_INOUT(SslrWalk) w, SSLR_INOUT(SslrHit) hit) {
-  for (; w.i < t.hizMaxSteps; ++w.i) {
+  for (; w.i < t.maxSteps; ++w.i) {
     int step = sslrWalkStep(p, s, t, vsP, vsR, w, hit);
     if (step != SSLR_WALK_ON) return step;
   }
@@ -558,7 +558,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   // masks) the test then runs once for the lanes' pixels together instead of in every step.
   // SSLR_HIZ_ONE_BODY (Settings::debug.traversalLoop = OneBody) runs the same steps in one loop body
   // instead: a lane tests its pixel as soon as it reaches one, without waiting for the others.
-  while (w.i < t.hizMaxSteps) {
+  while (w.i < t.maxSteps) {
 #ifdef SSLR_HIZ_ONE_BODY
     int walked = sslrWalkStep(p, s, t, vsP, vsR, w, hit);
     if (walked == SSLR_WALK_ON) {
@@ -577,7 +577,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   }
   // Out of steps in front of what the screen shows: adaptive L may resume there
   // (sslrProbeAfterWalk), the segment before it walked.
-  if (w.i >= t.hizMaxSteps && !w.inSlab && !w.hidden)
+  if (w.i >= t.maxSteps && !w.inSlab && !w.hidden)
     hit.LResume = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRay, vsP, vsR);
   // Ended inside an object's slab: its side, if the ray crossed an outline onto it.
   float Lc = 0.0f;
@@ -668,10 +668,10 @@ SSLR_FN SslrHit sslrProbeAfterWalk(SslrProjection p, SslrSurface s, SslrTracePar
 
 // Settings::traversal.hiddenGuess: a final answer without a hit whose traversal ended behind what
 // the screen shows (off the screen, out of steps) takes the colour where the ray last went behind,
-// at confidence hiddenGuessWeight: the occluder's visible side for its hidden one, fading towards
+// at confidence hiddenGuess: the occluder's visible side for its hidden one, fading towards
 // the fallback. The hit metrics count hits above 0.5 confidence, so a weight up to 0.5 changes the image, not recall or false hits.
 SSLR_FN SslrHit sslrHiddenGuess(SslrTraceParams t, SslrHit answer) {
-  if (!(t.hiddenGuessWeight > 0.0f) || answer.status == SSLR_STATUS_HIT) return answer;
+  if (!(t.hiddenGuess > 0.0f) || answer.status == SSLR_STATUS_HIT) return answer;
   // Finite, on the screen and within the reflection's reach (a poisoned depth buffer can make
   // neither: then no guess, as no hit). isnan/isinf explicitly: shader compilers may assume that
   // comparisons never see a NaN.
@@ -683,7 +683,7 @@ SSLR_FN SslrHit sslrHiddenGuess(SslrTraceParams t, SslrHit answer) {
   answer.status = SSLR_STATUS_HIT;
   answer.uvHit = answer.uvGuess;
   answer.L = answer.LGuess;
-  answer.confidence = t.hiddenGuessWeight;
+  answer.confidence = t.hiddenGuess;
   answer.guessed = 1;
   return answer;
 }
@@ -694,7 +694,7 @@ SSLR_FN SslrHit sslrHiddenGuess(SslrTraceParams t, SslrHit answer) {
 // hiddenGuess). It runs after sslrHiddenGuess, whose guess (where the ray first went behind
 // something) takes precedence.
 SSLR_FN SslrHit sslrSlabGuess(SslrProjection p, SslrTraceParams t, vec3 vsP, vec3 vsR, SslrHit answer) {
-  float weight = t.hiddenGuessWeight;
+  float weight = t.hiddenGuess;
   if (answer.status == SSLR_STATUS_HIT || !(answer.LSlab > 0.0f) || !(weight > 0.0f) ||
       !(answer.LSlab <= t.maxDistance))
     return answer;

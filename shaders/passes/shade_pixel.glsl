@@ -72,7 +72,7 @@ uint sslrShadePixel(ivec2 px) {
       // kept inside RGBA16F's range.
       if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0f);
       color = clamp(color, vec3(0.0f), vec3(60000.0f));
-      color = sslrClampLuminance(color, frame.trace.maxHitLuminance);
+      color = sslrClampLuminance(color, frame.trace.maxLuminance);
       float blurWeight = sslrFilteredByTemporalBlend(q) ? 0.0f : w.blurWeight;
 #ifdef SSLR_COLORED_F0
       vec3 f0 = sslrColoredF0At(px, q.material, reflectance);
@@ -104,6 +104,6 @@ uint sslrShadePixel(ivec2 px) {
 #endif
   // The first pixel of a tile that needs blurring lists the tile (no group barrier: on CPU
   // rasterizers barriers split the shader and cost more than this atomic).
-  if (reflection.a * frame.trace.blurMaxRadiusPx >= 0.5f) sslrListTileForBlur(px);
+  if (reflection.a * frame.trace.maxRadiusPx >= 0.5f) sslrListTileForBlur(px);
   return ranTracer ? uint(hit.iterations) : 0u;
 }

@@ -141,7 +141,7 @@ bool sslrFilteredByTemporalBlend(SslrPixel q) {
 SslrTraceParams sslrRayParams(SslrPixel q) {
   SslrTraceParams t = frame.trace;
   if (sslrStochasticWithHistory(q)) {
-    t.hiddenGuessWeight = 0.0f;
+    t.hiddenGuess = 0.0f;
     t.thinObjectHits = 0;
   }
   return t;

@@ -69,44 +69,45 @@ struct SslrSurface {
 };
 
 struct SslrTraceParams {
-  float initialLengthPixels;  // first L moves the probe this many pixels (Settings: fraction x height)
+  // Which pixels get a ray (Settings::selection).
+  float roughnessCutoff;  // pixels rougher than this are not traced
+  float minReflectance;   // pixels with reflectance at or below this are not traced
+  // Adaptive L (Settings::adaptiveL).
+  float initialLengthPixels;  // the first L moves the probe this many pixels (initialLengthScreen x height)
   float convergenceEps;       // stop once |L_new - L| <= eps * L
-  float errorK;               // the article's "LDelmiter": error = 1 - saturate(L / distance * k)
-  float maxDistance;          // reflections longer than this (view units) get zero confidence
-  int tracePad4;
-  int tracePad5;
-  float edgeFade;             // fade width at the screen border, fraction of the screen [0,0.5]
-  float cameraFadeStart;      // rays with dot(R, toCamera) above start fade out ...
-  float cameraFadeEnd;        // ... and are gone at end
-  float roughnessCutoff;      // pixels rougher than this are not traced
-  float minReflectance;       // pixels with reflectance at or below this are not traced
-  float blurMaxRadiusPx;      // blur radius (pixels) that alpha = 1 stands for
-  float blurConeScale;        // cone tan(half angle) = roughness^2 * blur.coneScale
-  float blurDepthSigma;       // bilateral: weight exp(-|dz| / (sigma * z))
-  float blurNormalPower;      // bilateral: weight max(0, dot(n0, n1))^power
-  int maxIterations;          // adaptive-L iteration cap
-  int fresnelMode;            // SSLR_FRESNEL_*
-  int hizMode;                // SSLR_HIZ_* : hierarchical traversal off, as fallback (+ verify), or alone
-  int frameIndex;             // increments per dispatch (never 0): per-tile "listed" stamps
-  int hizMaxSteps;            // hierarchical traversal: cell visits (each one fetch) at most
+  int maxIterations;          // iterations at most, one depth fetch each
+  // The traversal (Settings::traversal) and what the frame's inputs make of it.
+  int hizMode;                // SSLR_HIZ_*: adaptive L alone, the traversal first, or the traversal alone
+  int maxSteps;               // cells visited at most, one fetch each
   int hizLevels;              // pyramid levels above the depth buffer (sslrHiZLevelCount)
-  float objectDepthRelative;  // hierarchical: a ray less than this fraction of the view depth
-                              // behind a surface is inside the object (stops); farther: behind it
-  int tracePad3;
-  int curvedSolids;           // 1: ... and grows behind convex curved surfaces (sslrCurvedExtraDepth)
-  float ffxDepthBufferThickness;  // Method::FidelityFxSssr (sslr_trace_ffx.h)
-  int ffxMaxIntersections;
-  int outputRadiance;         // 1: Settings::output is Radiance (no Fresnel term in the reflection)
-  float stochasticFrom;       // GlossyMode::Stochastic: pixels this rough or more draw their ray (> 1: none)
-  float maxHitLuminance;      // Settings::radianceClamp: a hit colour's luminance at most this
-                              // (colour-texture units; 0 = no clamp)
-  float hiddenGuessWeight;    // Settings::traversal.hiddenGuess: a hidden ray's guess, its weight (0 = none)
-  int thinObjectHits;         // 1: thin objects' hits (sslrMetThinObject): traversal first, not lobe rays with history
-  int tracePad6;
-  int tracePad7;
-  int tracePad0;
+  float objectDepthRelative;  // the assumed thickness: this fraction of the view depth
+  int curvedSolids;           // 1: deeper behind convex curved surfaces (no back-face depth given)
+  int thinObjectHits;         // 1: thin objects' hits (traversal first; not lobe rays with a history)
+  float hiddenGuess;          // the confidence of a guess (0 = none)
+  // Weights (Settings::fades, fresnel, output).
+  float errorK;         // the article's error term: 1 - saturate(L / distance * errorK)
+  float maxDistance;    // reflections longer than this (view units) get no weight
+  float screenEdge;     // fade width at the screen border, fraction of the screen [0, 0.5]
+  float cameraStart;    // rays with dot(R, toCamera) above this start to fade ...
+  float cameraEnd;      // ... and are gone here
+  int fresnel;          // SSLR_FRESNEL_*
+  int outputRadiance;   // 1: Settings::output is Radiance (no Fresnel term in the reflection)
+  // The blur (Settings::blur).
+  float maxRadiusPx;  // the radius (pixels) that alpha = 1 stands for
+  float coneScale;    // cone tan(half angle) = roughness^2 * coneScale
+  float depthSigma;   // neighbour weight exp(-|dz| / (depthSigma * z))
+  float normalPower;  // neighbour weight max(0, dot(n0, n1))^normalPower
+  // Rough surfaces and bright hits (Settings::glossy, radianceClamp).
+  float stochasticFrom;  // GlossyMode::Stochastic: pixels this rough or more draw their ray (> 1: none)
+  float maxLuminance;    // a hit colour's luminance at most this (colour-texture units; 0 = no clamp)
+  // Method::FidelityFxSssr (Settings::ffx; sslr_trace_ffx.h).
+  float depthBufferThickness;
+  int maxTraversalIntersections;
+  int frameIndex;  // increments per dispatch (never 0): per-tile "listed" stamps
+  int tracePad0;  // std140: the block a multiple of 16 bytes
   int tracePad1;
   int tracePad2;
+  int tracePad3;
 };
 
 // The position-buffer comparison method ("3D Game Shaders For Beginners", SSR chapter).
@@ -266,16 +267,16 @@ inline SslrProjection sslrProjectionFromMatrix(const glm::dmat4& clipFromView, b
 }
 static_assert(sizeof(SslrProjection) == 48, "std140 mirror");
 static_assert(sizeof(SslrSurface) == 128, "std140 mirror");
-static_assert(sizeof(SslrTraceParams) == 144, "std140 mirror");
+static_assert(sizeof(SslrTraceParams) == 128, "std140 mirror");
 static_assert(offsetof(SslrFrame, surface) == 48, "std140 mirror");
 static_assert(offsetof(SslrFrame, trace) == 176, "std140 mirror");
 static_assert(sizeof(SslrPositionParams) == 16, "std140 mirror");
-static_assert(offsetof(SslrFrame, positionBuffer) == 320, "std140 mirror");
+static_assert(offsetof(SslrFrame, positionBuffer) == 304, "std140 mirror");
 static_assert(sizeof(SslrDdaParams) == 32, "std140 mirror");
-static_assert(offsetof(SslrFrame, dda) == 336, "std140 mirror");
+static_assert(offsetof(SslrFrame, dda) == 320, "std140 mirror");
 static_assert(sizeof(SslrTemporalParams) == 96, "std140 mirror");
-static_assert(offsetof(SslrFrame, temporal) == 368, "std140 mirror");
-static_assert(sizeof(SslrFrame) == 464, "std140 mirror");
+static_assert(offsetof(SslrFrame, temporal) == 352, "std140 mirror");
+static_assert(sizeof(SslrFrame) == 448, "std140 mirror");
 #endif
 
 #ifdef __cplusplus

@@ -76,9 +76,9 @@ SSLR_FN SslrBlurCentre sslrBlurCentre(SslrTraceParams t, float radiusPx, float z
   float sigma = max(radiusPx * 0.5f, 0.5f);
   SslrBlurCentre c;
   c.gaussianLog2 = -0.5f * log2e / (sigma * sigma);
-  c.depthLog2 = -log2e / max(t.blurDepthSigma * z0, 1e-6f);
+  c.depthLog2 = -log2e / max(t.depthSigma * z0, 1e-6f);
   c.z = z0;
-  c.normalPower = t.blurNormalPower;
+  c.normalPower = t.normalPower;
   c.normal = n0;
   return c;
 }

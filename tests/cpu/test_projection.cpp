@@ -215,11 +215,11 @@ TEST(Projection, ARadianceClampThatUnderflowsStaysOn) {
   s.radianceClamp.maxLuminance = 1e-30f;
   auto r = frameConstants(in, s, 64, 64);
   ASSERT_TRUE(r) << r.error();
-  EXPECT_EQ(r.value().trace.maxHitLuminance, std::numeric_limits<float>::min());
+  EXPECT_EQ(r.value().trace.maxLuminance, std::numeric_limits<float>::min());
   s.radianceClamp.maxLuminance = 0.0f;
   r = frameConstants(in, s, 64, 64);
   ASSERT_TRUE(r) << r.error();
-  EXPECT_EQ(r.value().trace.maxHitLuminance, 0.0f);
+  EXPECT_EQ(r.value().trace.maxLuminance, 0.0f);
 }
 
 TEST(Projection, RejectsNearEqualsFarAndConventionMismatch) {

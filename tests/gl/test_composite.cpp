@@ -99,7 +99,7 @@ Image cpuBlurAxis(const Image& in, glm::ivec2 axis, const Image& reflection, con
   Image out = in;
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {
-      const float radius = reflection.at(x, y, 3) * f.trace.blurMaxRadiusPx;
+      const float radius = reflection.at(x, y, 3) * f.trace.maxRadiusPx;
       if (!(radius >= 0.5f)) continue;
       float z0 = 0.0f;
       glm::vec3 n0(0.0f);

@@ -84,23 +84,23 @@ void traceConstants(const FrameInputs& in, const Settings& s, int width, int hei
   t.convergenceEps = s.adaptiveL.convergenceEps;
   t.errorK = s.fades.errorK;
   t.maxDistance = s.fades.maxDistance;
-  t.edgeFade = s.fades.screenEdge;
-  t.cameraFadeStart = s.fades.cameraStart;
-  t.cameraFadeEnd = s.fades.cameraEnd;
+  t.screenEdge = s.fades.screenEdge;
+  t.cameraStart = s.fades.cameraStart;
+  t.cameraEnd = s.fades.cameraEnd;
   t.roughnessCutoff = s.selection.roughnessCutoff;
   t.minReflectance = s.selection.minReflectance;
-  t.blurMaxRadiusPx = s.blur.maxRadiusPx;
-  t.blurConeScale = s.blur.coneScale;
-  t.blurDepthSigma = s.blur.depthSigma;
-  t.blurNormalPower = s.blur.normalPower;
+  t.maxRadiusPx = s.blur.maxRadiusPx;
+  t.coneScale = s.blur.coneScale;
+  t.depthSigma = s.blur.depthSigma;
+  t.normalPower = s.blur.normalPower;
   t.maxIterations = s.adaptiveL.maxIterations;
-  t.fresnelMode = s.fresnel == FresnelMode::Classic ? SSLR_FRESNEL_CLASSIC : SSLR_FRESNEL_SCHLICK;
+  t.fresnel = s.fresnel == FresnelMode::Classic ? SSLR_FRESNEL_CLASSIC : SSLR_FRESNEL_SCHLICK;
   t.outputRadiance = s.output == OutputMode::Radiance ? 1 : 0;
   t.stochasticFrom = s.glossy.mode == GlossyMode::Stochastic ? s.glossy.stochasticFrom : SSLR_NO_STOCHASTIC_RAYS;
   // The limit is in display units (luminance x exposure): in the colour texture's, / exposure.
   // A limit too small for a float after the division stays a limit (the smallest normal float),
   // not 0, which would turn the clamp off.
-  t.maxHitLuminance = s.radianceClamp.maxLuminance > 0.0f
+  t.maxLuminance = s.radianceClamp.maxLuminance > 0.0f
                           ? std::max(s.radianceClamp.maxLuminance / in.exposure, std::numeric_limits<float>::min())
                           : 0.0f;
   // A measured thickness (back-face depth) replaces the curved solids' estimate.
@@ -109,12 +109,12 @@ void traceConstants(const FrameInputs& in, const Settings& s, int width, int hei
   t.hizMode = s.method == Method::HierarchicalDepth || s.method == Method::FidelityFxSssr
                   ? SSLR_HIZ_ONLY
                   : (s.method == Method::AdaptiveL && s.traversal.fallback ? SSLR_HIZ_TRAVERSAL_FIRST : SSLR_HIZ_OFF);
-  t.hizMaxSteps = s.traversal.maxSteps;
+  t.maxSteps = s.traversal.maxSteps;
   t.objectDepthRelative = s.traversal.objectDepthRelative;
-  t.hiddenGuessWeight = s.traversal.hiddenGuess;
+  t.hiddenGuess = s.traversal.hiddenGuess;
   t.thinObjectHits = t.hizMode == SSLR_HIZ_TRAVERSAL_FIRST ? 1 : 0;
-  t.ffxDepthBufferThickness = s.ffx.depthBufferThickness;
-  t.ffxMaxIntersections = s.ffx.maxTraversalIntersections;
+  t.depthBufferThickness = s.ffx.depthBufferThickness;
+  t.maxTraversalIntersections = s.ffx.maxTraversalIntersections;
   t.hizLevels = shared::sslrHiZLevelCount(width, height);
   f.positionBuffer.maxDistance = s.positionBuffer.maxDistance;
   f.positionBuffer.resolution = s.positionBuffer.resolution;
