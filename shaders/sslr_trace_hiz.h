@@ -614,7 +614,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
 // traversal left without one (docs/results/ray-work.md).
 //
 // Two stages, so that a pass can run the first alone and leave the second (with traversal first:
-// adaptive L; traversal alone: the traversal) to a pass of its own (Settings::traversal.pass):
+// adaptive L; traversal alone: the traversal) to a pass of its own (Settings::debug.traversalPass):
 // sslrTraceFirstStage answers the pixel or says it needs the second.
 
 // Rays that come back towards the camera, or run within ~17 degrees of the image plane, are where

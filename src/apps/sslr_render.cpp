@@ -185,9 +185,9 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
   numberOption(args, "hiz-steps", "an integer", s.traversal.maxSteps);
   if (args.count("traversal-pass")) {
     const std::string pass = args["traversal-pass"].as<std::string>();
-    if (pass == "auto") s.traversal.pass = TraversalPass::Auto;
-    else if (pass == "inline") s.traversal.pass = TraversalPass::Inline;
-    else if (pass == "deferred") s.traversal.pass = TraversalPass::Deferred;
+    if (pass == "auto") s.debug.traversalPass = TraversalPass::Auto;
+    else if (pass == "inline") s.debug.traversalPass = TraversalPass::Inline;
+    else if (pass == "deferred") s.debug.traversalPass = TraversalPass::Deferred;
     else throw UsageError{"--traversal-pass must be auto, inline or deferred (got '" + pass + "')"};
   }
   return s;  // validated by the caller, once every flag is applied

@@ -16,7 +16,7 @@ TEST(Settings, DefaultsAndPresetsAreValid) {
 }
 
 // Each preset spends at least what the one below spends on every knob, and more on some: low is
-// adaptive L alone; medium adds the traversal (capped at 96 steps) with high's adaptive L, since
+// adaptive L alone; medium adds the traversal (capped at 24 steps) with high's adaptive L, since
 // fewer iterations only send more pixels to the traversal (docs/design-notes.md, "Presets").
 TEST(Settings, PresetsGrowInEffort) {
   const Settings low = Settings::preset(Preset::Low), med = Settings::preset(Preset::Medium),
@@ -49,7 +49,7 @@ TEST(Settings, EveryInvalidFieldIsNamed) {
       {"traversal.hiddenGuess", [](Settings& s) { s.traversal.hiddenGuess = NAN; }},
       {"ffx.depthBufferThickness", [](Settings& s) { s.ffx.depthBufferThickness = 0.0f; }},
       {"ffx.maxTraversalIntersections", [](Settings& s) { s.ffx.maxTraversalIntersections = 0; }},
-      {"traversal.pass", [](Settings& s) { s.traversal.pass = static_cast<TraversalPass>(7); }},
+      {"debug.traversalPass", [](Settings& s) { s.debug.traversalPass = static_cast<TraversalPass>(7); }},
       {"output", [](Settings& s) { s.output = static_cast<OutputMode>(7); }},
       {"adaptiveL.convergenceEps", [](Settings& s) { s.adaptiveL.convergenceEps = -1.0f; }},
       {"adaptiveL.initialLengthScreen", [](Settings& s) { s.adaptiveL.initialLengthScreen = 0.0f; }},

@@ -468,7 +468,7 @@ TEST_F(Api, FrameStatsCountEachPassCommands) {
     Frame f;
     Settings s;
     s.debug.collectStats = true;
-    s.traversal.pass = TraversalPass::Inline;
+    s.debug.traversalPass = TraversalPass::Inline;
     auto expect = [](const PassCommands& c, std::uint32_t direct, std::uint32_t indirect, std::uint32_t barriers,
                      std::uint32_t programs, const char* what) {
       EXPECT_EQ(c.dispatches, direct) << what;
@@ -1193,7 +1193,7 @@ TEST_F(Api, RayWorkIsTheIterationsImageRegroupedAsTheGroupsRun) {
   Settings s;
   s.debug.outputs = true;
   s.debug.collectStats = true;
-  s.traversal.pass = TraversalPass::Inline;
+  s.debug.traversalPass = TraversalPass::Inline;
   expectRegrouped(s, "default, inline");
   Settings hiz = s;
   hiz.method = Method::HierarchicalDepth;
@@ -1204,7 +1204,7 @@ TEST_F(Api, RayWorkIsTheIterationsImageRegroupedAsTheGroupsRun) {
   // Deferred: the trace dispatch counts the traversal's steps, the retrace dispatch the listed
   // pixels' adaptive L; every listed pixel is a lane there, 64 to a group.
   Settings deferred = s;
-  deferred.traversal.pass = TraversalPass::Deferred;
+  deferred.debug.traversalPass = TraversalPass::Deferred;
   ASSERT_TRUE(ctx->dispatch(in, deferred));
   const FrameStats st = ctx->waitForStats();
   ASSERT_TRUE(st.traversalDeferred);
@@ -1448,7 +1448,7 @@ TEST_F(Api, EveryOptionAtOnceLeavesNoGlError) {
   in.viewFromWorld = f.gbuffer->viewFromWorld();
   Settings s = Settings::preset(Preset::Ultra);
   s.halfResolution = true;
-  s.traversal.pass = TraversalPass::Deferred;
+  s.debug.traversalPass = TraversalPass::Deferred;
   s.debug.outputs = true;
   s.debug.collectStats = true;
   ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));

@@ -172,7 +172,7 @@ TEST_F(MultiView, EachLayerIsWhatAOneViewContextMakesOfItsTextures) {
   halfTemporal.temporal.enabled = true;
   halfTemporal.temporal.outputConfidence = true;
   Settings deferred = debug;
-  deferred.traversal.pass = TraversalPass::Deferred;
+  deferred.debug.traversalPass = TraversalPass::Deferred;
   GBufferOptions withBackDepth;
   withBackDepth.withBackDepth = true;
   Settings stochastic = debug;

@@ -111,7 +111,7 @@ TEST_F(Soak, ObjectsErrorsAndMemoryStayFlat) {
     s.method = static_cast<Method>(pick(4));
     s.fresnel = pick(2) ? FresnelMode::Classic : FresnelMode::Schlick;
     s.traversal.fallback = pick(2) == 0;
-    s.traversal.pass = static_cast<TraversalPass>(pick(3));
+    s.debug.traversalPass = static_cast<TraversalPass>(pick(3));
     s.traversal.maxSteps = 1 + pick(200);
     s.adaptiveL.maxIterations = 1 + pick(40);
     s.traversal.objectDepthRelative = uniform(0.0f, 0.5f);

@@ -353,7 +353,7 @@ TEST_P(TraversalFirst, FindsWhatTheTraversalAloneFinds) {
   };
   auto run = [&](Settings s) {
     s.debug.collectStats = true;
-    s.traversal.pass = TraversalPass::Inline;  // the groups as the trace pass runs them
+    s.debug.traversalPass = TraversalPass::Inline;  // the groups as the trace pass runs them
     const ScoredFrame f = renderScored(scene.value(), *scene.value().camera, o, s);
     EXPECT_TRUE(f.renderer);
     if (!f.renderer) return Run{};
@@ -862,7 +862,7 @@ TEST_P(FfxSssr, GpuAndCpuAgreeAndThicknessDecides) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, FfxSssr, ::testing::Values("mirror-room", "glossy"), sceneParamName);
 
-// The traversal inline or in a pass of its own (Settings::traversal.pass) runs the same functions on
+// The traversal inline or in a pass of its own (Settings::debug.traversalPass) runs the same functions on
 // the same pixels: the hit images must agree, and so must the reflections and the stats' count
 // of traversed pixels. Scenes: every ray to the traversal first (facing-mirror), most pixels
 // answered by adaptive L (mirror-room), hit verification on every hit (thin-objects, ultra);
@@ -919,9 +919,9 @@ TEST_P(TraversalPasses, DeferredAndInlineGiveTheSameHits) {
   inlined.halfResolution = c.half;
   inlined.debug.outputs = true;
   inlined.debug.collectStats = true;
-  inlined.traversal.pass = TraversalPass::Inline;
+  inlined.debug.traversalPass = TraversalPass::Inline;
   Settings deferred = inlined;
-  deferred.traversal.pass = TraversalPass::Deferred;
+  deferred.debug.traversalPass = TraversalPass::Deferred;
   constexpr int kFrames = 3;
   Image hits[kFrames][2], reflections[kFrames][2];
   FrameStats stats[kFrames][2];
@@ -970,7 +970,7 @@ TEST_P(OneBodyTraversal, GivesTheTwoPhasesHitsBitForBit) {
     Settings twoPhases;
     twoPhases.halfResolution = c.half;
     twoPhases.debug.outputs = true;
-    twoPhases.traversal.pass = pass;
+    twoPhases.debug.traversalPass = pass;
     Settings oneBody = twoPhases;
     oneBody.debug.oneBodyTraversal = true;
     Image hits[2], reflections[2];
@@ -1130,7 +1130,7 @@ TEST_P(DeviceProfiles, SameOutputsFrameAfterFrame) {
   s.method = c.method;
   s.halfResolution = c.half;
   s.temporal.enabled = c.temporal;
-  s.traversal.pass = c.pass;
+  s.debug.traversalPass = c.pass;
   s.debug.outputs = true;
   s.debug.collectStats = true;
   Settings empty = s;

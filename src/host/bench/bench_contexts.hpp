@@ -13,7 +13,7 @@ namespace sslr::host {
 // state from frame to frame, as a host's does: TraversalPass::Auto follows the traversal share
 // its previous frames fed back, the clean-up the tiles they listed. Timed through one shared
 // context, each configuration would run in the state the one before it left (integration.md,
-// "traversal.pass").
+// "debug.traversalPass").
 class ConfigContexts {
  public:
   ConfigContexts(int width, int height) : width_(width), height_(height) {}

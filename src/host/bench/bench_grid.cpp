@@ -64,11 +64,11 @@ void highVariants(std::vector<BenchConfig>& configs) {
     shaped.device = device;
     configs.push_back(shaped);
   }
-  // Where the second stage (adaptive L after the walk) runs: Settings::traversal.pass.
+  // Where the second stage (adaptive L after the walk) runs: Settings::debug.traversalPass.
   for (auto [label, pass] : {std::pair{"high-inline", TraversalPass::Inline},
                              std::pair{"high-deferred", TraversalPass::Deferred}}) {
     BenchConfig where{"adaptive-l", label, Settings::preset(preset), false};
-    where.settings.traversal.pass = pass;
+    where.settings.debug.traversalPass = pass;
     configs.push_back(where);
   }
 }

@@ -35,12 +35,12 @@ json settingsJson(const BenchConfig& c) {
     return {{"depthBufferThickness", s.ffx.depthBufferThickness},
             {"maxTraversalIntersections", s.ffx.maxTraversalIntersections}};
   if (c.method == "baseline") return json::object();
-  const char* traversalPass = s.traversal.pass == TraversalPass::Auto     ? "auto"
-                              : s.traversal.pass == TraversalPass::Inline ? "inline"
+  const char* traversalPass = s.debug.traversalPass == TraversalPass::Auto     ? "auto"
+                              : s.debug.traversalPass == TraversalPass::Inline ? "inline"
                                                                          : "deferred";
   return {{"adaptiveL.maxIterations", s.adaptiveL.maxIterations},       {"traversal.fallback", s.traversal.fallback},
           {"traversal.maxSteps", s.traversal.maxSteps},
-          {"traversal.pass", traversalPass},         {"traversal.objectDepthRelative", s.traversal.objectDepthRelative},
+          {"debug.traversalPass", traversalPass},         {"traversal.objectDepthRelative", s.traversal.objectDepthRelative},
           {"backDepth", c.backDepth},
           {"device", c.device == DeviceProfile::Gpu ? "gpu" : c.device == DeviceProfile::Software ? "software" : "auto"},
           {"traversal.hiddenGuess", s.traversal.hiddenGuess},

@@ -376,9 +376,9 @@ struct App {
     ImGui::SliderInt("traversal.maxSteps", &t.traversal.maxSteps, 1, 256);
     ImGui::SliderFloat("traversal.objectDepthRelative", &t.traversal.objectDepthRelative, 0.0f, 0.5f);
     ImGui::SliderFloat("traversal.hiddenGuess", &t.traversal.hiddenGuess, 0.0f, 1.0f);
-    int pass = static_cast<int>(t.traversal.pass);
+    int pass = static_cast<int>(t.debug.traversalPass);
     const char* passes[] = {"auto", "inline", "deferred"};
-    if (ImGui::Combo("traversal pass", &pass, passes, 3)) t.traversal.pass = static_cast<TraversalPass>(pass);
+    if (ImGui::Combo("traversal pass", &pass, passes, 3)) t.debug.traversalPass = static_cast<TraversalPass>(pass);
     ImGui::SliderFloat("adaptiveL.convergenceEps", &t.adaptiveL.convergenceEps, 0.0001f, 0.05f, "%.4f");
     ImGui::SliderFloat("adaptiveL.initialLengthScreen", &t.adaptiveL.initialLengthScreen, 0.005f, 0.2f);
     ImGui::SliderFloat("fades.errorK", &t.fades.errorK, 0.0f, 1.0f);

@@ -235,7 +235,7 @@ Context::Impl::FramePlan Context::Impl::planFrame(const Settings& settings,
   // it runs inline: the pass of its own costs more than it saves). The share is fed back from each
   // such frame.
   const bool adaptiveWithTraversal = settings.method == Method::AdaptiveL && f.pyramid;
-  f.feedback = adaptiveWithTraversal && settings.traversal.pass == TraversalPass::Auto && softwareRenderer;
+  f.feedback = adaptiveWithTraversal && settings.debug.traversalPass == TraversalPass::Auto && softwareRenderer;
   if (f.pyramid) readFeedback();
   // This frame's counts go to the feedback buffer unless an earlier frame's are still unread there.
   f.feedbackWritten = f.pyramid && feedback.fence == nullptr;
@@ -243,7 +243,7 @@ Context::Impl::FramePlan Context::Impl::planFrame(const Settings& settings,
   // does, dispatched only if this frame lists one (an empty frame's classification then reads the
   // G-buffer and nothing more).
   f.level1Pass = f.pyramid && feedback.lastFrameListedNoTile;
-  f.deferTraversal = adaptiveWithTraversal && (settings.traversal.pass == TraversalPass::Deferred ||
+  f.deferTraversal = adaptiveWithTraversal && (settings.debug.traversalPass == TraversalPass::Deferred ||
                                                (f.feedback && !feedback.traversalInline));
   // Inline under Auto: the trace (at half resolution the quad pass) counts the pixels (quads) that
   // needed the traversal, as deferred would have listed them.

@@ -20,10 +20,9 @@ Settings Settings::preset(Preset preset) {
       s.selection.roughnessCutoff = 0.3f;
       break;
     case Preset::Medium:
-      // A 96-step cap, no guesses, a narrower blur and fewer rough pixels traced
-      // (docs/design-notes.md, "Presets").
-      s.traversal.maxSteps = 96;
-      s.traversal.hiddenGuess = 0.0f;
+      // High's tracer with a 24-step cap (adaptive L resumes where the walk stops), a narrower
+      // blur and fewer rough pixels traced (docs/results.md, "Presets").
+      s.traversal.maxSteps = 24;
       s.blur.maxRadiusPx = 6.0f;
       s.selection.roughnessCutoff = 0.4f;
       break;
@@ -49,9 +48,9 @@ bool finite(float v) { return std::isfinite(v); }
 void checkTracer(const Settings& s, std::ostringstream& why) {
   if (s.adaptiveL.maxIterations < 1 || s.adaptiveL.maxIterations > 256)
     why << "adaptiveL.maxIterations = " << s.adaptiveL.maxIterations << " (must be 1..256); ";
-  if (s.traversal.pass != TraversalPass::Auto && s.traversal.pass != TraversalPass::Inline &&
-      s.traversal.pass != TraversalPass::Deferred)
-    why << "traversal.pass = " << static_cast<int>(s.traversal.pass) << " (not a TraversalPass); ";
+  if (s.debug.traversalPass != TraversalPass::Auto && s.debug.traversalPass != TraversalPass::Inline &&
+      s.debug.traversalPass != TraversalPass::Deferred)
+    why << "debug.traversalPass = " << static_cast<int>(s.debug.traversalPass) << " (not a TraversalPass); ";
   if (s.traversal.maxSteps < 1 || s.traversal.maxSteps > 1024)
     why << "traversal.maxSteps = " << s.traversal.maxSteps << " (must be 1..1024); ";
   if (!(s.traversal.hiddenGuess >= 0.0f && s.traversal.hiddenGuess <= 1.0f))

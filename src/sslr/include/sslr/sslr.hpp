@@ -307,7 +307,6 @@ struct Settings {
     bool fallback = true;  // AdaptiveL: the traversal on every ray, adaptive L where it has no hit
                            // (from where it ran out of steps); false: adaptive L alone (Preset::Low)
     int maxSteps = 112;    // 1..1024 pyramid cells visited per ray, each one fetch
-    TraversalPass pass = TraversalPass::Auto;  // inline or in a pass of its own (same hits)
     float objectDepthRelative = 0.075f;  // >= 0, fraction of the view depth: how deep what a
                                          // pixel shows is assumed to be (without a back-face
                                          // depth). A ray less deep behind it ran into it (no
@@ -373,6 +372,8 @@ struct Settings {
     bool oneBodyTraversal = false;  // for timing on GPUs: the traversal's walk and pixel tests in one
                                     // loop body (a lane tests as soon as it reaches a pixel) instead
                                     // of two phases; the same hits (results/gpu-h100.md)
+    TraversalPass traversalPass = TraversalPass::Auto;  // where adaptive L after the traversal runs:
+                                                        // inline or in a pass of its own (the same hits)
   } debug;
 
   // The comparison methods' parameters (sslr/compare.hpp); sslr's own method reads none of them.
@@ -422,7 +423,7 @@ struct ContextDesc {
 };
 
 // The commands one pass of a frame recorded for the GPU, counted as dispatch() records them: the
-// same on every device for the same inputs, settings and DeviceProfile (Settings::traversal.pass's
+// same on every device for the same inputs, settings and DeviceProfile (Settings::debug.traversalPass's
 // Auto choice aside). A GPU pays for each dispatch and barrier even when its group counts are zero, so these
 // are a frame's fixed costs, where the times below are its variable ones.
 struct PassCommands {
@@ -464,7 +465,7 @@ struct FrameStats {  // filled when Settings::debug.collectStats is set
   std::uint32_t tracedPixels = 0;   // pixels that ran the tracer
   std::uint32_t fetches = 0;        // depth (or position) texels read by the trace pass
   std::uint32_t hierarchicalPixels = 0;  // traced pixels that ran the hierarchical traversal
-  bool traversalDeferred = false;   // the traversal ran in a pass of its own (Settings::traversal.pass)
+  bool traversalDeferred = false;   // the traversal ran in a pass of its own (Settings::debug.traversalPass)
   bool followedEmptyFrame = false;  // the frame before listed no tile, so classification skipped
                                     // the pyramid's levels 0 and 1 and a pass of their own re-read
                                     // depth for them (only if this frame lists a tile)
