@@ -211,7 +211,6 @@ struct SslrWalk {
   // ... inside what pixel slabPx shows, slabBehind deep behind it (view units) where its segment
   // there begins: a thin object's hidden side, if sslrMetThinObject says so after the walk.
   bool thinCandidate;
-  bool slabShallow;
   ivec2 slabPx;
   float slabBehind, slabTolerance;
   bool hidden;  // the ray is behind what the screen shows now (its last pixel or cell)
@@ -337,7 +336,6 @@ SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   w.inSlab = false;
   w.measuredSlab = false;
   w.thinCandidate = false;
-  w.slabShallow = false;
   w.slabPx = ivec2(0);
   w.slabBehind = 0.0f;
   w.slabTolerance = 0.0f;
@@ -473,8 +471,8 @@ SSLR_FN void sslrEnterSlab(SslrProjection p, SslrSurface s, SslrTraceParams t, S
   w.slabPx = px;
   w.slabBehind = max(behindNear, 0.0f);
   w.slabTolerance = tolerance;
-  w.slabShallow = sslrThinEntryShallow(sslrPixelFootprint(p, s.height, sslrClipW(p, vsSurface)), w.slabBehind);
-  w.thinCandidate = t.thinObjectHits != 0 && thinTestable && !w.hidden && !(w.extra > 0.0f) && w.slabShallow;
+  bool shallow = sslrThinEntryShallow(sslrPixelFootprint(p, s.height, sslrClipW(p, vsSurface)), w.slabBehind);
+  w.thinCandidate = t.thinObjectHits != 0 && thinTestable && !w.hidden && !(w.extra > 0.0f) && shallow;
 }
 
 SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP, vec3 vsR,

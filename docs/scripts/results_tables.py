@@ -59,7 +59,7 @@ def main(path):
         print(f"| {s} | " + " | ".join(cells) + f" | {ratio} |")
 
     print("\n### Presets (time, recall@1px)\n")
-    presets = ["low", "medium", "high", "high-no-fallback", "high-verify", "high-no-verify", "high-no-verify-inline", "high-no-verify-deferred", "ultra"]
+    presets = ["low", "medium", "high", "high-no-fallback", "high-inline", "high-deferred", "ultra"]
     print("| preset | " + " | ".join(scenes) + " |")
     print("|---|" + "---|" * len(scenes))
     for p in presets:

@@ -58,10 +58,17 @@ vec4 sslrLoadNormal(ivec2 px) {
   return vec4(e.x, e.y, 0.0f, 0.0f);
 }
 bool sslrLoadSurface(ivec2 px, vec3& vsPos) { return sslrSurfaceFromDepth(gProj, gSurf, px, sslrLoadDepth(px), vsPos); }
-// sslrCornerHit, sslrCurvedEntryHit and sslrRimEntryHit read level 0 alone.
+// sslrCornerHit, sslrCurvedEntryHit and sslrRimEntryHit read level 0 alone; sslrSlabNearOutline
+// (gCoarseLevels) reads the levels above it, each cell the (min, max) of its pixels' depths.
+bool gCoarseLevels = false;
 vec2 sslrLoadPyramidTexel(int level, ivec2 cell) {
-  EXPECT_EQ(level, 0);
-  return sslrHiZLevel0Texel(gSurf, sslrLoadDepth(cell), gCurvedExtra);
+  if (level == 0) return sslrHiZLevel0Texel(gSurf, sslrLoadDepth(cell), gCurvedExtra);
+  EXPECT_TRUE(gCoarseLevels) << "level " << level;
+  vec2 minMax(1.0f, 0.0f);
+  for (int y = cell.y << level; y < std::min((cell.y + 1) << level, int(gSurf.height)); ++y)
+    for (int x = cell.x << level; x < std::min((cell.x + 1) << level, int(gSurf.width)); ++x)
+      minMax = sslrHiZReduce(minMax, sslrHiZTexel(gSurf, sslrLoadDepth(ivec2(x, y))));
+  return minMax;
 }
 }  // namespace sslr::shared
 
@@ -91,6 +98,7 @@ class CornerHit : public ::testing::Test {
     gEdgePx = 130.0f;
     gBoxOnLeft = true;
     gBarWidthPx = 0.0f;
+    gCoarseLevels = false;
     gWallZ = kWallZ;
     gCurvedExtra = 0.0f;
     gRimRecede = 0.0f;
@@ -245,6 +253,31 @@ TEST_F(CornerHit, ThinObjectsAreAsDeepAsTheyAreWide) {
   EXPECT_FALSE(met(3.0f));
   gBarWidthPx = 0.0f;
   EXPECT_FALSE(met(3.0f));
+}
+
+// Outline thinning (sslrSlabNearOutline): near an object's outline the slab is no deeper than a
+// right-angled corner of the shown face allows, d (cot a + tan a) at d pixels from the outline (a
+// the face's angle to the view ray), d bounded by 1.5 cells of the smallest pyramid level whose
+// cell around the pixel holds a surface beyond the ray (here the wall past the box's edge at
+// x = 130). The face at 45 degrees: 2 footprints of depth a pixel. At the edge column (129) the
+// level-1 cell (128-129) is all box, the level-2 cell (128-131) holds the wall: 1.5 x 4 x 2 = 12
+// footprints. 60 columns in, no cell below the slab's bound reaches the wall: the slab.
+TEST_F(CornerHit, TheSlabThinsNearTheOutline) {
+  gCoarseLevels = true;
+  SslrTraceParams t{};
+  t.hizLevels = sslrHiZLevelCount(kWidth, kHeight);
+  const float footprint = sslrPixelFootprint(gProj, gSurf.height, -kFrontZ);
+  const float slab = 40.0f * footprint;
+  const float keyBehindBox = -sslrDepthFromViewDepth(gProj, -kFrontZ + 1.0f);  // reversed Z: key = -depth
+  // A face at 45 degrees to the view ray at each pixel.
+  auto thinned = [&](int x) {
+    const vec3 vsSurface = viewAt(float(x) + 0.5f, 90.5f, kFrontZ);
+    const vec3 view = sslrViewDirection(gProj, vsSurface);
+    const vec3 n45 = normalize(-view + normalize(cross(view, vec3(0.0f, 1.0f, 0.0f))));
+    return sslrSlabNearOutline(gProj, gSurf, t, ivec2(x, 90), vsSurface, n45, keyBehindBox, -1.0f, slab);
+  };
+  EXPECT_NEAR(thinned(129), 12.0f * footprint, 1e-3f * footprint);
+  EXPECT_EQ(thinned(70), slab);  // levels 1-3 all box; level 4's bound (48) is past the slab
 }
 
 // FidelityFX SSSR's depth hierarchy as AMD ships it: mip sizes max(1, size >> level) from the

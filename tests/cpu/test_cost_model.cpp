@@ -73,7 +73,8 @@ TEST(CostModel, ReproducesTheH100RunItWasFittedTo) {
     shape.traversal = has(params, "\"traversal.fallback\":true");
     shape.device = has(params, "\"device\":\"software\"") ? DeviceProfile::Software : DeviceProfile::Gpu;
     shape.halfResolution = f[column["label"]] == "high-half";
-    shape.traversalDeferred = has(params, "\"debug.traversalPass\":\"deferred\"");
+    // The run's parameters name the pass as 0.5 did (0.11: "debug.traversalPass").
+    shape.traversalDeferred = has(params, "\"traversal.pass\":\"deferred\"");
     RayWork work;
     work.simt32 = std::stoull(f[column["simt32"]]);
     work.longestChain = static_cast<std::uint32_t>(std::stoul(f[column["longestChain"]]));

@@ -318,7 +318,7 @@ struct Settings {
                                // an object's assumed thickness) gets the colour where it did, at
                                // this weight: what the screen shows of the occluder standing in for
                                // its hidden side, the rest the fallback. 0 = a miss
-                               // (Preset::Low/Medium). Not for GlossyMode::Stochastic's rays once
+                               // (Preset::Low). Not for GlossyMode::Stochastic's rays once
                                // temporal reuse has a history (their mean over frames takes misses)
   } traversal;
 
