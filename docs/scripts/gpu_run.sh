@@ -60,10 +60,11 @@ bench 960x540-more 70 --grid full --no-curves --no-temporal --no-glossy --config
 
 # Per-pass GPU times (GL_TIMESTAMP) beside the modelled ray work of the same run: the data that
 # calibrates the cost model of docs/results/ray-work.md. Default, the default with the traversal in
-# one loop body (Settings::debug.oneBodyTraversal), 0.4's verified order, traversal alone.
+# one loop body (Settings::debug.oneBodyTraversal), FidelityFX SSSR (its step against the
+# traversal's), traversal alone.
 t0=$(date +%s)
 for scene in mirror-room glossy facing-mirror mirror-walls thin-objects sky-heavy; do
-  for mode in "" "--one-body-traversal" "--order adaptive-l-first --hiz-verify" "--method hiz"; do
+  for mode in "" "--one-body-traversal" "--method ffx-sssr" "--method hiz"; do
     [ "$(left)" -gt 150 ] || break 2
     echo "== $scene ${mode:-default}"
     timeout 30 "$bin/sslr-render" --scene "$scene" --size 960x540 --stats --frames 100 $mode --out "render/$scene" 2>&1 |
