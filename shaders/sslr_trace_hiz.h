@@ -595,7 +595,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
       if (met.status == SSLR_STATUS_HIT) return met;
     }
   }
-  if (w.measuredSlab) {  // known hidden: where the ray entered the solid's pixels, for verification
+  if (w.measuredSlab) {  // known hidden: where the ray entered the solid's pixels (sslrProbeAfterWalk)
     hit.status = SSLR_STATUS_HIDDEN;
     hit.L = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRun, vsP, vsR);
   } else if (w.inSlab) {
@@ -625,20 +625,18 @@ SSLR_FN bool sslrTraversalOnly(SslrProjection p, SslrTraceParams t, vec3 vsP, ve
 
 SSLR_FN bool sslrConfidentHit(SslrHit h) { return h.status == SSLR_STATUS_HIT && h.confidence >= 0.5f; }
 
-// SSLR_HIZ_TRAVERSAL_FIRST: the traversal's hit where it has a confident one; where it stopped
-// on the screen without one (inside a thin object's assumed slab, which adaptive L's probes carry
-// past; at its step cap; a crossing it refused), adaptive L's, if confident and not beyond where
-// the traversal found the ray hidden. These are verification's answers (the traversal's hit is the
-// first crossing it walked to; adaptive L's replaced only a missing one), with adaptive L run on
-// the few rays the traversal leaves instead of on every ray. The two stages below: the traversal
-// (`walked`), then adaptive L where sslrWalkedNeedsProbes says so.
+// SSLR_HIZ_TRAVERSAL_FIRST: the traversal's hit where it has a confident one; where it stopped on
+// the screen without one (inside an assumed slab, which adaptive L's probes carry past; at its
+// step cap; a crossing it refused), adaptive L's, if confident and not beyond where the traversal
+// found the ray hidden. The traversal's hit is the first crossing it walked to; adaptive L only
+// fills a missing one. The two stages below: the traversal (`walked`), then adaptive L where
+// sslrWalkedNeedsProbes says so.
 
 // A ray the traversal walked off the screen (or out of the depth range) crossed nothing it could
 // take: adaptive L there finds little and spends its whole iteration budget (design-notes.md,
 // "Traversal first"). A ray that ran out of steps in front of what the screen shows gets adaptive
-// L from there, whatever its direction: the
-// segment before is walked, so its probes cannot jump over what stands there (the step cap's
-// graceful answer; results/ray-work.md).
+// L from there, whatever its direction: the segment before is walked, so its probes cannot jump
+// over what stands there (the step cap's answer; results/ray-work.md).
 SSLR_FN bool sslrWalkedNeedsProbes(SslrProjection p, SslrTraceParams t, vec3 vsP, vec3 vsR, SslrHit walked) {
   if (sslrConfidentHit(walked)) return false;
   return walked.LResume > 0.0f || (walked.status != SSLR_STATUS_OFF_SCREEN && !sslrTraversalOnly(p, t, vsP, vsR));

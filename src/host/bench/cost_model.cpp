@@ -9,7 +9,7 @@ struct Fit {
 };
 
 // docs/results/gpu-h100.md, "The cost model" (coefficients rounded as printed there).
-constexpr Fit kTraversal{0.09236, 0.00095, 0.06102e-5};        // default, verified, unverified, hiz
+constexpr Fit kTraversal{0.09236, 0.00095, 0.06102e-5};        // fitted to the default, hiz and 0.5's orders
 constexpr Fit kAdaptiveLAlone{0.04008, 0.00053, 0.03469e-5};
 constexpr Fit kFfx{-0.00051, 0.00073, 0.02354e-5};
 constexpr Fit kDda{0.05908, 0.00017, 0.00724e-5};

@@ -465,7 +465,7 @@ struct FrameStats {  // filled when Settings::debug.collectStats is set
   std::uint32_t tracedPixels = 0;   // pixels that ran the tracer
   std::uint32_t fetches = 0;        // depth (or position) texels read by the trace pass
   std::uint32_t hierarchicalPixels = 0;  // traced pixels that ran the hierarchical traversal
-  bool traversalDeferred = false;   // the traversal ran in a pass of its own (Settings::debug.traversalPass)
+  bool traversalDeferred = false;   // the second stage ran in a pass of its own (Settings::debug.traversalPass)
   bool followedEmptyFrame = false;  // the frame before listed no tile, so classification skipped
                                     // the pyramid's levels 0 and 1 and a pass of their own re-read
                                     // depth for them (only if this frame lists a tile)
