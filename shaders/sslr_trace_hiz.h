@@ -618,9 +618,8 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
 // Rays that come back towards the camera, or run within ~17 degrees of the image plane, are where
 // adaptive L jumps over what stands between (its probes see the front of the occluders, not the
 // ray): the traversal's answer is final for them.
-SSLR_FN bool sslrTraversalOnly(SslrProjection p, SslrTraceParams t, vec3 vsP, vec3 vsR) {
-  return sslrHiZMode(t) == SSLR_HIZ_ONLY ||
-         (sslrHasHiZFallback(t) && dot(vsR, -sslrViewDirection(p, vsP)) > -0.3f);
+SSLR_FN bool sslrTraversalOnly(SslrProjection p, vec3 vsP, vec3 vsR) {
+  return dot(vsR, -sslrViewDirection(p, vsP)) > -0.3f;
 }
 
 SSLR_FN bool sslrConfidentHit(SslrHit h) { return h.status == SSLR_STATUS_HIT && h.confidence >= 0.5f; }
@@ -637,9 +636,9 @@ SSLR_FN bool sslrConfidentHit(SslrHit h) { return h.status == SSLR_STATUS_HIT &&
 // "Traversal first"). A ray that ran out of steps in front of what the screen shows gets adaptive
 // L from there, whatever its direction: the segment before is walked, so its probes cannot jump
 // over what stands there (the step cap's answer; results/ray-work.md).
-SSLR_FN bool sslrWalkedNeedsProbes(SslrProjection p, SslrTraceParams t, vec3 vsP, vec3 vsR, SslrHit walked) {
+SSLR_FN bool sslrWalkedNeedsProbes(SslrProjection p, vec3 vsP, vec3 vsR, SslrHit walked) {
   if (sslrConfidentHit(walked)) return false;
-  return walked.LResume > 0.0f || (walked.status != SSLR_STATUS_OFF_SCREEN && !sslrTraversalOnly(p, t, vsP, vsR));
+  return walked.LResume > 0.0f || (walked.status != SSLR_STATUS_OFF_SCREEN && !sslrTraversalOnly(p, vsP, vsR));
 }
 
 // The answer for a ray the traversal left (`walked`): adaptive L's (from walked.LResume, where the
@@ -664,8 +663,9 @@ SSLR_FN SslrHit sslrProbeAfterWalk(SslrProjection p, SslrSurface s, SslrTracePar
 
 // Settings::traversal.hiddenGuess: a final answer without a hit whose traversal ended behind what
 // the screen shows (off the screen, out of steps) takes the colour where the ray last went behind,
-// at confidence hiddenGuess: the occluder's visible side for its hidden one, fading towards
-// the fallback. The hit metrics count hits above 0.5 confidence, so a weight up to 0.5 changes the image, not recall or false hits.
+// at confidence hiddenGuess: the occluder's visible side for its hidden one, fading towards the
+// fallback. The hit metrics count hits above 0.5 confidence, so a weight up to 0.5 changes the
+// image, not recall or false hits.
 SSLR_FN SslrHit sslrHiddenGuess(SslrTraceParams t, SslrHit answer) {
   if (!(t.hiddenGuess > 0.0f) || answer.status == SSLR_STATUS_HIT) return answer;
   // Finite, on the screen and within the reflection's reach (a poisoned depth buffer can make
@@ -690,11 +690,10 @@ SSLR_FN SslrHit sslrHiddenGuess(SslrTraceParams t, SslrHit answer) {
 // hiddenGuess). It runs after sslrHiddenGuess, whose guess (where the ray first went behind
 // something) takes precedence.
 SSLR_FN SslrHit sslrSlabGuess(SslrProjection p, SslrTraceParams t, vec3 vsP, vec3 vsR, SslrHit answer) {
-  float weight = t.hiddenGuess;
-  if (answer.status == SSLR_STATUS_HIT || !(answer.LSlab > 0.0f) || !(weight > 0.0f) ||
+  if (answer.status == SSLR_STATUS_HIT || !(answer.LSlab > 0.0f) || !(t.hiddenGuess > 0.0f) ||
       !(answer.LSlab <= t.maxDistance))
     return answer;
-  SslrHit guess = sslrFinishHit(p, answer, vsP, vsR, answer.LSlab, weight);
+  SslrHit guess = sslrFinishHit(p, answer, vsP, vsR, answer.LSlab, t.hiddenGuess);
   guess.guessed = 1;
   return guess.status == SSLR_STATUS_HIT ? guess : answer;
 }
@@ -711,7 +710,7 @@ SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTracePa
   needsTraversal = sslrHiZMode(t) != SSLR_HIZ_OFF;
   if (sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST) {  // the traversal first; the second stage probes
     SslrHit walked = sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
-    needsTraversal = sslrWalkedNeedsProbes(p, t, vsP, vsR, walked);
+    needsTraversal = sslrWalkedNeedsProbes(p, vsP, vsR, walked);
     return needsTraversal ? walked : sslrHiddenGuess(t, walked);
   }
   return needsTraversal ? sslrNoHit(SSLR_STATUS_MISS) : sslrTraceAdaptiveL(p, s, t, pxOrigin, vsP, vsR);

@@ -459,7 +459,6 @@ TEST_F(CornerHit, AContactLinesPlaneMustComeFromANeighbouringPixel) {
   const vec3 vsMirrorNormal = normalize(vsR - normalize(vsP));
   const vec3 vsWallNormal = -normalize(vsR - dot(vsR, vsMirrorNormal) * vsMirrorNormal);
   const vec3 vsWall = vsP + vsR * (0.3f * footprint * std::sqrt(2.0f));
-  SslrTraceParams t = params(0.75f);
   float L = 0.0f;
   EXPECT_GE(sslrPlaneHit(gProj, gSurf, pxOrigin, vsP, vsR, ivec2(201, 90), vsWall, vsWallNormal, L), 0.5f);
   EXPECT_NEAR(L, 0.3f * footprint * std::sqrt(2.0f), 0.01f * footprint);
@@ -507,7 +506,6 @@ TEST_F(CornerHit, AContactLinesColourComesFromThePixelTheRayHeadsInto) {
 // hit on the far wall next to the box's outline is on the wall texels' plane wherever along it,
 // and many tolerances off the box's front face.
 TEST_F(CornerHit, AHitBesideTheOutlineIsOffTheBoxFacesPlane) {
-  SslrTraceParams t{};
   const vec3 towardsCamera(0.0f, 0.0f, 1.0f);
   const vec3 wallTexel = viewAt(130.5f, 90.5f, kWallZ), boxTexel = viewAt(129.5f, 90.5f, kFrontZ);
   const vec3 vsHit = viewAt(130.2f, 90.7f, kWallZ);  // on the wall, 0.3 px from the outline
