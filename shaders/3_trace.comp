@@ -1,7 +1,7 @@
 // Pass 3, the trace (passes/trace.cpp runTrace): one invocation per pixel of a listed tile traces its
 // ray and writes the reflection (rgb = hit colour x weights, a = blur weight), the resolved output
 // (same rgb, a = coverage) and, with SSLR_DEBUG_OUTPUTS, the hit and iteration images.
-// With a deferred second stage (Settings::debug.traversalPass, SSLR_DEFER_TRAVERSAL) it runs the first
+// With a deferred second stage (ContextDesc::traversalPass, SSLR_DEFER_TRAVERSAL) it runs the first
 // stage alone and lists the pixels that need the second for 3_retrace.comp, so that the second
 // tracer's code is in no program that every pixel runs.
 #include "passes/trace_common.glsl"

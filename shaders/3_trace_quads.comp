@@ -1,6 +1,6 @@
 // Pass 3, half resolution's quad rays (passes/trace.cpp runQuads; Settings::halfResolution): one
 // invocation per 2x2 quad of a listed tile traces the quad's ray (passes/trace_quad.glsl). With a
-// deferred second stage (Settings::debug.traversalPass) it runs the first stage alone and lists the
+// deferred second stage (ContextDesc::traversalPass) it runs the first stage alone and lists the
 // quads that need the second for 3_retrace_quads.comp.
 #include "passes/trace_common.glsl"
 #if defined(SSLR_DEFER_TRAVERSAL) || defined(SSLR_COUNT_TRAVERSAL)

@@ -26,7 +26,7 @@ namespace sslr::shared {
 
 #define SSLR_HIZ_OFF 0              // adaptive L alone (the article's method, made robust)
 #define SSLR_HIZ_TRAVERSAL_FIRST 1  // the traversal on every ray; adaptive L where it has no hit
-                                    // (Settings::traversal.fallback, the default)
+                                    // (Settings::traversal.maxSteps > 0, the default)
 #define SSLR_HIZ_ONLY 2             // the hierarchical traversal alone (Method::HierarchicalDepth)
 
 // The hit tolerance (sslrHitTolerance): a ray point Q counts as on the surface P' a pixel shows

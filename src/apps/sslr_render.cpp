@@ -164,7 +164,7 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
   if (fresnel == "classic") s.fresnel = FresnelMode::Classic;
   else if (fresnel == "schlick") s.fresnel = FresnelMode::Schlick;
   else throw UsageError{"--fresnel must be classic or schlick (got '" + fresnel + "')"};
-  if (args.count("no-blur")) s.blur.enabled = false;
+  if (args.count("no-blur")) s.blur.maxRadiusPx = 0.0f;
   if (args.count("glossy")) {
     const std::string glossy = args["glossy"].as<std::string>();
     if (glossy == "cone") s.glossy.mode = GlossyMode::ConeBlur;
@@ -183,13 +183,6 @@ Settings parseSettings(const cxxopts::ParseResult& args) {
   numberOption(args, "error-k", "a number", s.fades.errorK);
   numberOption(args, "iterations", "an integer", s.adaptiveL.maxIterations);
   numberOption(args, "hiz-steps", "an integer", s.traversal.maxSteps);
-  if (args.count("traversal-pass")) {
-    const std::string pass = args["traversal-pass"].as<std::string>();
-    if (pass == "auto") s.debug.traversalPass = TraversalPass::Auto;
-    else if (pass == "inline") s.debug.traversalPass = TraversalPass::Inline;
-    else if (pass == "deferred") s.debug.traversalPass = TraversalPass::Deferred;
-    else throw UsageError{"--traversal-pass must be auto, inline or deferred (got '" + pass + "')"};
-  }
   return s;  // validated by the caller, once every flag is applied
 }
 
@@ -203,8 +196,9 @@ void addTracerOptions(cxxopts::Options& options) {
       ("fresnel", "weighting: classic (the article) or schlick", cxxopts::value<std::string>()->default_value("classic"))
       ("iterations", "override the preset's adaptive-L iteration cap", cxxopts::value<std::string>())
       ("hiz-steps", "override the preset's cap on hierarchical traversal steps", cxxopts::value<std::string>())
-      ("traversal-pass", "where the hierarchical traversal runs: auto (deferred on a software renderer), inline "
-                         "or deferred (a pass of its own); the hits are the same",
+      ("traversal-pass", "where adaptive L after the hierarchical traversal runs: auto (deferred on a software "
+                         "renderer), inline or deferred (a pass of its own); the hits are the same "
+                         "(ContextDesc::traversalPass)",
        cxxopts::value<std::string>())
       ("device-profile", "sslr's pass shapes: auto (software on a CPU rasterizer, else gpu), gpu or software; the "
                          "outputs are the same", cxxopts::value<std::string>())
@@ -216,7 +210,7 @@ void addTracerOptions(cxxopts::Options& options) {
        cxxopts::value<std::string>()->default_value("blend"))
       ("half-res", "one ray per 2x2 quad, reused by the quad's pixels on the same surface")
       ("one-body-traversal", "the traversal's walk and pixel tests in one loop body (for timing on a GPU; the "
-                             "same hits: Settings::debug.oneBodyTraversal)")
+                             "same hits: ContextDesc::oneBodyTraversal)")
       ("error-k", "classic Fresnel's error term: weight 1 - saturate(L / distance x K) (default 0.15; 0 = off)",
        cxxopts::value<std::string>())
       ("hidden-guess", "a ray that ends without a hit where it went out of sight (behind what the screen shows, "
@@ -297,7 +291,7 @@ struct RenderJob {
   double eyeSeparation = 0.064;                     // --eye-separation
   bool prepare = true;                              // Context::prepare() before the first frame
   std::string device;                               // EGL device (--device)
-  DeviceProfile profile = DeviceProfile::Auto;      // sslr's pass shapes (--device-profile)
+  ContextDesc shapes;  // sslr's pass shapes (--device-profile, --traversal-pass, --one-body-traversal)
 };
 
 // --views and --eye-separation (throws UsageError).
@@ -329,10 +323,17 @@ void parseTracing(const cxxopts::ParseResult& args, RenderJob& job) {
   settings = parseSettings(args);
   if (args.count("device-profile")) {
     const std::string profile = args["device-profile"].as<std::string>();
-    if (profile == "auto") job.profile = DeviceProfile::Auto;
-    else if (profile == "gpu") job.profile = DeviceProfile::Gpu;
-    else if (profile == "software") job.profile = DeviceProfile::Software;
+    if (profile == "auto") job.shapes.device = DeviceProfile::Auto;
+    else if (profile == "gpu") job.shapes.device = DeviceProfile::Gpu;
+    else if (profile == "software") job.shapes.device = DeviceProfile::Software;
     else throw UsageError{"--device-profile must be auto, gpu or software (got '" + profile + "')"};
+  }
+  if (args.count("traversal-pass")) {
+    const std::string pass = args["traversal-pass"].as<std::string>();
+    if (pass == "auto") job.shapes.traversalPass = TraversalPass::Auto;
+    else if (pass == "inline") job.shapes.traversalPass = TraversalPass::Inline;
+    else if (pass == "deferred") job.shapes.traversalPass = TraversalPass::Deferred;
+    else throw UsageError{"--traversal-pass must be auto, inline or deferred (got '" + pass + "')"};
   }
   const std::string method = args["method"].as<std::string>();
   if (method == "none") {
@@ -353,9 +354,9 @@ void parseTracing(const cxxopts::ParseResult& args, RenderJob& job) {
   if (composite == "blend") job.compositeMode = CompositeMode::BlendOverFallback;
   else if (composite == "add") job.compositeMode = CompositeMode::Add;
   else throw UsageError{"--composite must be blend or add (got '" + composite + "')"};
-  if (args.count("no-hiz-fallback")) settings.traversal.fallback = false;  // adaptive L alone: no traversal
+  if (args.count("no-hiz-fallback")) settings.traversal.maxSteps = 0;  // adaptive L alone: no traversal
   if (args.count("half-res")) settings.halfResolution = true;
-  if (args.count("one-body-traversal")) settings.debug.oneBodyTraversal = true;
+  if (args.count("one-body-traversal")) job.shapes.oneBodyTraversal = true;
   settings.debug.outputs = job.dump || job.score;
   settings.debug.collectStats = args.count("stats") > 0;
   if (args.count("temporal")) settings.temporal.enabled = true;
@@ -460,7 +461,7 @@ Status writeImages(const NamedImages& files, const fs::path& outDir) {
 
 // --stats: tiles, traced pixels, fetches, the commands per pass, and the pass times.
 void printStats(const FrameStats& st, const std::vector<FrameStats>& laterStats, int frames, bool software,
-                DeviceProfile profile, const Settings& settings) {
+                DeviceProfile profile, bool oneBodyTraversal, const Settings& settings) {
   std::cout << "  tiles " << st.tiles << " (blurred " << st.blurTiles << "), traced pixels " << st.tracedPixels << ", fetches "
             << st.fetches << " (" << (st.tracedPixels ? double(st.fetches) / st.tracedPixels : 0.0)
             << " per traced pixel), hierarchical traversal on " << st.hierarchicalPixels << " ("
@@ -490,7 +491,7 @@ void printStats(const FrameStats& st, const std::vector<FrameStats>& laterStats,
               static_cast<unsigned long long>(frameWork.simt64), frameWork.longestChain,
               st.tracedPixels ? double(frameWork.laneSteps) / st.tracedPixels : 0.0);
   // What that work would cost an H100 (the model fitted to one; sslr_host/cost_model.hpp).
-  if (const std::optional<double> ms = predictedH100FrameMs(frameShapeOf(settings, profile, st), frameWork))
+  if (const std::optional<double> ms = predictedH100FrameMs(frameShapeOf(settings, profile, oneBodyTraversal, st), frameWork))
     std::printf("  predicted on an NVIDIA H100 (ray-work model, docs/results/gpu-h100.md): %.3f ms a frame\n", *ms);
   else
     std::printf("  predicted on an NVIDIA H100: not for this frame's shape (the model is fitted to the gpu profile, "
@@ -662,7 +663,7 @@ Status runFrames(const RenderJob& job, Context& ctx, Prepare&& prepare, Frame&& 
 // --views N: every view's G-buffer, one dispatch of a context of N views, each view's composite
 // (without a tracer: each view's lit colour).
 int renderViews(const RenderJob& job, HeadlessContext& gl) {
-  auto renderer = ViewsRenderer::create(job.gopt, job.views, nullptr, job.profile);
+  auto renderer = ViewsRenderer::create(job.gopt, job.views, nullptr, job.shapes);
   if (!renderer) {
     std::cerr << "sslr-render: " << renderer.error() << "\n";
     return kExitFailure;
@@ -695,7 +696,8 @@ int renderViews(const RenderJob& job, HeadlessContext& gl) {
             << " triangles) -> " << (job.outDir / "final-view0.png").string() << " .. final-view" << job.views - 1
             << ".png\n";
   if (stats) {
-    printStats(r.sslr().waitForStats(), laterStats, job.frames, gl.isSoftware(), r.sslr().device(), job.settings);
+    printStats(r.sslr().waitForStats(), laterStats, job.frames, gl.isSoftware(), r.sslr().device(), job.shapes.oneBodyTraversal,
+               job.settings);
     printFrameTimes(times);
   }
   return 0;
@@ -711,7 +713,7 @@ int render(const RenderJob& job) {
     return kExitFailure;
   }
   if (job.views > 1) return renderViews(job, *gl.value());
-  auto renderer = FrameRenderer::create(job.gopt, nullptr, job.profile);
+  auto renderer = FrameRenderer::create(job.gopt, nullptr, job.shapes);
   if (!renderer) {
     std::cerr << "sslr-render: " << renderer.error() << "\n";
     return kExitFailure;
@@ -751,7 +753,7 @@ int render(const RenderJob& job) {
             << (job.outDir / "final.png").string() << (job.dump ? " + buffers" : "") << "\n";
   if (stats) {
     printStats(r.sslr().waitForStats(), laterStats, job.frames, gl.value()->isSoftware(), r.sslr().device(),
-               job.settings);
+               job.shapes.oneBodyTraversal, job.settings);
     printFrameTimes(times);
   }
   printScores(scores);

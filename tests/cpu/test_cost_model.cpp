@@ -70,10 +70,11 @@ TEST(CostModel, ReproducesTheH100RunItWasFittedTo) {
     const std::string& params = f[column["parameters"]];
     FrameShape shape;
     shape.method = method->second;
+    // The run's parameters name the traversal's switch as 0.5 did (0.11.1: traversal.maxSteps > 0).
     shape.traversal = has(params, "\"traversal.fallback\":true");
     shape.device = has(params, "\"device\":\"software\"") ? DeviceProfile::Software : DeviceProfile::Gpu;
     shape.halfResolution = f[column["label"]] == "high-half";
-    // The run's parameters name the pass as 0.5 did (0.11: "debug.traversalPass").
+    // ... and the pass (0.11.1: "traversalPass").
     shape.traversalDeferred = has(params, "\"traversal.pass\":\"deferred\"");
     RayWork work;
     work.simt32 = std::stoull(f[column["simt32"]]);

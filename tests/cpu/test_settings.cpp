@@ -21,8 +21,8 @@ TEST(Settings, DefaultsAndPresetsAreValid) {
 TEST(Settings, PresetsGrowInEffort) {
   const Settings low = Settings::preset(Preset::Low), med = Settings::preset(Preset::Medium),
                  high = Settings::preset(Preset::High), ultra = Settings::preset(Preset::Ultra);
-  EXPECT_FALSE(low.traversal.fallback);
-  EXPECT_TRUE(med.traversal.fallback && high.traversal.fallback && ultra.traversal.fallback);
+  EXPECT_EQ(low.traversal.maxSteps, 0) << "adaptive L alone";
+  EXPECT_GT(med.traversal.maxSteps, 0);
   EXPECT_LT(low.adaptiveL.maxIterations, med.adaptiveL.maxIterations);
   EXPECT_LE(med.adaptiveL.maxIterations, high.adaptiveL.maxIterations);
   EXPECT_LT(high.adaptiveL.maxIterations, ultra.adaptiveL.maxIterations);
@@ -49,7 +49,10 @@ TEST(Settings, EveryInvalidFieldIsNamed) {
       {"traversal.hiddenGuess", [](Settings& s) { s.traversal.hiddenGuess = NAN; }},
       {"ffx.depthBufferThickness", [](Settings& s) { s.ffx.depthBufferThickness = 0.0f; }},
       {"ffx.maxTraversalIntersections", [](Settings& s) { s.ffx.maxTraversalIntersections = 0; }},
-      {"debug.traversalPass", [](Settings& s) { s.debug.traversalPass = static_cast<TraversalPass>(7); }},
+      {"traversal.maxSteps", [](Settings& s) { s.traversal.maxSteps = -1; }},
+      {"traversal.maxSteps", [](Settings& s) { s.traversal.maxSteps = 1025; }},
+      {"traversal.maxSteps = 0 (must be 1..1024 for Method::HierarchicalDepth)",
+       [](Settings& s) { s.method = Method::HierarchicalDepth; s.traversal.maxSteps = 0; }},
       {"output", [](Settings& s) { s.output = static_cast<OutputMode>(7); }},
       {"adaptiveL.convergenceEps", [](Settings& s) { s.adaptiveL.convergenceEps = -1.0f; }},
       {"adaptiveL.initialLengthScreen", [](Settings& s) { s.adaptiveL.initialLengthScreen = 0.0f; }},

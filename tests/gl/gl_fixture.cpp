@@ -58,12 +58,11 @@ sslr::host::Image compositeImage(sslr::Context& ctx, int w, int h, const sslr::C
   return out;
 }
 
-std::unique_ptr<sslr::Context> makeSslrContext(int w, int h, sslr::DeviceProfile device) {
-  sslr::ContextDesc d;
+std::unique_ptr<sslr::Context> makeSslrContext(int w, int h, const sslr::ContextDesc& shapes) {
+  sslr::ContextDesc d = shapes;
   d.width = w;
   d.height = h;
   d.getProcAddress = sslr::host::HeadlessContext::getProcAddress();
-  d.device = device;
   auto c = sslr::Context::create(d);
   EXPECT_TRUE(c) << c.error();
   return c ? std::move(c.value()) : nullptr;

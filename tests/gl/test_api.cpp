@@ -24,7 +24,17 @@ namespace {
 
 constexpr int W = 64, H = 48;
 
-std::unique_ptr<Context> makeContext(int w = W, int h = H) { return sslr::test::makeSslrContext(w, h); }
+std::unique_ptr<Context> makeContext(int w = W, int h = H, const ContextDesc& shapes = {}) {
+  return sslr::test::makeSslrContext(w, h, shapes);
+}
+
+// Pass shapes with adaptive L after the traversal where `pass` says (ContextDesc::traversalPass).
+ContextDesc traversalIn(TraversalPass pass, DeviceProfile device = DeviceProfile::Auto) {
+  ContextDesc d;
+  d.device = device;
+  d.traversalPass = pass;
+  return d;
+}
 
 GLuint makeTexture(GLenum format, int w = W, int h = H) {
   GLuint t = 0;
@@ -462,13 +472,12 @@ TEST_F(Api, FrameStatsCountEachPassCommands) {
   for (DeviceProfile profile : {DeviceProfile::Software, DeviceProfile::Gpu}) {
     const bool gpu = profile == DeviceProfile::Gpu;
     SCOPED_TRACE(gpu ? "Gpu profile" : "Software profile");
-    auto created = sslr::test::makeSslrContext(W, H, profile);
+    auto created = sslr::test::makeSslrContext(W, H, traversalIn(TraversalPass::Inline, profile));
     ASSERT_TRUE(created);
     Context* ctx = created.get();
     Frame f;
     Settings s;
     s.debug.collectStats = true;
-    s.debug.traversalPass = TraversalPass::Inline;
     auto expect = [](const PassCommands& c, std::uint32_t direct, std::uint32_t indirect, std::uint32_t barriers,
                      std::uint32_t programs, const char* what) {
       EXPECT_EQ(c.dispatches, direct) << what;
@@ -493,7 +502,7 @@ TEST_F(Api, FrameStatsCountEachPassCommands) {
     EXPECT_GT(st.classifyCommands.uploads, 0u) << "the frame constants at least";
 
     Settings alone = s;
-    alone.traversal.fallback = false;  // adaptive L alone needs no pyramid
+    alone.traversal.maxSteps = 0;  // adaptive L alone needs no pyramid
     ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), alone));
     st = ctx->waitForStats();
     expect(st.pyramidCommands, 0, 0, 0, 0, "no pyramid for adaptive L alone");
@@ -930,7 +939,7 @@ TEST_F(Api, RadianceOutputLeavesTheFresnelTermToTheHost) {
   dielectric.surface.constantReflectance = 0.5f;
   Settings weighted;
   weighted.fresnel = FresnelMode::Schlick;
-  weighted.blur.enabled = false;
+  weighted.blur.maxRadiusPx = 0.0f;
   Settings radiance = weighted;
   radiance.output = OutputMode::Radiance;
   auto run = [&](const FrameInputs& in, const Settings& s) {
@@ -987,7 +996,7 @@ TEST_F(Api, ColoredF0TintsMetalsReflections) {
   const FrameInputs packedIn = f.gbuffer->frameInputs();  // roughness in B, reflectance in A
   Settings s;
   s.fresnel = FresnelMode::Schlick;
-  s.blur.enabled = false;
+  s.blur.maxRadiusPx = 0.0f;
   ASSERT_TRUE(ctx->dispatch(packedIn, s));
   const Image grey = readAll(ctx->reflectionTexture(), 4);
   Settings radianceSettings = s;
@@ -1157,7 +1166,7 @@ TEST_F(Api, PrepareCompilesEveryProgramFramesUse) {
 // inline trace, the traversal alone and adaptive L alone; a deferred traversal adds the retrace
 // dispatch's work, in groups of 64 listed pixels.
 TEST_F(Api, RayWorkIsTheIterationsImageRegroupedAsTheGroupsRun) {
-  auto ctx = makeContext();
+  auto ctx = makeContext(W, H, traversalIn(TraversalPass::Inline));
   Frame f;
   const FrameInputs in = f.gbuffer->frameInputs();
   auto expectRegrouped = [&](const Settings& s, const char* what) {
@@ -1193,20 +1202,18 @@ TEST_F(Api, RayWorkIsTheIterationsImageRegroupedAsTheGroupsRun) {
   Settings s;
   s.debug.outputs = true;
   s.debug.collectStats = true;
-  s.debug.traversalPass = TraversalPass::Inline;
   expectRegrouped(s, "default, inline");
   Settings hiz = s;
   hiz.method = Method::HierarchicalDepth;
   expectRegrouped(hiz, "the traversal alone");
   Settings alone = s;
-  alone.traversal.fallback = false;
+  alone.traversal.maxSteps = 0;
   expectRegrouped(alone, "adaptive L alone");
   // Deferred: the trace dispatch counts the traversal's steps, the retrace dispatch the listed
   // pixels' adaptive L; every listed pixel is a lane there, 64 to a group.
-  Settings deferred = s;
-  deferred.debug.traversalPass = TraversalPass::Deferred;
-  ASSERT_TRUE(ctx->dispatch(in, deferred));
-  const FrameStats st = ctx->waitForStats();
+  auto deferredCtx = makeContext(W, H, traversalIn(TraversalPass::Deferred));
+  ASSERT_TRUE(deferredCtx->dispatch(in, s));
+  const FrameStats st = deferredCtx->waitForStats();
   ASSERT_TRUE(st.traversalDeferred);
   EXPECT_GT(st.retraceWork.laneSteps, 0u);
   EXPECT_LE(st.retraceWork.groups, (st.tracedPixels + 63) / 64);
@@ -1433,7 +1440,7 @@ TEST_F(Api, MaskTextureLimitsWhereRaysStart) {
 // Every optional input and pass at once compiles the programs with the most #defines; their
 // debug labels (the defines) once ran past GL_MAX_LABEL_LENGTH, a GL error on every first use.
 TEST_F(Api, EveryOptionAtOnceLeavesNoGlError) {
-  auto ctx = makeContext();
+  auto ctx = makeContext(W, H, traversalIn(TraversalPass::Deferred));
   Frame f;
   FrameInputs in = f.gbuffer->frameInputs();
   const GLuint maskTex = makeTexture(GL_R8), materialTex = makeTexture(GL_RGBA8);
@@ -1448,7 +1455,6 @@ TEST_F(Api, EveryOptionAtOnceLeavesNoGlError) {
   in.viewFromWorld = f.gbuffer->viewFromWorld();
   Settings s = Settings::preset(Preset::Ultra);
   s.halfResolution = true;
-  s.debug.traversalPass = TraversalPass::Deferred;
   s.debug.outputs = true;
   s.debug.collectStats = true;
   ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
@@ -1495,7 +1501,7 @@ TEST_F(Api, MemoryIsAllocatedOnlyForWhatAFrameUses) {
   auto ctx = makeContext();
   Frame f;
   Settings alone;
-  alone.traversal.fallback = false;
+  alone.traversal.maxSteps = 0;
   ASSERT_TRUE(ctx->dispatch(f.gbuffer->frameInputs(), alone));
   EXPECT_EQ(pyramidCount(), before) << "adaptive L alone traces no pyramid";
   EXPECT_EQ(ctx->hitTexture(), 0u);
@@ -1829,6 +1835,13 @@ TEST_F(Api, ErrorsCarryTheirKind) {
   auto loaderless = Context::create(noLoader);
   ASSERT_FALSE(loaderless);
   EXPECT_EQ(loaderless.status().code(), StatusCode::GlUnavailable) << loaderless.error();
+  ContextDesc badPass = noLoader;
+  badPass.getProcAddress = HeadlessContext::getProcAddress();
+  badPass.traversalPass = static_cast<TraversalPass>(7);
+  auto passless = Context::create(badPass);
+  ASSERT_FALSE(passless);
+  EXPECT_EQ(passless.status().code(), StatusCode::InvalidSettings) << passless.error();
+  EXPECT_NE(passless.error().find("traversalPass = 7"), std::string::npos) << passless.error();
 
   auto ctx = makeContext();
   ASSERT_TRUE(ctx);

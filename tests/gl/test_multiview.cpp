@@ -24,12 +24,14 @@ namespace {
 
 constexpr int kW = 96, kH = 64;
 
-std::unique_ptr<Context> makeViewsContext(int views, DeviceProfile device = DeviceProfile::Auto) {
+std::unique_ptr<Context> makeViewsContext(int views, DeviceProfile device = DeviceProfile::Auto,
+                                          TraversalPass pass = TraversalPass::Auto) {
   ContextDesc d;
   d.width = kW;
   d.height = kH;
   d.getProcAddress = HeadlessContext::getProcAddress();
   d.device = device;
+  d.traversalPass = pass;
   d.views = views;
   auto c = Context::create(d);
   EXPECT_TRUE(c) << c.error();
@@ -106,6 +108,7 @@ struct Case {
   // Each view's projection shifted off centre by this much a view (an HMD's asymmetric frusta;
   // both contexts get the same matrices, so the comparison stays exact).
   double frustumShift = 0.0;
+  TraversalPass pass = TraversalPass::Auto;  // ContextDesc::traversalPass
 };
 
 // Each view's outputs, frame after frame, against one-view contexts given that view's textures.
@@ -113,11 +116,11 @@ void expectLayersMatchOwnContexts(const Case& c) {
   SCOPED_TRACE(c.name);
   auto views = makeViews(c.scene, c.views, c.gbuffer);
   ASSERT_TRUE(views);
-  auto layered = makeViewsContext(c.views, c.device);
+  auto layered = makeViewsContext(c.views, c.device, c.pass);
   ASSERT_TRUE(layered);
   std::vector<std::unique_ptr<Context>> own;
   for (int v = 0; v < c.views; ++v) {
-    own.push_back(makeViewsContext(1, c.device));
+    own.push_back(makeViewsContext(1, c.device, c.pass));
     ASSERT_TRUE(own.back());
   }
   size_t hits = 0;
@@ -171,8 +174,6 @@ TEST_F(MultiView, EachLayerIsWhatAOneViewContextMakesOfItsTextures) {
   halfTemporal.halfResolution = true;
   halfTemporal.temporal.enabled = true;
   halfTemporal.temporal.outputConfidence = true;
-  Settings deferred = debug;
-  deferred.debug.traversalPass = TraversalPass::Deferred;
   GBufferOptions withBackDepth;
   withBackDepth.withBackDepth = true;
   Settings stochastic = debug;
@@ -183,7 +184,7 @@ TEST_F(MultiView, EachLayerIsWhatAOneViewContextMakesOfItsTextures) {
       {"stereo, curved solids", "sphere-over-mirror-32", 2, debug, 1, DeviceProfile::Auto},
       {"stereo, half resolution and temporal reuse", "mirror-room", 2, halfTemporal, 3, DeviceProfile::Auto},
       {"stereo, Gpu profile, half resolution", "mirror-room", 2, halfTemporal, 2, DeviceProfile::Gpu},
-      {"stereo, deferred traversal", "thin-objects", 2, deferred, 1, DeviceProfile::Auto},
+      {"stereo, deferred traversal", "thin-objects", 2, debug, 1, DeviceProfile::Auto, {}, {}, 0.0, TraversalPass::Deferred},
       {"stereo, stochastic glossy", "glossy", 2, stochastic, 2, DeviceProfile::Auto},
       {"four views", "mirror-walls", 4, debug, 1, DeviceProfile::Auto},
       {"stereo in a viewport and out of it", "mirror-room", 2, halfTemporal, 4, DeviceProfile::Auto, {13, 7, 61, 43}},

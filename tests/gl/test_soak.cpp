@@ -82,10 +82,11 @@ TEST_F(Soak, ObjectsErrorsAndMemoryStayFlat) {
   glCreateFramebuffers(1, &targetFbo);
   glNamedFramebufferTexture(targetFbo, GL_COLOR_ATTACHMENT0, target, 0);
 
-  auto makeContext = [&](std::pair<int, int> size) {
+  auto makeContext = [&](std::pair<int, int> size, TraversalPass pass) {
     ContextDesc d;
     d.width = size.first;
     d.height = size.second;
+    d.traversalPass = pass;
     d.getProcAddress = HeadlessContext::getProcAddress();
     auto c = Context::create(d);
     EXPECT_TRUE(c) << c.error();
@@ -98,6 +99,7 @@ TEST_F(Soak, ObjectsErrorsAndMemoryStayFlat) {
   struct Step {
     std::pair<int, int> size;
     bool recreate = false, composite = false;
+    TraversalPass pass = TraversalPass::Auto;  // the re-created context's (ContextDesc::traversalPass)
     Settings settings;
   };
   std::vector<Step> steps(static_cast<size_t>(iterations / 2));
@@ -106,17 +108,17 @@ TEST_F(Soak, ObjectsErrorsAndMemoryStayFlat) {
     const int r = pick(100);
     step.size = r < 2 ? sizes[6] : sizes[pick(6)];
     step.recreate = pick(50) == 0;
+    step.pass = static_cast<TraversalPass>(pick(3));
     Settings& s = step.settings;
     s = Settings::preset(static_cast<Preset>(pick(4)));
     s.method = static_cast<Method>(pick(4));
     s.fresnel = pick(2) ? FresnelMode::Classic : FresnelMode::Schlick;
-    s.traversal.fallback = pick(2) == 0;
-    s.debug.traversalPass = static_cast<TraversalPass>(pick(3));
-    s.traversal.maxSteps = 1 + pick(200);
+    // 0: adaptive L alone (the traversal alone needs steps).
+    const bool steps = pick(2) == 0 || s.method == Method::HierarchicalDepth;
+    s.traversal.maxSteps = steps ? 1 + pick(200) : 0;
     s.adaptiveL.maxIterations = 1 + pick(40);
     s.traversal.objectDepthRelative = uniform(0.0f, 0.5f);
-    s.blur.enabled = pick(4) != 0;
-    s.blur.maxRadiusPx = uniform(0.0f, 16.0f);
+    s.blur.maxRadiusPx = pick(4) != 0 ? uniform(0.0f, 16.0f) : 0.0f;
     s.selection.roughnessCutoff = uniform(0.0f, 1.0f);
     s.debug.outputs = pick(3) == 0;
     s.debug.collectStats = pick(3) == 0;
@@ -129,7 +131,7 @@ TEST_F(Soak, ObjectsErrorsAndMemoryStayFlat) {
     step.composite = pick(4) == 0;
   }
   std::pair<int, int> size = sizes[3];
-  std::unique_ptr<Context> ctx = makeContext(size);
+  std::unique_ptr<Context> ctx = makeContext(size, TraversalPass::Auto);
   ASSERT_TRUE(ctx);
 
   size_t objectsAtWarmup = 0;
@@ -145,7 +147,7 @@ TEST_F(Soak, ObjectsErrorsAndMemoryStayFlat) {
       const Step& step = steps[it];
       if (step.recreate) {
         ctx.reset();
-        ctx = makeContext(step.size);
+        ctx = makeContext(step.size, step.pass);
         ASSERT_TRUE(ctx);
         ++recreations;
       } else if (step.size != size) {

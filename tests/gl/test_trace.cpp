@@ -41,16 +41,18 @@ std::string gtestName(std::string name) {
 std::string sceneParamName(const ::testing::TestParamInfo<const char*>& info) { return gtestName(info.param); }
 
 // A frame rendered with debug outputs and the exact reflections traced by Embree: what every
-// accuracy test in this file starts from. Failures are reported; `renderer` is null then.
+// accuracy test in this file starts from, on a context of pass shapes `shapes`. Failures are
+// reported; `renderer` is null then.
 struct ScoredFrame {
   std::unique_ptr<FrameRenderer> renderer;
   GroundTruth truth;
   Image hit;
 };
 
-ScoredFrame renderScored(const Scene& scene, const Camera& camera, const GBufferOptions& options, Settings settings) {
+ScoredFrame renderScored(const Scene& scene, const Camera& camera, const GBufferOptions& options, Settings settings,
+                         const ContextDesc& shapes = {}) {
   ScoredFrame f;
-  auto r = FrameRenderer::create(options);
+  auto r = FrameRenderer::create(options, nullptr, shapes);
   EXPECT_TRUE(r) << r.error();
   if (!r) return f;
   GpuScene gpu(scene);
@@ -353,8 +355,9 @@ TEST_P(TraversalFirst, FindsWhatTheTraversalAloneFinds) {
   };
   auto run = [&](Settings s) {
     s.debug.collectStats = true;
-    s.debug.traversalPass = TraversalPass::Inline;  // the groups as the trace pass runs them
-    const ScoredFrame f = renderScored(scene.value(), *scene.value().camera, o, s);
+    ContextDesc inlined;  // the groups as the trace pass runs them
+    inlined.traversalPass = TraversalPass::Inline;
+    const ScoredFrame f = renderScored(scene.value(), *scene.value().camera, o, s, inlined);
     EXPECT_TRUE(f.renderer);
     if (!f.renderer) return Run{};
     return Run{compareHits(f.truth, f.hit), f.renderer->sslr().waitForStats().totalRayWork()};
@@ -862,7 +865,7 @@ TEST_P(FfxSssr, GpuAndCpuAgreeAndThicknessDecides) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, FfxSssr, ::testing::Values("mirror-room", "glossy"), sceneParamName);
 
-// The traversal inline or in a pass of its own (Settings::debug.traversalPass) runs the same functions on
+// The traversal inline or in a pass of its own (ContextDesc::traversalPass) runs the same functions on
 // the same pixels: the hit images must agree, and so must the reflections and the stats' count
 // of traversed pixels. Scenes: every ray to the traversal first (facing-mirror), most pixels
 // answered by adaptive L (mirror-room), hit verification on every hit (thin-objects, ultra);
@@ -915,25 +918,25 @@ TEST_P(TraversalPasses, DeferredAndInlineGiveTheSameHits) {
   auto scene = makeBuiltinScene(c.scene);
   ASSERT_TRUE(scene);
   const GBufferOptions o = passCaseFrame();
-  Settings inlined = std::string(c.scene) == "thin-objects" ? Settings::preset(Preset::Ultra) : Settings{};
-  inlined.halfResolution = c.half;
-  inlined.debug.outputs = true;
-  inlined.debug.collectStats = true;
-  inlined.debug.traversalPass = TraversalPass::Inline;
-  Settings deferred = inlined;
-  deferred.debug.traversalPass = TraversalPass::Deferred;
+  Settings s = std::string(c.scene) == "thin-objects" ? Settings::preset(Preset::Ultra) : Settings{};
+  s.halfResolution = c.half;
+  s.debug.outputs = true;
+  s.debug.collectStats = true;
+  ContextDesc shapes[2];
+  shapes[0].traversalPass = TraversalPass::Inline;
+  shapes[1].traversalPass = TraversalPass::Deferred;
   constexpr int kFrames = 3;
   Image hits[kFrames][2], reflections[kFrames][2];
   FrameStats stats[kFrames][2];
   for (int k = 0; k < 2; ++k) {
-    auto r = FrameRenderer::create(o);
+    auto r = FrameRenderer::create(o, nullptr, shapes[k]);
     ASSERT_TRUE(r) << r.error();
     GpuScene gpu(scene.value());
     Camera camera = *scene.value().camera;
     for (int frame = 0; frame < kFrames; ++frame) {
       // A step sideways and down after the first frame: a few pixels of screen motion at 192x108.
       if (frame > 0) camera.eye += glm::dvec3(0.15, -0.05, 0.0);
-      ASSERT_TRUE(r.value()->render(gpu, camera, k == 0 ? &inlined : &deferred));
+      ASSERT_TRUE(r.value()->render(gpu, camera, &s));
       hits[frame][k] = r.value()->readHit();
       reflections[frame][k] = r.value()->readReflection();
       stats[frame][k] = r.value()->sslr().waitForStats();
@@ -951,7 +954,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, TraversalPasses,
                                            PassCase{"facing-mirror", true}),
                          passCaseName);
 
-// Settings::debug.oneBodyTraversal runs the traversal's walk steps and pixel tests in one loop
+// ContextDesc::oneBodyTraversal runs the traversal's walk steps and pixel tests in one loop
 // body: the same steps in the same order per ray, so the same hit images and reflections, inline
 // (the Gpu profile) and deferred, at full and half resolution. Bit for bit where one compiler
 // does the same arithmetic in both programs (Mesa's llvmpipe, CI). GLSL lets a driver fuse a
@@ -967,18 +970,18 @@ TEST_P(OneBodyTraversal, GivesTheTwoPhasesHitsBitForBit) {
   ASSERT_TRUE(scene);
   const GBufferOptions o = passCaseFrame();
   for (TraversalPass pass : {TraversalPass::Inline, TraversalPass::Deferred}) {
-    Settings twoPhases;
-    twoPhases.halfResolution = c.half;
-    twoPhases.debug.outputs = true;
-    twoPhases.debug.traversalPass = pass;
-    Settings oneBody = twoPhases;
-    oneBody.debug.oneBodyTraversal = true;
+    Settings s;
+    s.halfResolution = c.half;
+    s.debug.outputs = true;
+    ContextDesc shapes[2];  // two phases, one body
+    shapes[0].traversalPass = shapes[1].traversalPass = pass;
+    shapes[1].oneBodyTraversal = true;
     Image hits[2], reflections[2];
     for (int k = 0; k < 2; ++k) {
-      auto r = FrameRenderer::create(o);
+      auto r = FrameRenderer::create(o, nullptr, shapes[k]);
       ASSERT_TRUE(r) << r.error();
       GpuScene gpu(scene.value());
-      ASSERT_TRUE(r.value()->render(gpu, *scene.value().camera, k == 0 ? &twoPhases : &oneBody));
+      ASSERT_TRUE(r.value()->render(gpu, *scene.value().camera, &s));
       hits[k] = r.value()->readHit();
       reflections[k] = r.value()->readReflection();
     }
@@ -1130,7 +1133,6 @@ TEST_P(DeviceProfiles, SameOutputsFrameAfterFrame) {
   s.method = c.method;
   s.halfResolution = c.half;
   s.temporal.enabled = c.temporal;
-  s.debug.traversalPass = c.pass;
   s.debug.outputs = true;
   s.debug.collectStats = true;
   Settings empty = s;
@@ -1150,7 +1152,10 @@ TEST_P(DeviceProfiles, SameOutputsFrameAfterFrame) {
   FrameStats stats[2][kFrames];
   const DeviceProfile profiles[2] = {DeviceProfile::Software, DeviceProfile::Gpu};
   for (int p = 0; p < 2; ++p) {
-    auto r = FrameRenderer::create(o, nullptr, profiles[p]);
+    ContextDesc shapes;
+    shapes.device = profiles[p];
+    shapes.traversalPass = c.pass;
+    auto r = FrameRenderer::create(o, nullptr, shapes);
     ASSERT_TRUE(r) << r.error();
     ASSERT_EQ(r.value()->sslr().device(), profiles[p]);
     for (int k = 0; k < kFrames; ++k) {

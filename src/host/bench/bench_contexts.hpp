@@ -13,18 +13,19 @@ namespace sslr::host {
 // state from frame to frame, as a host's does: TraversalPass::Auto follows the traversal share
 // its previous frames fed back, the clean-up the tiles they listed. Timed through one shared
 // context, each configuration would run in the state the one before it left (integration.md,
-// "debug.traversalPass").
+// "ContextDesc::traversalPass").
 class ConfigContexts {
  public:
   ConfigContexts(int width, int height) : width_(width), height_(height) {}
-  Expected<Context*> get(size_t config, DeviceProfile device = DeviceProfile::Auto) {
+  // `shapes`: the pass shapes (ContextDesc's device, traversalPass, oneBodyTraversal).
+  Expected<Context*> get(size_t config, const ContextDesc& shapes = {}) {
     if (contexts_.size() <= config) contexts_.resize(config + 1);
     if (!contexts_[config]) {
-      ContextDesc d;
+      ContextDesc d = shapes;
       d.width = width_;
       d.height = height_;
+      d.views = 1;
       d.getProcAddress = HeadlessContext::getProcAddress();
-      d.device = device;
       auto c = Context::create(d);
       if (!c) return Status::error(c.error());
       contexts_[config] = std::move(c.value());

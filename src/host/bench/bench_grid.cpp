@@ -55,7 +55,7 @@ void highVariants(std::vector<BenchConfig>& configs) {
   // The traversal's walk and pixel tests in one loop body, in the Gpu profile's shapes: the same
   // hits; what a GPU's warps pay for the two phases (results/gpu-h100.md).
   BenchConfig oneBody{"adaptive-l", "high-gpu-one-body", Settings::preset(preset), false};
-  oneBody.settings.debug.oneBodyTraversal = true;
+  oneBody.oneBodyTraversal = true;
   oneBody.device = DeviceProfile::Gpu;
   configs.push_back(oneBody);
   for (auto [label, device] : {std::pair{"high-gpu-profile", DeviceProfile::Gpu},
@@ -64,11 +64,11 @@ void highVariants(std::vector<BenchConfig>& configs) {
     shaped.device = device;
     configs.push_back(shaped);
   }
-  // Where the second stage (adaptive L after the walk) runs: Settings::debug.traversalPass.
+  // Where the second stage (adaptive L after the walk) runs: ContextDesc::traversalPass.
   for (auto [label, pass] : {std::pair{"high-inline", TraversalPass::Inline},
                              std::pair{"high-deferred", TraversalPass::Deferred}}) {
     BenchConfig where{"adaptive-l", label, Settings::preset(preset), false};
-    where.settings.debug.traversalPass = pass;
+    where.traversalPass = pass;
     configs.push_back(where);
   }
 }
@@ -83,7 +83,7 @@ void adaptiveLConfigs(std::vector<BenchConfig>& configs, bool full) {
     configs.push_back(c);
     if (preset == Preset::High) {  // the article's tracer alone, without the hierarchical fallback
       BenchConfig alone{"adaptive-l", "high-no-fallback", Settings::preset(preset), false};
-      alone.settings.traversal.fallback = false;
+      alone.settings.traversal.maxSteps = 0;
       configs.push_back(alone);
       BenchConfig half{"adaptive-l", "high-half", Settings::preset(preset), false};  // one ray per quad
       half.settings.halfResolution = true;

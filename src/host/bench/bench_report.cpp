@@ -35,16 +35,16 @@ json settingsJson(const BenchConfig& c) {
     return {{"depthBufferThickness", s.ffx.depthBufferThickness},
             {"maxTraversalIntersections", s.ffx.maxTraversalIntersections}};
   if (c.method == "baseline") return json::object();
-  const char* traversalPass = s.debug.traversalPass == TraversalPass::Auto     ? "auto"
-                              : s.debug.traversalPass == TraversalPass::Inline ? "inline"
+  const char* traversalPass = c.traversalPass == TraversalPass::Auto     ? "auto"
+                              : c.traversalPass == TraversalPass::Inline ? "inline"
                                                                          : "deferred";
-  return {{"adaptiveL.maxIterations", s.adaptiveL.maxIterations},       {"traversal.fallback", s.traversal.fallback},
+  return {{"adaptiveL.maxIterations", s.adaptiveL.maxIterations},
           {"traversal.maxSteps", s.traversal.maxSteps},
-          {"debug.traversalPass", traversalPass},         {"traversal.objectDepthRelative", s.traversal.objectDepthRelative},
+          {"traversalPass", traversalPass},         {"traversal.objectDepthRelative", s.traversal.objectDepthRelative},
           {"backDepth", c.backDepth},
           {"device", c.device == DeviceProfile::Gpu ? "gpu" : c.device == DeviceProfile::Software ? "software" : "auto"},
           {"traversal.hiddenGuess", s.traversal.hiddenGuess},
-          {"debug.oneBodyTraversal", s.debug.oneBodyTraversal},
+          {"oneBodyTraversal", c.oneBodyTraversal},
           {"adaptiveL.convergenceEps", s.adaptiveL.convergenceEps},
           {"adaptiveL.initialLengthScreen", s.adaptiveL.initialLengthScreen}, 
           {"blur.maxRadiusPx", s.blur.maxRadiusPx},

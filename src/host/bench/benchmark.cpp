@@ -157,7 +157,7 @@ Expected<std::vector<std::vector<double>>> timeInterleaved(const std::vector<Ben
   // this scene's.
   for (size_t i = 0; i < configs.size(); ++i) {
     if (configs[i].method == "baseline") continue;
-    auto ctx = contexts.get(i, configs[i].device);
+    auto ctx = contexts.get(i, configs[i].shapes());
     if (!ctx) return Status::error(ctx.error());
     if (Status st = ctx.value()->dispatch(inputsFor(f, configs[i]), configs[i].settings); !st)
       return Status::error(st.message());
@@ -170,7 +170,7 @@ Expected<std::vector<std::vector<double>>> timeInterleaved(const std::vector<Ben
       if (configs[i].method == "baseline") {
         ms = timer.timeMs([&] { baseline.run(f.inputs); }, timer.repeats(options.batch));
       } else {
-        auto ctx = contexts.get(i, configs[i].device);
+        auto ctx = contexts.get(i, configs[i].shapes());
         if (!ctx) return Status::error(ctx.error());
         const FrameInputs in = inputsFor(f, configs[i]);
         ms = timer.timeMs([&] { if (st) st = ctx.value()->dispatch(in, configs[i].settings); },
@@ -296,11 +296,11 @@ Expected<RunRecord> qualityRun(const BenchConfig& c, size_t i, const std::string
     Settings s = c.settings;
     s.debug.outputs = true;
     s.debug.collectStats = true;
-    // The scene's renderer's context, unless the config asks for a device profile of its own
-    // (then its timing context: the commands counted are that profile's).
+    // The scene's renderer's context, unless the config asks for pass shapes of its own (then
+    // its timing context: the commands counted are those shapes').
     Context* ctx = &fr.sslr();
-    if (c.device != DeviceProfile::Auto) {
-      auto own = contexts.get(i, c.device);
+    if (c.ownShapes()) {
+      auto own = contexts.get(i, c.shapes());
       if (!own) return Status::error(own.error());
       ctx = own.value();
     }
@@ -321,7 +321,7 @@ Expected<RunRecord> qualityRun(const BenchConfig& c, size_t i, const std::string
     r.frameStats = stats;
     r.fetchesPerTracedPixel = stats.tracedPixels ? double(stats.fetches) / stats.tracedPixels : 0.0;
     r.predictedH100Ms =
-        predictedH100FrameMs(frameShapeOf(c.settings, ctx->device(), stats), stats.totalRayWork()).value_or(NAN);
+        predictedH100FrameMs(frameShapeOf(c.settings, ctx->device(), c.oneBodyTraversal, stats), stats.totalRayWork()).value_or(NAN);
     r.nonFiniteOutputs = countNonFinite(readTexture(ctx->reflectionTexture(), options.width, options.height, 4)) +
                          countNonFinite(readTexture(ctx->resolvedTexture(), options.width, options.height, 4));
     if (c.isDefault) {

@@ -28,9 +28,9 @@ const Fit& fitFor(const FrameShape& shape) {
 
 }  // namespace
 
-FrameShape frameShapeOf(const Settings& settings, DeviceProfile device, const FrameStats& stats) {
-  return {settings.method, settings.traversal.fallback, device, settings.halfResolution, stats.traversalDeferred,
-          settings.debug.oneBodyTraversal};
+FrameShape frameShapeOf(const Settings& settings, DeviceProfile device, bool oneBodyTraversal, const FrameStats& stats) {
+  return {settings.method, settings.traversal.maxSteps > 0, device, settings.halfResolution, stats.traversalDeferred,
+          oneBodyTraversal};
 }
 
 std::optional<double> predictedH100FrameMs(const FrameShape& shape, const RayWork& work) {

@@ -93,7 +93,7 @@ Status runGlossyStudy(const std::string& sceneSpec, const BenchOptions& options,
     if (!ctx) return Status::error(ctx.error());
     Settings s;
     s.output = OutputMode::Radiance;
-    s.blur.enabled = c.blur;
+    if (!c.blur) s.blur.maxRadiusPx = 0.0f;
     s.blur.coneScale *= c.coneScale;
     s.glossy.mode = c.mode;
     s.temporal.enabled = c.temporal;

@@ -82,7 +82,9 @@ Status runViewsStudy(const std::string& sceneName, const BenchOptions& options, 
   g.width = w;
   g.height = h;
   // Every eye's G-buffer and the layered inputs (ViewsRenderer, whose context traces every eye).
-  auto views = ViewsRenderer::create(g, n, nullptr, options.device);
+  ContextDesc shapes;
+  shapes.device = options.device;
+  auto views = ViewsRenderer::create(g, n, nullptr, shapes);
   if (!views) return Status::error(views.error());
   ViewsRenderer& layered = *views.value();
   if (Status s = layered.render(gpu, sideBySideCameras(start, n, kEyeSeparation), nullptr); !s) return s;
@@ -92,7 +94,7 @@ Status runViewsStudy(const std::string& sceneName, const BenchOptions& options, 
   ConfigContexts oneView(w, h);
   std::vector<Context*> contexts;
   for (int c = 0; c <= n; ++c) {
-    auto context = oneView.get(static_cast<size_t>(c), options.device);
+    auto context = oneView.get(static_cast<size_t>(c), shapes);
     if (!context) return context.status();
     contexts.push_back(context.value());
   }

@@ -5,16 +5,16 @@
 namespace sslr::host {
 
 Expected<std::unique_ptr<FrameRenderer>> FrameRenderer::create(const GBufferOptions& options,
-                                                              GetProcAddress getProcAddress, DeviceProfile device) {
+                                                              GetProcAddress getProcAddress, const ContextDesc& shapes) {
   auto gbuffer = GBuffer::create(options);
   if (!gbuffer) return Status::error(gbuffer.error());
   auto r = std::unique_ptr<FrameRenderer>(new FrameRenderer());
   r->gbuffer_ = std::move(gbuffer.value());
-  ContextDesc desc;
+  ContextDesc desc = shapes;
   desc.width = options.width;
   desc.height = options.height;
+  desc.views = 1;
   desc.getProcAddress = getProcAddress != nullptr ? getProcAddress : HeadlessContext::getProcAddress();
-  desc.device = device;
   auto ctx = Context::create(desc);
   if (!ctx) return Status::error(ctx.error());
   r->sslr_ = std::move(ctx.value());

@@ -28,7 +28,7 @@ std::vector<Camera> sideBySideCameras(const Camera& camera, int views, double se
 }
 
 Expected<std::unique_ptr<ViewsRenderer>> ViewsRenderer::create(const GBufferOptions& options, int views,
-                                                              GetProcAddress getProcAddress, DeviceProfile device) {
+                                                              GetProcAddress getProcAddress, const ContextDesc& shapes) {
   if (views < 2 || views > kMaxViews)  // (one view: FrameRenderer, whose context reads 2D textures)
     return Status::error("views = " + std::to_string(views) + " (must be 2.." + std::to_string(kMaxViews) + ")");
   auto r = std::unique_ptr<ViewsRenderer>(new ViewsRenderer());
@@ -48,12 +48,11 @@ Expected<std::unique_ptr<ViewsRenderer>> ViewsRenderer::create(const GBufferOpti
     glObjectLabel(GL_TEXTURE, array, -1, "host.layeredInput");
     r->arrays_.push_back(array);
   }
-  ContextDesc desc;
+  ContextDesc desc = shapes;
   desc.width = options.width;
   desc.height = options.height;
   desc.views = views;
   desc.getProcAddress = getProcAddress != nullptr ? getProcAddress : HeadlessContext::getProcAddress();
-  desc.device = device;
   auto ctx = Context::create(desc);
   if (!ctx) return Status::error(ctx.error());
   r->sslr_ = std::move(ctx.value());

@@ -87,6 +87,9 @@ Settings settingsFor(const Side& s) {
                : s.method == 2 ? Method::ScreenSpaceDDA
                : s.method == 3 ? Method::PositionBuffer
                                : Method::AdaptiveL;
+  // The traversal alone needs steps (0 turns AdaptiveL's traversal off, e.g. Preset::Low's).
+  if (out.method == Method::HierarchicalDepth && out.traversal.maxSteps == 0)
+    out.traversal.maxSteps = Settings{}.traversal.maxSteps;
   out.debug.outputs = true;  // the debug views read hit and iterations
   out.hitDistance = true;    // ... and the hit distance output
   out.debug.collectStats = true;
@@ -343,7 +346,10 @@ struct App {
     }
     Settings& t = s.settings;
     if (s.method != 0) return;
-    ImGui::Checkbox("hierarchical traversal", &t.traversal.fallback);
+    // traversal.maxSteps = 0: adaptive L alone; on again at the default step cap.
+    bool traversal = t.traversal.maxSteps > 0;
+    if (ImGui::Checkbox("hierarchical traversal", &traversal))
+      t.traversal.maxSteps = traversal ? Settings{}.traversal.maxSteps : 0;
   }
 
   // The modes: half resolution, temporal reuse, blur, Fresnel, rough surfaces.
@@ -352,7 +358,9 @@ struct App {
     ImGui::SameLine();
     ImGui::Checkbox("temporal", &t.temporal.enabled);
     ImGui::SameLine();
-    ImGui::Checkbox("blur", &t.blur.enabled);
+    // blur.maxRadiusPx = 0: no blur; on again at the default radius.
+    bool blur = t.blur.maxRadiusPx > 0.0f;
+    if (ImGui::Checkbox("blur", &blur)) t.blur.maxRadiusPx = blur ? Settings{}.blur.maxRadiusPx : 0.0f;
     int fresnel = t.fresnel == FresnelMode::Classic ? 0 : 1;
     const char* fresnels[] = {"classic", "schlick"};
     if (ImGui::Combo("fresnel", &fresnel, fresnels, 2)) t.fresnel = fresnel == 0 ? FresnelMode::Classic : FresnelMode::Schlick;
@@ -373,12 +381,9 @@ struct App {
   static void tracerTree(Settings& t) {
     if (!ImGui::TreeNode("tracer")) return;
     ImGui::SliderInt("adaptiveL.maxIterations", &t.adaptiveL.maxIterations, 1, 64);
-    ImGui::SliderInt("traversal.maxSteps", &t.traversal.maxSteps, 1, 256);
+    ImGui::SliderInt("traversal.maxSteps", &t.traversal.maxSteps, 0, 256);
     ImGui::SliderFloat("traversal.objectDepthRelative", &t.traversal.objectDepthRelative, 0.0f, 0.5f);
     ImGui::SliderFloat("traversal.hiddenGuess", &t.traversal.hiddenGuess, 0.0f, 1.0f);
-    int pass = static_cast<int>(t.debug.traversalPass);
-    const char* passes[] = {"auto", "inline", "deferred"};
-    if (ImGui::Combo("traversal pass", &pass, passes, 3)) t.debug.traversalPass = static_cast<TraversalPass>(pass);
     ImGui::SliderFloat("adaptiveL.convergenceEps", &t.adaptiveL.convergenceEps, 0.0001f, 0.05f, "%.4f");
     ImGui::SliderFloat("adaptiveL.initialLengthScreen", &t.adaptiveL.initialLengthScreen, 0.005f, 0.2f);
     ImGui::SliderFloat("fades.errorK", &t.fades.errorK, 0.0f, 1.0f);

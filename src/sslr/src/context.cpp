@@ -153,8 +153,14 @@ Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
   if (desc.device != DeviceProfile::Auto && desc.device != DeviceProfile::Gpu && desc.device != DeviceProfile::Software)
     return Status::error(StatusCode::InvalidSettings, "sslr: ContextDesc device = " +
                          std::to_string(static_cast<int>(desc.device)) + " is not a DeviceProfile");
+  if (desc.traversalPass != TraversalPass::Auto && desc.traversalPass != TraversalPass::Inline &&
+      desc.traversalPass != TraversalPass::Deferred)
+    return Status::error(StatusCode::InvalidSettings, "sslr: ContextDesc traversalPass = " +
+                         std::to_string(static_cast<int>(desc.traversalPass)) + " is not a TraversalPass");
   auto impl = std::make_unique<Impl>();
   impl->log = desc.log;
+  impl->traversalPass = desc.traversalPass;
+  impl->oneBodyTraversal = desc.oneBodyTraversal;
   if (Status s = impl->gl.load(desc.getProcAddress); !s) {
     impl->gl = {};
     return s;

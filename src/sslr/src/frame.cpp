@@ -235,7 +235,7 @@ Context::Impl::FramePlan Context::Impl::planFrame(const Settings& settings,
   // it runs inline: the pass of its own costs more than it saves). The share is fed back from each
   // such frame.
   const bool adaptiveWithTraversal = settings.method == Method::AdaptiveL && f.pyramid;
-  f.feedback = adaptiveWithTraversal && settings.debug.traversalPass == TraversalPass::Auto && softwareRenderer;
+  f.feedback = adaptiveWithTraversal && traversalPass == TraversalPass::Auto && softwareRenderer;
   if (f.pyramid) readFeedback();
   // This frame's counts go to the feedback buffer unless an earlier frame's are still unread there.
   f.feedbackWritten = f.pyramid && feedback.fence == nullptr;
@@ -243,7 +243,7 @@ Context::Impl::FramePlan Context::Impl::planFrame(const Settings& settings,
   // does, dispatched only if this frame lists one (an empty frame's classification then reads the
   // G-buffer and nothing more).
   f.level1Pass = f.pyramid && feedback.lastFrameListedNoTile;
-  f.deferTraversal = adaptiveWithTraversal && (settings.debug.traversalPass == TraversalPass::Deferred ||
+  f.deferTraversal = adaptiveWithTraversal && (traversalPass == TraversalPass::Deferred ||
                                                (f.feedback && !feedback.traversalInline));
   // Inline under Auto: the trace (at half resolution the quad pass) counts the pixels (quads) that
   // needed the traversal, as deferred would have listed them.
@@ -251,7 +251,7 @@ Context::Impl::FramePlan Context::Impl::planFrame(const Settings& settings,
   f.countQuads = f.feedback && settings.halfResolution;
   f.retracePass = settings.halfResolution || f.deferTraversal;
   f.quadRetracePass = settings.halfResolution && f.deferTraversal;
-  f.blur = settings.blur.enabled && settings.blur.maxRadiusPx > 0.0f;
+  f.blur = settings.blur.maxRadiusPx > 0.0f;
   f.stochasticFilter = settings.glossy.mode == GlossyMode::Stochastic && f.blur && f.temporal;
   f.wideClassify = !softwareRenderer;
   // History of the previous frame only if it stored one (else its keys may be older: cleared).
@@ -309,7 +309,7 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
   std::string methodDefines = "#define SSLR_HIZ_MODE " + std::to_string(f.frame.trace.hizMode) + "\n";
   const std::string curvedDefine = std::string("#define SSLR_CURVED_SOLIDS ") + (f.curvedSolids ? "1\n" : "0\n");
   methodDefines += curvedDefine;
-  if (settings.debug.oneBodyTraversal) methodDefines += "#define SSLR_HIZ_ONE_BODY 1\n";
+  if (oneBodyTraversal) methodDefines += "#define SSLR_HIZ_ONE_BODY 1\n";
   if (settings.method == Method::PositionBuffer) methodDefines += "#define SSLR_METHOD_POSITION_BUFFER 1\n";
   if (settings.method == Method::ScreenSpaceDDA) methodDefines += "#define SSLR_METHOD_DDA 1\n";
   if (settings.method == Method::FidelityFxSssr) methodDefines += "#define SSLR_METHOD_FFX 1\n";

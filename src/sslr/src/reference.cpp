@@ -108,7 +108,7 @@ void traceConstants(const FrameInputs& in, const Settings& s, int width, int hei
   // FidelityFX SSSR's raymarch reads the pyramid too (its nearest depths).
   t.hizMode = s.method == Method::HierarchicalDepth || s.method == Method::FidelityFxSssr
                   ? SSLR_HIZ_ONLY
-                  : (s.method == Method::AdaptiveL && s.traversal.fallback ? SSLR_HIZ_TRAVERSAL_FIRST : SSLR_HIZ_OFF);
+                  : (s.method == Method::AdaptiveL && s.traversal.maxSteps > 0 ? SSLR_HIZ_TRAVERSAL_FIRST : SSLR_HIZ_OFF);
   t.maxSteps = s.traversal.maxSteps;
   t.objectDepthRelative = s.traversal.objectDepthRelative;
   t.hiddenGuess = s.traversal.hiddenGuess;

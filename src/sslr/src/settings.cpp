@@ -12,9 +12,12 @@ Settings Settings::preset(Preset preset) {
     case Preset::Low:
       s.adaptiveL.maxIterations = 8;  // fewer lose long reflections (docs/design-notes.md, "Presets")
       s.adaptiveL.convergenceEps = 0.01f;
+      // Adaptive L from the surface needs a longer first step than after the walk: 0.09 of the
+      // screen height lowered the median image error 11% below 0.03's (results.md, "Presets").
+      s.adaptiveL.initialLengthScreen = 0.09f;
       // Adaptive L alone: with 8 iterations it fails often enough that a fallback would make the
       // cheapest preset the slowest.
-      s.traversal.fallback = false;
+      s.traversal.maxSteps = 0;
       s.traversal.hiddenGuess = 0.0f;
       s.blur.maxRadiusPx = 4.0f;
       s.selection.roughnessCutoff = 0.3f;
@@ -48,11 +51,10 @@ bool finite(float v) { return std::isfinite(v); }
 void checkTracer(const Settings& s, std::ostringstream& why) {
   if (s.adaptiveL.maxIterations < 1 || s.adaptiveL.maxIterations > 256)
     why << "adaptiveL.maxIterations = " << s.adaptiveL.maxIterations << " (must be 1..256); ";
-  if (s.debug.traversalPass != TraversalPass::Auto && s.debug.traversalPass != TraversalPass::Inline &&
-      s.debug.traversalPass != TraversalPass::Deferred)
-    why << "debug.traversalPass = " << static_cast<int>(s.debug.traversalPass) << " (not a TraversalPass); ";
-  if (s.traversal.maxSteps < 1 || s.traversal.maxSteps > 1024)
-    why << "traversal.maxSteps = " << s.traversal.maxSteps << " (must be 1..1024); ";
+  const int minSteps = s.method == Method::HierarchicalDepth ? 1 : 0;  // 0: adaptive L alone
+  if (s.traversal.maxSteps < minSteps || s.traversal.maxSteps > 1024)
+    why << "traversal.maxSteps = " << s.traversal.maxSteps << " (must be " << minSteps << "..1024"
+        << (minSteps == 1 ? " for Method::HierarchicalDepth" : "") << "); ";
   if (!(s.traversal.hiddenGuess >= 0.0f && s.traversal.hiddenGuess <= 1.0f))
     why << "traversal.hiddenGuess = " << s.traversal.hiddenGuess << " (must be 0..1); ";
   if (!finite(s.traversal.objectDepthRelative) || s.traversal.objectDepthRelative < 0.0f)

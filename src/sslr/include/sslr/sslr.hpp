@@ -242,7 +242,7 @@ enum class GlossyMode {
   // reflection's blur weight is then 0). With temporal reuse, a frame without history (the first,
   // a reset, a new viewport) is ConeBlur's: the history starts from the best single-frame
   // estimate. Without temporal reuse each frame is one noisy sample per pixel, blurred over the
-  // same cone; with blur.enabled = false the samples are left raw (for an engine's own denoiser).
+  // same cone; with blur.maxRadiusPx = 0 the samples are left raw (for an engine's own denoiser).
   // A lobe ray reads the colour of the surface it hit, not a bilinear blend across an outline.
   // Not with halfResolution.
   Stochastic,
@@ -252,8 +252,8 @@ enum class Preset { Low, Medium, High, Ultra };
 
 enum class Method {
   AdaptiveL,           // depth-only, sslr's method: the hierarchical traversal on every ray and the
-                       // SSLR article's adaptive-L iteration where it has no hit (traversal.fallback;
-                       // without it, adaptive L alone)
+                       // SSLR article's adaptive-L iteration where it has no hit (with
+                       // traversal.maxSteps = 0, adaptive L alone)
   HierarchicalDepth,   // depth-only: the min-max depth pyramid traversal alone (for comparison)
   PositionBuffer,      // comparison: "3D Game Shaders For Beginners" march on a position texture
   ScreenSpaceDDA,      // comparison, depth-only: McGuire & Mara 2014's perspective-correct DDA
@@ -261,8 +261,8 @@ enum class Method {
                        // and hit validation for mirror rays (shaders/sslr_trace_ffx.h)
 };
 
-// Where Method::AdaptiveL's second tracer (adaptive L after the traversal) runs. The answers are
-// the same.
+// Where Method::AdaptiveL's second tracer (adaptive L after the traversal) runs
+// (ContextDesc::traversalPass). The answers are the same.
 enum class TraversalPass {
   Auto,      // Inline under DeviceProfile::Gpu. Under DeviceProfile::Software Deferred,
              // but Inline while more than about half the pixels (half resolution: quads) of the
@@ -298,15 +298,17 @@ struct Settings {
     int maxIterations = 16;             // 1..256 iterations, each one depth fetch (the article: 10)
     float convergenceEps = 0.002f;      // >= 0: stop once |L_new - L| <= eps * L
     float initialLengthScreen = 0.03f;  // (0, 1]: the first L moves the probe this fraction of
-                                        // the screen height (at least 4 px)
+                                        // the screen height (at least 4 px); 0.09 in Preset::Low,
+                                        // where adaptive L starts at the surface, not after a walk
   } adaptiveL;
 
   // The min-max depth pyramid traversal: AdaptiveL's fallback and check, HierarchicalDepth's
   // tracer (docs/algorithm.md, "The hierarchical traversal").
   struct Traversal {
-    bool fallback = true;  // AdaptiveL: the traversal on every ray, adaptive L where it has no hit
-                           // (from where it ran out of steps); false: adaptive L alone (Preset::Low)
-    int maxSteps = 112;    // 1..1024 pyramid cells visited per ray, each one fetch
+    int maxSteps = 112;  // 0..1024 pyramid cells visited per ray, each one fetch. AdaptiveL: the
+                         // traversal runs on every ray, adaptive L where it has no hit (from where
+                         // it ran out of steps); 0 = no traversal, adaptive L alone (Preset::Low).
+                         // HierarchicalDepth: 1..1024
     float objectDepthRelative = 0.075f;  // >= 0, fraction of the view depth: how deep what a
                                          // pixel shows is assumed to be (without a back-face
                                          // depth). A ray less deep behind it ran into it (no
@@ -334,8 +336,8 @@ struct Settings {
 
   // The roughness blur (pass 4): a bilateral blur whose radius is the reflection's alpha.
   struct Blur {
-    bool enabled = true;        // false: resolved = the raw reflection
-    float maxRadiusPx = 8.0f;   // 0..32 pixels: the radius that alpha = 1 stands for
+    float maxRadiusPx = 8.0f;   // 0..32 pixels: the radius that alpha = 1 stands for; 0 = no
+                                // blur (resolved = the raw reflection)
     float coneScale = 1.0f;     // >= 0: cone tan(half angle) = roughness^2 * coneScale
     float depthSigma = 0.02f;   // > 0: neighbour weight exp(-|dz| / (depthSigma * z))
     float normalPower = 16.0f;  // >= 0: neighbour weight max(0, n0.n1)^normalPower
@@ -369,11 +371,6 @@ struct Settings {
     bool outputs = false;       // also write hitTexture() and iterationsTexture()
     bool collectStats = false;  // count tiles, traced pixels and fetches, time the passes (read a
                                 // few frames late: no stall; see lastStats)
-    bool oneBodyTraversal = false;  // for timing on GPUs: the traversal's walk and pixel tests in one
-                                    // loop body (a lane tests as soon as it reaches a pixel) instead
-                                    // of two phases; the same hits (results/gpu-h100.md)
-    TraversalPass traversalPass = TraversalPass::Auto;  // where adaptive L after the traversal runs:
-                                                        // inline or in a pass of its own (the same hits)
   } debug;
 
   // The comparison methods' parameters (sslr/compare.hpp); sslr's own method reads none of them.
@@ -399,8 +396,8 @@ enum class DeviceProfile {
              // else Gpu
   Gpu,       // classification in groups of 64 (2x2 tiles) that also clear last frame's untraced
              // tiles and set the pyramid's dispatches: one pass where Software runs three; half
-             // resolution's quad rays 4 tiles a group of 64. TraversalPass::Auto runs the traversal
-             // inline
+             // resolution's quad rays 4 tiles a group of 64. TraversalPass::Auto runs adaptive L
+             // after the traversal inline
   Software,  // classification and the quad rays in groups of 16 (one tile, no barrier), the
              // clean-up and the pyramid's arguments as passes of their own; TraversalPass::Auto
              // chooses inline or deferred from the previous frame's counts
@@ -420,10 +417,16 @@ struct ContextDesc {
   // frames go to dispatch(std::span<const FrameInputs>), one FrameInputs a view (integration.md,
   // "Stereo and multiview").
   int views = 1;
+  // Pass shapes for timing and for hosts that know their device better (the answers are the same;
+  // prepare() compiles what they choose): where adaptive L after the traversal runs, and
+  // whether the traversal's walk and pixel tests share one loop body (a lane tests as soon as it
+  // reaches a pixel) instead of two phases (results/gpu-h100.md).
+  TraversalPass traversalPass = TraversalPass::Auto;
+  bool oneBodyTraversal = false;
 };
 
 // The commands one pass of a frame recorded for the GPU, counted as dispatch() records them: the
-// same on every device for the same inputs, settings and DeviceProfile (Settings::debug.traversalPass's
+// same on every device for the same inputs, settings and DeviceProfile (ContextDesc::traversalPass's
 // Auto choice aside). A GPU pays for each dispatch and barrier even when its group counts are zero, so these
 // are a frame's fixed costs, where the times below are its variable ones.
 struct PassCommands {
@@ -465,7 +468,7 @@ struct FrameStats {  // filled when Settings::debug.collectStats is set
   std::uint32_t tracedPixels = 0;   // pixels that ran the tracer
   std::uint32_t fetches = 0;        // depth (or position) texels read by the trace pass
   std::uint32_t hierarchicalPixels = 0;  // traced pixels that ran the hierarchical traversal
-  bool traversalDeferred = false;   // the second stage ran in a pass of its own (Settings::debug.traversalPass)
+  bool traversalDeferred = false;   // the second stage ran in a pass of its own (ContextDesc::traversalPass)
   bool followedEmptyFrame = false;  // the frame before listed no tile, so classification skipped
                                     // the pyramid's levels 0 and 1 and a pass of their own re-read
                                     // depth for them (only if this frame lists a tile)

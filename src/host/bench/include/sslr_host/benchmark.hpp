@@ -64,7 +64,19 @@ struct BenchConfig {
   Settings settings;
   bool isDefault = false;  // the method's default configuration (image strips, summary)
   bool backDepth = false;  // hand sslr the back-face depth (FrameInputs::backDepthTexture)
-  DeviceProfile device = DeviceProfile::Auto;  // the context's pass shapes (ContextDesc::device)
+  // The context's pass shapes (ContextDesc's device, traversalPass, oneBodyTraversal).
+  DeviceProfile device = DeviceProfile::Auto;
+  TraversalPass traversalPass = TraversalPass::Auto;
+  bool oneBodyTraversal = false;
+  // Those shapes as a ContextDesc (its size and loader for the caller to set).
+  ContextDesc shapes() const {
+    ContextDesc d;
+    d.device = device;
+    d.traversalPass = traversalPass;
+    d.oneBodyTraversal = oneBodyTraversal;
+    return d;
+  }
+  bool ownShapes() const { return device != DeviceProfile::Auto || traversalPass != TraversalPass::Auto || oneBodyTraversal; }
 };
 
 struct RunRecord {

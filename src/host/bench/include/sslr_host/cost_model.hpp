@@ -10,15 +10,16 @@ namespace sslr::host {
 // What decides which fit applies: the tracer and the frame's shape.
 struct FrameShape {
   Method method = Method::AdaptiveL;
-  bool traversal = true;         // AdaptiveL: Settings::traversal.fallback (else adaptive L alone)
+  bool traversal = true;         // AdaptiveL: Settings::traversal.maxSteps > 0 (else adaptive L alone)
   DeviceProfile device = DeviceProfile::Gpu;  // the profile the frame ran (Context::device())
   bool halfResolution = false;
   bool traversalDeferred = false;  // FrameStats::traversalDeferred
-  bool oneBodyTraversal = false;   // Settings::debug.oneBodyTraversal (not in the fitted run)
+  bool oneBodyTraversal = false;   // ContextDesc::oneBodyTraversal (not in the fitted run)
 };
 
-// The shape of a frame that ran with `settings` on a context of profile `device` (Context::device()).
-FrameShape frameShapeOf(const Settings& settings, DeviceProfile device, const FrameStats& stats);
+// The shape of a frame that ran with `settings` on a context of profile `device` (Context::device())
+// and ContextDesc::oneBodyTraversal `oneBodyTraversal`.
+FrameShape frameShapeOf(const Settings& settings, DeviceProfile device, bool oneBodyTraversal, const FrameStats& stats);
 
 // The frame's time on an NVIDIA H100 (ms, GL_TIME_ELAPSED), predicted per tracer as
 // a + b x longest chain + c x SIMT work (RayWork::simt32): the least-squares fit to that GPU's

@@ -11,11 +11,12 @@ namespace sslr::host {
 
 class FrameRenderer {
  public:
-  // `getProcAddress`: the current context's (default: the headless EGL context's); `device`:
-  // sslr's pass shapes (ContextDesc::device).
+  // `getProcAddress`: the current context's (default: the headless EGL context's); `shapes`:
+  // sslr's pass shapes (ContextDesc's device, traversalPass and oneBodyTraversal; its size,
+  // loader and views are set here).
   static Expected<std::unique_ptr<FrameRenderer>> create(const GBufferOptions& options,
                                                          GetProcAddress getProcAddress = nullptr,
-                                                         DeviceProfile device = DeviceProfile::Auto);
+                                                         const ContextDesc& shapes = {});
   ~FrameRenderer();
 
   // Rasterizes the G-buffer; with `settings` also traces and composites (else final = colour).

@@ -19,10 +19,11 @@ std::vector<Camera> sideBySideCameras(const Camera& camera, int views, double se
 
 class ViewsRenderer {
  public:
-  // `views`: 2..kMaxViews (one view is FrameRenderer's).
+  // `views`: 2..kMaxViews (one view is FrameRenderer's); `shapes`: sslr's pass shapes, as
+  // FrameRenderer::create takes them.
   static Expected<std::unique_ptr<ViewsRenderer>> create(const GBufferOptions& options, int views,
                                                          GetProcAddress getProcAddress = nullptr,
-                                                         DeviceProfile device = DeviceProfile::Auto);
+                                                         const ContextDesc& shapes = {});
   ~ViewsRenderer();
   ViewsRenderer(const ViewsRenderer&) = delete;
   ViewsRenderer& operator=(const ViewsRenderer&) = delete;
