@@ -142,6 +142,16 @@ SSLR_FN vec3 sslrWindowDirection(SslrProjection p, SslrSurface s, float keySign,
   return sslrWindowFromView(p, vec2(s.width, s.height), keySign, vsP + vsR * probeL) - wP;
 }
 
+// Past a cell boundary, in pixels (exact in float up to 2^15 px).
+#define SSLR_HIZ_NUDGE (1.0f / 256.0f)
+
+// The ray's length L at window-space point o + d tRay (the traversal walks in window space).
+SSLR_FN float sslrRayLengthAt(SslrProjection p, vec2 sizePx, float keySign, vec3 o, vec3 d, float tRay, vec3 vsP,
+                              vec3 vsR) {
+  vec3 w = o + d * tRay;
+  return dot(sslrViewFromUvDepth(p, vec2(w.x, w.y) / sizePx, keySign * w.z) - vsP, vsR);
+}
+
 // The hit a candidate pixel stands for: where the ray meets the pixel's tangent plane, checked
 // against the pixel it lands in. A pixel holds one depth sample, so a ray running along a surface
 // seen at a grazing angle shows its crossing a few pixels late: the plane's hit is then re-planed
