@@ -1,4 +1,6 @@
-// The traversal's corner hit (sslr_trace_hiz.h, sslrCornerHit) on a synthetic depth buffer: a box
+// The hit model (sslr_hit_model.h) on a synthetic depth buffer. Its verdict at a pixel
+// (sslrJudgePixel: in front, near, inside, behind, a hit) and its answer inside a solid
+// (sslrJudgeInside), then its rules one by one. The corner hit (sslrCornerHit): a box
 // whose front face ends at a pixel boundary, seen against a far wall. A ray from the right that
 // crosses the outline a little behind the front face meets the box's side there, exactly where a
 // right-angled corner puts it. Every condition of the rule has a case that must refuse the hit:
@@ -525,3 +527,148 @@ TEST_F(CornerHit, AHitBesideTheOutlineIsOffTheBoxFacesPlane) {
 }
 
 }  // namespace
+
+// The hit model's verdict (sslr_hit_model.h, sslrJudgePixel) at pixel (60, 90) of the box's flat
+// front face (view depth 10, facing along the view axis, 70 columns from its outline), for rays that run
+// parallel to it (no tangent-plane hit) at a given depth behind it: in front; behind by at most
+// the hit tolerance tau (on: pixel snapping); inside the slab of 0.75 (the walk ends); deeper
+// (passes behind). A measured solid (back-face depth) or a curved one's extra depth moves where
+// inside ends; a ray on the reflecting pixel itself is not judged behind it. A ray that meets the
+// face inside the pixel hits it there.
+class HitModel : public CornerHit {
+ protected:
+  void SetUp() override {
+    CornerHit::SetUp();
+    gCoarseLevels = true;  // outline thinning looks for the outline in the levels above
+  }
+  static constexpr float kSlab = 0.75f;
+  static SslrTraceParams modelParams() {
+    SslrTraceParams t = params(kSlab);
+    t.hizLevels = sslrHiZLevelCount(kWidth, kHeight);
+    t.thinObjectHits = 1;
+    t.maxDistance = 1e30f;
+    return t;
+  }
+  // The verdict for a ray along +x `behind` view units behind the face at pixel px.
+  static SslrVerdict verdict(float behind, float extra = 0.0f, bool hidden = false, ivec2 px = ivec2(60, 90),
+                             ivec2 pxOrigin = ivec2(20, 90)) {
+    const float zRay = kFrontZ - behind;
+    const vec3 vsP = viewAt(20.5f, 90.5f, zRay);
+    SslrCrossing c;
+    c.px = px;
+    c.keySign = -1.0f;  // reversed Z
+    c.segNear = c.segFar = -sslrDepthFromViewDepth(gProj, -zRay);
+    c.extra = extra;
+    c.hidden = hidden;
+    return sslrJudgePixel(gProj, gSurf, modelParams(), pxOrigin, vsP, vec3(1.0f, 0.0f, 0.0f), c);
+  }
+  // The hit tolerance and pixel footprint at pixel (60, 90) of the face.
+  static float tau() {
+    vec3 vsSurface, vsN;
+    EXPECT_TRUE(sslrLoadSurface(ivec2(60, 90), vsSurface));
+    EXPECT_TRUE(sslrDecodeNormal(gSurf, sslrLoadNormal(ivec2(60, 90)), vsN));
+    return sslrHitTolerance(gProj, gSurf, -vsSurface.z, sslrSlopeTan(gProj, vsSurface, vsN));
+  }
+  static float footprint() { return sslrPixelFootprint(gProj, gSurf.height, -kFrontZ); }
+};
+
+TEST_F(HitModel, TheVerdictFollowsHowDeepTheRayGoesBehindTheSurface) {
+  ASSERT_LT(2.0f * tau(), kSlab) << "the cases below need the tolerance well inside the slab";
+  EXPECT_EQ(verdict(-0.5f).kind, SSLR_VERDICT_IN_FRONT);
+  EXPECT_EQ(verdict(0.5f * tau()).kind, SSLR_VERDICT_NEAR);
+  const SslrVerdict inside = verdict(0.5f * kSlab);
+  EXPECT_EQ(inside.kind, SSLR_VERDICT_INSIDE);
+  EXPECT_FALSE(inside.measured);
+  EXPECT_NEAR(inside.behind, 0.5f * kSlab, 1e-3f);
+  EXPECT_NEAR(inside.tolerance, tau(), 1e-6f);
+  EXPECT_EQ(verdict(2.0f * kSlab).kind, SSLR_VERDICT_BEHIND);
+  // 70 columns from its outline the face's slab is not thinned: just inside it still holds.
+  EXPECT_EQ(verdict(0.95f * kSlab).kind, SSLR_VERDICT_INSIDE);
+  EXPECT_EQ(verdict(1.05f * kSlab).kind, SSLR_VERDICT_BEHIND);
+}
+
+TEST_F(HitModel, ExtraDepthMovesWhereInsideEnds) {
+  // A curved solid 0.5 deeper than the slab holds a ray 1.0 behind; it is no thin object's side.
+  const SslrVerdict curved = verdict(1.0f, 0.5f);
+  EXPECT_EQ(curved.kind, SSLR_VERDICT_INSIDE);
+  EXPECT_FALSE(curved.thinCandidate);
+  // Measured (back-face depth): 0.5 thicker holds it and says it is known hidden; 0.6 thinner (a
+  // solid of 0.15) lets a ray 0.4 behind pass.
+  gSurf.hasBackDepth = 1;
+  const SslrVerdict thick = verdict(1.0f, 0.5f);
+  EXPECT_EQ(thick.kind, SSLR_VERDICT_INSIDE);
+  EXPECT_TRUE(thick.measured);
+  EXPECT_EQ(verdict(0.4f, -0.6f).kind, SSLR_VERDICT_BEHIND);
+  EXPECT_EQ(verdict(1.0f).kind, SSLR_VERDICT_BEHIND) << "nothing measured there: the slab";
+}
+
+TEST_F(HitModel, OnlyAShallowRayThatWasInSightMayHaveMetAThinObject) {
+  const float shallow = 0.5f * (tau() + SSLR_THIN_MAX_DEPTH_FOOTPRINTS * footprint());
+  ASSERT_GT(shallow, tau());
+  ASSERT_LT(SSLR_THIN_MAX_DEPTH_FOOTPRINTS * footprint(), kSlab);
+  EXPECT_TRUE(verdict(shallow).thinCandidate);
+  EXPECT_FALSE(verdict(shallow, 0.0f, true).thinCandidate) << "already out of sight: the hidden guess's";
+  const SslrVerdict deep = verdict(0.5f * (SSLR_THIN_MAX_DEPTH_FOOTPRINTS * footprint() + kSlab));
+  EXPECT_EQ(deep.kind, SSLR_VERDICT_INSIDE);
+  EXPECT_FALSE(deep.thinCandidate);
+}
+
+TEST_F(HitModel, TheReflectingPixelIsNeverBehindItself) {
+  EXPECT_EQ(verdict(0.5f * kSlab, 0.0f, false, ivec2(60, 90), ivec2(60, 90)).kind, SSLR_VERDICT_NONE);
+  EXPECT_EQ(verdict(-0.5f, 0.0f, false, ivec2(60, 90), ivec2(60, 90)).kind, SSLR_VERDICT_IN_FRONT);
+}
+
+TEST_F(HitModel, ARayThatMeetsTheFaceInsideThePixelHitsIt) {
+  const vec3 vsP = viewAt(20.5f, 90.5f, kFrontZ + 1.0f);
+  const vec3 vsTarget = viewAt(60.5f, 90.5f, kFrontZ);
+  const vec3 vsR = normalize(vsTarget - vsP);
+  SslrCrossing c;
+  c.px = ivec2(60, 90);
+  c.keySign = -1.0f;
+  c.segNear = -sslrDepthFromViewDepth(gProj, -kFrontZ + 0.01f);
+  c.segFar = -sslrDepthFromViewDepth(gProj, -kFrontZ - 0.01f);
+  c.extra = 0.0f;
+  c.hidden = false;
+  const SslrVerdict v = sslrJudgePixel(gProj, gSurf, modelParams(), ivec2(20, 90), vsP, vsR, c);
+  EXPECT_EQ(v.kind, SSLR_VERDICT_HIT);
+  EXPECT_NEAR(v.L, length(vsTarget - vsP), 1e-4f * length(vsTarget - vsP));
+  EXPECT_GT(v.valid, 0.99f);
+}
+
+// sslrJudgeInside for a ray that ended inside the solid at a pixel's centre (no outline crossed,
+// no curved solid): a measured solid's ray is hidden from where it went in; an assumed slab's gets
+// the slab guess's length there; a thin bar's (4 columns) hidden side is hit there, as a guess.
+TEST_F(HitModel, InsideASolidTheAnswerIsWhereTheRayWentIn) {
+  auto inside = [&](ivec2 px, float behind, SslrVerdict v) {
+    const float zRay = kFrontZ - behind;
+    const vec3 vsQ = viewAt(float(px.x) + 0.5f, float(px.y) + 0.5f, zRay);
+    const vec3 vsR(1.0f, 0.0f, 0.0f);
+    const vec3 vsP = vsQ - vsR * 2.0f;
+    const vec2 size(kWidth, kHeight);
+    SslrInside entered;
+    entered.wEntry = sslrWindowFromView(gProj, size, -1.0f, vsQ);
+    vec3 d = entered.wEntry - sslrWindowFromView(gProj, size, -1.0f, vsP);
+    entered.d = d / std::max(std::abs(d.x), std::abs(d.y));
+    entered.LEntry = 2.0f;
+    entered.px = px;
+    entered.verdict = v;
+    return sslrJudgeInside(gProj, gSurf, modelParams(), vsP, vsR, sslrNoHit(SSLR_STATUS_MISS), entered);
+  };
+  const SslrHit slab = inside(ivec2(60, 90), 0.5f * kSlab, verdict(0.5f * kSlab));
+  EXPECT_EQ(slab.status, SSLR_STATUS_MISS);
+  EXPECT_EQ(slab.LSlab, 2.0f);
+  gSurf.hasBackDepth = 1;
+  const SslrHit measured = inside(ivec2(60, 90), 1.0f, verdict(1.0f, 0.5f));
+  EXPECT_EQ(measured.status, SSLR_STATUS_HIDDEN);
+  EXPECT_EQ(measured.L, 2.0f);
+  gSurf.hasBackDepth = 0;
+  gBarWidthPx = 4.0f;
+  const float shallow = 3.0f * footprint();
+  const SslrVerdict bar = verdict(shallow, 0.0f, false, ivec2(128, 90));
+  ASSERT_EQ(bar.kind, SSLR_VERDICT_INSIDE);
+  ASSERT_TRUE(bar.thinCandidate);
+  const SslrHit met = inside(ivec2(128, 90), shallow, bar);
+  EXPECT_EQ(met.status, SSLR_STATUS_HIT);
+  EXPECT_EQ(met.guessed, 1);
+  EXPECT_EQ(met.L, 2.0f);
+}
