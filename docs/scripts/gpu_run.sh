@@ -60,7 +60,7 @@ bench 960x540-more 70 --grid full --no-curves --no-temporal --no-glossy --config
 
 # Per-pass GPU times (GL_TIMESTAMP) beside the modelled ray work of the same run: the data that
 # calibrates the cost model of docs/results/ray-work.md. Default, the default with the traversal in
-# one loop body (Settings::debug.oneBodyTraversal), FidelityFX SSSR (its step against the
+# one loop body (ContextDesc::oneBodyTraversal), FidelityFX SSSR (its step against the
 # traversal's), traversal alone.
 t0=$(date +%s)
 for scene in mirror-room glossy facing-mirror mirror-walls thin-objects sky-heavy; do
