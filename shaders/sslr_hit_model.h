@@ -309,9 +309,8 @@ struct SslrVerdict {
   float tolerance;        // INSIDE: the hit tolerance there
 };
 
-// The model's verdict on crossing c (pxOrigin: the reflecting pixel).
-SSLR_FN SslrVerdict sslrJudgePixel(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
-                                   vec3 vsR, SslrCrossing c) {
+// A verdict that says nothing (SSLR_VERDICT_NONE), every field set.
+SSLR_FN SslrVerdict sslrNoVerdict() {
   SslrVerdict v;
   v.kind = SSLR_VERDICT_NONE;
   v.L = 0.0f;
@@ -320,6 +319,13 @@ SSLR_FN SslrVerdict sslrJudgePixel(SslrProjection p, SslrSurface s, SslrTracePar
   v.thinCandidate = false;
   v.behind = 0.0f;
   v.tolerance = 0.0f;
+  return v;
+}
+
+// The model's verdict on crossing c (pxOrigin: the reflecting pixel).
+SSLR_FN SslrVerdict sslrJudgePixel(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
+                                   vec3 vsR, SslrCrossing c) {
+  SslrVerdict v = sslrNoVerdict();
   vec3 vsSurface;
   if (!sslrLoadSurface(c.px, vsSurface)) return v;  // background: only a ray beyond the far plane gets here
   vec3 vsSurfaceNormal;

@@ -89,13 +89,7 @@ SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   w.tRun = -1.0f;
   w.inSlab = false;
   w.slabPx = ivec2(0);
-  w.slab.kind = SSLR_VERDICT_NONE;
-  w.slab.L = 0.0f;
-  w.slab.valid = 0.0f;
-  w.slab.measured = false;
-  w.slab.thinCandidate = false;
-  w.slab.behind = 0.0f;
-  w.slab.tolerance = 0.0f;
+  w.slab = sslrNoVerdict();
   w.hidden = false;
   w.cell = vec2(0.0f);
   w.tExit = 0.0f;
