@@ -195,7 +195,7 @@ void addTracerOptions(cxxopts::Options& options) {
       ("preset", "quality preset: low, medium, high, ultra", cxxopts::value<std::string>()->default_value("high"))
       ("fresnel", "weighting: classic (the article) or schlick", cxxopts::value<std::string>()->default_value("classic"))
       ("iterations", "override the preset's adaptive-L iteration cap", cxxopts::value<std::string>())
-      ("hiz-steps", "override the preset's cap on hierarchical traversal steps", cxxopts::value<std::string>())
+      ("hiz-steps", "override the preset's cap on hierarchical traversal steps (0: adaptive L alone)", cxxopts::value<std::string>())
       ("traversal-pass", "where adaptive L after the hierarchical traversal runs: auto (deferred on a software "
                          "renderer), inline or deferred (a pass of its own); the hits are the same "
                          "(ContextDesc::traversalPass)",
