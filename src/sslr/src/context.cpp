@@ -143,7 +143,9 @@ void Context::Impl::destroy() {
 Context::Context(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Context::~Context() = default;
 
-Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
+// What Context::create refuses in a ContextDesc before it touches GL: its size, views and pass
+// shapes.
+static Status checkContextDesc(const ContextDesc& desc) {
   if (desc.width <= 0 || desc.height <= 0 || desc.width > 16384 || desc.height > 16384)
     return Status::error(StatusCode::InvalidSize, "sslr: ContextDesc size " + std::to_string(desc.width) + "x" +
                          std::to_string(desc.height) + " is invalid (must be 1..16384 each)");
@@ -157,6 +159,11 @@ Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
       desc.traversalPass != TraversalPass::Deferred)
     return Status::error(StatusCode::InvalidSettings, "sslr: ContextDesc traversalPass = " +
                          std::to_string(static_cast<int>(desc.traversalPass)) + " is not a TraversalPass");
+  return {};
+}
+
+Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
+  if (Status s = checkContextDesc(desc); !s) return s;
   auto impl = std::make_unique<Impl>();
   impl->log = desc.log;
   impl->traversalPass = desc.traversalPass;
