@@ -1,7 +1,7 @@
 // Pass 3, half resolution's shading (passes/trace.cpp runTrace; Settings::halfResolution): one
 // invocation per pixel of a listed tile reuses its quad's ray (3_trace_quads.comp) where the pixel
-// lies on the traced pixel's surface, and lists the others for 3_retrace.comp. No tracer runs
-// here: a CPU rasterizer would run its code under lane masks for every pixel.
+// lies on the traced pixel's surface, and lists the others for the retrace (3_trace.comp). No
+// tracer runs here: a CPU rasterizer would run its code under lane masks for every pixel.
 #include "passes/trace_common.glsl"
 #include "passes/retrace_list.glsl"
 #include "passes/shade_pixel.glsl"

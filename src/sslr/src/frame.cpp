@@ -323,10 +323,20 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
   traceDefines += stochasticFilter;
   const std::string deferDefine = f.deferTraversal ? "#define SSLR_DEFER_TRAVERSAL 1\n" : "";
   const std::string countDefine = "#define SSLR_COUNT_TRAVERSAL 1\n";
-  // The full-resolution trace; at half resolution the shading from the quads' rays instead.
+  // The whole tracer over the listed tiles, and (SSLR_RETRACE_ROLE) over the listed pixels: one
+  // program, the same whether TraversalPass::Auto runs the traversal inline or deferred this frame.
+  const bool countTraversal = f.feedback && !settings.halfResolution;
+  const std::string wholeDefines = traceDefines + (countTraversal ? countDefine : "");
+  const std::string retraceDefines = wholeDefines + "#define SSLR_RETRACE_ROLE 1\n";
+  // The full-resolution trace: the first stage alone (deferred), or the whole tracer (with the
+  // retrace role where a deferred frame's retrace is this program); at half resolution the
+  // shading from the quads' rays.
   const char* traceEntry = settings.halfResolution ? "3_shade_from_quads.comp" : "3_trace.comp";
-  const std::string retraceDefines = traceDefines;
-  if (!settings.halfResolution) traceDefines += deferDefine + (f.countTraversal ? countDefine : "");
+  f.programs.trace.retraceRole = !settings.halfResolution && !f.deferTraversal && f.feedback;
+  if (!settings.halfResolution)
+    traceDefines = f.deferTraversal               ? traceDefines + deferDefine
+                   : f.programs.trace.retraceRole ? retraceDefines
+                                                  : wholeDefines;
   const std::string quadDefines = methodDefines + statsDefine;
   // With the pyramid, classification (which reads every depth anyway) writes its levels 0 and 1,
   // unless the last frame listed no tile (then the levels-0-and-1 pass does, if this frame lists
@@ -346,7 +356,7 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
                                           quadDefines + deferDefine + (f.countQuads ? countDefine : "") +
                                               (f.wideClassify ? "#define SSLR_QUADS_WIDE 1\n" : ""))},
       {&f.programs.trace.quadRetrace, optionalProgram(f.quadRetracePass, "3_retrace_quads.comp", quadDefines)},
-      {&f.programs.trace.retrace, optionalProgram(f.retracePass, "3_retrace.comp", retraceDefines)},
+      {&f.programs.trace.retrace, optionalProgram(f.retracePass, "3_trace.comp", retraceDefines)},
       {&f.programs.blur.horizontal, optionalProgram(f.blur, "4_blur.comp", "#define SSLR_BLUR_AXIS ivec2(1, 0)\n")},
       {&f.programs.blur.vertical, optionalProgram(f.blur, "4_blur.comp", "#define SSLR_BLUR_AXIS ivec2(0, 1)\n#define SSLR_BLUR_VERTICAL 1\n")},
       {&f.programs.temporal.blend,

@@ -47,6 +47,7 @@ void Context::Impl::runTrace(const FramePlan& f) const {
   }
   if (f.halfResolution) runQuads(f);
   useProgram(f.programs.trace.trace);
+  if (f.programs.trace.retraceRole) gl.ProgramUniform1i(f.programs.trace.trace, SSLR_RETRACE_ROLE_LOCATION, 0);
   bindImage(SSLR_IMAGE_REFLECTION, reflection, 0, GL_RGBA16F);
   bindImage(SSLR_IMAGE_RESOLVED, resolved, 0, GL_RGBA16F);
   if (f.debugOutputs || f.temporal) bindImage(SSLR_IMAGE_HIT, trace.hit, 0, GL_RGBA32F);
@@ -57,6 +58,7 @@ void Context::Impl::runTrace(const FramePlan& f) const {
   if (f.retracePass) {  // the pixels whose quad's ray did not answer them, or that need the traversal
     memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     useProgram(f.programs.trace.retrace);
+    gl.ProgramUniform1i(f.programs.trace.retrace, SSLR_RETRACE_ROLE_LOCATION, 1);
     gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, trace.retraceList);
     dispatchComputeIndirect(0);
     gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);

@@ -20,7 +20,8 @@ struct TracePass {
     GLuint trace = 0;        // 3_trace.comp, or at half resolution 3_shade_from_quads.comp
     GLuint quads = 0;        // 3_trace_quads.comp (half resolution)
     GLuint quadRetrace = 0;  // 3_retrace_quads.comp (half resolution, deferred traversal)
-    GLuint retrace = 0;      // 3_retrace.comp (half resolution or deferred traversal)
+    GLuint retrace = 0;      // 3_trace.comp's retrace role (half resolution or deferred traversal)
+    bool retraceRole = false;  // trace is the retrace's program too, played in its tile role
   };
 
   void destroy(const detail::Gl& gl);
