@@ -4,22 +4,13 @@
 // With a deferred second stage (ContextDesc::traversalPass, SSLR_DEFER_TRAVERSAL) it runs the first
 // stage alone and lists the pixels that need the second, so that the second tracer's code is in no
 // program that every pixel runs. The retrace of those pixels (and of those half resolution could
-// not answer from their quad's ray) is this program with the whole tracer and SSLR_RETRACE_ROLE:
-// uRetrace = 1 traces the listed pixels instead of the listed tiles, so that the inline trace and
-// the retrace are one program to compile.
+// not answer from their quad's ray) is this program with the whole tracer in its retrace role
+// (passes/retrace_list.glsl).
 #include "passes/trace_common.glsl"
-#if defined(SSLR_DEFER_TRAVERSAL) || defined(SSLR_COUNT_TRAVERSAL) || defined(SSLR_RETRACE_ROLE)
 #include "passes/retrace_list.glsl"
-#endif
 #include "passes/shade_pixel.glsl"
 
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
-
-#ifdef SSLR_RETRACE_ROLE
-layout(location = SSLR_RETRACE_ROLE_LOCATION) uniform int uRetrace;  // 1: the listed pixels; 0: the tiles
-#else
-const int uRetrace = 0;
-#endif
 
 bool sslrPixelHit(ivec2 px, SslrPixel q, out SslrHit hit, out bool ranTracer) {
 #ifdef SSLR_DEFER_TRAVERSAL
@@ -40,17 +31,19 @@ bool sslrPixelHit(ivec2 px, SslrPixel q, out SslrHit hit, out bool ranTracer) {
 }
 
 void main() {
-  ivec2 px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
-  bool inside = sslrInside(px);
-#ifdef SSLR_RETRACE_ROLE
-  // The retrace: a group of SSLR_RETRACE_GROUP listed pixels (past the list's end: none). One call
-  // of sslrShadePixel below for both roles, so that the tracer is in the program once.
+  // The pixel: of a listed tile, or in the retrace role one of SSLR_RETRACE_GROUP listed pixels a
+  // group (past the list's end: none). One call of sslrShadePixel for both roles, so that the
+  // tracer is in the program once.
+  ivec2 px;
+  bool inside;
   if (uRetrace != 0) {
     uint i = gl_WorkGroupID.x * uint(SSLR_RETRACE_GROUP) + gl_LocalInvocationIndex;
     inside = i < retrace.count;
     px = inside ? sslrEnterCoord(retrace.entries[i]) : ivec2(0);
+  } else {
+    px = sslrTileOrigin(gl_WorkGroupID.x) + ivec2(gl_LocalInvocationID.xy);
+    inside = sslrInside(px);
   }
-#endif
   uint steps = inside ? sslrShadePixel(px) : 0u;
   sslrCountRayWork(uRetrace != 0 ? SSLR_RAY_WORK_RETRACE : SSLR_RAY_WORK_TRACE, steps);
 }

@@ -17,6 +17,15 @@ layout(std430, binding = SSLR_BINDING_RETRACE_SSBO) buffer SslrRetrace {
   uint entries[];
 } retrace;
 
+// The retrace is the whole tracer's program in its retrace role (SSLR_RETRACE_ROLE): uRetrace = 1
+// traces the listed pixels (quads) instead of the listed tiles', so that Auto's inline trace and
+// its deferred retrace are one program to compile.
+#ifdef SSLR_RETRACE_ROLE
+layout(location = SSLR_RETRACE_ROLE_LOCATION) uniform int uRetrace;
+#else
+const int uRetrace = 0;
+#endif
+
 // Lists a pixel for the retrace pass.
 void sslrListPixelForRetrace(ivec2 px) {
   uint slot = atomicAdd(retrace.count, 1u);

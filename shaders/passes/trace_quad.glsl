@@ -37,7 +37,7 @@ uint sslrTraceQuad(uint slot, ivec2 quad) {
     SslrHit hit = sslrTraceRay(sslrRayParams(q), px, q.vsP, q.vsV, q.vsR);
 #ifdef SSLR_COUNT_TRAVERSAL
     // Inline under TraversalPass::Auto: count the quads the traversal ran for (its feedback).
-    if (sslrRanSecondStage(frame.trace, hit)) atomicAdd(retrace.count, 1u);
+    if (uRetrace == 0 && sslrRanSecondStage(frame.trace, hit)) atomicAdd(retrace.count, 1u);
 #endif
 #endif
     steps = uint(hit.iterations);

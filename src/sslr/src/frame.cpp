@@ -337,7 +337,17 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
     traceDefines = f.deferTraversal               ? traceDefines + deferDefine
                    : f.programs.trace.retraceRole ? retraceDefines
                                                   : wholeDefines;
+  // Half resolution's quad rays the same way: the first stage alone, or the whole tracer, which is
+  // the quad retrace's program too (never SSLR_QUADS_WIDE: a group per tile's listed quads).
   const std::string quadDefines = methodDefines + statsDefine;
+  const std::string wholeQuadDefines = quadDefines + (f.countQuads ? countDefine : "");
+  const std::string quadRetraceDefines = wholeQuadDefines + "#define SSLR_RETRACE_ROLE 1\n";
+  f.programs.trace.quadRetraceRole = settings.halfResolution && !f.deferTraversal && f.feedback && !f.wideClassify;
+  const std::string quadsDefines =
+      (f.deferTraversal ? quadDefines + deferDefine + (f.countQuads ? countDefine : "")
+       : f.programs.trace.quadRetraceRole ? quadRetraceDefines
+                                          : wholeQuadDefines) +
+      (f.wideClassify ? "#define SSLR_QUADS_WIDE 1\n" : "");
   // With the pyramid, classification (which reads every depth anyway) writes its levels 0 and 1,
   // unless the last frame listed no tile (then the levels-0-and-1 pass does, if this frame lists
   // one). Under DeviceProfile::Gpu it also does the clean-up's and the pyramid arguments' work.
@@ -352,10 +362,8 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
       {&f.programs.pyramid.block, optionalProgram(f.pyramid, "2_pyramid_levels2to7.comp", "")},
       {&f.programs.pyramid.single, optionalProgram(f.pyramid && area.levels > kHizBlockTop, "2_pyramid_top_level.comp", "")},
       {&f.programs.trace.trace, computeProgram(traceEntry, traceDefines)},
-      {&f.programs.trace.quads, optionalProgram(settings.halfResolution, "3_trace_quads.comp",
-                                          quadDefines + deferDefine + (f.countQuads ? countDefine : "") +
-                                              (f.wideClassify ? "#define SSLR_QUADS_WIDE 1\n" : ""))},
-      {&f.programs.trace.quadRetrace, optionalProgram(f.quadRetracePass, "3_retrace_quads.comp", quadDefines)},
+      {&f.programs.trace.quads, optionalProgram(settings.halfResolution, "3_trace_quads.comp", quadsDefines)},
+      {&f.programs.trace.quadRetrace, optionalProgram(f.quadRetracePass, "3_trace_quads.comp", quadRetraceDefines)},
       {&f.programs.trace.retrace, optionalProgram(f.retracePass, "3_trace.comp", retraceDefines)},
       {&f.programs.blur.horizontal, optionalProgram(f.blur, "4_blur.comp", "#define SSLR_BLUR_AXIS ivec2(1, 0)\n")},
       {&f.programs.blur.vertical, optionalProgram(f.blur, "4_blur.comp", "#define SSLR_BLUR_AXIS ivec2(0, 1)\n#define SSLR_BLUR_VERTICAL 1\n")},

@@ -72,6 +72,7 @@ void Context::Impl::runTrace(const FramePlan& f) const {
 void Context::Impl::runQuads(const FramePlan& f) const {
   const GLuint retraceHeader[4] = {0, 1, 1, 0};
   useProgram(f.programs.trace.quads);
+  if (f.programs.trace.quadRetraceRole) gl.ProgramUniform1i(f.programs.trace.quads, SSLR_RETRACE_ROLE_LOCATION, 0);
   bindImage(SSLR_IMAGE_QUAD_HIT, trace.quadHit, 0, GL_RGBA32F);
   bindImage(SSLR_IMAGE_QUAD_SURFACE, trace.quadSurface, 0, GL_RGBA16F);
   // One group per listed tile (Software: 16 invocations), or per 4 of them (Gpu: 64).
@@ -79,6 +80,7 @@ void Context::Impl::runQuads(const FramePlan& f) const {
   if (f.quadRetracePass) {  // the quads whose ray needs the traversal
     memoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     useProgram(f.programs.trace.quadRetrace);
+    gl.ProgramUniform1i(f.programs.trace.quadRetrace, SSLR_RETRACE_ROLE_LOCATION, 1);
     gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, trace.retraceList);
     dispatchComputeIndirect(0);
     gl.BindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tileBuffer);

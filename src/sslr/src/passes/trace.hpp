@@ -19,9 +19,10 @@ struct TracePass {
   struct Programs {
     GLuint trace = 0;        // 3_trace.comp, or at half resolution 3_shade_from_quads.comp
     GLuint quads = 0;        // 3_trace_quads.comp (half resolution)
-    GLuint quadRetrace = 0;  // 3_retrace_quads.comp (half resolution, deferred traversal)
+    GLuint quadRetrace = 0;  // 3_trace_quads.comp's retrace role (half resolution, deferred traversal)
     GLuint retrace = 0;      // 3_trace.comp's retrace role (half resolution or deferred traversal)
-    bool retraceRole = false;  // trace is the retrace's program too, played in its tile role
+    bool retraceRole = false;      // trace is the retrace's program too, played in its tile role
+    bool quadRetraceRole = false;  // quads is the quad retrace's program too, likewise
   };
 
   void destroy(const detail::Gl& gl);
