@@ -1160,6 +1160,47 @@ TEST_F(Api, PrepareCompilesEveryProgramFramesUse) {
   }
 }
 
+// The retrace (deferred traversal, half resolution) is the whole tracer's program in its retrace
+// role, not a program of its own. TraversalPass::Auto under DeviceProfile::Software keeps the inline
+// and the deferred trace ready: two trace programs, the first stage alone and the whole tracer that
+// is both the inline trace and the retrace (three before 0.12.1). At half resolution: the quads'
+// first stage and whole tracer, the shading and the pixels' retrace (five before). Forced Deferred
+// compiles the same; Inline the whole tracer alone (at half resolution the quads', the shading and
+// the retrace). Counted by the Info messages sslr logs for each program it compiles.
+TEST_F(Api, RetraceIsTheTraceProgramInItsRetraceRole) {
+  struct Case {
+    TraversalPass pass;
+    bool half;
+    int programs;  // pass 3's programs (entries 3_*) prepare() compiles
+  };
+  const Case cases[] = {{TraversalPass::Auto, false, 2},   {TraversalPass::Deferred, false, 2},
+                        {TraversalPass::Inline, false, 1}, {TraversalPass::Auto, true, 4},
+                        {TraversalPass::Deferred, true, 4}, {TraversalPass::Inline, true, 3}};
+  Frame f(DepthMode::Reversed, NormalEncoding::Octahedral, true);
+  const FrameInputs in = f.gbuffer->frameInputs();
+  for (const Case& c : cases) {
+    int programs = 0;
+    ContextDesc d;
+    d.width = W;
+    d.height = H;
+    d.device = DeviceProfile::Software;
+    d.traversalPass = c.pass;
+    d.getProcAddress = HeadlessContext::getProcAddress();
+    d.log = [&](LogLevel level, const std::string& text) {
+      if (level == LogLevel::Info && text.find("sslr: compiled sslr.program 3_") != std::string::npos) ++programs;
+    };
+    auto ctx = Context::create(d);
+    ASSERT_TRUE(ctx) << ctx.error();
+    Settings s;
+    s.halfResolution = c.half;
+    ASSERT_TRUE(ctx.value()->prepare(in, s));
+    const std::string where = "pass " + std::to_string(static_cast<int>(c.pass)) + ", half " + std::to_string(c.half);
+    EXPECT_EQ(programs, c.programs) << where;
+    ASSERT_TRUE(ctx.value()->dispatch(in, s)) << where;
+    EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR)) << where;
+  }
+}
+
 // FrameStats' ray work is what the iterations image says, regrouped as the trace dispatch's 8x8
 // groups run (invocations 0-31 are a group's rows 0-3): lane steps summed, each 32- and 64-lane
 // group's largest summed, the largest of all. Recomputed here from the image, exactly, for the
