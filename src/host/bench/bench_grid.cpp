@@ -94,11 +94,10 @@ void adaptiveLConfigs(std::vector<BenchConfig>& configs, bool full) {
 }
 
 // The hierarchical traversal alone (Method::HierarchicalDepth) at the presets' step caps (medium,
-// high, ultra).
+// high) and at 256 (ultra's until 0.12.1).
 void hizConfigs(std::vector<BenchConfig>& configs, bool full) {
   const int defaultSteps = Settings::preset(Preset::High).traversal.maxSteps;
-  const std::vector<int> allSteps{Settings::preset(Preset::Medium).traversal.maxSteps, defaultSteps,
-                                  Settings::preset(Preset::Ultra).traversal.maxSteps};
+  const std::vector<int> allSteps{Settings::preset(Preset::Medium).traversal.maxSteps, defaultSteps, 256};
   for (int steps : full ? allSteps : std::vector<int>{defaultSteps}) {
     BenchConfig c{"hiz", "steps" + std::to_string(steps), Settings::preset(Preset::High), steps == defaultSteps};
     c.settings.method = Method::HierarchicalDepth;
