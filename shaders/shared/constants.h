@@ -115,7 +115,7 @@ namespace sslr::shared {
 #define SSLR_IMAGE_HISTORY_KEY 2      // ... store (and its clean-up): the keys
 #define SSLR_IMAGE_COUNT 6
 #define SSLR_RETRACE_GROUP (SSLR_TILE_SIZE * SSLR_TILE_SIZE)  // pixels per group of the retrace (3_trace.comp's group)
-#define SSLR_RETRACE_ROLE_LOCATION 0  // 3_trace.comp's uRetrace
+#define SSLR_RETRACE_ROLE_LOCATION 0  // uRetrace of 3_trace.comp and 3_trace_quads.comp (passes/retrace_list.glsl)
 
 // The stats buffer (Settings::debug.collectStats): counters of the trace passes (0-2), the tile
 // counts the host copies in (4, 5), then the ray work of each trace dispatch (passes/ray_work.glsl,
