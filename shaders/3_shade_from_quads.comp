@@ -5,6 +5,7 @@
 #include "passes/trace_common.glsl"
 #include "passes/retrace_list.glsl"
 #include "passes/shade_pixel.glsl"
+#include "shared/half_resolution.h"
 
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 

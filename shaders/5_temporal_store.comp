@@ -3,6 +3,7 @@
 // and this frame's keys (view depth where the pixel is traced) its history keys.
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
+#include "shared/temporal.h"
 
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 

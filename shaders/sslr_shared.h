@@ -23,6 +23,8 @@
 //   ggx.h              the GGX lobe
 //   half_resolution.h  the quad record
 //   temporal.h         history keys and reprojection
+// The last two are C++'s here; a GLSL pass that uses them includes them itself, so that no other
+// program (the trace above all) parses them.
 #ifndef SSLR_SHARED_H
 #define SSLR_SHARED_H
 
@@ -34,7 +36,9 @@
 #include "shared/thickness.h"
 #include "shared/weights.h"
 #include "shared/ggx.h"
+#ifdef __cplusplus
 #include "shared/half_resolution.h"
 #include "shared/temporal.h"
+#endif
 
 #endif  // SSLR_SHARED_H

@@ -3,7 +3,8 @@
 
 Usage: trace_lines.py [ENTRY] [--exclude NAME ...] [--per-function]
 ENTRY defaults to shaders/3_trace.comp; the comparison tracers (sslr_trace_dda.h, sslr_trace_ffx.h,
-sslr_trace_position.h) are left out by default, as the default program compiles none of their code.
+sslr_trace_position.h) are left out by default, as the default program compiles none of their code;
+so are the headers included under #ifdef __cplusplus (GLSL never sees them).
 A code line is a non-blank line that is not only a // comment. --per-function also lists each
 SSLR_FN function's code lines (for the rule ledger)."""
 import os, re, sys
@@ -21,9 +22,22 @@ def files_of(entry, exclude):
             return
         seen.add(path)
         order.append(path)
+        cpp_only = []  # per open #if: whether its branch is C++'s alone (GLSL skips those includes)
         for line in open(path, encoding='utf-8'):
+            d = re.match(r'\s*#\s*(ifdef|ifndef|if|elif|else|endif)\b(.*)', line)
+            if d:
+                kind, rest = d.group(1), d.group(2)
+                if kind in ('ifdef', 'if'):
+                    cpp_only.append('__cplusplus' in rest and '!' not in rest)
+                elif kind == 'ifndef':
+                    cpp_only.append(False)
+                elif kind in ('else', 'elif') and cpp_only:
+                    cpp_only[-1] = False
+                elif kind == 'endif' and cpp_only:
+                    cpp_only.pop()
+                continue
             m = re.match(r'\s*#\s*include\s+"([^"]+)"', line)
-            if m:  # relative to the including file, else to shaders/
+            if m and not any(cpp_only):  # relative to the including file, else to shaders/
                 near = os.path.join(os.path.dirname(path), m.group(1))
                 visit(near if os.path.exists(near) else os.path.join(ROOT, m.group(1)))
 

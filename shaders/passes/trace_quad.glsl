@@ -1,6 +1,7 @@
 // Half resolution's quad ray (sslr_shared.h, "Half resolution"): one ray per 2x2 quad, from the
 // first pixel of the quad, in a rotating order, that needs one; its hit, confidence and both
 // surfaces' normals go to the quad images that the shading pass reuses.
+#include "shared/half_resolution.h"
 layout(binding = SSLR_IMAGE_QUAD_HIT, rgba32f) uniform writeonly SSLR_IMAGE uQuadHitOut;          // see uQuadHit
 layout(binding = SSLR_IMAGE_QUAD_SURFACE, rgba16f) uniform writeonly SSLR_IMAGE uQuadSurfaceOut;  // see uQuadSurface
 
