@@ -15,6 +15,27 @@
 
 namespace sslr {
 
+namespace {
+
+// A tracing pass's program defines in each role a frame can give it (passes/retrace_list.glsl):
+// the first stage alone (a deferred frame; SSLR_DEFER_TRAVERSAL), the whole tracer over the listed
+// tiles, and the whole tracer that is also the retrace's program (SSLR_RETRACE_ROLE). `count`:
+// TraversalPass::Auto's feedback count (SSLR_COUNT_TRAVERSAL).
+struct TraceRoleDefines {
+  std::string firstStage, whole, retrace;
+};
+
+TraceRoleDefines traceRoleDefines(const std::string& base, bool count) {
+  const std::string countDefine = count ? "#define SSLR_COUNT_TRAVERSAL 1\n" : "";
+  TraceRoleDefines d;
+  d.firstStage = base + "#define SSLR_DEFER_TRAVERSAL 1\n" + countDefine;
+  d.whole = base + countDefine;
+  d.retrace = d.whole + "#define SSLR_RETRACE_ROLE 1\n";
+  return d;
+}
+
+}  // namespace
+
 // A frame: validate, plan (which passes run and with which programs, before any GL state is
 // touched), create what the plan needs, then the passes in order. Each pass function issues its
 // GL commands through the counting wrappers (FrameStats' per-pass commands).
@@ -321,32 +342,19 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
   if (settings.glossy.mode == GlossyMode::Stochastic) traceDefines += "#define SSLR_STOCHASTIC 1\n";
   const std::string stochasticFilter = f.stochasticFilter ? "#define SSLR_STOCHASTIC_FILTER 1\n" : "";
   traceDefines += stochasticFilter;
-  const std::string deferDefine = f.deferTraversal ? "#define SSLR_DEFER_TRAVERSAL 1\n" : "";
-  const std::string countDefine = "#define SSLR_COUNT_TRAVERSAL 1\n";
-  // The whole tracer over the listed tiles, and (SSLR_RETRACE_ROLE) over the listed pixels: one
-  // program, the same whether TraversalPass::Auto runs the traversal inline or deferred this frame.
-  const bool countTraversal = f.feedback && !settings.halfResolution;
-  const std::string wholeDefines = traceDefines + (countTraversal ? countDefine : "");
-  const std::string retraceDefines = wholeDefines + "#define SSLR_RETRACE_ROLE 1\n";
-  // The full-resolution trace: the first stage alone (deferred), or the whole tracer (with the
-  // retrace role where a deferred frame's retrace is this program); at half resolution the
-  // shading from the quads' rays.
-  const char* traceEntry = settings.halfResolution ? "3_shade_from_quads.comp" : "3_trace.comp";
+  // Under TraversalPass::Auto the tiles' whole tracer is compiled with the retrace role, so that an
+  // inline frame's trace and a deferred frame's retrace are one program. The full-resolution trace
+  // (at half resolution the shading from the quads' rays), and half resolution's quad rays, whose
+  // retrace never takes SSLR_QUADS_WIDE (a group per tile's listed quads).
+  const TraceRoleDefines pixels = traceRoleDefines(traceDefines, f.feedback && !settings.halfResolution);
+  const TraceRoleDefines quads = traceRoleDefines(methodDefines + statsDefine, f.countQuads);
   f.programs.trace.retraceRole = !settings.halfResolution && !f.deferTraversal && f.feedback;
-  if (!settings.halfResolution)
-    traceDefines = f.deferTraversal               ? traceDefines + deferDefine
-                   : f.programs.trace.retraceRole ? retraceDefines
-                                                  : wholeDefines;
-  // Half resolution's quad rays the same way: the first stage alone, or the whole tracer, which is
-  // the quad retrace's program too (never SSLR_QUADS_WIDE: a group per tile's listed quads).
-  const std::string quadDefines = methodDefines + statsDefine;
-  const std::string wholeQuadDefines = quadDefines + (f.countQuads ? countDefine : "");
-  const std::string quadRetraceDefines = wholeQuadDefines + "#define SSLR_RETRACE_ROLE 1\n";
   f.programs.trace.quadRetraceRole = settings.halfResolution && !f.deferTraversal && f.feedback && !f.wideClassify;
+  const char* traceEntry = settings.halfResolution ? "3_shade_from_quads.comp" : "3_trace.comp";
+  if (!settings.halfResolution)
+    traceDefines = f.deferTraversal ? pixels.firstStage : f.programs.trace.retraceRole ? pixels.retrace : pixels.whole;
   const std::string quadsDefines =
-      (f.deferTraversal ? quadDefines + deferDefine + (f.countQuads ? countDefine : "")
-       : f.programs.trace.quadRetraceRole ? quadRetraceDefines
-                                          : wholeQuadDefines) +
+      (f.deferTraversal ? quads.firstStage : f.programs.trace.quadRetraceRole ? quads.retrace : quads.whole) +
       (f.wideClassify ? "#define SSLR_QUADS_WIDE 1\n" : "");
   // With the pyramid, classification (which reads every depth anyway) writes its levels 0 and 1,
   // unless the last frame listed no tile (then the levels-0-and-1 pass does, if this frame lists
@@ -363,8 +371,8 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
       {&f.programs.pyramid.single, optionalProgram(f.pyramid && area.levels > kHizBlockTop, "2_pyramid_top_level.comp", "")},
       {&f.programs.trace.trace, computeProgram(traceEntry, traceDefines)},
       {&f.programs.trace.quads, optionalProgram(settings.halfResolution, "3_trace_quads.comp", quadsDefines)},
-      {&f.programs.trace.quadRetrace, optionalProgram(f.quadRetracePass, "3_trace_quads.comp", quadRetraceDefines)},
-      {&f.programs.trace.retrace, optionalProgram(f.retracePass, "3_trace.comp", retraceDefines)},
+      {&f.programs.trace.quadRetrace, optionalProgram(f.quadRetracePass, "3_trace_quads.comp", quads.retrace)},
+      {&f.programs.trace.retrace, optionalProgram(f.retracePass, "3_trace.comp", pixels.retrace)},
       {&f.programs.blur.horizontal, optionalProgram(f.blur, "4_blur.comp", "#define SSLR_BLUR_AXIS ivec2(1, 0)\n")},
       {&f.programs.blur.vertical, optionalProgram(f.blur, "4_blur.comp", "#define SSLR_BLUR_AXIS ivec2(0, 1)\n#define SSLR_BLUR_VERTICAL 1\n")},
       {&f.programs.temporal.blend,
