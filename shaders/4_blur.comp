@@ -20,6 +20,7 @@
 // llvmpipe (docs/design-notes.md, "Blur (roughness) and composite").
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
+#include "shared/blur.h"
 
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;
 

@@ -11,6 +11,7 @@
 // "Temporal reuse").
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
+#include "shared/blur.h"
 #include "shared/temporal.h"
 
 layout(local_size_x = SSLR_TILE_SIZE, local_size_y = SSLR_TILE_SIZE) in;

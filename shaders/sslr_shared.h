@@ -18,13 +18,14 @@
 //   projection.h       depth <-> view position, window and clip space
 //   normals.h          decoding the host's normal packing
 //   pyramid.h          the min-max depth pyramid
-//   thickness.h        curved solids and the measured back-face depth
-//   weights.h          Fresnel, fades, coverage, blur weight
+//   weights.h          Fresnel, fades, coverage, blur radius
+//   thickness.h        the pyramid's solids: curved, and the measured back-face depth
+//   blur.h             the blur's tap weight
 //   ggx.h              the GGX lobe
 //   half_resolution.h  the quad record
 //   temporal.h         history keys and reprojection
-// The last two are C++'s here; a GLSL pass that uses them includes them itself, so that no other
-// program (the trace above all) parses them.
+// The last five are C++'s here; a GLSL pass that uses one includes it itself, so that no other
+// program (the trace above all) parses it.
 #ifndef SSLR_SHARED_H
 #define SSLR_SHARED_H
 
@@ -33,10 +34,11 @@
 #include "shared/projection.h"
 #include "shared/normals.h"
 #include "shared/pyramid.h"
-#include "shared/thickness.h"
 #include "shared/weights.h"
-#include "shared/ggx.h"
 #ifdef __cplusplus
+#include "shared/thickness.h"
+#include "shared/blur.h"
+#include "shared/ggx.h"
 #include "shared/half_resolution.h"
 #include "shared/temporal.h"
 #endif

@@ -3,14 +3,39 @@
 
 Usage: trace_lines.py [ENTRY] [--exclude NAME ...] [--per-function]
 ENTRY defaults to shaders/3_trace.comp; the comparison tracers (sslr_trace_dda.h, sslr_trace_ffx.h,
-sslr_trace_position.h) are left out by default, as the default program compiles none of their code;
-so are the headers included under #ifdef __cplusplus (GLSL never sees them).
+sslr_trace_position.h) and the GGX lobe (ggx.h, GlossyMode::Stochastic's) are left out by default,
+as the default program compiles none of their code; so is what only C++ sees (the lines, and the
+includes, under #ifdef __cplusplus).
 A code line is a non-blank line that is not only a // comment. --per-function also lists each
 SSLR_FN function's code lines (for the rule ledger)."""
 import os, re, sys
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'shaders')
-COMPARISON = {'sslr_trace_dda.h', 'sslr_trace_ffx.h', 'sslr_trace_position.h'}
+COMPARISON = {'sslr_trace_dda.h', 'sslr_trace_ffx.h', 'sslr_trace_position.h', 'ggx.h'}
+
+
+def glsl_lines(path):
+    """The lines of `path` that GLSL sees: those outside a C++-only branch (#ifdef __cplusplus and
+    its kin; an #else of one is GLSL's), preprocessor directives included."""
+    cpp_only = []  # per open #if: whether its branch is C++'s alone
+    for line in open(path, encoding='utf-8'):
+        d = re.match(r'\s*#\s*(ifdef|ifndef|if|elif|else|endif)\b(.*)', line)
+        if d:
+            kind, rest = d.group(1), d.group(2)
+            inside = any(cpp_only)
+            if kind in ('ifdef', 'if'):
+                cpp_only.append('__cplusplus' in rest and '!' not in rest)
+            elif kind == 'ifndef':
+                cpp_only.append(False)
+            elif kind in ('else', 'elif') and cpp_only:
+                cpp_only[-1] = False
+            elif kind == 'endif' and cpp_only:
+                cpp_only.pop()
+            if not inside and not any(cpp_only):
+                yield line
+            continue
+        if not any(cpp_only):
+            yield line
 
 
 def files_of(entry, exclude):
@@ -22,22 +47,9 @@ def files_of(entry, exclude):
             return
         seen.add(path)
         order.append(path)
-        cpp_only = []  # per open #if: whether its branch is C++'s alone (GLSL skips those includes)
-        for line in open(path, encoding='utf-8'):
-            d = re.match(r'\s*#\s*(ifdef|ifndef|if|elif|else|endif)\b(.*)', line)
-            if d:
-                kind, rest = d.group(1), d.group(2)
-                if kind in ('ifdef', 'if'):
-                    cpp_only.append('__cplusplus' in rest and '!' not in rest)
-                elif kind == 'ifndef':
-                    cpp_only.append(False)
-                elif kind in ('else', 'elif') and cpp_only:
-                    cpp_only[-1] = False
-                elif kind == 'endif' and cpp_only:
-                    cpp_only.pop()
-                continue
+        for line in glsl_lines(path):
             m = re.match(r'\s*#\s*include\s+"([^"]+)"', line)
-            if m and not any(cpp_only):  # relative to the including file, else to shaders/
+            if m:  # relative to the including file, else to shaders/
                 near = os.path.join(os.path.dirname(path), m.group(1))
                 visit(near if os.path.exists(near) else os.path.join(ROOT, m.group(1)))
 
@@ -47,7 +59,7 @@ def files_of(entry, exclude):
 
 def count(path):
     code = comment = 0
-    for line in open(path, encoding='utf-8'):
+    for line in glsl_lines(path):
         s = line.strip()
         if not s:
             continue

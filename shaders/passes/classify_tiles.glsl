@@ -4,6 +4,7 @@
 #define SSLR_PASSES_CLASSIFY_TILES_GLSL
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
+#include "common/quads.glsl"
 #ifdef SSLR_CLASSIFY_LEVEL1  // the pyramid is on: levels 0 and 1 from the depths read here
 #include "passes/pyramid_levels01.glsl"
 #endif

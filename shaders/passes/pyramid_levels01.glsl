@@ -2,6 +2,8 @@
 // from the depths of one 2x2 quad: level 1's cell holds the quad's (min, max), level 0 its pixels'
 // texels. Used by classification (which reads every depth anyway), the levels-0-and-1 pass and
 // the curved pass.
+#include "common/quads.glsl"
+#include "shared/thickness.h"
 #if defined(SSLR_CURVED_SOLIDS) && SSLR_CURVED_SOLIDS
 #include "passes/curved_quads.glsl"
 #endif

@@ -7,6 +7,9 @@
 // hierarchical raymarch.
 #include "common/gbuffer.glsl"
 #include "common/tiles.glsl"
+#ifdef SSLR_STOCHASTIC  // GlossyMode::Stochastic: rough pixels' rays drawn from the GGX lobe
+#include "shared/ggx.h"
+#endif
 
 layout(binding = SSLR_IMAGE_REFLECTION, rgba16f) uniform writeonly SSLR_IMAGE uReflection;
 // The resolved image gets the reflection too: tiles without a pixel to blur are final here,

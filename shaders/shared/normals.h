@@ -77,6 +77,21 @@ SSLR_FN bool sslrDecodeNormal(SslrSurface s, vec4 texel, SSLR_OUT(vec3) vsNormal
   return finite;
 }
 
+// Whether two neighbouring pixels' unit shading normals turn as on one curved surface: by more than
+// their encoding's noise (8-bit xyz: ~0.5 deg per component; octahedral much less) and less than
+// an edge's ~20 deg. |N_a - N_b|^2 is the squared chord of the turn.
+SSLR_FN bool sslrNormalsTurnAsCurved(SslrSurface s, vec3 vsNa, vec3 vsNb) {
+#ifdef SSLR_NORMAL_ENCODING
+  const bool octahedral = SSLR_NORMAL_ENCODING == SSLR_NORMALS_OCTAHEDRAL;
+#else
+  bool octahedral = s.normalEncoding == SSLR_NORMALS_OCTAHEDRAL;
+#endif
+  float minTurn2 = octahedral ? 3e-5f : 1.2e-3f;  // (0.3 deg)^2, (2 deg)^2 in radians^2
+  vec3 dN = vsNa - vsNb;
+  float dn2 = dot(dN, dN);
+  return dn2 > minTurn2 && dn2 < 0.12f;
+}
+
 SSLR_FN float sslrChannel(vec4 v, int channel) {
   return channel == 0 ? v.x : (channel == 1 ? v.y : (channel == 2 ? v.z : v.w));
 }

@@ -22,6 +22,24 @@ namespace sslr::shared {
 // their own, SIMD lanes at different levels fetched from all three (llvmpipe runs every branch's
 // fetch under lane masks; docs/design-notes.md).
 
+// What the cells hold behind each pixel (thickness.h): curved solids, off where a back-face depth
+// measures the solids and for FidelityFX SSSR; the measured back-face depth where the host gives
+// one. Compiled in on the GPU (SSLR_CURVED_SOLIDS, SSLR_BACK_DEPTH); the CPU reads the block.
+SSLR_FN bool sslrCurvedSolids(SslrTraceParams t) {
+#ifdef SSLR_CURVED_SOLIDS
+  return SSLR_CURVED_SOLIDS != 0;
+#else
+  return t.curvedSolids != 0;
+#endif
+}
+SSLR_FN bool sslrBackDepth(SslrSurface s) {
+#ifdef SSLR_BACK_DEPTH
+  return SSLR_BACK_DEPTH != 0;
+#else
+  return s.hasBackDepth != 0;
+#endif
+}
+
 // Levels worth building: the top level's cells are about an eighth of the larger screen side
 // (coarser cells would cover most of the screen and skip nothing).
 SSLR_FN int sslrHiZLevelCount(int width, int height) {

@@ -18,31 +18,10 @@ namespace sslr::shared {
 // behind the pixel along the view ray (a: the view ray's angle to the normal). A mirror sphere of
 // radius 1 seen from 8 units is 2 deep at its centre, the default slab 0.6: rays that run into its
 // hidden side would be let through to the wall behind.
-// Flat faces (a box) keep the slab. Off where a back-face depth measures the solids, and for
-// FidelityFX SSSR; the GPU passes get it compiled in (SSLR_CURVED_SOLIDS). Classification only lists the quads whose normals turn and a
-// pass of its own computes their cells, so that the math costs the listed quads alone.
-SSLR_FN bool sslrCurvedSolids(SslrTraceParams t) {
-#ifdef SSLR_CURVED_SOLIDS
-  return SSLR_CURVED_SOLIDS != 0;
-#else
-  return t.curvedSolids != 0;
-#endif
-}
-
-// Whether two neighbouring pixels' unit shading normals turn as on one curved surface: by more than
-// their encoding's noise (8-bit xyz: ~0.5 deg per component; octahedral much less) and less than
-// an edge's ~20 deg. |N_a - N_b|^2 is the squared chord of the turn.
-SSLR_FN bool sslrNormalsTurnAsCurved(SslrSurface s, vec3 vsNa, vec3 vsNb) {
-#ifdef SSLR_NORMAL_ENCODING
-  const bool octahedral = SSLR_NORMAL_ENCODING == SSLR_NORMALS_OCTAHEDRAL;
-#else
-  bool octahedral = s.normalEncoding == SSLR_NORMALS_OCTAHEDRAL;
-#endif
-  float minTurn2 = octahedral ? 3e-5f : 1.2e-3f;  // (0.3 deg)^2, (2 deg)^2 in radians^2
-  vec3 dN = vsNa - vsNb;
-  float dn2 = dot(dN, dN);
-  return dn2 > minTurn2 && dn2 < 0.12f;
-}
+// Flat faces (a box) keep the slab. Whether the pyramid holds them: sslrCurvedSolids (pyramid.h).
+// Classification only lists the quads whose normals turn and a pass of its own computes their
+// cells, so that the math costs the listed quads alone. This file is the pyramid's side (the
+// pyramid passes, the CPU tracer and the tests include it); the traversal reads the result.
 
 // The radius of curvature between two neighbouring pixels, or 0 where they do not look like one
 // convex curved surface. On a sphere P_a - P_b = r (N_a - N_b) exactly; the two differences must
@@ -106,15 +85,8 @@ SSLR_FN vec4 sslrQuadCurvedExtraDepth(SslrProjection p, SslrSurface s, SslrTrace
 // rays deeper than the slab. The measurement enters where the curved solids' estimate does (it
 // replaces it): as the pixel's extra depth over the slab, in level 0 of the pyramid and in the
 // far key of level 1 where positive. Negative extra depths thin the slab (down to nothing: the
-// traversal then lets a ray just behind a very thin object pass). Compiled in (SSLR_BACK_DEPTH)
-// on the GPU.
-SSLR_FN bool sslrBackDepth(SslrSurface s) {
-#ifdef SSLR_BACK_DEPTH
-  return SSLR_BACK_DEPTH != 0;
-#else
-  return s.hasBackDepth != 0;
-#endif
-}
+// traversal then lets a ray just behind a very thin object pass). Whether it is given:
+// sslrBackDepth (pyramid.h).
 
 // A pixel's measured extra depth over the slab (view units), or 0 where nothing is measured: no
 // back face behind it (a floor, an open mesh, the background), or the back face not behind the
