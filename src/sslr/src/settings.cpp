@@ -10,22 +10,28 @@ Settings Settings::preset(Preset preset) {
   Settings s;
   switch (preset) {
     case Preset::Low:
-      s.adaptiveL.maxIterations = 8;  // fewer lose long reflections (docs/design-notes.md, "Presets")
+      // Adaptive L alone: with few iterations it fails often enough that a fallback would make
+      // the cheapest preset the slowest. From the surface it needs a longer first step than after
+      // the walk (0.09 of the screen height), and 12 iterations, not 8, once nothing fades its
+      // long answers out (docs/results.md, "Presets").
+      s.adaptiveL.maxIterations = 12;
       s.adaptiveL.convergenceEps = 0.01f;
-      // Adaptive L from the surface needs a longer first step than after the walk: 0.09 of the
-      // screen height lowered the median image error 11% below 0.03's (results.md, "Presets").
       s.adaptiveL.initialLengthScreen = 0.09f;
-      // Adaptive L alone: with 8 iterations it fails often enough that a fallback would make the
-      // cheapest preset the slowest.
       s.traversal.maxSteps = 0;
       s.traversal.hiddenGuess = 0.0f;
+      s.fades.errorK = 0.0f;
+      s.fades.screenEdge = 0.0075f;
       s.blur.maxRadiusPx = 4.0f;
       s.selection.roughnessCutoff = 0.3f;
       break;
     case Preset::Medium:
       // High's tracer with a 24-step cap (adaptive L resumes where the walk stops), a narrower
-      // blur and fewer rough pixels traced (docs/results.md, "Presets").
+      // blur and fewer rough pixels traced. Low, medium and ultra sit on the measured front of
+      // time against image error, which the fades only raise: no error fade, a narrow border fade.
+      // High keeps the article's look (docs/results.md, "Presets").
       s.traversal.maxSteps = 24;
+      s.fades.errorK = 0.0f;
+      s.fades.screenEdge = 0.0075f;
       s.blur.maxRadiusPx = 6.0f;
       s.selection.roughnessCutoff = 0.4f;
       break;
@@ -33,8 +39,8 @@ Settings Settings::preset(Preset preset) {
       break;  // the defaults: the traversal first, adaptive L where it has no hit
     case Preset::Ultra:
       // High's tracer (256 steps and 32 iterations found nothing more: results.md, "Presets")
-      // without the fades that trade image error for a softer picture: no error fade, and the
-      // screen border's fade a quarter of high's. A wider blur; rougher pixels traced.
+      // without the fades, as low and medium: no error fade, and the screen border's fade a
+      // quarter of high's. A wider blur; rougher pixels traced.
       s.fades.errorK = 0.0f;
       s.fades.screenEdge = 0.0075f;
       s.blur.maxRadiusPx = 12.0f;
