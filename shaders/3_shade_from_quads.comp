@@ -63,7 +63,7 @@ bool sslrReuseQuadHit(ivec2 px, vec3 vsP, vec3 vsN, vec3 vsR, out SslrHit hit) {
     ivec2 landed = sslrPixelFromUv(sslrUvFromNdc(vec2(ndcQ.x, ndcQ.y)), sslrSizePx());
     vec3 vsSurface;
     if (!sslrLoadSurface(landed, vsSurface)) return false;
-    float dist = frame.proj.orthographic != 0 ? abs(vsSurface.z) : sslrViewDistance(frame.proj, vsSurface);
+    float dist = sslrOrthographic(frame.proj) ? abs(vsSurface.z) : sslrViewDistance(frame.proj, vsSurface);
     float tolerance = sslrHitTolerance(frame.proj, frame.surface, dist,
                                        sslrSlopeTan(frame.proj, vsSurface, vsHitNormal));
     if (length(vsQ - vsSurface) > tolerance) return false;

@@ -59,7 +59,7 @@ SSLR_FN bool sslrPassesBehindCell(SslrProjection p, SslrSurface s, SslrTracePara
 SSLR_FN float sslrSlabNearOutline(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 px, vec3 vsSurface,
                                   vec3 vsSurfaceNormal, float rayDepthKey, float keySign, float slab) {
   float sinA = clamp(abs(dot(vsSurfaceNormal, sslrViewDirection(p, vsSurface))), 0.02f, 0.9998f);
-  float dist = p.orthographic != 0 ? 1.0f : -vsSurface.z;
+  float dist = sslrOrthographic(p) ? 1.0f : -vsSurface.z;
   float depthPerPx = sslrPixelFootprint(p, s.height, dist) / (sinA * sqrt(1.0f - sinA * sinA));
   for (int level = 1; level <= t.hizLevels; ++level) {
     // The outline lies within 1.5 cells of the pixel (the cell is aligned, the pixel anywhere in it).
@@ -104,7 +104,7 @@ SSLR_FN bool sslrCornerHit(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   ivec2 outward = acrossX ? ivec2(d.x > 0.0f ? -1 : 1, 0) : ivec2(0, d.y > 0.0f ? -1 : 1);
   ivec2 npx = px + outward;
   if (npx.x < 0 || npx.y < 0 || npx.x >= s.width || npx.y >= s.height) return false;
-  float keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
+  float keySign = sslrReversedZ(s) ? -1.0f : 1.0f;
   float depthOut = sslrLoadDepth(npx);
   // An outline: the outer pixel shows something beyond the ray, or nothing.
   if (sslrIsGeometryDepth(s, depthOut) && !(keySign * depthOut > wEntry.z)) return false;
@@ -201,7 +201,7 @@ SSLR_FN bool sslrMetThinObject(SslrProjection p, SslrSurface s, ivec2 px, vec3 v
 SSLR_FN bool sslrRimEntryHit(SslrProjection p, SslrSurface s, vec3 wEntry, vec3 d, vec3 vsP,
                              vec3 vsR, ivec2 px, ivec2 npx, float keyIn, float depthOut, SSLR_OUT(float) L) {
   L = 0.0f;
-  float keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
+  float keySign = sslrReversedZ(s) ? -1.0f : 1.0f;
   bool outGeometry = sslrIsGeometryDepth(s, depthOut);
   if (outGeometry && !(wEntry.z <= keySign * depthOut)) return false;
   float distIn = sslrViewDepthFromDepth(p, keySign * keyIn);
@@ -254,7 +254,7 @@ SSLR_FN bool sslrCurvedEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams
   L = 0.0f;
   if (!sslrCurvedSolids(t) && !sslrBackDepth(s)) return false;
   ivec2 px = ivec2(floor(vec2(wEntry.x, wEntry.y)));
-  float keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
+  float keySign = sslrReversedZ(s) ? -1.0f : 1.0f;
   float keyIn = keySign * sslrLoadDepth(px);
   // The pixel the ray came from: just before the boundary it crossed (2 nudges back along the
   // major axis; a corner's other boundary, crossed earlier, stays crossed).
@@ -270,7 +270,7 @@ SSLR_FN bool sslrCurvedEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams
   if (!(L > 0.0f)) return false;
   if (!crossedIn) {
     vec3 vsQ = vsP + vsR * L;
-    float distS = p.orthographic != 0 ? abs(vsSurface.z) : -vsSurface.z;
+    float distS = sslrOrthographic(p) ? abs(vsSurface.z) : -vsSurface.z;
     return curvedPixel && length(vsQ - vsSurface) <= sslrHitTolerance(p, s, distS, 0.0f);
   }
   float depthOut = sslrLoadDepth(npx);

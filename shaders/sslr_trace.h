@@ -88,14 +88,14 @@ SSLR_FN bool sslrHasHiZFallback(SslrTraceParams t) { return sslrHiZMode(t) == SS
 // fraction of the distance (depth precision) plus pixel footprints stretched by the slope (pixel
 // snapping on a steep surface moves the sample along the view ray).
 SSLR_FN float sslrHitTolerance(SslrProjection p, SslrSurface s, float dist, float tanView) {
-  float footprint = sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : dist);
+  float footprint = sslrPixelFootprint(p, s.height, sslrOrthographic(p) ? 1.0f : dist);
   return SSLR_HIT_TOLERANCE_RELATIVE * abs(dist) + SSLR_HIT_TOLERANCE_PIXELS * footprint * (1.0f + tanView);
 }
 
 // The hit tolerance at a surface point with its normal (its distance and slope as seen).
 SSLR_FN float sslrSurfaceTolerance(SslrProjection p, SslrSurface s, vec3 vsSurface,
                                    vec3 vsSurfaceNormal) {
-  float dist = p.orthographic != 0 ? abs(vsSurface.z) : sslrViewDistance(p, vsSurface);
+  float dist = sslrOrthographic(p) ? abs(vsSurface.z) : sslrViewDistance(p, vsSurface);
   return sslrHitTolerance(p, s, dist, sslrSlopeTan(p, vsSurface, vsSurfaceNormal));
 }
 
@@ -137,8 +137,8 @@ SSLR_FN vec3 sslrWindowFromView(SslrProjection p, vec2 sizePx, float keySign, ve
 // travel, so the direction keeps its precision at any scale.
 SSLR_FN vec3 sslrWindowDirection(SslrProjection p, SslrSurface s, float keySign, vec3 vsP, vec3 vsR, vec3 wP) {
   float distP = sslrViewDistance(p, vsP);
-  float probeL = p.orthographic != 0 ? 64.0f * sslrPixelFootprint(p, s.height, 1.0f) : max(distP, 1e-6f);
-  if (p.orthographic == 0 && vsR.z > 0.0f) probeL = min(probeL, 0.5f * distP / vsR.z);
+  float probeL = sslrOrthographic(p) ? 64.0f * sslrPixelFootprint(p, s.height, 1.0f) : max(distP, 1e-6f);
+  if (!sslrOrthographic(p) && vsR.z > 0.0f) probeL = min(probeL, 0.5f * distP / vsR.z);
   return sslrWindowFromView(p, vec2(s.width, s.height), keySign, vsP + vsR * probeL) - wP;
 }
 
@@ -161,7 +161,7 @@ SSLR_FN float sslrRayLengthAt(SslrProjection p, vec2 sizePx, float keySign, vec3
 SSLR_FN float sslrPlaneHit(SslrProjection p, SslrSurface s, ivec2 pxOrigin, vec3 vsP, vec3 vsR,
                            ivec2 px, vec3 vsSurface, vec3 vsSurfaceNormal, SSLR_OUT(float) L) {
   vec2 sizePx = vec2(s.width, s.height);
-  float keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
+  float keySign = sslrReversedZ(s) ? -1.0f : 1.0f;
   ivec2 pxPlane = px;
   vec3 vsPlane = vsSurface;
   vec3 vsPlaneNormal = vsSurfaceNormal;
@@ -188,7 +188,7 @@ SSLR_FN float sslrPlaneHit(SslrProjection p, SslrSurface s, ivec2 pxOrigin, vec3
       ivec2 fromOrigin = abs(pxPlane - pxOrigin);
       vec3 vsOriginNormal = normalize(vsR - sslrViewDirection(p, vsP));
       if (max(fromOrigin.x, fromOrigin.y) <= 1 && dot(vsPlaneNormal, vsOriginNormal) >= -0.5f &&
-          L > 0.05f * sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : sslrViewDistance(p, vsP)))
+          L > 0.05f * sslrPixelFootprint(p, s.height, sslrOrthographic(p) ? 1.0f : sslrViewDistance(p, vsP)))
         break;
       return 0.0f;
     }
@@ -247,7 +247,7 @@ SSLR_FN vec2 sslrColorUv(SslrProjection p, SslrSurface s, vec3 vsP, vec3 vsR, ve
 // view units (capped at 4x the surface's distance).
 SSLR_FN float sslrAdaptiveLFirstLength(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsP, vec3 vsR) {
   vec2 sizePx = vec2(s.width, s.height);
-  float distP = p.orthographic != 0 ? 1.0f : sslrViewDistance(p, vsP);
+  float distP = sslrOrthographic(p) ? 1.0f : sslrViewDistance(p, vsP);
   float footprintP = sslrPixelFootprint(p, s.height, distP);
   float delta = 0.01f * max(distP, footprintP);
   vec3 ndcP0 = sslrNdcFromView(p, vsP);
@@ -419,7 +419,7 @@ SSLR_FN SslrHit sslrTraceAdaptiveLFrom(SslrProjection p, SslrSurface s, SslrTrac
     float articleL = length(vsSurface - vsP);
     // Done when Q lies on the surface its pixel shows (within the hit tolerance, without the
     // slope term; the final validation and the plane refinement do the rest).
-    float distS = p.orthographic != 0 ? abs(vsSurface.z) : -vsSurface.z;
+    float distS = sslrOrthographic(p) ? abs(vsSurface.z) : -vsSurface.z;
     if (length(vsQ - vsSurface) <= sslrHitTolerance(p, s, distS, 0.0f)) break;
     // The article's update has settled (|P' - P| = L) but Q is not on the surface: a spurious
     // fixed point (the sphere of radius L around P meets the surface elsewhere). Not a hit:

@@ -63,7 +63,7 @@ struct SslrDdaSegment {
 SSLR_FN SslrDdaSegment sslrDdaSegment(SslrProjection p, SslrSurface s, SslrDdaParams d, vec3 vsP, vec3 vsR) {
   vec2 sizePx = vec2(s.width, s.height);
   // Ray length: clipped so that the end stays in front of the near plane (perspective).
-  float nearZ = sslrViewFromUvDepth(p, vec2(0.5f), s.reversedZ != 0 ? 1.0f : 0.0f).z;
+  float nearZ = sslrViewFromUvDepth(p, vec2(0.5f), sslrReversedZ(s) ? 1.0f : 0.0f).z;
   float rayLength = min(d.maxDistance, 1.0e4f * max(length(vsP), 1.0e-6f));
   if (vsP.z + vsR.z * rayLength > nearZ && vsR.z > 0.0f) rayLength = max((nearZ - vsP.z) / vsR.z, 0.0f);
   vec3 vsEnd = vsP + vsR * rayLength;

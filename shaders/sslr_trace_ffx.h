@@ -48,7 +48,7 @@ SSLR_FN vec2 sslrFfxMipSize(SslrSurface s, int level) {
 // The nearest depth key of cell `cell` at `level` (background and cells past the mip's size: the
 // farthest key, which nothing lies beyond).
 SSLR_FN float sslrFfxNearKey(SslrSurface s, int level, vec2 cell, float keySign, int pyramidTop) {
-  float farKey = keySign * (s.reversedZ != 0 ? 0.0f : 1.0f);
+  float farKey = keySign * (sslrReversedZ(s) ? 0.0f : 1.0f);
   vec2 levelSize = sslrFfxMipSize(s, level);
   if (cell.x < 0.0f || cell.y < 0.0f || cell.x >= levelSize.x || cell.y >= levelSize.y) return farKey;
   if (level == 0) {
@@ -78,7 +78,7 @@ SSLR_FN float sslrFfxNearKey(SslrSurface s, int level, vec2 cell, float keySign,
 SSLR_FN SslrHit sslrTraceFfx(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP, vec3 vsR) {
   SslrHit hit = sslrNoHit(SSLR_STATUS_MISS);
   vec2 sizePx = vec2(s.width, s.height);
-  float keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
+  float keySign = sslrReversedZ(s) ? -1.0f : 1.0f;
   // Origin: the pixel centre at its own depth (FFX's uv and depth sample); direction: along the ray.
   vec3 wP = sslrWindowFromView(p, sizePx, keySign, vsP);
   vec3 d = sslrWindowDirection(p, s, keySign, vsP, vsR, wP);
@@ -127,10 +127,10 @@ SSLR_FN SslrHit sslrTraceFfx(SslrProjection p, SslrSurface s, SslrTraceParams t,
   // texel there, and FFX's load returns background.
   ivec2 quadCell = texel / 2;
   vec2 mip1 = sslrFfxMipSize(s, 1);
-  float farDepth = s.reversedZ != 0 ? 0.0f : 1.0f;
+  float farDepth = sslrReversedZ(s) ? 0.0f : 1.0f;
   vec2 quad = float(quadCell.x) < mip1.x && float(quadCell.y) < mip1.y ? sslrLoadPyramidTexel(1, quadCell)
                                                                        : vec2(farDepth);
-  float surfaceDepth = s.reversedZ != 0 ? max(quad.x, quad.y) : min(quad.x, quad.y);
+  float surfaceDepth = sslrReversedZ(s) ? max(quad.x, quad.y) : min(quad.x, quad.y);
   if (!sslrIsGeometryDepth(s, surfaceDepth)) {
     hit.status = SSLR_STATUS_SKY;
     return hit;

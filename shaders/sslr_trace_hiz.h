@@ -79,7 +79,7 @@ struct SslrWalk {
 SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsP, vec3 vsR,
                            SSLR_OUT(SslrWalk) w) {
   w.sizePx = vec2(s.width, s.height);
-  w.keySign = s.reversedZ != 0 ? -1.0f : 1.0f;
+  w.keySign = sslrReversedZ(s) ? -1.0f : 1.0f;
   w.invD = vec2(0.0f);
   w.boundaryStep = vec2(0.0f);
   w.tRay = 0.0f;

@@ -18,7 +18,7 @@ SSLR_FN float sslrDepthAlongView(vec3 vsPos) { return -vsPos.z; }
 // The ray's view distance at fraction `search` of the screen-space segment: perspective-correct
 // (1/z is linear in screen space), or linear for orthographic projections.
 SSLR_FN float sslrRayDistanceAt(SslrProjection p, float startDist, float endDist, float search) {
-  return p.orthographic != 0 ? mix(startDist, endDist, search)
+  return sslrOrthographic(p) ? mix(startDist, endDist, search)
                              : (startDist * endDist) / mix(endDist, startDist, search);
 }
 
@@ -31,7 +31,7 @@ SSLR_FN float sslrRayDistanceAt(SslrProjection p, float startDist, float endDist
 // when projected: the segment is clipped in front of it.
 SSLR_FN vec3 sslrPositionBufferEnd(SslrProjection p, vec3 startView, vec3 vsR, float maxDistance) {
   vec3 endView = startView + vsR * maxDistance;
-  if (p.orthographic != 0) return endView;
+  if (sslrOrthographic(p)) return endView;
   float minDist = 1e-3f * max(sslrDepthAlongView(startView), 1e-6f);
   if (sslrDepthAlongView(endView) < minDist) {
     float tClip = (sslrDepthAlongView(startView) - minDist) /

@@ -56,8 +56,8 @@ SSLR_FN SslrQuadCode sslrUnpackQuadCode(float w) {
 // for planes whatever their slope (a depth comparison is not: a floor seen at a grazing angle
 // changes depth by many percent from one pixel to the next).
 SSLR_FN bool sslrSameSurface(SslrProjection p, SslrSurface s, vec3 vsP, vec3 vsN, vec3 vsPc, vec3 vsNc) {
-  float dist = p.orthographic != 0 ? abs(vsP.z) : sslrViewDistance(p, vsP);
-  float tolerance = 0.002f * dist + 0.25f * sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : dist);
+  float dist = sslrOrthographic(p) ? abs(vsP.z) : sslrViewDistance(p, vsP);
+  float tolerance = 0.002f * dist + 0.25f * sslrPixelFootprint(p, s.height, sslrOrthographic(p) ? 1.0f : dist);
   return dot(vsN, vsNc) > 0.9995f && abs(dot(vsP - vsPc, vsNc)) <= tolerance;
 }
 

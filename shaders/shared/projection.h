@@ -10,23 +10,42 @@
 namespace sslr::shared {
 #endif
 
+// ---- The projection's kind and the depth convention -------------------------------------------
+// Compiled in (0 or 1) where the program knows them (Context::Impl::buildPrograms, when every view
+// agrees), as the normal encoding is: every projection and depth conversion branches on them, and
+// a CPU rasterizer runs both arms of a branch on a uniform. -1: read from the block (C++ always).
+#ifndef SSLR_ORTHOGRAPHIC
+#define SSLR_ORTHOGRAPHIC -1
+#define SSLR_NDC_ZERO_TO_ONE -1
+#define SSLR_REVERSED_Z -1
+#endif
+SSLR_FN bool sslrOrthographic(SslrProjection p) {
+  return SSLR_ORTHOGRAPHIC >= 0 ? SSLR_ORTHOGRAPHIC != 0 : p.orthographic != 0;
+}
+SSLR_FN bool sslrNdcZeroToOne(SslrProjection p) {
+  return SSLR_NDC_ZERO_TO_ONE >= 0 ? SSLR_NDC_ZERO_TO_ONE != 0 : p.ndcZeroToOne != 0;
+}
+SSLR_FN bool sslrReversedZ(SslrSurface s) {
+  return SSLR_REVERSED_Z >= 0 ? SSLR_REVERSED_Z != 0 : s.reversedZ != 0;
+}
+
 // ---- Pure math ----------------------------------------------------------------------------
 
 SSLR_FN float sslrSaturate(float x) { return clamp(x, 0.0f, 1.0f); }
 
 // Window depth -> ndc z, and back.
 SSLR_FN float sslrNdcZFromDepth(SslrProjection p, float depth) {
-  return p.ndcZeroToOne != 0 ? depth : depth * 2.0f - 1.0f;
+  return sslrNdcZeroToOne(p) ? depth : depth * 2.0f - 1.0f;
 }
 SSLR_FN float sslrDepthFromNdcZ(SslrProjection p, float ndcZ) {
-  return p.ndcZeroToOne != 0 ? ndcZ : ndcZ * 0.5f + 0.5f;
+  return sslrNdcZeroToOne(p) ? ndcZ : ndcZ * 0.5f + 0.5f;
 }
 
 // A depth sample that holds geometry: finite, inside [0,1] and not the clear value. NaN fails
 // every comparison and so counts as background (poisoned input never reaches the tracer).
 SSLR_FN bool sslrIsGeometryDepth(SslrSurface s, float depth) {
   bool inRange = depth >= 0.0f && depth <= 1.0f;
-  return inRange && (s.reversedZ != 0 ? depth > 0.0f : depth < 1.0f);
+  return inRange && (sslrReversedZ(s) ? depth > 0.0f : depth < 1.0f);
 }
 
 SSLR_FN vec2 sslrNdcFromUv(vec2 uv) { return uv * 2.0f - 1.0f; }
@@ -41,12 +60,12 @@ SSLR_FN ivec2 sslrPixelFromUv(vec2 uv, vec2 sizePx) {
 // View-space position from ndc, exact for both projection kinds (see SslrProjection).
 // Perspective: dist = zOffset / (ndcZ + zScale) is the view distance along -z; x and y follow.
 SSLR_FN vec3 sslrViewFromNdc(SslrProjection p, vec2 ndcXY, float ndcZ) {
-  if (p.orthographic != 0) {
+  if (sslrOrthographic(p)) {
     return vec3((ndcXY.x - p.xOffset) / p.xScale, (ndcXY.y - p.yOffset) / p.yScale,
                 (ndcZ - p.zOffset) / p.zScale);
   }
   float depth = sslrDepthFromNdcZ(p, ndcZ);
-  float ndcScale = p.ndcZeroToOne != 0 ? 1.0f : 2.0f;
+  float ndcScale = sslrNdcZeroToOne(p) ? 1.0f : 2.0f;
   // ndcZ + zScale = ndcScale * (depth - d_inf), see SslrProjection::infDepthHi.
   float dist = p.zOffset / (ndcScale * ((depth - p.infDepthHi) - p.infDepthLo));
   return vec3(dist * (ndcXY.x + p.xOffset) / p.xScale, dist * (ndcXY.y + p.yOffset) / p.yScale,
@@ -71,12 +90,12 @@ SSLR_FN bool sslrSurfaceFromDepth(SslrProjection p, SslrSurface s, ivec2 px, flo
 
 // Clip w of a view-space point: the view distance (perspective) or 1 (orthographic).
 SSLR_FN float sslrClipW(SslrProjection p, vec3 vsPos) {
-  return p.orthographic != 0 ? 1.0f : -vsPos.z;
+  return sslrOrthographic(p) ? 1.0f : -vsPos.z;
 }
 
 // View space -> ndc (x, y, z). The caller must have checked sslrClipW > 0.
 SSLR_FN vec3 sslrNdcFromView(SslrProjection p, vec3 vsPos) {
-  if (p.orthographic != 0) {
+  if (sslrOrthographic(p)) {
     return vec3(p.xScale * vsPos.x + p.xOffset, p.yScale * vsPos.y + p.yOffset,
                 p.zScale * vsPos.z + p.zOffset);
   }
@@ -88,12 +107,12 @@ SSLR_FN vec3 sslrNdcFromView(SslrProjection p, vec3 vsPos) {
 
 // Unit direction from the camera towards a view-space point (orthographic: constant -z).
 SSLR_FN vec3 sslrViewDirection(SslrProjection p, vec3 vsPos) {
-  return p.orthographic != 0 ? vec3(0.0f, 0.0f, -1.0f) : normalize(vsPos);
+  return sslrOrthographic(p) ? vec3(0.0f, 0.0f, -1.0f) : normalize(vsPos);
 }
 
 // Distance used for pixel footprints and relative tolerances.
 SSLR_FN float sslrViewDistance(SslrProjection p, vec3 vsPos) {
-  return p.orthographic != 0 ? 1.0f : max(-vsPos.z, 0.0f);
+  return sslrOrthographic(p) ? 1.0f : max(-vsPos.z, 0.0f);
 }
 
 // Size (view units) of one pixel at a given view distance.

@@ -55,7 +55,7 @@ SSLR_FN vec2 sslrHiZEmpty() { return vec2(2.0f, -1.0f); }
 // One depth texel as the pyramid stores it: background, NaN and out-of-range depth all become the
 // clear value (the farthest depth), so nothing that is not geometry can stop a ray.
 SSLR_FN vec2 sslrHiZTexel(SslrSurface s, float depth) {
-  float d = sslrIsGeometryDepth(s, depth) ? depth : (s.reversedZ != 0 ? 0.0f : 1.0f);
+  float d = sslrIsGeometryDepth(s, depth) ? depth : (sslrReversedZ(s) ? 0.0f : 1.0f);
   return vec2(d, d);
 }
 
@@ -71,7 +71,7 @@ SSLR_FN vec2 sslrHiZMinMax(int level, vec2 texel) { return level == 0 ? vec2(tex
 // Whether a cell of level >= 1 holds any geometry: its nearest depth is not background. Where it
 // does not, classification writes no level-0 texels under it and the traversal skips it whole.
 SSLR_FN bool sslrHiZCellHoldsGeometry(SslrSurface s, vec2 minMax) {
-  return sslrIsGeometryDepth(s, s.reversedZ != 0 ? max(minMax.x, minMax.y) : min(minMax.x, minMax.y));
+  return sslrIsGeometryDepth(s, sslrReversedZ(s) ? max(minMax.x, minMax.y) : min(minMax.x, minMax.y));
 }
 
 // View distance (or orthographic -z) of a window depth: the tolerance and "how far behind" tests
@@ -82,8 +82,8 @@ SSLR_FN float sslrViewDepthFromDepth(SslrProjection p, float depth) {
 
 // Window depth of a view depth (-z): sslrViewDepthFromDepth's inverse.
 SSLR_FN float sslrDepthFromViewDepth(SslrProjection p, float dist) {
-  if (p.orthographic != 0) return sslrDepthFromNdcZ(p, p.zOffset - p.zScale * dist);
-  float ndcScale = p.ndcZeroToOne != 0 ? 1.0f : 2.0f;
+  if (sslrOrthographic(p)) return sslrDepthFromNdcZ(p, p.zOffset - p.zScale * dist);
+  float ndcScale = sslrNdcZeroToOne(p) ? 1.0f : 2.0f;
   return (p.zOffset / (ndcScale * dist) + p.infDepthLo) + p.infDepthHi;
 }
 

@@ -20,7 +20,7 @@ SSLR_FN float sslrHistoryKeyFromClip(int orthographic, vec4 clip) {
 
 // This frame's key of view-space point P (the same quantity as sslrHistoryKeyFromClip).
 SSLR_FN float sslrHistoryKey(SslrProjection p, vec3 vsP) {
-  return p.orthographic != 0 ? 2.0f + sslrNdcFromView(p, vsP).z : sslrClipW(p, vsP);
+  return sslrOrthographic(p) ? 2.0f + sslrNdcFromView(p, vsP).z : sslrClipW(p, vsP);
 }
 
 // Where view-space point P (this frame) was in the previous frame: its uv there and its key

@@ -45,7 +45,7 @@ SSLR_FN float sslrConvexRadius(SslrSurface s, vec3 vsA, vec3 vsNa, vec3 vsB, vec
 // gently curved wall from becoming a solid hill. r: the largest radius the pixel shares with a
 // neighbour (sslrConvexRadius).
 SSLR_FN float sslrCurvedExtraDepth(SslrProjection p, SslrTraceParams t, vec3 vsPos, vec3 vsNormal, float r) {
-  vec3 v = p.orthographic != 0 ? vec3(0.0f, 0.0f, -1.0f) : vsPos * inversesqrt(dot(vsPos, vsPos));
+  vec3 v = sslrOrthographic(p) ? vec3(0.0f, 0.0f, -1.0f) : vsPos * inversesqrt(dot(vsPos, vsPos));
   float slab = t.objectDepthRelative * -vsPos.z;
   float chord = min(2.0f * r * abs(dot(vsNormal, v)), 4.0f * slab) * abs(v.z);
   return max(chord - slab, 0.0f);
@@ -68,7 +68,7 @@ SSLR_FN vec4 sslrQuadCurvedExtraDepth(SslrProjection p, SslrSurface s, SslrTrace
                                       vec3 vs2, vec3 vs3, vec3 n0, vec3 n1, vec3 n2, vec3 n3, bvec4 ok) {
   // One footprint per quad, its farthest pixel's (a pixel without geometry has vs = 0).
   float farthest = max(max(-vs0.z, -vs1.z), max(-vs2.z, -vs3.z));
-  float footprint = sslrPixelFootprint(p, s.height, p.orthographic != 0 ? 1.0f : max(farthest, 0.0f));
+  float footprint = sslrPixelFootprint(p, s.height, sslrOrthographic(p) ? 1.0f : max(farthest, 0.0f));
   float r01 = ok.x && ok.y ? sslrConvexRadius(s, vs0, n0, vs1, n1, footprint) : 0.0f;
   float r23 = ok.z && ok.w ? sslrConvexRadius(s, vs2, n2, vs3, n3, footprint) : 0.0f;
   float r02 = ok.x && ok.z ? sslrConvexRadius(s, vs0, n0, vs2, n2, footprint) : 0.0f;

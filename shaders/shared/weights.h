@@ -27,7 +27,7 @@ SSLR_FN float sslrFresnelSchlick(float f0, float cosVN) {
 // its reflections). Here L is measured relative to the reflecting point's distance from the
 // camera (orthographic: its depth), which is the same at every scale.
 SSLR_FN float sslrErrorWeight(SslrProjection p, vec3 vsP, float L, float k) {
-  float distance = p.orthographic != 0 ? abs(vsP.z) : length(vsP);
+  float distance = sslrOrthographic(p) ? abs(vsP.z) : length(vsP);
   return 1.0f - sslrSaturate(L / max(distance, 1e-30f) * k);
 }
 
@@ -51,7 +51,7 @@ SSLR_FN float sslrCameraFacingFade(vec3 vsR, vec3 vsV, float start, float end) {
 SSLR_FN float sslrBlurRadiusPx(SslrProjection p, float heightPx, float dist, float L,
                                float roughness, float coneScale) {
   float spread = L * roughness * roughness * coneScale;
-  float imageDist = p.orthographic != 0 ? 1.0f : dist + L;
+  float imageDist = sslrOrthographic(p) ? 1.0f : dist + L;
   return spread / sslrPixelFootprint(p, heightPx, imageDist);
 }
 

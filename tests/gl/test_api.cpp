@@ -1201,6 +1201,71 @@ TEST_F(Api, RetraceIsTheTraceProgramInItsRetraceRole) {
   }
 }
 
+// The projection's kind and the depth convention are compiled into the programs
+// (shared/projection.h, sslrOrthographic), as the normal encoding is: a frame that changes either
+// compiles the programs it has not yet met, a frame with one already met compiles nothing, and each
+// gives what a context that met only it gives. Counted by the Info messages sslr logs for each
+// program it compiles.
+TEST_F(Api, TheProjectionsKindAndDepthConventionAreCompiledIn) {
+  struct Shape {
+    const char* name;
+    DepthMode depth;
+    bool orthographic;
+  };
+  const Shape shapes[] = {{"perspective, reversed", DepthMode::Reversed, false},
+                          {"perspective, GL default", DepthMode::GlDefault, false},
+                          {"orthographic, reversed", DepthMode::Reversed, true}};
+  auto scene = makeBuiltinScene("mirror-box");
+  ASSERT_TRUE(scene) << scene.error();
+  GpuScene gpu(scene.value());
+  std::vector<std::unique_ptr<GBuffer>> gbuffers;
+  for (const Shape& shape : shapes) {
+    auto g = GBuffer::create({.width = W, .height = H, .depth = shape.depth});
+    ASSERT_TRUE(g) << g.error();
+    Camera camera = *scene.value().camera;
+    camera.orthographic = shape.orthographic;
+    camera.orthoHeight = 6.0;
+    ASSERT_TRUE(g.value()->render(gpu, camera));
+    gbuffers.push_back(std::move(g.value()));
+  }
+  int compiled = 0;
+  auto contextCounting = [&](int* counter) {
+    ContextDesc d;
+    d.width = W;
+    d.height = H;
+    d.getProcAddress = HeadlessContext::getProcAddress();
+    d.log = [counter](LogLevel level, const std::string& text) {
+      if (counter && level == LogLevel::Info && text.find("sslr: compiled sslr.program") != std::string::npos) ++*counter;
+    };
+    auto ctx = Context::create(d);
+    EXPECT_TRUE(ctx) << ctx.error();
+    return std::move(ctx.value());
+  };
+  auto shared = contextCounting(&compiled);
+  Settings s;
+  s.debug.outputs = true;
+  for (int round = 0; round < 2; ++round)
+    for (size_t i = 0; i < std::size(shapes); ++i) {
+      SCOPED_TRACE(std::string(shapes[i].name) + ", round " + std::to_string(round));
+      const FrameInputs in = gbuffers[i]->frameInputs();
+      compiled = 0;
+      ASSERT_TRUE(shared->dispatch(in, s));
+      if (round == 0)
+        EXPECT_GT(compiled, 0) << "a projection or depth convention not met before compiles its programs";
+      else
+        EXPECT_EQ(compiled, 0) << "met before: nothing to compile";
+      const Image hits = readAll(shared->hitTexture(), 4);
+      auto alone = contextCounting(nullptr);
+      ASSERT_TRUE(alone->dispatch(in, s));
+      const Image aloneHits = readAll(alone->hitTexture(), 4);
+      size_t found = 0;
+      for (size_t p = 2; p < hits.pixels.size(); p += 4) found += hits.pixels[p] > 0.5f;
+      EXPECT_GT(found, 200u) << "the mirror box reflects";
+      EXPECT_EQ(hits.pixels, aloneHits.pixels);
+    }
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+}
+
 // FrameStats' ray work is what the iterations image says, regrouped as the trace dispatch's 8x8
 // groups run (invocations 0-31 are a group's rows 0-3): lane steps summed, each 32- and 64-lane
 // group's largest summed, the largest of all. Recomputed here from the image, exactly, for the

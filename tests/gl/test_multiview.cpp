@@ -66,7 +66,8 @@ struct Views {
   std::vector<FrameInputs> ownInputs, layeredInputs;
 };
 
-std::unique_ptr<Views> makeViews(const char* sceneName, int views, const GBufferOptions& options = {}) {
+std::unique_ptr<Views> makeViews(const char* sceneName, int views, const GBufferOptions& options = {},
+                                 bool lastViewOrthographic = false) {
   auto scene = makeBuiltinScene(sceneName);
   EXPECT_TRUE(scene);
   if (!scene) return nullptr;
@@ -79,7 +80,12 @@ std::unique_ptr<Views> makeViews(const char* sceneName, int views, const GBuffer
   if (!renderer) return nullptr;
   auto out = std::make_unique<Views>();
   out->renderer = std::move(renderer.value());
-  EXPECT_TRUE(out->renderer->render(gpu, sideBySideCameras(*scene.value().camera, views, 0.064), nullptr));
+  std::vector<Camera> cameras = sideBySideCameras(*scene.value().camera, views, 0.064);
+  if (lastViewOrthographic) {
+    cameras.back().orthographic = true;
+    cameras.back().orthoHeight = 7.0;
+  }
+  EXPECT_TRUE(out->renderer->render(gpu, cameras, nullptr));
   for (int v = 0; v < views; ++v) out->ownInputs.push_back(out->renderer->viewInputs(v));
   const auto layered = out->renderer->layeredInputs();
   out->layeredInputs.assign(layered.begin(), layered.end());
@@ -109,12 +115,15 @@ struct Case {
   // both contexts get the same matrices, so the comparison stays exact).
   double frustumShift = 0.0;
   TraversalPass pass = TraversalPass::Auto;  // ContextDesc::traversalPass
+  // The last view orthographic, the others perspective: views that disagree on the projection's
+  // kind get the programs that read it from the block, one-view contexts have it compiled in.
+  bool lastViewOrthographic = false;
 };
 
 // Each view's outputs, frame after frame, against one-view contexts given that view's textures.
 void expectLayersMatchOwnContexts(const Case& c) {
   SCOPED_TRACE(c.name);
-  auto views = makeViews(c.scene, c.views, c.gbuffer);
+  auto views = makeViews(c.scene, c.views, c.gbuffer, c.lastViewOrthographic);
   ASSERT_TRUE(views);
   auto layered = makeViewsContext(c.views, c.device, c.pass);
   ASSERT_TRUE(layered);
@@ -190,6 +199,10 @@ TEST_F(MultiView, EachLayerIsWhatAOneViewContextMakesOfItsTextures) {
       {"stereo in a viewport and out of it", "mirror-room", 2, halfTemporal, 4, DeviceProfile::Auto, {13, 7, 61, 43}},
       {"stereo with the measured back-face depth", "thin-objects", 2, debug, 1, DeviceProfile::Auto, {}, withBackDepth},
       {"stereo with asymmetric frusta", "mirror-room", 2, debug, 1, DeviceProfile::Auto, {}, {}, 0.15},
+      {"a perspective and an orthographic view", "mirror-room", 2, debug, 1, DeviceProfile::Auto, {}, {}, 0.0,
+       TraversalPass::Auto, true},
+      {"the same, half resolution, Gpu profile", "mirror-room", 2, halfTemporal, 2, DeviceProfile::Gpu, {}, {}, 0.0,
+       TraversalPass::Auto, true},
   };
   for (const Case& c : cases) expectLayersMatchOwnContexts(c);
 }

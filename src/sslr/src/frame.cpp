@@ -327,6 +327,16 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
                  "#define SSLR_NORMAL_UNSIGNED " + (shared::sslrUnsignedNormalUnpack(surface) ? "1" : "0") + "\n" +
                  "#define SSLR_ROUGHNESS_CHANNEL " + std::to_string(surface.roughnessChannel) + "\n" +
                  "#define SSLR_REFLECTANCE_CHANNEL " + std::to_string(surface.reflectanceChannel) + "\n";
+  // The projection's kind and the depth convention, where every view agrees (else -1: read from
+  // the block; shared/projection.h). All three or none (the header's defaults come as one).
+  const auto agreed = [&f](const char* name, int (*of)(const shared::SslrFrame&)) {
+    for (const shared::SslrFrame& view : f.otherViews)
+      if (of(view) != of(f.frame)) return "#define " + std::string(name) + " -1\n";
+    return "#define " + std::string(name) + " " + std::to_string(of(f.frame)) + "\n";
+  };
+  inputDefines += agreed("SSLR_ORTHOGRAPHIC", [](const shared::SslrFrame& v) { return v.proj.orthographic; }) +
+                  agreed("SSLR_NDC_ZERO_TO_ONE", [](const shared::SslrFrame& v) { return v.proj.ndcZeroToOne; }) +
+                  agreed("SSLR_REVERSED_Z", [](const shared::SslrFrame& v) { return v.surface.reversedZ; });
   std::string methodDefines = "#define SSLR_HIZ_MODE " + std::to_string(f.frame.trace.hizMode) + "\n";
   const std::string curvedDefine = std::string("#define SSLR_CURVED_SOLIDS ") + (f.curvedSolids ? "1\n" : "0\n");
   methodDefines += curvedDefine;
