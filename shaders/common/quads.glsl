@@ -4,14 +4,12 @@
 #define SSLR_COMMON_QUADS_GLSL
 #include "common/gbuffer.glsl"
 
-// ---- A 2x2 quad's texels, one channel per textureGather --------------------------------------
 // Level 1's cell `cell` covers pixels 2 cell + (0..1, 0..1); a gather at their shared corner
 // returns one channel of all four. Where the quad straddles the frame's edge the last column or
 // row is repeated, as sslrQuadPixel does (the sampler's clamp to edge does so at the textures'
 // edge; sslrQuadInFrame at a viewport's). A quad wholly past the edge reads nothing of use: its
-// callers leave it out. Classification reads the
-// channels it needs this way: three gathers per quad in place of eight fetches and four normal
-// decodes.
+// callers leave it out. Classification reads the channels it needs this way: three gathers per
+// quad in place of eight fetches and four normal decodes.
 // Components in pixel order p0 = (0, 0), p1 = (1, 0), p2 = (0, 1), p3 = (1, 1): a gather returns
 // (0, 1), (1, 1), (1, 0), (0, 0).
 SSLR_UV sslrQuadCornerUv(ivec2 cell) {

@@ -1239,9 +1239,10 @@ TEST_F(Api, TheProjectionsKindAndDepthConventionAreCompiledIn) {
     };
     auto ctx = Context::create(d);
     EXPECT_TRUE(ctx) << ctx.error();
-    return std::move(ctx.value());
+    return ctx ? std::move(ctx.value()) : nullptr;
   };
   auto shared = contextCounting(&compiled);
+  ASSERT_TRUE(shared);
   Settings s;
   s.debug.outputs = true;
   for (int round = 0; round < 2; ++round)
@@ -1256,7 +1257,7 @@ TEST_F(Api, TheProjectionsKindAndDepthConventionAreCompiledIn) {
         EXPECT_EQ(compiled, 0) << "met before: nothing to compile";
       const Image hits = readAll(shared->hitTexture(), 4);
       auto alone = contextCounting(nullptr);
-      ASSERT_TRUE(alone->dispatch(in, s));
+      ASSERT_TRUE(alone && alone->dispatch(in, s));
       const Image aloneHits = readAll(alone->hitTexture(), 4);
       size_t found = 0;
       for (size_t p = 2; p < hits.pixels.size(); p += 4) found += hits.pixels[p] > 0.5f;
