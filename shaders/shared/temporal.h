@@ -32,7 +32,7 @@ SSLR_FN bool sslrReproject(SslrProjection p, mat4 previousClipFromView, vec3 vsP
   keyPrevious = 0.0f;
   if (!(clip.w > 0.0f)) return false;
   uvPrevious = sslrUvFromNdc(vec2(clip.x, clip.y) / clip.w);
-  keyPrevious = sslrHistoryKeyFromClip(p.orthographic, clip);
+  keyPrevious = sslrHistoryKeyFromClip(sslrOrthographic(p) ? 1 : 0, clip);
   return sslrInsideUv(uvPrevious);
 }
 

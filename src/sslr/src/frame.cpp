@@ -34,6 +34,20 @@ TraceRoleDefines traceRoleDefines(const std::string& base, bool count) {
   return d;
 }
 
+// The projection's kind and the depth convention as #defines (shared/projection.h): view 0's where
+// every view agrees, else -1 (the programs read the block). All three are defined or none is (the
+// header's defaults come as one).
+std::string projectionDefines(const shared::SslrFrame& view0, const std::vector<shared::SslrFrame>& others) {
+  const auto agreed = [&](const char* name, int (*of)(const shared::SslrFrame&)) {
+    for (const shared::SslrFrame& view : others)
+      if (of(view) != of(view0)) return "#define " + std::string(name) + " -1\n";
+    return "#define " + std::string(name) + " " + std::to_string(of(view0)) + "\n";
+  };
+  return agreed("SSLR_ORTHOGRAPHIC", [](const shared::SslrFrame& v) { return v.proj.orthographic; }) +
+         agreed("SSLR_NDC_ZERO_TO_ONE", [](const shared::SslrFrame& v) { return v.proj.ndcZeroToOne; }) +
+         agreed("SSLR_REVERSED_Z", [](const shared::SslrFrame& v) { return v.surface.reversedZ; });
+}
+
 }  // namespace
 
 // A frame: validate, plan (which passes run and with which programs, before any GL state is
@@ -327,16 +341,7 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
                  "#define SSLR_NORMAL_UNSIGNED " + (shared::sslrUnsignedNormalUnpack(surface) ? "1" : "0") + "\n" +
                  "#define SSLR_ROUGHNESS_CHANNEL " + std::to_string(surface.roughnessChannel) + "\n" +
                  "#define SSLR_REFLECTANCE_CHANNEL " + std::to_string(surface.reflectanceChannel) + "\n";
-  // The projection's kind and the depth convention, where every view agrees (else -1: read from
-  // the block; shared/projection.h). All three or none (the header's defaults come as one).
-  const auto agreed = [&f](const char* name, int (*of)(const shared::SslrFrame&)) {
-    for (const shared::SslrFrame& view : f.otherViews)
-      if (of(view) != of(f.frame)) return "#define " + std::string(name) + " -1\n";
-    return "#define " + std::string(name) + " " + std::to_string(of(f.frame)) + "\n";
-  };
-  inputDefines += agreed("SSLR_ORTHOGRAPHIC", [](const shared::SslrFrame& v) { return v.proj.orthographic; }) +
-                  agreed("SSLR_NDC_ZERO_TO_ONE", [](const shared::SslrFrame& v) { return v.proj.ndcZeroToOne; }) +
-                  agreed("SSLR_REVERSED_Z", [](const shared::SslrFrame& v) { return v.surface.reversedZ; });
+  inputDefines += projectionDefines(f.frame, f.otherViews);
   std::string methodDefines = "#define SSLR_HIZ_MODE " + std::to_string(f.frame.trace.hizMode) + "\n";
   const std::string curvedDefine = std::string("#define SSLR_CURVED_SOLIDS ") + (f.curvedSolids ? "1\n" : "0\n");
   methodDefines += curvedDefine;
