@@ -34,18 +34,22 @@ namespace sslr::shared {
 
 // Whether a ray whose segment in a cell lies segNear deep, beyond the cell's farthest key keyFar,
 // passes behind everything the cell shows: deeper than any tolerance and than the objects'
-// assumed thickness. (The slope term of the tolerance is unknown before a pixel is looked at: the
-// largest one, tan = 16, is assumed.)
+// assumed thickness, distRay - distFar > max(tolerance, slab) (+ extra: sslrJudgePixel's solid).
+// The tolerance's slope term is unknown before a pixel is looked at: the largest one, tan = 16, is
+// assumed. Both bounds are affine in distFar (sslrHitTolerance), which keeps the step free of
+// divisions (sslrBeyondDepth).
 SSLR_FN bool sslrPassesBehindCell(SslrProjection p, SslrSurface s, SslrTraceParams t, float keySign, float segNear,
                                   float keyFar, float extra) {
   float farDepth = keySign * keyFar;
   if (!(segNear > keyFar && sslrIsGeometryDepth(s, farDepth))) return false;
-  float distFar = sslrViewDepthFromDepth(p, farDepth);
-  float distRay = sslrViewDepthFromDepth(p, keySign * segNear);
-  float tolerance16 = sslrHitTolerance(p, s, distFar, 16.0f);
-  float passBehind = sslrBackDepth(s) ? max(tolerance16, t.objectDepthRelative * distFar + extra)
-                                      : max(tolerance16, t.objectDepthRelative * distFar) + extra;
-  return distRay - distFar > passBehind;
+  // tolerance16(dist) = tolPerDist x dist + tolFixed (one of the two terms per projection kind).
+  float footprintTan16 = SSLR_HIT_TOLERANCE_PIXELS * 17.0f * sslrPixelFootprint(p, s.height, 1.0f);
+  float tolPerDist = SSLR_HIT_TOLERANCE_RELATIVE + (sslrOrthographic(p) ? 0.0f : footprintTan16);
+  float tolFixed = sslrOrthographic(p) ? footprintTan16 : 0.0f;
+  float rayDepth = keySign * segNear;
+  float tolExtra = sslrBackDepth(s) ? 0.0f : extra;  // a measured extra is the solid's; a curved one adds
+  return sslrBeyondDepth(p, rayDepth, farDepth, 1.0f + tolPerDist, tolFixed + tolExtra) &&
+         sslrBeyondDepth(p, rayDepth, farDepth, 1.0f + t.objectDepthRelative, extra);
 }
 
 // How deep may what pixel px shows extend behind it, where a ray rayDepthKey deep (window key) passes?

@@ -80,6 +80,22 @@ SSLR_FN float sslrViewDepthFromDepth(SslrProjection p, float depth) {
   return -sslrViewFromNdc(p, vec2(0.0f), sslrNdcZFromDepth(p, depth)).z;
 }
 
+// Perspective: 1 / sslrViewDepthFromDepth, affine in depth (see sslrViewFromNdc).
+SSLR_FN float sslrInvViewDepthFromDepth(SslrProjection p, float depth) {
+  float ndcScale = sslrNdcZeroToOne(p) ? 1.0f : 2.0f;
+  return ndcScale * ((depth - p.infDepthHi) - p.infDepthLo) / p.zOffset;
+}
+
+// Whether a ray at window depth rayDepth lies farther than k x the view depth of farDepth plus e
+// (view units). Perspective: 1 / distance is affine in depth (sslrInvViewDepthFromDepth), so
+// distRay > k distFar + e reads invFar > invRay (k + e invFar), without a division; a ray at or
+// beyond infinite distance (invRay <= 0) is beyond.
+SSLR_FN bool sslrBeyondDepth(SslrProjection p, float rayDepth, float farDepth, float k, float e) {
+  if (sslrOrthographic(p)) return sslrViewDepthFromDepth(p, rayDepth) > k * sslrViewDepthFromDepth(p, farDepth) + e;
+  float invFar = sslrInvViewDepthFromDepth(p, farDepth);
+  return invFar > sslrInvViewDepthFromDepth(p, rayDepth) * (k + e * invFar);
+}
+
 // Window depth of a view depth (-z): sslrViewDepthFromDepth's inverse.
 SSLR_FN float sslrDepthFromViewDepth(SslrProjection p, float dist) {
   if (sslrOrthographic(p)) return sslrDepthFromNdcZ(p, p.zOffset - p.zScale * dist);

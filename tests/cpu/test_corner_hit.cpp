@@ -13,7 +13,8 @@
 // of a curved surface near its outline, and the flat faces and box edges it must refuse. And
 // sslrPlaneHit's contact line, whose plane must come from a pixel touching the mirror pixel, and
 // whose colour comes from the pixel beside it (sslrColorUv); a hit beside an outline lies off the
-// nearer face's plane (sslrGapToTexelPlane, which lobe rays read their colour by). Its own executable:
+// nearer face's plane (sslrGapToTexelPlane, which lobe rays read their colour by). The walk's
+// thickness test at a cell (sslrPassesBehindCell) against its view-depth bound. Its own executable:
 // it defines the loaders the tracer headers call, which sslr_host also defines for its CPU run.
 #include <gtest/gtest.h>
 
@@ -21,6 +22,7 @@
 #include <cmath>
 
 #include "projection.hpp"
+#include "shared_frame.hpp"
 #include "sslr_host/camera.hpp"
 #include "sslr_shared.h"
 
@@ -671,4 +673,40 @@ TEST_F(HitModel, InsideASolidTheAnswerIsWhereTheRayWentIn) {
   EXPECT_EQ(met.status, SSLR_STATUS_HIT);
   EXPECT_EQ(met.guessed, 1);
   EXPECT_EQ(met.L, 2.0f);
+}
+
+// The walk's thickness test at a cell (sslrPassesBehindCell) is the view-depth bound
+// distRay - distFar > max(tolerance at tan 16, slab) (+ a curved extra depth; a measured one
+// inside the max), in every convention: decided right wherever the ray is 2% from the bound.
+TEST(PassesBehindCell, IsTheViewDepthBound) {
+  using host::DepthMode;
+  for (DepthMode mode : {DepthMode::GlDefault, DepthMode::ZeroToOne, DepthMode::Reversed, DepthMode::ReversedInfinite})
+    for (bool ortho : {false, true})
+      for (int backDepth : {0, 1}) {
+        test::SharedFrame f = test::sharedFrameFor(mode, ortho);
+        f.surf.hasBackDepth = backDepth;
+        f.trace.objectDepthRelative = 0.075f;
+        const float keySign = f.surf.reversedZ ? -1.0f : 1.0f;
+        for (float distFar : {0.3f, 2.0f, 20.0f, 100.0f})
+          for (float extra : {0.0f, 0.2f * distFar, backDepth ? -0.05f * distFar : 0.01f * distFar}) {
+            const float tolerance16 = sslrHitTolerance(f.proj, f.surf, distFar, 16.0f);
+            const float slab = f.trace.objectDepthRelative * distFar;
+            const float behind = backDepth ? std::max(tolerance16, slab + extra) : std::max(tolerance16, slab) + extra;
+            const float keyFar = keySign * sslrDepthFromViewDepth(f.proj, distFar);
+            auto passes = [&](float distRay) {
+              const float segNear = keySign * sslrDepthFromViewDepth(f.proj, distRay);
+              return sslrPassesBehindCell(f.proj, f.surf, f.trace, keySign, segNear, keyFar, extra);
+            };
+            const std::string where = std::string(toString(mode)) + (ortho ? " ortho" : " persp") +
+                                      (backDepth ? " back depth" : "") + " distFar " + std::to_string(distFar) +
+                                      " extra " + std::to_string(extra);
+            EXPECT_FALSE(passes(distFar + 0.98f * behind)) << where;
+            EXPECT_TRUE(passes(distFar + 1.02f * behind)) << where;
+            EXPECT_FALSE(passes(0.9f * distFar)) << where << ": in front of the cell";
+          }
+        // A cell of background alone stops nothing (the walk skips it before this test).
+        const float background = f.surf.reversedZ ? 0.0f : 1.0f;
+        EXPECT_FALSE(sslrPassesBehindCell(f.proj, f.surf, f.trace, keySign, keySign * background + 1.0f,
+                                          keySign * background, 0.0f));
+      }
 }

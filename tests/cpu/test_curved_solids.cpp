@@ -1,7 +1,8 @@
 // Curved solids (sslr_shared.h, "Curved solids"): the shared header's float formulas against
 // analytic geometry. A sphere and a cylinder give their radius and the chord behind a pixel;
 // flat faces, concave surfaces, silhouettes and encoding noise give nothing; the window depth of
-// a view depth inverts the reconstruction for every depth convention.
+// a view depth inverts the reconstruction for every depth convention, and view depths compare
+// without converting them (sslrBeyondDepth).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -160,6 +161,33 @@ TEST(CurvedSolids, DepthFromViewDepthInvertsTheReconstruction) {
                                 (ortho ? 1e-4f : 0.0f);
         EXPECT_NEAR(sslrViewDepthFromDepth(s.proj, depth), dist, tolerance)
             << toString(mode) << (ortho ? " ortho" : " persp") << " dist " << dist;
+      }
+    }
+}
+
+// sslrBeyondDepth compares view depths (distRay > k distFar + e) without converting them: the
+// answer must be the view depths' wherever they are 2% from the bound (float depth resolves far
+// less than that at these distances), in every convention, and a ray at infinity is beyond.
+TEST(CurvedSolids, BeyondDepthComparesViewDepths) {
+  for (DepthMode mode : {DepthMode::GlDefault, DepthMode::ZeroToOne, DepthMode::Reversed, DepthMode::ReversedInfinite})
+    for (bool ortho : {false, true}) {
+      const Frame s = frameFor(mode, ortho);
+      for (float distFar : {0.3f, 2.0f, 20.0f, 100.0f})
+        for (float k : {1.0f, 1.075f, 1.3f})
+          for (float e : {0.0f, 0.05f * distFar, -0.02f * distFar}) {
+            const float bound = k * distFar + e;
+            const float farDepth = sslrDepthFromViewDepth(s.proj, distFar);
+            const float nearerDepth = sslrDepthFromViewDepth(s.proj, 0.98f * bound);
+            const float fartherDepth = sslrDepthFromViewDepth(s.proj, 1.02f * bound);
+            EXPECT_FALSE(sslrBeyondDepth(s.proj, nearerDepth, farDepth, k, e))
+                << toString(mode) << (ortho ? " ortho" : " persp") << " distFar " << distFar << " k " << k << " e " << e;
+            EXPECT_TRUE(sslrBeyondDepth(s.proj, fartherDepth, farDepth, k, e))
+                << toString(mode) << (ortho ? " ortho" : " persp") << " distFar " << distFar << " k " << k << " e " << e;
+          }
+      if (!ortho && mode == DepthMode::ReversedInfinite) {  // depth 0: infinitely far; below: beyond it
+        const float farDepth = sslrDepthFromViewDepth(s.proj, 100.0f);
+        EXPECT_TRUE(sslrBeyondDepth(s.proj, 0.0f, farDepth, 1.3f, 5.0f));
+        EXPECT_TRUE(sslrBeyondDepth(s.proj, -1e-3f, farDepth, 1.3f, 5.0f));
       }
     }
 }
