@@ -37,7 +37,7 @@ namespace sslr::shared {
 // assumed thickness, distRay - distFar > max(tolerance, slab) (+ extra: sslrJudgePixel's solid).
 // The tolerance's slope term is unknown before a pixel is looked at: the largest one, tan = 16, is
 // assumed. Both bounds are affine in distFar (sslrHitTolerance), which keeps the step free of
-// divisions (sslrBeyondDepth).
+// divisions that depend on the ray (sslrBeyondDepth).
 SSLR_FN bool sslrPassesBehindCell(SslrProjection p, SslrSurface s, SslrTraceParams t, float keySign, float segNear,
                                   float keyFar, float extra) {
   float farDepth = keySign * keyFar;

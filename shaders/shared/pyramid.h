@@ -88,8 +88,9 @@ SSLR_FN float sslrInvViewDepthFromDepth(SslrProjection p, float depth) {
 
 // Whether a ray at window depth rayDepth lies farther than k x the view depth of farDepth plus e
 // (view units). Perspective: 1 / distance is affine in depth (sslrInvViewDepthFromDepth), so
-// distRay > k distFar + e reads invFar > invRay (k + e invFar), without a division; a ray at or
-// beyond infinite distance (invRay <= 0) is beyond.
+// distRay > k distFar + e reads invFar > invRay (k + e invFar): the only division is by the
+// projection's constant, the same for every ray and step. A ray at or beyond infinite distance
+// (invRay <= 0) is beyond.
 SSLR_FN bool sslrBeyondDepth(SslrProjection p, float rayDepth, float farDepth, float k, float e) {
   if (sslrOrthographic(p)) return sslrViewDepthFromDepth(p, rayDepth) > k * sslrViewDepthFromDepth(p, farDepth) + e;
   float invFar = sslrInvViewDepthFromDepth(p, farDepth);
