@@ -42,10 +42,9 @@ SSLR_FN bool sslrPassesBehindCell(SslrProjection p, SslrSurface s, SslrTracePara
                                   float keyFar, float extra) {
   float farDepth = keySign * keyFar;
   if (!(segNear > keyFar && sslrIsGeometryDepth(s, farDepth))) return false;
-  // tolerance16(dist) = tolPerDist x dist + tolFixed (one of the two terms per projection kind).
-  float footprintTan16 = SSLR_HIT_TOLERANCE_PIXELS * 17.0f * sslrPixelFootprint(p, s.height, 1.0f);
-  float tolPerDist = SSLR_HIT_TOLERANCE_RELATIVE + (sslrOrthographic(p) ? 0.0f : footprintTan16);
-  float tolFixed = sslrOrthographic(p) ? footprintTan16 : 0.0f;
+  // The tolerance is affine in the distance: its value at 0 and its growth per unit.
+  float tolFixed = sslrHitTolerance(p, s, 0.0f, 16.0f);
+  float tolPerDist = sslrHitTolerance(p, s, 1.0f, 16.0f) - tolFixed;
   float rayDepth = keySign * segNear;
   float tolExtra = sslrBackDepth(s) ? 0.0f : extra;  // a measured extra is the solid's; a curved one adds
   return sslrBeyondDepth(p, rayDepth, farDepth, 1.0f + tolPerDist, tolFixed + tolExtra) &&
