@@ -57,6 +57,13 @@ SSLR_FN ivec2 sslrPixelFromUv(vec2 uv, vec2 sizePx) {
   return clamp(ivec2(floor(uv * sizePx)), ivec2(0), ivec2(sizePx) - 1);
 }
 
+// Perspective: ndcZ + zScale of a window depth, as ndcScale * (depth - d_inf) (see
+// SslrProjection::infDepthHi); it equals zOffset / dist, dist the view distance along -z.
+SSLR_FN float sslrNdcZPlusZScale(SslrProjection p, float depth) {
+  float ndcScale = sslrNdcZeroToOne(p) ? 1.0f : 2.0f;
+  return ndcScale * ((depth - p.infDepthHi) - p.infDepthLo);
+}
+
 // View-space position from ndc, exact for both projection kinds (see SslrProjection).
 // Perspective: dist = zOffset / (ndcZ + zScale) is the view distance along -z; x and y follow.
 SSLR_FN vec3 sslrViewFromNdc(SslrProjection p, vec2 ndcXY, float ndcZ) {
@@ -64,10 +71,7 @@ SSLR_FN vec3 sslrViewFromNdc(SslrProjection p, vec2 ndcXY, float ndcZ) {
     return vec3((ndcXY.x - p.xOffset) / p.xScale, (ndcXY.y - p.yOffset) / p.yScale,
                 (ndcZ - p.zOffset) / p.zScale);
   }
-  float depth = sslrDepthFromNdcZ(p, ndcZ);
-  float ndcScale = sslrNdcZeroToOne(p) ? 1.0f : 2.0f;
-  // ndcZ + zScale = ndcScale * (depth - d_inf), see SslrProjection::infDepthHi.
-  float dist = p.zOffset / (ndcScale * ((depth - p.infDepthHi) - p.infDepthLo));
+  float dist = p.zOffset / sslrNdcZPlusZScale(p, sslrDepthFromNdcZ(p, ndcZ));
   return vec3(dist * (ndcXY.x + p.xOffset) / p.xScale, dist * (ndcXY.y + p.yOffset) / p.yScale,
               -dist);
 }

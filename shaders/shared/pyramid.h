@@ -80,10 +80,9 @@ SSLR_FN float sslrViewDepthFromDepth(SslrProjection p, float depth) {
   return -sslrViewFromNdc(p, vec2(0.0f), sslrNdcZFromDepth(p, depth)).z;
 }
 
-// Perspective: 1 / sslrViewDepthFromDepth, affine in depth (see sslrViewFromNdc).
+// Perspective: 1 / sslrViewDepthFromDepth, affine in depth.
 SSLR_FN float sslrInvViewDepthFromDepth(SslrProjection p, float depth) {
-  float ndcScale = sslrNdcZeroToOne(p) ? 1.0f : 2.0f;
-  return ndcScale * ((depth - p.infDepthHi) - p.infDepthLo) / p.zOffset;
+  return sslrNdcZPlusZScale(p, depth) / p.zOffset;
 }
 
 // Whether a ray at window depth rayDepth lies farther than k x the view depth of farDepth plus e

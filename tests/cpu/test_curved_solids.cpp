@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "shared_frame.hpp"
 
@@ -179,10 +180,10 @@ TEST(CurvedSolids, BeyondDepthComparesViewDepths) {
             const float farDepth = sslrDepthFromViewDepth(s.proj, distFar);
             const float nearerDepth = sslrDepthFromViewDepth(s.proj, 0.98f * bound);
             const float fartherDepth = sslrDepthFromViewDepth(s.proj, 1.02f * bound);
-            EXPECT_FALSE(sslrBeyondDepth(s.proj, nearerDepth, farDepth, k, e))
-                << toString(mode) << (ortho ? " ortho" : " persp") << " distFar " << distFar << " k " << k << " e " << e;
-            EXPECT_TRUE(sslrBeyondDepth(s.proj, fartherDepth, farDepth, k, e))
-                << toString(mode) << (ortho ? " ortho" : " persp") << " distFar " << distFar << " k " << k << " e " << e;
+            const std::string where = std::string(toString(mode)) + (ortho ? " ortho" : " persp") + " distFar " +
+                                      std::to_string(distFar) + " k " + std::to_string(k) + " e " + std::to_string(e);
+            EXPECT_FALSE(sslrBeyondDepth(s.proj, nearerDepth, farDepth, k, e)) << where;
+            EXPECT_TRUE(sslrBeyondDepth(s.proj, fartherDepth, farDepth, k, e)) << where;
           }
       if (!ortho && mode == DepthMode::ReversedInfinite) {  // depth 0: infinitely far; below: beyond it
         const float farDepth = sslrDepthFromViewDepth(s.proj, 100.0f);
