@@ -33,12 +33,12 @@ namespace sslr::shared {
 
 // The level after a skipped cell (or a tested pixel, level 0): one coarser when the ray enters a
 // new parent cell, else the same (the parent, containing the cell, could not have been skipped
-// whole).
+// whole). Cell indices are integer shifts of the pixel, floor(x / 2^k) = floor(x) >> k: no
+// division in the step.
 SSLR_FN int sslrHiZNextLevel(vec3 o, vec3 d, float tRay, vec2 cell, int level, int topLevel) {
   if (level >= topLevel) return topLevel;
-  float parentSize = float(2 << level);
-  vec2 parentNext = floor((vec2(o.x, o.y) + vec2(d.x, d.y) * tRay) / parentSize);
-  vec2 parentNow = floor(cell * 0.5f);
+  ivec2 parentNext = ivec2(floor(vec2(o.x, o.y) + vec2(d.x, d.y) * tRay)) >> (level + 1);
+  ivec2 parentNow = ivec2(cell) >> 1;
   return (parentNext.x != parentNow.x || parentNext.y != parentNow.y) ? level + 1 : level;
 }
 
@@ -61,6 +61,11 @@ struct SslrWalk {
   ivec2 slabPx;
   SslrVerdict slab;
   bool hidden;  // the ray is behind what the screen shows now (its last pixel or cell)
+  // Where the ray's current passage behind what the screen shows began (tGuess < 0: none), for
+  // the hidden guess: the window point whose colour it shows, and tRay there. Its uv and length
+  // are worked out once, after the walk (sslrWalkGuess), not in the step.
+  float tGuess;
+  vec2 wGuess;
   // The pixel sslrWalkToPixel reached: its cell, where the ray leaves it, the ray's nearest and
   // farthest depth keys in it, the cell's nearest key and the pixel's extra depth (level 0's .y).
   vec2 cell;
@@ -91,6 +96,8 @@ SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   w.slabPx = ivec2(0);
   w.slab = sslrNoVerdict();
   w.hidden = false;
+  w.tGuess = -1.0f;
+  w.wGuess = vec2(0.0f);
   w.cell = vec2(0.0f);
   w.tExit = 0.0f;
   w.segNear = 0.0f;
@@ -115,19 +122,28 @@ SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   return true;
 }
 
-// A hidden passage begins (Settings::traversal.hiddenGuess): where, and the ray's length there.
-SSLR_FN void sslrNoteHiddenStart(SslrProjection p, SslrTraceParams t, SslrWalk w, vec2 uv, vec3 vsP, vec3 vsR,
-                                 SSLR_INOUT(SslrHit) hit) {
-  if (!(t.hiddenGuess > 0.0f) || hit.LGuess != 0.0f) return;
-  hit.uvGuess = uv;
-  hit.LGuess = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRay, vsP, vsR);
+// A hidden passage begins (Settings::traversal.hiddenGuess) at window point wPoint, where the
+// ray is now.
+SSLR_FN void sslrNoteHiddenStart(SslrTraceParams t, SSLR_INOUT(SslrWalk) w, vec2 wPoint) {
+  if (!(t.hiddenGuess > 0.0f) || w.tGuess >= 0.0f) return;
+  w.tGuess = w.tRay;
+  w.wGuess = wPoint;
+}
+
+// The hidden guess's point (sslrNoteHiddenStart) as the hit record holds it: a uv and the ray's
+// length there (LGuess 0: the ray was in front).
+SSLR_FN SslrHit sslrWalkGuess(SslrProjection p, SslrWalk w, vec3 vsP, vec3 vsR, SslrHit hit) {
+  if (!(w.tGuess >= 0.0f)) return hit;
+  hit.uvGuess = w.wGuess / w.sizePx;
+  hit.LGuess = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tGuess, vsP, vsR);
+  return hit;
 }
 
 // One step of the walk over pyramid cells: a cell skipped or descended into (SSLR_WALK_ON), or a
 // pixel the ray does not pass in front of or far behind (SSLR_WALK_PIXEL: w.cell and the segment
 // fields are that pixel's).
-SSLR_FN int sslrWalkStep(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsP, vec3 vsR,
-                         SSLR_INOUT(SslrWalk) w, SSLR_INOUT(SslrHit) hit) {
+SSLR_FN int sslrWalkStep(SslrProjection p, SslrSurface s, SslrTraceParams t, SSLR_INOUT(SslrWalk) w,
+                         SSLR_INOUT(SslrHit) hit) {
   vec3 pos = w.o + w.d * w.tRay;
   bool onScreen = pos.x >= 0.0f && pos.y >= 0.0f && pos.x < w.sizePx.x && pos.y < w.sizePx.y;
   float depthPos = w.keySign * pos.z;  // behind the near plane or beyond the far one: off too
@@ -136,7 +152,7 @@ SSLR_FN int sslrWalkStep(SslrProjection p, SslrSurface s, SslrTraceParams t, vec
     return SSLR_WALK_ANSWERED;
   }
   float cellSize = float(1 << w.level);
-  w.cell = floor(vec2(pos.x, pos.y) / cellSize);
+  w.cell = vec2(ivec2(pos.x, pos.y) >> w.level);  // pos >= 0: the integer part is its floor
   vec2 texel = sslrLoadPyramidTexel(w.level, ivec2(w.cell));
   vec2 minMax = sslrHiZMinMax(w.level, texel);
   hit.iterations = w.i + 1;
@@ -159,9 +175,9 @@ SSLR_FN int sslrWalkStep(SslrProjection p, SslrSurface s, SslrTraceParams t, vec
   bool behindSkip = !skip && sslrPassesBehindCell(p, s, t, w.keySign, w.segNear, keyFar, w.extra);
   if (behindSkip) {
     w.hidden = true;
-    sslrNoteHiddenStart(p, t, w, vec2(pos.x, pos.y) / w.sizePx, vsP, vsR, hit);
+    sslrNoteHiddenStart(t, w, vec2(pos.x, pos.y));
   } else if (skip) {
-    hit.LGuess = 0.0f;  // in front again (or over background): not hidden
+    w.tGuess = -1.0f;  // in front again (or over background): not hidden
     w.hidden = false;
   }
   if (skip || behindSkip) {
@@ -184,10 +200,10 @@ SSLR_FN int sslrWalkStep(SslrProjection p, SslrSurface s, SslrTraceParams t, vec
 
 // The walk until the ray reaches a pixel to test (SSLR_WALK_PIXEL), runs out of steps or is
 // answered.
-SSLR_FN int sslrWalkToPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsP, vec3 vsR,
-                            SSLR_INOUT(SslrWalk) w, SSLR_INOUT(SslrHit) hit) {
+SSLR_FN int sslrWalkToPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, SSLR_INOUT(SslrWalk) w,
+                            SSLR_INOUT(SslrHit) hit) {
   for (; w.i < t.maxSteps; ++w.i) {
-    int step = sslrWalkStep(p, s, t, vsP, vsR, w, hit);
+    int step = sslrWalkStep(p, s, t, w, hit);
     if (step != SSLR_WALK_ON) return step;
   }
   return SSLR_WALK_ENDED;
@@ -223,11 +239,11 @@ SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, iv
     return SSLR_WALK_ENDED;
   }
   if (v.kind == SSLR_VERDICT_IN_FRONT) {
-    hit.LGuess = 0.0f;
+    w.tGuess = -1.0f;
     w.hidden = false;
   } else if (v.kind == SSLR_VERDICT_BEHIND) {  // passed behind what the pixel shows
     w.hidden = true;
-    sslrNoteHiddenStart(p, t, w, (vec2(c.px) + 0.5f) / w.sizePx, vsP, vsR, hit);
+    sslrNoteHiddenStart(t, w, vec2(c.px) + 0.5f);
   }
   w.tRay = w.tExit + SSLR_HIZ_NUDGE;
   w.level = sslrHiZNextLevel(w.o, w.d, w.tRay, w.cell, 0, w.topLevel);
@@ -246,23 +262,26 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   // masks) the test then runs once for the lanes' pixels together instead of in every step.
   // SSLR_HIZ_ONE_BODY (ContextDesc::oneBodyTraversal) runs the same steps in one loop body
   // instead: a lane tests its pixel as soon as it reaches one, without waiting for the others.
+  bool answered = false;
   while (w.i < t.maxSteps) {
 #ifdef SSLR_HIZ_ONE_BODY
-    int walked = sslrWalkStep(p, s, t, vsP, vsR, w, hit);
+    int walked = sslrWalkStep(p, s, t, w, hit);
     if (walked == SSLR_WALK_ON) {
       ++w.i;
       continue;
     }
 #else
-    int walked = sslrWalkToPixel(p, s, t, vsP, vsR, w, hit);
+    int walked = sslrWalkToPixel(p, s, t, w, hit);
 #endif
-    if (walked == SSLR_WALK_ANSWERED) return hit;
-    if (walked == SSLR_WALK_ENDED) break;
+    answered = walked == SSLR_WALK_ANSWERED;
+    if (walked != SSLR_WALK_PIXEL) break;
     ++w.i;  // the test is the step that reached the pixel
     int tested = sslrTestPixel(p, s, t, pxOrigin, vsP, vsR, w, hit);
-    if (tested == SSLR_WALK_ANSWERED) return hit;
-    if (tested == SSLR_WALK_ENDED) break;
+    answered = tested == SSLR_WALK_ANSWERED;
+    if (tested != SSLR_WALK_PIXEL) break;
   }
+  hit = sslrWalkGuess(p, w, vsP, vsR, hit);
+  if (answered) return hit;
   // Out of steps in front of what the screen shows: adaptive L may resume there
   // (sslrProbeAfterWalk), the segment before it walked.
   if (w.i >= t.maxSteps && !w.inSlab && !w.hidden)
