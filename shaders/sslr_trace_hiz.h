@@ -60,12 +60,11 @@ struct SslrWalk {
   bool inSlab;        // the walk ended inside what pixel slabPx shows, with the verdict `slab`
   ivec2 slabPx;
   SslrVerdict slab;
-  bool hidden;  // the ray is behind what the screen shows now (its last pixel or cell)
-  // Where the ray's current passage behind what the screen shows began (tGuess < 0: none), for
-  // the hidden guess: the window point whose colour it shows, and tRay there. Its uv and length
-  // are worked out once, after the walk (sslrWalkGuess), not in the step.
-  float tGuess;
-  vec2 wGuess;
+  // Where the ray's current passage behind what the screen shows (its last pixel or cell) began:
+  // tRay there (< 0: the ray is in front now) and the window point whose colour the hidden guess
+  // shows (sslrWalkGuess, after the walk).
+  float tHidden;
+  vec2 wHidden;
   // The pixel sslrWalkToPixel reached: its cell, where the ray leaves it, the ray's nearest and
   // farthest depth keys in it, the cell's nearest key and the pixel's extra depth (level 0's .y).
   vec2 cell;
@@ -95,9 +94,8 @@ SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   w.inSlab = false;
   w.slabPx = ivec2(0);
   w.slab = sslrNoVerdict();
-  w.hidden = false;
-  w.tGuess = -1.0f;
-  w.wGuess = vec2(0.0f);
+  w.tHidden = -1.0f;
+  w.wHidden = vec2(0.0f);
   w.cell = vec2(0.0f);
   w.tExit = 0.0f;
   w.segNear = 0.0f;
@@ -122,20 +120,21 @@ SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   return true;
 }
 
-// A hidden passage begins (Settings::traversal.hiddenGuess) at window point wPoint, where the
-// ray is now.
-SSLR_FN void sslrNoteHiddenStart(SslrTraceParams t, SSLR_INOUT(SslrWalk) w, vec2 wPoint) {
-  if (!(t.hiddenGuess > 0.0f) || w.tGuess >= 0.0f) return;
-  w.tGuess = w.tRay;
-  w.wGuess = wPoint;
+// The ray is behind what the screen shows at window point wPoint: a hidden passage begins there
+// unless one goes on.
+SSLR_FN void sslrWalkGoesHidden(SSLR_INOUT(SslrWalk) w, vec2 wPoint) {
+  if (w.tHidden >= 0.0f) return;
+  w.tHidden = w.tRay;
+  w.wHidden = wPoint;
 }
 
-// The hidden guess's point (sslrNoteHiddenStart) as the hit record holds it: a uv and the ray's
-// length there (LGuess 0: the ray was in front).
-SSLR_FN SslrHit sslrWalkGuess(SslrProjection p, SslrWalk w, vec3 vsP, vec3 vsR, SslrHit hit) {
-  if (!(w.tGuess >= 0.0f)) return hit;
-  hit.uvGuess = w.wGuess / w.sizePx;
-  hit.LGuess = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tGuess, vsP, vsR);
+// Where the hidden guess (Settings::traversal.hiddenGuess) reads its colour, as the hit record
+// holds it: the uv where the current hidden passage began and the ray's length there (LGuess 0:
+// the ray ended in front, or no guess).
+SSLR_FN SslrHit sslrWalkGuess(SslrProjection p, SslrTraceParams t, SslrWalk w, vec3 vsP, vec3 vsR, SslrHit hit) {
+  if (!(t.hiddenGuess > 0.0f) || w.tHidden < 0.0f) return hit;
+  hit.uvGuess = w.wHidden / w.sizePx;
+  hit.LGuess = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tHidden, vsP, vsR);
   return hit;
 }
 
@@ -174,11 +173,9 @@ SSLR_FN int sslrWalkStep(SslrProjection p, SslrSurface s, SslrTraceParams t, SSL
   w.extra = w.level == 0 && (sslrCurvedSolids(t) || sslrBackDepth(s)) ? texel.y : 0.0f;
   bool behindSkip = !skip && sslrPassesBehindCell(p, s, t, w.keySign, w.segNear, keyFar, w.extra);
   if (behindSkip) {
-    w.hidden = true;
-    sslrNoteHiddenStart(t, w, vec2(pos.x, pos.y));
+    sslrWalkGoesHidden(w, vec2(pos.x, pos.y));
   } else if (skip) {
-    w.tGuess = -1.0f;  // in front again (or over background): not hidden
-    w.hidden = false;
+    w.tHidden = -1.0f;  // in front again (or over background)
   }
   if (skip || behindSkip) {
     // Look coarser only on entering a new parent cell: the parent of this one was (or will
@@ -220,7 +217,7 @@ SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, iv
   c.segFar = w.segFar;
   c.keySign = w.keySign;
   c.extra = w.extra;
-  c.hidden = w.hidden;
+  c.hidden = w.tHidden >= 0.0f;
   SslrVerdict v = sslrJudgePixel(p, s, t, pxOrigin, vsP, vsR, c);
   if (v.kind == SSLR_VERDICT_HIT) {
     if (!(v.L > t.maxDistance)) hit = sslrFinishHit(p, hit, vsP, vsR, v.L, v.valid);
@@ -238,13 +235,8 @@ SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, iv
     w.slabPx = c.px;
     return SSLR_WALK_ENDED;
   }
-  if (v.kind == SSLR_VERDICT_IN_FRONT) {
-    w.tGuess = -1.0f;
-    w.hidden = false;
-  } else if (v.kind == SSLR_VERDICT_BEHIND) {  // passed behind what the pixel shows
-    w.hidden = true;
-    sslrNoteHiddenStart(t, w, vec2(c.px) + 0.5f);
-  }
+  if (v.kind == SSLR_VERDICT_IN_FRONT) w.tHidden = -1.0f;
+  if (v.kind == SSLR_VERDICT_BEHIND) sslrWalkGoesHidden(w, vec2(c.px) + 0.5f);  // passed behind the pixel
   w.tRay = w.tExit + SSLR_HIZ_NUDGE;
   w.level = sslrHiZNextLevel(w.o, w.d, w.tRay, w.cell, 0, w.topLevel);
   return SSLR_WALK_PIXEL;
@@ -280,11 +272,11 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
     answered = tested == SSLR_WALK_ANSWERED;
     if (tested != SSLR_WALK_PIXEL) break;
   }
-  hit = sslrWalkGuess(p, w, vsP, vsR, hit);
+  hit = sslrWalkGuess(p, t, w, vsP, vsR, hit);
   if (answered) return hit;
   // Out of steps in front of what the screen shows: adaptive L may resume there
   // (sslrProbeAfterWalk), the segment before it walked.
-  if (w.i >= t.maxSteps && !w.inSlab && !w.hidden)
+  if (w.i >= t.maxSteps && !w.inSlab && w.tHidden < 0.0f)
     hit.LResume = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRay, vsP, vsR);
   if (!w.inSlab) return hit;
   // Ended inside what a pixel shows: the hit model answers from where the ray went in.
