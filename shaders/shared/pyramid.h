@@ -80,20 +80,15 @@ SSLR_FN float sslrViewDepthFromDepth(SslrProjection p, float depth) {
   return -sslrViewFromNdc(p, vec2(0.0f), sslrNdcZFromDepth(p, depth)).z;
 }
 
-// Perspective: 1 / sslrViewDepthFromDepth, affine in depth.
-SSLR_FN float sslrInvViewDepthFromDepth(SslrProjection p, float depth) {
-  return sslrNdcZPlusZScale(p, depth) / p.zOffset;
-}
-
 // Whether a ray at window depth rayDepth lies farther than k x the view depth of farDepth plus e
-// (view units). Perspective: 1 / distance is affine in depth (sslrInvViewDepthFromDepth), so
-// distRay > k distFar + e reads invFar > invRay (k + e invFar): the only division is by the
-// projection's constant, the same for every ray and step. A ray at or beyond infinite distance
-// (invRay <= 0) is beyond.
+// (view units). Perspective: 1 / distance = n / zOffset with n = sslrNdcZPlusZScale(depth), affine
+// in depth (sslrViewFromNdc), so distRay > k distFar + e reads invFar > invRay (k + e invFar),
+// here times zOffset^2 > 0: nFar zOffset > nRay (k zOffset + e nFar), without a division. A ray
+// at or beyond infinite distance (invRay <= 0) is beyond.
 SSLR_FN bool sslrBeyondDepth(SslrProjection p, float rayDepth, float farDepth, float k, float e) {
   if (sslrOrthographic(p)) return sslrViewDepthFromDepth(p, rayDepth) > k * sslrViewDepthFromDepth(p, farDepth) + e;
-  float invFar = sslrInvViewDepthFromDepth(p, farDepth);
-  return invFar > sslrInvViewDepthFromDepth(p, rayDepth) * (k + e * invFar);
+  float nFar = sslrNdcZPlusZScale(p, farDepth);
+  return nFar * p.zOffset > sslrNdcZPlusZScale(p, rayDepth) * (k * p.zOffset + e * nFar);
 }
 
 // Window depth of a view depth (-z): sslrViewDepthFromDepth's inverse.

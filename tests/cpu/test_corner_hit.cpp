@@ -675,6 +675,48 @@ TEST_F(HitModel, InsideASolidTheAnswerIsWhereTheRayWentIn) {
   EXPECT_EQ(met.L, 2.0f);
 }
 
+// The walk keeps where the ray last went out of sight (tHidden) and makes it the hidden guess's
+// uv and length after the walk (sslrWalkGuess). A ray from the far wall that runs left, a little
+// in front of the wall and far behind the box, goes out of sight at the box's outline (x = 130)
+// and leaves the screen still hidden: the guess is there. Behind a bar of 10 columns it comes out
+// in front of the wall again: no guess. With the guess off, none either.
+TEST_F(HitModel, TheHiddenGuessIsWhereTheRayLastWentOutOfSight) {
+  SslrTraceParams t = modelParams();
+  t.maxSteps = 200;
+  t.hiddenGuess = 0.5f;
+  const vec3 vsP = viewAt(250.5f, 90.5f, kWallZ);
+  const vec3 vsR = normalize(vec3(-1.0f, 0.0f, 0.02f));
+  const SslrHit hidden = sslrTraceHierarchical(gProj, gSurf, t, ivec2(250, 90), vsP, vsR);
+  EXPECT_EQ(hidden.status, SSLR_STATUS_OFF_SCREEN);
+  // It goes behind in the box's last column, [129, 130): its pixel's entry or centre.
+  EXPECT_GE(hidden.uvGuess.x * kWidth, 129.0f);
+  EXPECT_LE(hidden.uvGuess.x * kWidth, 130.0f);
+  EXPECT_NEAR(hidden.uvGuess.y * kHeight, 90.5f, 0.5f);
+  // Its length there lies between where the ray crosses x = 130 and x = 129 (it runs left).
+  auto lengthAtColumn = [&](float xPx) {
+    float lo = 0.0f, hi = 100.0f;
+    for (int i = 0; i < 80; ++i) {
+      const float mid = 0.5f * (lo + hi);
+      (sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP + vsR * mid).x > xPx ? lo : hi) = mid;
+    }
+    return hi;
+  };
+  EXPECT_GE(hidden.LGuess, 0.999f * lengthAtColumn(130.0f));
+  EXPECT_LE(hidden.LGuess, 1.001f * lengthAtColumn(129.0f));
+  const SslrHit guess = sslrHiddenGuess(t, hidden);
+  EXPECT_EQ(guess.status, SSLR_STATUS_HIT);
+  EXPECT_EQ(guess.guessed, 1);
+  EXPECT_EQ(guess.confidence, 0.5f);
+
+  t.hiddenGuess = 0.0f;
+  EXPECT_EQ(sslrTraceHierarchical(gProj, gSurf, t, ivec2(250, 90), vsP, vsR).LGuess, 0.0f) << "no guess asked for";
+  t.hiddenGuess = 0.5f;
+  gBarWidthPx = 10.0f;
+  const SslrHit past = sslrTraceHierarchical(gProj, gSurf, t, ivec2(250, 90), vsP, vsR);
+  EXPECT_EQ(past.status, SSLR_STATUS_OFF_SCREEN);
+  EXPECT_EQ(past.LGuess, 0.0f) << "in front of the wall again past the bar";
+}
+
 // The walk's thickness test at a cell (sslrPassesBehindCell) is the view-depth bound
 // distRay - distFar > max(tolerance at tan 16, slab) (+ a curved extra depth; a measured one
 // inside the max), in every convention: decided right wherever the ray is 2% from the bound.
