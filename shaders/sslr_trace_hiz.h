@@ -46,7 +46,8 @@ SSLR_FN int sslrHiZNextLevel(vec3 o, vec3 d, float tRay, vec2 cell, int level, i
 // key; t counts pixels along the major axis) and where the walk stands.
 struct SslrWalk {
   vec3 o, d;
-  vec2 invD;          // 1 / d.xy, huge but finite on an axis the ray does not move along
+  vec3 invD;          // 1 / d: huge but finite on an axis x, y the ray does not move along; z: 0
+                      // unless the ray moves away from the camera
   vec2 boundaryStep;  // 1 on an axis the ray moves up, 0 down: the cell boundary it leaves by
   vec2 sizePx;
   float keySign;      // -1 with reversed depth: keySign x depth grows away from the camera
@@ -84,7 +85,7 @@ SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, v
                            SSLR_OUT(SslrWalk) w) {
   w.sizePx = vec2(s.width, s.height);
   w.keySign = sslrReversedZ(s) ? -1.0f : 1.0f;
-  w.invD = vec2(0.0f);
+  w.invD = vec3(0.0f);
   w.boundaryStep = vec2(0.0f);
   w.tRay = 0.0f;
   w.level = 0;
@@ -107,11 +108,12 @@ SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   float majorPx = max(abs(w.d.x), abs(w.d.y));
   if (!(majorPx > 1e-3f)) return false;
   w.d /= majorPx;
-  w.invD = vec2(abs(w.d.x) > 1e-12f ? 1.0f / w.d.x : 1e12f, abs(w.d.y) > 1e-12f ? 1.0f / w.d.y : 1e12f);
+  w.invD = vec3(abs(w.d.x) > 1e-12f ? 1.0f / w.d.x : 1e12f, abs(w.d.y) > 1e-12f ? 1.0f / w.d.y : 1e12f,
+                w.d.z > 0.0f ? 1.0f / w.d.z : 0.0f);
   w.boundaryStep = vec2(w.d.x >= 0.0f ? 1.0f : 0.0f, w.d.y >= 0.0f ? 1.0f : 0.0f);
   // Leave the reflecting pixel first.
   vec2 cell0 = floor(vec2(w.o.x, w.o.y));
-  vec2 tBound0 = ((cell0 + w.boundaryStep) - vec2(w.o.x, w.o.y)) * w.invD;
+  vec2 tBound0 = ((cell0 + w.boundaryStep) - vec2(w.o.x, w.o.y)) * vec2(w.invD.x, w.invD.y);
   w.tRay = min(tBound0.x, tBound0.y) + SSLR_HIZ_NUDGE;
   // Level 0 is read only inside a 2x2 quad whose level-1 cell holds geometry (classification
   // writes no level-0 texels under a cell of background alone): the walk enters a new quad at
@@ -157,7 +159,7 @@ SSLR_FN int sslrWalkStep(SslrProjection p, SslrSurface s, SslrTraceParams t, SSL
   hit.iterations = w.i + 1;
   w.keyNear = min(w.keySign * minMax.x, w.keySign * minMax.y);
   float keyFar = max(w.keySign * minMax.x, w.keySign * minMax.y);
-  vec2 tBound = ((w.cell + w.boundaryStep) * cellSize - vec2(w.o.x, w.o.y)) * w.invD;
+  vec2 tBound = ((w.cell + w.boundaryStep) * cellSize - vec2(w.o.x, w.o.y)) * vec2(w.invD.x, w.invD.y);
   w.tExit = min(tBound.x, tBound.y);
   float keyExit = w.o.z + w.d.z * w.tExit;
   w.segNear = min(pos.z, keyExit);
@@ -188,7 +190,7 @@ SSLR_FN int sslrWalkStep(SslrProjection p, SslrSurface s, SslrTraceParams t, SSL
   if (w.level > 0) {
     // Move to where the ray reaches the cell's nearest depth (nothing in the cell is nearer),
     // then look finer.
-    if (w.d.z > 0.0f && pos.z < w.keyNear) w.tRay = max(w.tRay, (w.keyNear - w.o.z) / w.d.z);
+    if (w.d.z > 0.0f && pos.z < w.keyNear) w.tRay = max(w.tRay, (w.keyNear - w.o.z) * w.invD.z);
     --w.level;
     return SSLR_WALK_ON;
   }
