@@ -286,12 +286,13 @@ SSLR_FN bool sslrCurvedEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams
 // ---- The verdict at a pixel -------------------------------------------------------------------
 
 // What the walk hands the model at a pixel (level 0) it neither passes in front of nor far
-// behind: the pixel, the ray's nearest and farthest depth keys in it (window depth x keySign, -1
-// for reversed Z), the pixel's extra depth (level 0's .y: curved or measured; 0: none) and whether
+// behind: the pixel and its window depth (level 0's .x, the depth buffer's value: the walk has
+// read it), the ray's nearest and farthest depth keys in it (window depth x keySign, -1 for
+// reversed Z), the pixel's extra depth (level 0's .y: curved or measured; 0: none) and whether
 // the ray was out of sight (behind what the screen shows) when it got there.
 struct SslrCrossing {
   ivec2 px;
-  float segNear, segFar, keySign, extra;
+  float depth, segNear, segFar, keySign, extra;
   bool hidden;
 };
 
@@ -330,7 +331,7 @@ SSLR_FN SslrVerdict sslrJudgePixel(SslrProjection p, SslrSurface s, SslrTracePar
                                    vec3 vsR, SslrCrossing c) {
   SslrVerdict v = sslrNoVerdict();
   vec3 vsSurface;
-  if (!sslrLoadSurface(c.px, vsSurface)) return v;  // background: only a ray beyond the far plane gets here
+  if (!sslrSurfaceFromDepth(p, s, c.px, c.depth, vsSurface)) return v;  // background: only a ray beyond the far plane gets here
   vec3 vsSurfaceNormal;
   bool normalOk = sslrDecodeNormal(s, sslrLoadNormal(c.px), vsSurfaceNormal);
   bool ownPixel = c.px.x == pxOrigin.x && c.px.y == pxOrigin.y;

@@ -215,6 +215,7 @@ SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, iv
                           SSLR_INOUT(SslrWalk) w, SSLR_INOUT(SslrHit) hit) {
   SslrCrossing c;
   c.px = ivec2(w.cell);
+  c.depth = w.keySign * w.keyNear;  // level 0: (depth, depth)
   c.segNear = w.segNear;
   c.segFar = w.segFar;
   c.keySign = w.keySign;

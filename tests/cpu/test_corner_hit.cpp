@@ -558,6 +558,7 @@ class HitModel : public CornerHit {
     const vec3 vsP = viewAt(20.5f, 90.5f, zRay);
     SslrCrossing c;
     c.px = px;
+    c.depth = sslrLoadDepth(px);
     c.keySign = -1.0f;  // reversed Z
     c.segNear = c.segFar = -sslrDepthFromViewDepth(gProj, -zRay);
     c.extra = extra;
@@ -626,6 +627,7 @@ TEST_F(HitModel, ARayThatMeetsTheFaceInsideThePixelHitsIt) {
   const vec3 vsR = normalize(vsTarget - vsP);
   SslrCrossing c;
   c.px = ivec2(60, 90);
+  c.depth = sslrLoadDepth(c.px);
   c.keySign = -1.0f;
   c.segNear = -sslrDepthFromViewDepth(gProj, -kFrontZ + 0.01f);
   c.segFar = -sslrDepthFromViewDepth(gProj, -kFrontZ - 0.01f);
