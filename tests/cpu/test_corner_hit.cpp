@@ -14,7 +14,8 @@
 // sslrPlaneHit's contact line, whose plane must come from a pixel touching the mirror pixel, and
 // whose colour comes from the pixel beside it (sslrColorUv); a hit beside an outline lies off the
 // nearer face's plane (sslrGapToTexelPlane, which lobe rays read their colour by). The walk's
-// thickness test at a cell (sslrPassesBehindCell) against its view-depth bound. Its own executable:
+// thickness test at a cell (sslrPassesBehindCell) against its view-depth bound, and where its hidden
+// guess reads its colour (sslrWalkGuess). Its own executable:
 // it defines the loaders the tracer headers call, which sslr_host also defines for its CPU run.
 #include <gtest/gtest.h>
 
