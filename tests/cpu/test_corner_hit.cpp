@@ -116,8 +116,8 @@ class CornerHit : public ::testing::Test {
     return onRay * (viewZ / onRay.z);
   }
 
-  // Where a ray from vsP along vsR crosses window x = xPx (bisection on the ray's length).
-  static vec3 windowCrossing(vec3 vsP, vec3 vsR, float xPx) {
+  // The ray's length where a ray from vsP along vsR crosses window x = xPx (bisection).
+  static float lengthAtColumn(vec3 vsP, vec3 vsR, float xPx) {
     float lo = 0.0f, hi = 100.0f;
     const float sideP = sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP).x - xPx;
     for (int i = 0; i < 80; ++i) {
@@ -125,7 +125,11 @@ class CornerHit : public ::testing::Test {
       const float side = sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP + vsR * mid).x - xPx;
       ((side > 0.0f) == (sideP > 0.0f) ? lo : hi) = mid;
     }
-    return sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP + vsR * hi);
+    return hi;
+  }
+  // Where that ray crosses window x = xPx.
+  static vec3 windowCrossing(vec3 vsP, vec3 vsR, float xPx) {
+    return sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP + vsR * lengthAtColumn(vsP, vsR, xPx));
   }
 
   // Where the ray crosses window x = xPx, moved on by `nudge` pixels as the traversal's nudge
@@ -696,16 +700,8 @@ TEST_F(HitModel, TheHiddenGuessIsWhereTheRayLastWentOutOfSight) {
   EXPECT_LE(hidden.uvGuess.x * kWidth, 130.0f);
   EXPECT_NEAR(hidden.uvGuess.y * kHeight, 90.5f, 0.5f);
   // Its length there lies between where the ray crosses x = 130 and x = 129 (it runs left).
-  auto lengthAtColumn = [&](float xPx) {
-    float lo = 0.0f, hi = 100.0f;
-    for (int i = 0; i < 80; ++i) {
-      const float mid = 0.5f * (lo + hi);
-      (sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP + vsR * mid).x > xPx ? lo : hi) = mid;
-    }
-    return hi;
-  };
-  EXPECT_GE(hidden.LGuess, 0.999f * lengthAtColumn(130.0f));
-  EXPECT_LE(hidden.LGuess, 1.001f * lengthAtColumn(129.0f));
+  EXPECT_GE(hidden.LGuess, 0.999f * lengthAtColumn(vsP, vsR, 130.0f));
+  EXPECT_LE(hidden.LGuess, 1.001f * lengthAtColumn(vsP, vsR, 129.0f));
   const SslrHit guess = sslrHiddenGuess(t, hidden);
   EXPECT_EQ(guess.status, SSLR_STATUS_HIT);
   EXPECT_EQ(guess.guessed, 1);
