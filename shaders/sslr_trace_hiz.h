@@ -31,17 +31,6 @@
 namespace sslr::shared {
 #endif
 
-// The level after a skipped cell (or a tested pixel, level 0): one coarser when the ray enters a
-// new parent cell, else the same (the parent, containing the cell, could not have been skipped
-// whole). Cell indices are integer shifts of the pixel, floor(x / 2^k) = floor(x) >> k: no
-// division in the step.
-SSLR_FN int sslrHiZNextLevel(vec3 o, vec3 d, float tRay, vec2 cell, int level, int topLevel) {
-  if (level >= topLevel) return topLevel;
-  ivec2 parentNext = ivec2(floor(vec2(o.x, o.y) + vec2(d.x, d.y) * tRay)) >> (level + 1);
-  ivec2 parentNow = ivec2(cell) >> 1;
-  return (parentNext.x != parentNow.x || parentNext.y != parentNow.y) ? level + 1 : level;
-}
-
 // The traversal's state between its steps: the ray in window space (x, y in pixels, z the depth
 // key; t counts pixels along the major axis) and where the walk stands.
 struct SslrWalk {
@@ -71,6 +60,18 @@ struct SslrWalk {
   vec2 cell;
   float tExit, segNear, segFar, keyNear, extra;
 };
+
+// The level after the walk leaves cell w.cell of level w.level at w.tExit: one coarser when the
+// ray enters a new parent cell, else the same (the parent, containing the cell, could not have
+// been skipped whole). The boundary it leaves by is cell index `edge` on its axis (cell + 1 going
+// up, cell going down), and the next cell shares the parent exactly when that index is odd. A ray
+// that leaves through a corner is judged by the x axis alone: at worst it stays a level lower.
+SSLR_FN int sslrHiZNextLevel(SslrWalk w) {
+  if (w.level >= w.topLevel) return w.topLevel;
+  vec2 edge = w.cell + w.boundaryStep;
+  bool exitX = (edge.x * float(1 << w.level) - w.o.x) * w.invD.x <= w.tExit;
+  return (int(exitX ? edge.x : edge.y) & 1) == 0 ? w.level + 1 : w.level;
+}
 
 // How a step ended: at a pixel to test, with the walk over (out of steps, or inside a slab), or
 // with the hit record answered (a hit, off the screen, hidden).
@@ -108,17 +109,22 @@ SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   float majorPx = max(abs(w.d.x), abs(w.d.y));
   if (!(majorPx > 1e-3f)) return false;
   w.d /= majorPx;
-  w.invD = vec3(abs(w.d.x) > 1e-12f ? 1.0f / w.d.x : 1e12f, abs(w.d.y) > 1e-12f ? 1.0f / w.d.y : 1e12f,
+  // An axis the ray barely moves along is one it does not move along: its boundary is then never
+  // the one the ray leaves by (a tiny negative d with the up boundary's huge 1 / d would be).
+  if (!(abs(w.d.x) > 1e-12f)) w.d.x = 0.0f;
+  if (!(abs(w.d.y) > 1e-12f)) w.d.y = 0.0f;
+  w.invD = vec3(w.d.x != 0.0f ? 1.0f / w.d.x : 1e12f, w.d.y != 0.0f ? 1.0f / w.d.y : 1e12f,
                 w.d.z > 0.0f ? 1.0f / w.d.z : 0.0f);
   w.boundaryStep = vec2(w.d.x >= 0.0f ? 1.0f : 0.0f, w.d.y >= 0.0f ? 1.0f : 0.0f);
   // Leave the reflecting pixel first.
-  vec2 cell0 = floor(vec2(w.o.x, w.o.y));
-  vec2 tBound0 = ((cell0 + w.boundaryStep) - vec2(w.o.x, w.o.y)) * vec2(w.invD.x, w.invD.y);
-  w.tRay = min(tBound0.x, tBound0.y) + SSLR_HIZ_NUDGE;
+  w.cell = floor(vec2(w.o.x, w.o.y));
+  vec2 tBound0 = ((w.cell + w.boundaryStep) - vec2(w.o.x, w.o.y)) * vec2(w.invD.x, w.invD.y);
+  w.tExit = min(tBound0.x, tBound0.y);
+  w.tRay = w.tExit + SSLR_HIZ_NUDGE;
   // Level 0 is read only inside a 2x2 quad whose level-1 cell holds geometry (classification
   // writes no level-0 texels under a cell of background alone): the walk enters a new quad at
   // level 1, here and after each pixel it tested, as after a skip.
-  w.level = sslrHiZNextLevel(w.o, w.d, w.tRay, cell0, 0, w.topLevel);
+  w.level = sslrHiZNextLevel(w);
   return true;
 }
 
@@ -156,7 +162,6 @@ SSLR_FN int sslrWalkStep(SslrProjection p, SslrSurface s, SslrTraceParams t, SSL
   w.cell = vec2(ivec2(pos.x, pos.y) >> w.level);  // pos >= 0: the integer part is its floor
   vec2 texel = sslrLoadPyramidTexel(w.level, ivec2(w.cell));
   vec2 minMax = sslrHiZMinMax(w.level, texel);
-  hit.iterations = w.i + 1;
   w.keyNear = min(w.keySign * minMax.x, w.keySign * minMax.y);
   float keyFar = max(w.keySign * minMax.x, w.keySign * minMax.y);
   vec2 tBound = ((w.cell + w.boundaryStep) * cellSize - vec2(w.o.x, w.o.y)) * vec2(w.invD.x, w.invD.y);
@@ -167,9 +172,10 @@ SSLR_FN int sslrWalkStep(SslrProjection p, SslrSurface s, SslrTraceParams t, SSL
 #ifdef SSLR_HIZ_DEBUG_HOOK
   SSLR_HIZ_DEBUG_HOOK(w.i, w.level, w.cell, w.tRay, w.tExit, pos, keyExit, w.keyNear, keyFar);
 #endif
-  // In front of everything the cell shows, or a cell of background alone (nothing in it can
-  // stop a ray; classification writes no level-0 texels under such a level-1 cell): skip it.
-  bool skip = w.segFar < w.keyNear || (w.level > 0 && !sslrHiZCellHoldsGeometry(s, minMax));
+  // In front of everything the cell shows, or a cell of background alone (its nearest key is
+  // the clear value's: nothing in it can stop a ray, and classification writes no level-0 texels
+  // under such a level-1 cell): skip it.
+  bool skip = w.segFar < w.keyNear || w.keyNear >= sslrHiZBackgroundKey(s);
   // A pixel on a curved surface reaches deeper than the slab (coarse cells' far keys hold it).
   // With a back-face depth, the pixel's measured extra depth over the slab (either sign).
   w.extra = w.level == 0 && (sslrCurvedSolids(t) || sslrBackDepth(s)) ? texel.y : 0.0f;
@@ -184,7 +190,7 @@ SSLR_FN int sslrWalkStep(SslrProjection p, SslrSurface s, SslrTraceParams t, SSL
     // be) looked at already, and going up into it again costs a step just to come back down.
     w.tRun = -1.0f;
     w.tRay = w.tExit + SSLR_HIZ_NUDGE;
-    w.level = sslrHiZNextLevel(w.o, w.d, w.tRay, w.cell, w.level, w.topLevel);
+    w.level = sslrHiZNextLevel(w);
     return SSLR_WALK_ON;
   }
   if (w.level > 0) {
@@ -241,7 +247,7 @@ SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, iv
   if (v.kind == SSLR_VERDICT_IN_FRONT) w.tHidden = -1.0f;
   if (v.kind == SSLR_VERDICT_BEHIND) sslrWalkGoesHidden(w, vec2(c.px) + 0.5f);  // passed behind the pixel
   w.tRay = w.tExit + SSLR_HIZ_NUDGE;
-  w.level = sslrHiZNextLevel(w.o, w.d, w.tRay, w.cell, 0, w.topLevel);
+  w.level = sslrHiZNextLevel(w);  // w.level is 0 here
   return SSLR_WALK_PIXEL;
 }
 
@@ -275,6 +281,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
     answered = tested == SSLR_WALK_ANSWERED;
     if (tested != SSLR_WALK_PIXEL) break;
   }
+  hit.iterations = w.i;  // a step that found the ray off the screen counts none
   hit = sslrWalkGuess(p, t, w, vsP, vsR, hit);
   if (answered) return hit;
   // Out of steps in front of what the screen shows: adaptive L may resume there

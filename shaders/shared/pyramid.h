@@ -74,6 +74,11 @@ SSLR_FN bool sslrHiZCellHoldsGeometry(SslrSurface s, vec2 minMax) {
   return sslrIsGeometryDepth(s, sslrReversedZ(s) ? max(minMax.x, minMax.y) : min(minMax.x, minMax.y));
 }
 
+// The depth key (keySign x depth, larger = farther) of the clear value, which the pyramid stores
+// for every pixel that is not geometry (sslrHiZTexel): a cell whose nearest key is this holds no
+// geometry. Geometry's keys are all smaller (sslrIsGeometryDepth).
+SSLR_FN float sslrHiZBackgroundKey(SslrSurface s) { return sslrReversedZ(s) ? 0.0f : 1.0f; }
+
 // View distance (or orthographic -z) of a window depth: the tolerance and "how far behind" tests
 // of the traversal work in view units, like the adaptive-L tracer's.
 SSLR_FN float sslrViewDepthFromDepth(SslrProjection p, float depth) {

@@ -751,3 +751,41 @@ TEST(PassesBehindCell, IsTheViewDepthBound) {
                                           keySign * background, 0.0f));
       }
 }
+
+// After a skip the walk rises a level exactly when the ray enters a new parent cell
+// (sslrHiZNextLevel, from the boundary it leaves by): checked against the parent of the cell the
+// ray is in just past its exit, on rays in every direction (axis-aligned ones too) at levels 0-4.
+// Exits within 1e-3 px of a cell's corner are left out: there the rule may stay a level lower.
+TEST(WalkLevel, RisesExactlyWhenTheRayEntersANewParentCell) {
+  const float dirs[][2] = {{1.0f, 0.37f}, {-1.0f, 0.61f}, {0.23f, -1.0f}, {-0.8f, -1.0f}, {1.0f, 0.0f},
+                           {0.0f, -1.0f}, {-1.0f, 1.0f},  {1.0f, -0.999f}};
+  int rises = 0, stays = 0;
+  for (const auto& dir : dirs)
+    for (int level = 0; level <= 4; ++level)
+      for (int k = 0; k < 40; ++k) {
+        SslrWalk w{};
+        w.o = vec3(117.3f + 3.71f * float(k), 63.9f + 2.13f * float(k), 0.5f);
+        w.d = vec3(dir[0], dir[1], 0.0f);
+        w.invD = vec3(w.d.x != 0.0f ? 1.0f / w.d.x : 1e12f, w.d.y != 0.0f ? 1.0f / w.d.y : 1e12f, 0.0f);
+        w.boundaryStep = vec2(w.d.x >= 0.0f ? 1.0f : 0.0f, w.d.y >= 0.0f ? 1.0f : 0.0f);
+        w.level = level;
+        w.topLevel = 6;
+        const float size = float(1 << level), tRay = 0.77f * float(k);
+        w.cell = floor(vec2(w.o.x + w.d.x * tRay, w.o.y + w.d.y * tRay) / size);
+        const vec2 tBound = ((w.cell + w.boundaryStep) * size - vec2(w.o.x, w.o.y)) * vec2(w.invD.x, w.invD.y);
+        w.tExit = std::min(tBound.x, tBound.y);
+        if (std::abs(tBound.x - tBound.y) < 1e-3f) continue;
+        const float tPast = w.tExit + 1e-3f;
+        const vec2 next = floor(vec2(w.o.x + w.d.x * tPast, w.o.y + w.d.y * tPast) / size);
+        const bool newParent = floor(next.x / 2.0f) != floor(w.cell.x / 2.0f) ||
+                               floor(next.y / 2.0f) != floor(w.cell.y / 2.0f);
+        EXPECT_EQ(sslrHiZNextLevel(w), newParent ? level + 1 : level)
+            << "d (" << dir[0] << ", " << dir[1] << ") level " << level << " cell (" << w.cell.x << ", " << w.cell.y
+            << ")";
+        ++(newParent ? rises : stays);
+        w.topLevel = level;
+        EXPECT_EQ(sslrHiZNextLevel(w), level) << "at the top level the walk stays there";
+      }
+  EXPECT_GT(rises, 100);
+  EXPECT_GT(stays, 100);
+}

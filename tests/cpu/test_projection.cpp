@@ -2,6 +2,7 @@
 // for every depth convention, perspective and orthographic, centred and off-centre.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -289,6 +290,31 @@ TEST(Projection, BackgroundDepthIsNotGeometry) {
   EXPECT_FALSE(sslrIsGeometryDepth(standard, -0.5f));
   EXPECT_FALSE(sslrIsGeometryDepth(reversed, 1.5f));
   EXPECT_FALSE(sslrIsGeometryDepth(reversed, INFINITY));
+}
+
+// The traversal skips a cell whose nearest key (keySign x depth) is the background key; the
+// pyramid's passes ask sslrHiZCellHoldsGeometry. Both must agree on every cell the pyramid can
+// hold: any mix of geometry and of what the pyramid stores as background (the clear value, NaN,
+// depths outside [0, 1]).
+TEST(Projection, PyramidCellsOfBackgroundAloneHaveTheBackgroundKey) {
+  const float samples[] = {0.0f, 1e-30f, 0.25f, 0.999f, 1.0f, -0.5f, 1.5f, std::nanf(""), INFINITY};
+  for (int reversedZ : {0, 1}) {
+    SslrSurface s{};
+    s.reversedZ = reversedZ;
+    const float keySign = reversedZ ? -1.0f : 1.0f;
+    int background = 0, geometry = 0;
+    for (float a : samples)
+      for (float b : samples) {
+        const vec2 cell = sslrHiZReduce(sslrHiZTexel(s, a), sslrHiZTexel(s, b));
+        const float keyNear = std::min(keySign * cell.x, keySign * cell.y);
+        const bool holds = sslrIsGeometryDepth(s, a) || sslrIsGeometryDepth(s, b);
+        EXPECT_EQ(sslrHiZCellHoldsGeometry(s, cell), holds) << a << ", " << b << " reversed " << reversedZ;
+        EXPECT_EQ(keyNear >= sslrHiZBackgroundKey(s), !holds) << a << ", " << b << " reversed " << reversedZ;
+        ++(holds ? geometry : background);
+      }
+    EXPECT_GT(background, 0);
+    EXPECT_GT(geometry, 0);
+  }
 }
 
 }  // namespace
