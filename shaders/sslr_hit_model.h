@@ -46,6 +46,10 @@ SSLR_FN bool sslrPassesBehindCell(SslrProjection p, SslrSurface s, SslrTracePara
   float tolFixed = sslrHitTolerance(p, s, 0.0f, 16.0f);
   float tolPerDist = sslrHitTolerance(p, s, 1.0f, 16.0f) - tolFixed;
   float rayDepth = keySign * segNear;
+  // Perspective without a measured solid: both bounds are k x distFar + extra (the tolerance is
+  // 0 at distance 0), and the larger k decides alone.
+  if (!sslrOrthographic(p) && !sslrBackDepth(s))
+    return sslrBeyondDepth(p, rayDepth, farDepth, 1.0f + max(tolPerDist, t.objectDepthRelative), extra);
   float tolExtra = sslrBackDepth(s) ? 0.0f : extra;  // a measured extra is the solid's; a curved one adds
   return sslrBeyondDepth(p, rayDepth, farDepth, 1.0f + tolPerDist, tolFixed + tolExtra) &&
          sslrBeyondDepth(p, rayDepth, farDepth, 1.0f + t.objectDepthRelative, extra);

@@ -38,6 +38,7 @@ struct SslrWalk {
   vec3 invD;          // 1 / d: huge but finite on an axis x, y the ray does not move along; z: 0
                       // unless the ray moves away from the camera
   vec2 boundaryStep;  // 1 on an axis the ray moves up, 0 down: the cell boundary it leaves by
+  float tEnd;         // the ray is off the screen or out of the depth range [0, 1] from here on
   vec2 sizePx;
   float keySign;      // -1 with reversed depth: keySign x depth grows away from the camera
   float tRay;         // where the ray is
@@ -88,6 +89,7 @@ SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   w.keySign = sslrReversedZ(s) ? -1.0f : 1.0f;
   w.invD = vec3(0.0f);
   w.boundaryStep = vec2(0.0f);
+  w.tEnd = 0.0f;
   w.tRay = 0.0f;
   w.level = 0;
   w.topLevel = t.hizLevels;
@@ -116,6 +118,12 @@ SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   w.invD = vec3(w.d.x != 0.0f ? 1.0f / w.d.x : 1e12f, w.d.y != 0.0f ? 1.0f / w.d.y : 1e12f,
                 w.d.z > 0.0f ? 1.0f / w.d.z : 0.0f);
   w.boundaryStep = vec2(w.d.x >= 0.0f ? 1.0f : 0.0f, w.d.y >= 0.0f ? 1.0f : 0.0f);
+  // The screen edge the ray heads for, and the end of the key range [0, 1] x keySign it heads
+  // for; a nudge short of them, so that no rounding of o + d t reaches past the last pixel.
+  vec2 tEdge = (w.boundaryStep * w.sizePx - vec2(w.o.x, w.o.y)) * vec2(w.invD.x, w.invD.y);
+  float keyEnd = w.d.z > 0.0f ? max(w.keySign, 0.0f) : min(w.keySign, 0.0f);
+  float tDepth = w.d.z != 0.0f ? (keyEnd - w.o.z) / w.d.z : 1e30f;
+  w.tEnd = min(min(tEdge.x, tEdge.y), tDepth) - SSLR_HIZ_NUDGE;
   // Leave the reflecting pixel first.
   w.cell = floor(vec2(w.o.x, w.o.y));
   vec2 tBound0 = ((w.cell + w.boundaryStep) - vec2(w.o.x, w.o.y)) * vec2(w.invD.x, w.invD.y);
@@ -151,13 +159,12 @@ SSLR_FN SslrHit sslrWalkGuess(SslrProjection p, SslrTraceParams t, SslrWalk w, v
 // fields are that pixel's).
 SSLR_FN int sslrWalkStep(SslrProjection p, SslrSurface s, SslrTraceParams t, SSLR_INOUT(SslrWalk) w,
                          SSLR_INOUT(SslrHit) hit) {
-  vec3 pos = w.o + w.d * w.tRay;
-  bool onScreen = pos.x >= 0.0f && pos.y >= 0.0f && pos.x < w.sizePx.x && pos.y < w.sizePx.y;
-  float depthPos = w.keySign * pos.z;  // behind the near plane or beyond the far one: off too
-  if (!onScreen || !(depthPos >= 0.0f && depthPos <= 1.0f)) {
+  // Off the screen, or behind the near plane or beyond the far one (NaN too).
+  if (!(w.tRay < w.tEnd)) {
     hit.status = SSLR_STATUS_OFF_SCREEN;
     return SSLR_WALK_ANSWERED;
   }
+  vec3 pos = w.o + w.d * w.tRay;
   float cellSize = float(1 << w.level);
   w.cell = vec2(ivec2(pos.x, pos.y) >> w.level);  // pos >= 0: the integer part is its floor
   vec2 texel = sslrLoadPyramidTexel(w.level, ivec2(w.cell));
