@@ -14,8 +14,8 @@
 // sslrPlaneHit's contact line, whose plane must come from a pixel touching the mirror pixel, and
 // whose colour comes from the pixel beside it (sslrColorUv); a hit beside an outline lies off the
 // nearer face's plane (sslrGapToTexelPlane, which lobe rays read their colour by). The walk's
-// thickness test at a cell (sslrPassesBehindCell) against its view-depth bound, and where its hidden
-// guess reads its colour (sslrWalkGuess). Its own executable:
+// thickness test at a cell (sslrPassesBehindCell) against its view-depth bound, where its hidden
+// guess reads its colour (sslrWalkGuess) and where it ends at the screen's edge. Its own executable:
 // it defines the loaders the tracer headers call, which sslr_host also defines for its CPU run.
 #include <gtest/gtest.h>
 
@@ -66,7 +66,12 @@ bool sslrLoadSurface(ivec2 px, vec3& vsPos) { return sslrSurfaceFromDepth(gProj,
 // sslrCornerHit, sslrCurvedEntryHit and sslrRimEntryHit read level 0 alone; sslrSlabNearOutline
 // (gCoarseLevels) reads the levels above it, each cell the (min, max) of its pixels' depths.
 bool gCoarseLevels = false;
+int gFetchesOutside = 0;  // pyramid texels read outside their level's cells (none may be)
 vec2 sslrLoadPyramidTexel(int level, ivec2 cell) {
+  const int side = 1 << level;
+  if (cell.x < 0 || cell.y < 0 || cell.x >= (int(gSurf.width) + side - 1) / side ||
+      cell.y >= (int(gSurf.height) + side - 1) / side)
+    ++gFetchesOutside;
   if (level == 0) return sslrHiZLevel0Texel(gSurf, sslrLoadDepth(cell), gCurvedExtra);
   EXPECT_TRUE(gCoarseLevels) << "level " << level;
   vec2 minMax(1.0f, 0.0f);
@@ -104,6 +109,7 @@ class CornerHit : public ::testing::Test {
     gBoxOnLeft = true;
     gBarWidthPx = 0.0f;
     gCoarseLevels = false;
+    gFetchesOutside = 0;
     gWallZ = kWallZ;
     gCurvedExtra = 0.0f;
     gRimRecede = 0.0f;
@@ -714,6 +720,28 @@ TEST_F(HitModel, TheHiddenGuessIsWhereTheRayLastWentOutOfSight) {
   const SslrHit past = sslrTraceHierarchical(gProj, gSurf, t, ivec2(250, 90), vsP, vsR);
   EXPECT_EQ(past.status, SSLR_STATUS_OFF_SCREEN);
   EXPECT_EQ(past.LGuess, 0.0f) << "in front of the wall again past the bar";
+}
+
+// A ray the walk follows to the screen's edge, or out of the depth range (towards the camera),
+// ends there off the screen without reading a pyramid texel past the
+// screen: from next to each edge and from the middle, along the edge and across it, in front of
+// the wall all the way.
+TEST_F(HitModel, AWalkEndsAtTheScreensEdgeAndReadsNothingPastIt) {
+  SslrTraceParams t = modelParams();
+  t.maxSteps = 400;
+  gBoxOnLeft = false;
+  gEdgePx = 1e4f;  // the wall alone
+  const vec2 starts[] = {{2.5f, 2.5f}, {317.5f, 177.5f}, {160.5f, 90.5f}, {1.5f, 120.5f}, {300.5f, 0.5f}};
+  const vec3 dirs[] = {{-1.0f, 0.0f, 0.05f}, {1.0f, 0.0f, 0.05f},  {0.0f, -1.0f, 0.05f}, {0.0f, 1.0f, 0.05f},
+                       {1.0f, 0.3f, 0.05f},  {-0.7f, 1.0f, 0.05f}, {0.02f, 0.01f, 1.0f}};
+  for (vec2 start : starts)
+    for (vec3 dir : dirs) {
+      const vec3 vsP = viewAt(start.x, start.y, kWallZ);
+      const SslrHit hit = sslrTraceHierarchical(gProj, gSurf, t, ivec2(floor(start)), vsP, normalize(dir));
+      EXPECT_EQ(hit.status, SSLR_STATUS_OFF_SCREEN)
+          << "from (" << start.x << ", " << start.y << ") along (" << dir.x << ", " << dir.y << ", " << dir.z << ")";
+    }
+  EXPECT_EQ(gFetchesOutside, 0);
 }
 
 // The walk's thickness test at a cell (sslrPassesBehindCell) is the view-depth bound
