@@ -62,16 +62,16 @@ struct SslrWalk {
   float tExit, segNear, segFar, keyNear, extra;
 };
 
-// The level after the walk leaves cell w.cell of level w.level at w.tExit: one coarser when the
-// ray enters a new parent cell, else the same (the parent, containing the cell, could not have
-// been skipped whole). The boundary it leaves by is cell index `edge` on its axis (cell + 1 going
-// up, cell going down), and the next cell shares the parent exactly when that index is odd. A ray
-// that leaves through a corner is judged by the x axis alone: at worst it stays a level lower.
+// The level after the walk left cell w.cell of level w.level (w.tRay just past its boundary):
+// one coarser when the ray entered a new parent cell, else the same (the parent, containing the
+// cell, could not have been skipped whole). Cell indices are integer shifts of the pixel,
+// floor(x / 2^k) = floor(x) >> k: no division. A position off the screen truncates to the wrong
+// cell, but the next step ends the walk there whatever the level.
 SSLR_FN int sslrHiZNextLevel(SslrWalk w) {
   if (w.level >= w.topLevel) return w.topLevel;
-  vec2 edge = w.cell + w.boundaryStep;
-  bool exitX = (edge.x * float(1 << w.level) - w.o.x) * w.invD.x <= w.tExit;
-  return (int(exitX ? edge.x : edge.y) & 1) == 0 ? w.level + 1 : w.level;
+  ivec2 parentNext = ivec2(vec2(w.o.x, w.o.y) + vec2(w.d.x, w.d.y) * w.tRay) >> (w.level + 1);
+  ivec2 parentNow = ivec2(w.cell) >> 1;
+  return (parentNext.x != parentNow.x || parentNext.y != parentNow.y) ? w.level + 1 : w.level;
 }
 
 // How a step ended: at a pixel to test, with the walk over (out of steps, or inside a slab), or
@@ -179,10 +179,11 @@ SSLR_FN int sslrWalkStep(SslrProjection p, SslrSurface s, SslrTraceParams t, SSL
 #ifdef SSLR_HIZ_DEBUG_HOOK
   SSLR_HIZ_DEBUG_HOOK(w.i, w.level, w.cell, w.tRay, w.tExit, pos, keyExit, w.keyNear, keyFar);
 #endif
-  // In front of everything the cell shows, or a cell of background alone (its nearest key is
-  // the clear value's: nothing in it can stop a ray, and classification writes no level-0 texels
-  // under such a level-1 cell): skip it.
-  bool skip = w.segFar < w.keyNear || w.keyNear >= sslrHiZBackgroundKey(s);
+  // In front of everything the cell shows, or a coarse cell of background alone (its nearest key
+  // is the clear value's: nothing in it can stop a ray, and classification writes no level-0
+  // texels under such a level-1 cell): skip it. A background pixel that a ray at the far plane
+  // reaches goes to the hit model, which leaves a hidden passage going on (the guess pays there).
+  bool skip = w.segFar < w.keyNear || (w.level > 0 && w.keyNear >= sslrHiZBackgroundKey(s));
   // A pixel on a curved surface reaches deeper than the slab (coarse cells' far keys hold it).
   // With a back-face depth, the pixel's measured extra depth over the slab (either sign).
   w.extra = w.level == 0 && (sslrCurvedSolids(t) || sslrBackDepth(s)) ? texel.y : 0.0f;
@@ -254,7 +255,7 @@ SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, iv
   if (v.kind == SSLR_VERDICT_IN_FRONT) w.tHidden = -1.0f;
   if (v.kind == SSLR_VERDICT_BEHIND) sslrWalkGoesHidden(w, vec2(c.px) + 0.5f);  // passed behind the pixel
   w.tRay = w.tExit + SSLR_HIZ_NUDGE;
-  w.level = sslrHiZNextLevel(w);  // w.level is 0 here
+  w.level = sslrHiZNextLevel(w);
   return SSLR_WALK_PIXEL;
 }
 
