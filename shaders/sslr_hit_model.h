@@ -40,8 +40,10 @@ namespace sslr::shared {
 // divisions that depend on the ray (sslrBeyondDepth).
 SSLR_FN bool sslrPassesBehindCell(SslrProjection p, SslrSurface s, SslrTraceParams t, float keySign, float segNear,
                                   float keyFar, float extra) {
+  // A far key of background (the clear value, the end of the key range) has no ray behind it:
+  // the walk's rays stay inside the range.
+  if (!(segNear > keyFar)) return false;
   float farDepth = keySign * keyFar;
-  if (!(segNear > keyFar && sslrIsGeometryDepth(s, farDepth))) return false;
   // The tolerance is affine in the distance: its value at 0 and its growth per unit.
   float tolFixed = sslrHitTolerance(p, s, 0.0f, 16.0f);
   float tolPerDist = sslrHitTolerance(p, s, 1.0f, 16.0f) - tolFixed;
