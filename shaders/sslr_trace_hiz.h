@@ -52,10 +52,12 @@ struct SslrWalk {
   ivec2 slabPx;
   SslrVerdict slab;
   // Where the ray's current passage behind what the screen shows (its last pixel or cell) began:
-  // tRay there (< 0: the ray is in front now) and the window point whose colour the hidden guess
-  // shows (sslrWalkGuess, after the walk).
+  // tRay there (< 0: the ray is in front now). The hidden guess (sslrWalkGuess, after the walk)
+  // shows the colour of the ray's point there, or where a pixel test began it (tHiddenPx = tHidden),
+  // of the pixel's centre wHiddenPx: so the walk's loop keeps one value of it.
   float tHidden;
-  vec2 wHidden;
+  float tHiddenPx;
+  vec2 wHiddenPx;
   // The pixel sslrWalkToPixel reached: its cell, where the ray leaves it, the ray's nearest and
   // farthest depth keys in it, the cell's nearest key and the pixel's extra depth (level 0's .y).
   vec2 cell;
@@ -99,7 +101,8 @@ SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   w.slabPx = ivec2(0);
   w.slab = sslrNoVerdict();
   w.tHidden = -1.0f;
-  w.wHidden = vec2(0.0f);
+  w.tHiddenPx = -1.0f;
+  w.wHiddenPx = vec2(0.0f);
   w.cell = vec2(0.0f);
   w.tExit = 0.0f;
   w.segNear = 0.0f;
@@ -136,12 +139,9 @@ SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   return true;
 }
 
-// The ray is behind what the screen shows at window point wPoint: a hidden passage begins there
-// unless one goes on.
-SSLR_FN void sslrWalkGoesHidden(SSLR_INOUT(SslrWalk) w, vec2 wPoint) {
-  if (w.tHidden >= 0.0f) return;
-  w.tHidden = w.tRay;
-  w.wHidden = wPoint;
+// The ray is behind what the screen shows: a hidden passage begins here unless one goes on.
+SSLR_FN void sslrWalkGoesHidden(SSLR_INOUT(SslrWalk) w) {
+  if (w.tHidden < 0.0f) w.tHidden = w.tRay;
 }
 
 // Where the hidden guess (Settings::traversal.hiddenGuess) reads its colour, as the hit record
@@ -149,7 +149,8 @@ SSLR_FN void sslrWalkGoesHidden(SSLR_INOUT(SslrWalk) w, vec2 wPoint) {
 // the ray ended in front, or no guess).
 SSLR_FN SslrHit sslrWalkGuess(SslrProjection p, SslrTraceParams t, SslrWalk w, vec3 vsP, vec3 vsR, SslrHit hit) {
   if (!(t.hiddenGuess > 0.0f) || w.tHidden < 0.0f) return hit;
-  hit.uvGuess = w.wHidden / w.sizePx;
+  vec2 wPoint = w.tHidden == w.tHiddenPx ? w.wHiddenPx : vec2(w.o.x, w.o.y) + vec2(w.d.x, w.d.y) * w.tHidden;
+  hit.uvGuess = wPoint / w.sizePx;
   hit.LGuess = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tHidden, vsP, vsR);
   return hit;
 }
@@ -189,7 +190,7 @@ SSLR_FN int sslrWalkStep(SslrProjection p, SslrSurface s, SslrTraceParams t, SSL
   w.extra = w.level == 0 && (sslrCurvedSolids(t) || sslrBackDepth(s)) ? texel.y : 0.0f;
   bool behindSkip = !skip && sslrPassesBehindCell(p, s, t, w.keySign, w.segNear, keyFar, w.extra);
   if (behindSkip) {
-    sslrWalkGoesHidden(w, vec2(pos.x, pos.y));
+    sslrWalkGoesHidden(w);
   } else if (skip) {
     w.tHidden = -1.0f;  // in front again (or over background)
   }
@@ -253,7 +254,12 @@ SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, iv
     return SSLR_WALK_ENDED;
   }
   if (v.kind == SSLR_VERDICT_IN_FRONT) w.tHidden = -1.0f;
-  if (v.kind == SSLR_VERDICT_BEHIND) sslrWalkGoesHidden(w, vec2(c.px) + 0.5f);  // passed behind the pixel
+  // Passed behind the pixel: a hidden passage begins at its centre, unless one goes on.
+  if (v.kind == SSLR_VERDICT_BEHIND && w.tHidden < 0.0f) {
+    w.tHidden = w.tRay;
+    w.tHiddenPx = w.tRay;
+    w.wHiddenPx = vec2(c.px) + 0.5f;
+  }
   w.tRay = w.tExit + SSLR_HIZ_NUDGE;
   w.level = sslrHiZNextLevel(w);
   return SSLR_WALK_PIXEL;
