@@ -53,8 +53,8 @@ struct SslrWalk {
   SslrVerdict slab;
   // Where the ray's current passage behind what the screen shows (its last pixel or cell) began:
   // tRay there (< 0: the ray is in front now). The hidden guess (sslrWalkGuess, after the walk)
-  // shows the colour of the ray's point there, or where a pixel test began it (tHiddenPx = tHidden),
-  // of the pixel's centre wHiddenPx: so the walk's loop keeps one value of it.
+  // shows the colour at the ray's point there, or at the pixel's centre wHiddenPx where a pixel
+  // test began the passage (tHiddenPx == tHidden): the walk's loop carries tHidden alone.
   float tHidden;
   float tHiddenPx;
   vec2 wHiddenPx;
