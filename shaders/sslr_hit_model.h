@@ -337,7 +337,7 @@ SSLR_FN SslrVerdict sslrJudgePixel(SslrProjection p, SslrSurface s, SslrTracePar
                                    vec3 vsR, SslrCrossing c) {
   SslrVerdict v = sslrNoVerdict();
   vec3 vsSurface;
-  // Background: only a ray beyond the far plane gets here.
+  // Background: only a ray at the far plane gets here.
   if (!sslrSurfaceFromDepth(p, s, c.px, c.depth, vsSurface)) return v;
   vec3 vsSurfaceNormal;
   bool normalOk = sslrDecodeNormal(s, sslrLoadNormal(c.px), vsSurfaceNormal);

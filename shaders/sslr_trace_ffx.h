@@ -48,7 +48,7 @@ SSLR_FN vec2 sslrFfxMipSize(SslrSurface s, int level) {
 // The nearest depth key of cell `cell` at `level` (background and cells past the mip's size: the
 // farthest key, which nothing lies beyond).
 SSLR_FN float sslrFfxNearKey(SslrSurface s, int level, vec2 cell, float keySign, int pyramidTop) {
-  float farKey = keySign * (sslrReversedZ(s) ? 0.0f : 1.0f);
+  float farKey = keySign * sslrClearDepth(s);
   vec2 levelSize = sslrFfxMipSize(s, level);
   if (cell.x < 0.0f || cell.y < 0.0f || cell.x >= levelSize.x || cell.y >= levelSize.y) return farKey;
   if (level == 0) {
@@ -127,7 +127,7 @@ SSLR_FN SslrHit sslrTraceFfx(SslrProjection p, SslrSurface s, SslrTraceParams t,
   // texel there, and FFX's load returns background.
   ivec2 quadCell = texel / 2;
   vec2 mip1 = sslrFfxMipSize(s, 1);
-  float farDepth = sslrReversedZ(s) ? 0.0f : 1.0f;
+  float farDepth = sslrClearDepth(s);
   vec2 quad = float(quadCell.x) < mip1.x && float(quadCell.y) < mip1.y ? sslrLoadPyramidTexel(1, quadCell)
                                                                        : vec2(farDepth);
   float surfaceDepth = sslrReversedZ(s) ? max(quad.x, quad.y) : min(quad.x, quad.y);

@@ -139,9 +139,11 @@ SSLR_FN bool sslrWalkBegin(SslrProjection p, SslrSurface s, SslrTraceParams t, v
   return true;
 }
 
-// The ray is behind what the screen shows: a hidden passage begins here unless one goes on.
-SSLR_FN void sslrWalkGoesHidden(SSLR_INOUT(SslrWalk) w) {
-  if (w.tHidden < 0.0f) w.tHidden = w.tRay;
+// The ray is behind what the screen shows: a hidden passage begins here (true) unless one goes on.
+SSLR_FN bool sslrWalkGoesHidden(SSLR_INOUT(SslrWalk) w) {
+  if (w.tHidden >= 0.0f) return false;
+  w.tHidden = w.tRay;
+  return true;
 }
 
 // Where the hidden guess (Settings::traversal.hiddenGuess) reads its colour, as the hit record
@@ -255,8 +257,7 @@ SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, iv
   }
   if (v.kind == SSLR_VERDICT_IN_FRONT) w.tHidden = -1.0f;
   // Passed behind the pixel: a hidden passage begins at its centre, unless one goes on.
-  if (v.kind == SSLR_VERDICT_BEHIND && w.tHidden < 0.0f) {
-    w.tHidden = w.tRay;
+  if (v.kind == SSLR_VERDICT_BEHIND && sslrWalkGoesHidden(w)) {
     w.tHiddenPx = w.tRay;
     w.wHiddenPx = vec2(c.px) + 0.5f;
   }

@@ -41,6 +41,9 @@ SSLR_FN float sslrDepthFromNdcZ(SslrProjection p, float ndcZ) {
   return sslrNdcZeroToOne(p) ? ndcZ : ndcZ * 0.5f + 0.5f;
 }
 
+// The clear value: the farthest depth of the convention, what background holds.
+SSLR_FN float sslrClearDepth(SslrSurface s) { return sslrReversedZ(s) ? 0.0f : 1.0f; }
+
 // A depth sample that holds geometry: finite, inside [0,1] and not the clear value. NaN fails
 // every comparison and so counts as background (poisoned input never reaches the tracer).
 SSLR_FN bool sslrIsGeometryDepth(SslrSurface s, float depth) {

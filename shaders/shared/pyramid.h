@@ -55,7 +55,7 @@ SSLR_FN vec2 sslrHiZEmpty() { return vec2(2.0f, -1.0f); }
 // One depth texel as the pyramid stores it: background, NaN and out-of-range depth all become the
 // clear value (the farthest depth), so nothing that is not geometry can stop a ray.
 SSLR_FN vec2 sslrHiZTexel(SslrSurface s, float depth) {
-  float d = sslrIsGeometryDepth(s, depth) ? depth : (sslrReversedZ(s) ? 0.0f : 1.0f);
+  float d = sslrIsGeometryDepth(s, depth) ? depth : sslrClearDepth(s);
   return vec2(d, d);
 }
 
@@ -76,8 +76,9 @@ SSLR_FN bool sslrHiZCellHoldsGeometry(SslrSurface s, vec2 minMax) {
 
 // The depth key (keySign x depth, larger = farther) of the clear value, which the pyramid stores
 // for every pixel that is not geometry (sslrHiZTexel): a cell whose nearest key is this holds no
-// geometry. Geometry's keys are all smaller (sslrIsGeometryDepth).
-SSLR_FN float sslrHiZBackgroundKey(SslrSurface s) { return sslrReversedZ(s) ? 0.0f : 1.0f; }
+// geometry. Geometry's keys are all smaller (sslrIsGeometryDepth). It equals the clear value
+// itself: 1, or under reversed Z -1 x 0 = 0.
+SSLR_FN float sslrHiZBackgroundKey(SslrSurface s) { return sslrClearDepth(s); }
 
 // View distance (or orthographic -z) of a window depth: the tolerance and "how far behind" tests
 // of the traversal work in view units, like the adaptive-L tracer's.
