@@ -39,6 +39,8 @@ struct SslrHit {
                      // length where it went in (0: it did not)
   int guessed;       // 1: the answer is a guess where the ray went out of sight (sslrHiddenGuess,
                      // sslrSlabGuess), not a crossing: half resolution's other pixels do not reuse it
+  int endedInside;   // 1: the traversal's walk ended inside what a pixel shows (sslrJudgeInside
+                     // answers after it, in the second stage where that is a pass of its own)
 };
 
 // A hit record that says "nothing": the starting state of every tracer.
@@ -56,6 +58,7 @@ SSLR_FN SslrHit sslrNoHit(int status) {
   hit.LResume = 0.0f;
   hit.LSlab = 0.0f;
   hit.guessed = 0;
+  hit.endedInside = 0;
   return hit;
 }
 

@@ -304,7 +304,13 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   if (w.i >= t.maxSteps && !w.inSlab && w.tHidden < 0.0f)
     hit.LResume = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRay, vsP, vsR);
   if (!w.inSlab) return hit;
-  // Ended inside what a pixel shows: the hit model answers from where the ray went in.
+  // Ended inside what a pixel shows: the hit model answers from where the ray went in. A deferred
+  // first stage leaves that to the second stage, which walks the ray again: few rays end inside,
+  // and a SIMD CPU runs a program's every branch for every group of lanes, taken or not.
+  hit.endedInside = 1;
+#ifdef SSLR_DEFER_TRAVERSAL
+  return hit;
+#else
   SslrInside entered;
   entered.wEntry = w.o + w.d * w.tRun;
   entered.d = w.d;
@@ -312,6 +318,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   entered.px = w.slabPx;
   entered.verdict = w.slab;
   return sslrJudgeInside(p, s, t, vsP, vsR, hit, entered);
+#endif
 }
 
 // The depth-only tracer of a pixel (t.hizMode): adaptive L alone (SSLR_HIZ_OFF), the traversal
@@ -366,23 +373,30 @@ SSLR_FN SslrHit sslrProbeAfterWalk(SslrProjection p, SslrSurface s, SslrTracePar
   SslrHit answer = useProbed ? probed : walked;
   // Where it found nothing beyond an assumed slab, the slab's colour as a guess (sslrSlabGuess).
   if (answer.status != SSLR_STATUS_HIT) answer.LSlab = walked.LSlab;
+  answer.endedInside = walked.endedInside;
   answer.iterations = walked.iterations + probed.iterations;
   answer.hierarchical = 2;
   return answer;
 }
 
-// Whether the second stage ran for this answer (the pixels a deferred pass lists).
+// Whether the second stage ran for this answer, or would have in a pass of its own (the pixels a
+// deferred pass lists: those it probes and those whose walk ended inside what a pixel shows).
 SSLR_FN bool sslrRanSecondStage(SslrTraceParams t, SslrHit h) {
-  return sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST ? h.hierarchical == 2 : h.hierarchical != 0;
+  return sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST ? h.hierarchical == 2 || h.endedInside != 0
+                                                    : h.hierarchical != 0;
 }
 
 // The first stage's answer (traversal first: the traversal's; adaptive L alone: adaptive L's);
-// needsTraversal: the pixel's answer is sslrTraceSecondStage's instead.
+// needsTraversal: the pixel's answer is sslrTraceSecondStage's instead (a deferred first stage's:
+// the whole tracer's, run again by the retrace).
 SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
                                     vec3 vsR, SSLR_OUT(bool) needsTraversal) {
   needsTraversal = sslrHiZMode(t) != SSLR_HIZ_OFF;
   if (sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST) {  // the traversal first; the second stage probes
     SslrHit walked = sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
+#ifdef SSLR_DEFER_TRAVERSAL
+    if (walked.endedInside != 0) return walked;  // not answered here (sslrTraceHierarchical)
+#endif
     needsTraversal = sslrWalkedNeedsProbes(p, vsP, vsR, walked);
     return needsTraversal ? walked : sslrHiddenGuess(t, walked);
   }

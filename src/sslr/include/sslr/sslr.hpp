@@ -261,16 +261,18 @@ enum class Method {
                        // and hit validation for mirror rays (shaders/sslr_trace_ffx.h)
 };
 
-// Where Method::AdaptiveL's second tracer (adaptive L after the traversal) runs
-// (ContextDesc::traversalPass). The answers are the same.
+// Where Method::AdaptiveL's second stage runs (ContextDesc::traversalPass): adaptive L after the
+// traversal, and the hit model's answer for a ray whose walk ended inside what a pixel shows
+// (sslrJudgeInside). The answers are the same.
 enum class TraversalPass {
   Auto,      // Inline under DeviceProfile::Gpu. Under DeviceProfile::Software Deferred,
              // but Inline while more than about half the pixels (half resolution: quads) of the
-             // traced tiles needed the second tracer in the previous frame (deferring then costs
+             // traced tiles needed the second stage in the previous frame (deferring then costs
              // more than it saves)
-  Inline,    // in the pixel's own invocation, after the first tracer: GPUs
-  Deferred,  // a pass of its own over the pixels that need it: CPU rasterizers run code a pixel
-             // does not take under lane masks, so the second tracer inline slows every pixel
+  Inline,    // in the pixel's own invocation, after the walk: GPUs
+  Deferred,  // a pass of its own that traces the pixels that need it again, whole: CPU
+             // rasterizers run code a pixel does not take under lane masks, so the second stage
+             // inline slows every pixel
 };
 
 // Every setting with its unit and valid range; validate() enforces each range. Grouped by the
