@@ -437,6 +437,14 @@ SSLR_FN SslrHit sslrTraceAdaptiveLFrom(SslrProjection p, SslrSurface s, SslrTrac
     if (bracketClosed) break;
   }
   if (hit.iterations == 0) return hit;
+  // Where the ray went behind what the screen shows (the bracket's far end): adaptive L alone's
+  // hidden guess (sslrHiddenGuess). After the walk the walk's guess stands (sslrProbeAfterWalk).
+  vec3 vsHi = vsP + vsR * b.hi;
+  if (b.hi > 0.0f && sslrClipW(p, vsHi) > 0.0f) {
+    vec3 ndcHi = sslrNdcFromView(p, vsHi);
+    hit.uvGuess = sslrUvFromNdc(vec2(ndcHi.x, ndcHi.y));
+    hit.LGuess = b.hi;
+  }
   return sslrAdaptiveLAnswer(p, s, t, pxOrigin, vsP, vsR, hit, L, vsSurface, pxSurface);
 }
 

@@ -400,7 +400,7 @@ SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTracePa
     needsTraversal = sslrWalkedNeedsProbes(p, vsP, vsR, walked);
     return needsTraversal ? walked : sslrHiddenGuess(t, walked);
   }
-  return needsTraversal ? sslrNoHit(SSLR_STATUS_MISS) : sslrTraceAdaptiveL(p, s, t, pxOrigin, vsP, vsR);
+  return needsTraversal ? sslrNoHit(SSLR_STATUS_MISS) : sslrHiddenGuess(t, sslrTraceAdaptiveL(p, s, t, pxOrigin, vsP, vsR));
 }
 
 // The second stage (traversal first: adaptive L after the walk; the traversal alone: the walk),

@@ -50,8 +50,8 @@ uint sslrTraceQuad(uint slot, ivec2 quad) {
     int kind = SSLR_QUAD_HIT;
     if (confidence == 0.0f)
       kind = hit.status == SSLR_STATUS_MISS && hit.hierarchical == 0 ? SSLR_QUAD_OWN_RAYS : SSLR_QUAD_MISS;
-    else if (hit.guessed != 0)
-      kind = SSLR_QUAD_MISS;
+    else if (hit.guessed != 0)  // adaptive L alone's guess: each pixel's own ray may converge
+      kind = hit.hierarchical == 0 ? SSLR_QUAD_OWN_RAYS : SSLR_QUAD_MISS;
     quadHit = vec4(q.vsP + q.vsR * hit.L, sslrPackQuadCode(confidence, index, kind));
     quadSurface = vec4(sslrOctEncode(q.vsN), sslrOctEncode(vsHitNormal));
 #ifdef SSLR_COLLECT_STATS

@@ -28,7 +28,8 @@ SSLR_FN ivec2 sslrQuadOffset(int index) {
 //                     be a band along an edge (rays passing behind a box, beyond a mirror's end,
 //                     leaving the screen just past its border) that a pixel's own ray escapes.
 //                     A guess (SslrHit::guessed) is this kind with its confidence: the traced
-//                     pixel shows it, the others take it as a miss's band rule allows.
+//                     pixel shows it, the others take it as a miss's band rule allows (adaptive L
+//                     alone's guess is SSLR_QUAD_OWN_RAYS with its confidence).
 #define SSLR_QUAD_HIT 0
 #define SSLR_QUAD_OWN_RAYS 1
 #define SSLR_QUAD_MISS 2

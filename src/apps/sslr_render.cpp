@@ -215,7 +215,7 @@ void addTracerOptions(cxxopts::Options& options) {
        cxxopts::value<std::string>())
       ("hidden-guess", "a ray that ends without a hit where it went out of sight (behind what the screen shows, "
                        "or into an object's assumed thickness) gets the colour where it did, at this weight 0..1 "
-                       "(Settings::traversal.hiddenGuess; 0.5 in the medium, high and ultra presets, 0 = a miss)",
+                       "(Settings::traversal.hiddenGuess; 0.5 in every preset, 0 = a miss)",
        cxxopts::value<std::string>())
       ("max-luminance", "HDR-safe radiance: hit colours brighter than this luminance (display units) are scaled "
                         "down to it before the blur and temporal reuse (Settings::radianceClamp; default 0 = off)",

@@ -18,7 +18,6 @@ Settings Settings::preset(Preset preset) {
       s.adaptiveL.convergenceEps = 0.01f;
       s.adaptiveL.initialLengthScreen = 0.09f;
       s.traversal.maxSteps = 0;
-      s.traversal.hiddenGuess = 0.0f;
       s.fades.errorK = 0.0f;
       s.fades.screenEdge = 0.0075f;
       s.blur.maxRadiusPx = 4.0f;

@@ -321,9 +321,10 @@ struct Settings {
                                // where it went out of sight (behind what the screen shows, or into
                                // an object's assumed thickness) gets the colour where it did, at
                                // this weight: what the screen shows of the occluder standing in for
-                               // its hidden side, the rest the fallback. 0 = a miss
-                               // (Preset::Low). Not for GlossyMode::Stochastic's rays once
-                               // temporal reuse has a history (their mean over frames takes misses)
+                               // its hidden side, the rest the fallback. 0 = a miss. Adaptive L
+                               // alone (maxSteps = 0) guesses too, where its probes went behind.
+                               // Not for GlossyMode::Stochastic's rays once temporal reuse has a
+                               // history (their mean over frames takes misses)
   } traversal;
 
   // What weighs a hit's reflection down (never the hit itself).
