@@ -32,7 +32,8 @@ struct SslrHit {
   float fade;        // extra weight of the method (position buffer: the tutorial's fades), else 1
   int hierarchical;  // 1 when the hierarchical traversal ran for this pixel (alone or as fallback)
   vec2 uvGuess;      // the traversal: where the ray's current passage behind what the screen
-  float LGuess;      // shows began, and its length there (0: in front; sslrHiddenGuess)
+  float LGuess;      // shows began, and its length there (0: in front; sslrHiddenGuess);
+                     // adaptive L: its bracket's far end (0: no probe went behind)
   float LResume;     // the traversal ran out of steps in front of what the screen shows: the
                      // ray's length there, where adaptive L resumes (0: it did not)
   float LSlab;       // the traversal ended inside what a pixel shows (an assumed slab): the ray's
