@@ -33,7 +33,8 @@ struct SslrHit {
   int hierarchical;  // 1 when the hierarchical traversal ran for this pixel (alone or as fallback)
   vec2 uvGuess;      // the traversal: where the ray's current passage behind what the screen
   float LGuess;      // shows began, and its length there (0: in front; sslrHiddenGuess);
-                     // adaptive L: its bracket's far end (0: no probe went behind)
+                     // adaptive L: its bracket's far end (0: no probe went behind; the uv is
+                     // set by adaptive L alone's caller, sslrTraceFirstStage)
   float LResume;     // the traversal ran out of steps in front of what the screen shows: the
                      // ray's length there, where adaptive L resumes (0: it did not)
   float LSlab;       // the traversal ended inside what a pixel shows (an assumed slab): the ray's
@@ -439,13 +440,8 @@ SSLR_FN SslrHit sslrTraceAdaptiveLFrom(SslrProjection p, SslrSurface s, SslrTrac
   }
   if (hit.iterations == 0) return hit;
   // Where the ray went behind what the screen shows (the bracket's far end): adaptive L alone's
-  // hidden guess (sslrHiddenGuess). After the walk the walk's guess stands (sslrProbeAfterWalk).
-  vec3 vsHi = vsP + vsR * b.hi;
-  if (b.hi > 0.0f && sslrClipW(p, vsHi) > 0.0f) {
-    vec3 ndcHi = sslrNdcFromView(p, vsHi);
-    hit.uvGuess = sslrUvFromNdc(vec2(ndcHi.x, ndcHi.y));
-    hit.LGuess = b.hi;
-  }
+  // hidden guess, whose uv sslrTraceFirstStage takes (after the walk the walk's guess stands).
+  hit.LGuess = max(b.hi, 0.0f);
   return sslrAdaptiveLAnswer(p, s, t, pxOrigin, vsP, vsR, hit, L, vsSurface, pxSurface);
 }
 

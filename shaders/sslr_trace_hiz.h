@@ -400,7 +400,17 @@ SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTracePa
     needsTraversal = sslrWalkedNeedsProbes(p, vsP, vsR, walked);
     return needsTraversal ? walked : sslrHiddenGuess(t, walked);
   }
-  return needsTraversal ? sslrNoHit(SSLR_STATUS_MISS) : sslrHiddenGuess(t, sslrTraceAdaptiveL(p, s, t, pxOrigin, vsP, vsR));
+  if (needsTraversal) return sslrNoHit(SSLR_STATUS_MISS);
+  // Adaptive L alone: its guess shows where its probes went behind (LGuess), if in front of the camera.
+  SslrHit alone = sslrTraceAdaptiveL(p, s, t, pxOrigin, vsP, vsR);
+  vec3 vsGuess = vsP + vsR * alone.LGuess;
+  if (alone.LGuess > 0.0f && sslrClipW(p, vsGuess) > 0.0f) {
+    vec3 ndcGuess = sslrNdcFromView(p, vsGuess);
+    alone.uvGuess = sslrUvFromNdc(vec2(ndcGuess.x, ndcGuess.y));
+  } else {
+    alone.LGuess = 0.0f;
+  }
+  return sslrHiddenGuess(t, alone);
 }
 
 // The second stage (traversal first: adaptive L after the walk; the traversal alone: the walk),
