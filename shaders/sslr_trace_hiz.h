@@ -392,6 +392,7 @@ SSLR_FN bool sslrRanSecondStage(SslrTraceParams t, SslrHit h) {
 SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
                                     vec3 vsR, SSLR_OUT(bool) needsTraversal) {
   needsTraversal = sslrHiZMode(t) != SSLR_HIZ_OFF;
+#if SSLR_HIZ_MODE_MAY_BE(SSLR_HIZ_TRAVERSAL_FIRST)
   if (sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST) {  // the traversal first; the second stage probes
     SslrHit walked = sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR);
 #ifdef SSLR_DEFER_TRAVERSAL
@@ -400,7 +401,9 @@ SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTracePa
     needsTraversal = sslrWalkedNeedsProbes(p, vsP, vsR, walked);
     return needsTraversal ? walked : sslrHiddenGuess(t, walked);
   }
+#endif
   if (needsTraversal) return sslrNoHit(SSLR_STATUS_MISS);
+#if SSLR_HIZ_MODE_MAY_BE(SSLR_HIZ_OFF)
   // Adaptive L alone: its guess shows where its probes went behind (LGuess), if in front of the camera.
   SslrHit alone = sslrTraceAdaptiveL(p, s, t, pxOrigin, vsP, vsR);
   vec3 vsGuess = vsP + vsR * alone.LGuess;
@@ -411,15 +414,24 @@ SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTracePa
     alone.LGuess = 0.0f;
   }
   return sslrHiddenGuess(t, alone);
+#else
+  return sslrNoHit(SSLR_STATUS_MISS);  // (not reached: the mode is compiled in)
+#endif
 }
 
 // The second stage (traversal first: adaptive L after the walk; the traversal alone: the walk),
 // given the first stage's answer `first` for a pixel that needs it.
 SSLR_FN SslrHit sslrTraceSecondStage(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
                                      vec3 vsR, SslrHit first) {
+#if SSLR_HIZ_MODE_MAY_BE(SSLR_HIZ_TRAVERSAL_FIRST)
   if (sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST)
     return sslrSlabGuess(p, t, vsP, vsR, sslrHiddenGuess(t, sslrProbeAfterWalk(p, s, t, pxOrigin, vsP, vsR, first)));
+#endif
+#if SSLR_HIZ_MODE_MAY_BE(SSLR_HIZ_ONLY)
   return sslrHiddenGuess(t, sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR));
+#else
+  return first;  // (not reached: the mode is compiled in)
+#endif
 }
 
 SSLR_FN SslrHit sslrTraceDepthOnly(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin, vec3 vsP,
