@@ -77,9 +77,8 @@ SSLR_FN float sslrSlopeTan(SslrProjection p, vec3 vsSurface, vec3 vsSurfaceNorma
 
 // The traversal's role (SSLR_HIZ_*). The GPU passes get it compiled in (SSLR_HIZ_MODE, like the
 // inputs in sslrDecodeNormal), so that the paths a mode never takes are not in the program; the
-// C++ run reads the uniform. A tracer a mode never runs is also left out of the source
-// (#if SSLR_HIZ_MODE_MAY_BE(m)): a GLSL front end inlines every call before it folds the constant,
-// and compiles a whole copy of it first (results/ledger.md, "Compile").
+// C++ run reads the uniform. A stage a mode never runs is also left out of the source
+// (#if SSLR_HIZ_MODE_MAY_BE(m)), so that the GLSL front end never inlines it.
 SSLR_FN int sslrHiZMode(SslrTraceParams t) {
 #ifdef SSLR_HIZ_MODE
   return SSLR_HIZ_MODE;
