@@ -266,6 +266,17 @@ SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, iv
   return SSLR_WALK_PIXEL;
 }
 
+#ifdef SSLR_HIZ_OCCUPANCY_EXIT
+// ContextDesc::occupancyExit (GLSL only, GL_ARB_shader_ballot): the lanes of this invocation's
+// subgroup that are here, and how few of them may go on walking once the others are done
+// (FidelityFX SSSR's 4 of a 32-lane wave; a subgroup's eighth).
+uint sslrLanesHere() {
+  uvec2 lanes = unpackUint2x32(ballotARB(true));
+  return uint(bitCount(lanes.x) + bitCount(lanes.y));
+}
+#define SSLR_OCCUPANCY_EXIT_LANES max(1u, gl_SubGroupSizeARB / 8u)
+#endif
+
 SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin,
                                       vec3 vsP, vec3 vsR) {
   SslrHit hit = sslrNoHit(SSLR_STATUS_MISS);
@@ -278,8 +289,21 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   // masks) the test then runs once for the lanes' pixels together instead of in every step.
   // SSLR_HIZ_ONE_BODY (ContextDesc::oneBodyTraversal) runs the same steps in one loop body
   // instead: a lane tests its pixel as soon as it reaches one, without waiting for the others.
+  // SSLR_HIZ_OCCUPANCY_EXIT stops the walk of the last few lanes of a subgroup once the others
+  // are done (a GPU group costs its slowest lane): as at the step cap, adaptive L resumes there.
   bool answered = false;
+  bool stoppedShort = false;
+#ifdef SSLR_HIZ_OCCUPANCY_EXIT
+  uint lanesStarted = sslrLanesHere();
+#endif
   while (w.i < t.maxSteps) {
+#ifdef SSLR_HIZ_OCCUPANCY_EXIT
+    uint lanes = sslrLanesHere();
+    if (lanes < lanesStarted && lanes <= SSLR_OCCUPANCY_EXIT_LANES) {
+      stoppedShort = true;
+      break;
+    }
+#endif
 #ifdef SSLR_HIZ_ONE_BODY
     int walked = sslrWalkStep(p, s, t, w, hit);
     if (walked == SSLR_WALK_ON) {
@@ -299,9 +323,9 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   hit.iterations = w.i;  // a step that found the ray off the screen counts none
   hit = sslrWalkGuess(p, t, w, vsP, vsR, hit);
   if (answered) return hit;
-  // Out of steps in front of what the screen shows: adaptive L may resume there
+  // Out of steps (or stopped short) in front of what the screen shows: adaptive L may resume there
   // (sslrProbeAfterWalk), the segment before it walked.
-  if (w.i >= t.maxSteps && !w.inSlab && w.tHidden < 0.0f)
+  if ((w.i >= t.maxSteps || stoppedShort) && !w.inSlab && w.tHidden < 0.0f)
     hit.LResume = sslrRayLengthAt(p, w.sizePx, w.keySign, w.o, w.d, w.tRay, vsP, vsR);
   if (!w.inSlab) return hit;
   // Ended inside what a pixel shows: the hit model answers from where the ray went in. A deferred

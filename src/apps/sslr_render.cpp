@@ -211,6 +211,8 @@ void addTracerOptions(cxxopts::Options& options) {
       ("half-res", "one ray per 2x2 quad, reused by the quad's pixels on the same surface")
       ("one-body-traversal", "the traversal's walk and pixel tests in one loop body (for timing on a GPU; the "
                              "same hits: ContextDesc::oneBodyTraversal)")
+      ("occupancy-exit", "stop the traversal of the last eighth of a subgroup's lanes once the others are done, "
+                         "adaptive L resuming there (for timing on a GPU; other hits: ContextDesc::occupancyExit)")
       ("error-k", "classic Fresnel's error term: weight 1 - saturate(L / distance x K) (default 0.15; 0 = off)",
        cxxopts::value<std::string>())
       ("hidden-guess", "a ray that ends without a hit where it went out of sight (behind what the screen shows, "
@@ -357,6 +359,7 @@ void parseTracing(const cxxopts::ParseResult& args, RenderJob& job) {
   if (args.count("no-hiz-fallback")) settings.traversal.maxSteps = 0;  // adaptive L alone: no traversal
   if (args.count("half-res")) settings.halfResolution = true;
   if (args.count("one-body-traversal")) job.shapes.oneBodyTraversal = true;
+  if (args.count("occupancy-exit")) job.shapes.occupancyExit = true;
   settings.debug.outputs = job.dump || job.score;
   settings.debug.collectStats = args.count("stats") > 0;
   if (args.count("temporal")) settings.temporal.enabled = true;
@@ -461,7 +464,7 @@ Status writeImages(const NamedImages& files, const fs::path& outDir) {
 
 // --stats: tiles, traced pixels, fetches, the commands per pass, and the pass times.
 void printStats(const FrameStats& st, const std::vector<FrameStats>& laterStats, int frames, bool software,
-                DeviceProfile profile, bool oneBodyTraversal, const Settings& settings) {
+                DeviceProfile profile, const ContextDesc& shapes, const Settings& settings) {
   std::cout << "  tiles " << st.tiles << " (blurred " << st.blurTiles << "), traced pixels " << st.tracedPixels << ", fetches "
             << st.fetches << " (" << (st.tracedPixels ? double(st.fetches) / st.tracedPixels : 0.0)
             << " per traced pixel), hierarchical traversal on " << st.hierarchicalPixels << " ("
@@ -491,11 +494,11 @@ void printStats(const FrameStats& st, const std::vector<FrameStats>& laterStats,
               static_cast<unsigned long long>(frameWork.simt64), frameWork.longestChain,
               st.tracedPixels ? double(frameWork.laneSteps) / st.tracedPixels : 0.0);
   // What that work would cost an H100 (the model fitted to one; sslr_host/cost_model.hpp).
-  if (const std::optional<double> ms = predictedH100FrameMs(frameShapeOf(settings, profile, oneBodyTraversal, st), frameWork))
+  if (const std::optional<double> ms = predictedH100FrameMs(frameShapeOf(settings, profile, shapes, st), frameWork))
     std::printf("  predicted on an NVIDIA H100 (ray-work model, docs/results/gpu-h100.md): %.3f ms a frame\n", *ms);
   else
     std::printf("  predicted on an NVIDIA H100: not for this frame's shape (the model is fitted to the gpu profile, "
-                "full resolution, the traversal inline; --device-profile gpu)\n");
+                "full resolution, the traversal inline in two phases without the occupancy exit; --device-profile gpu)\n");
   // The texture memory each pass touched (FrameStats::*Traffic: a model from the counts and formats).
   std::printf("  texture traffic (MB read / written, modelled):");
   printPassTraffic(st);
@@ -696,7 +699,7 @@ int renderViews(const RenderJob& job, HeadlessContext& gl) {
             << " triangles) -> " << (job.outDir / "final-view0.png").string() << " .. final-view" << job.views - 1
             << ".png\n";
   if (stats) {
-    printStats(r.sslr().waitForStats(), laterStats, job.frames, gl.isSoftware(), r.sslr().device(), job.shapes.oneBodyTraversal,
+    printStats(r.sslr().waitForStats(), laterStats, job.frames, gl.isSoftware(), r.sslr().device(), job.shapes,
                job.settings);
     printFrameTimes(times);
   }
@@ -753,7 +756,7 @@ int render(const RenderJob& job) {
             << (job.outDir / "final.png").string() << (job.dump ? " + buffers" : "") << "\n";
   if (stats) {
     printStats(r.sslr().waitForStats(), laterStats, job.frames, gl.value()->isSoftware(), r.sslr().device(),
-               job.shapes.oneBodyTraversal, job.settings);
+               job.shapes, job.settings);
     printFrameTimes(times);
   }
   printScores(scores);

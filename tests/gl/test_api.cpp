@@ -91,6 +91,29 @@ TEST_F(Api, CreateRejectsBadDescriptions) {
   EXPECT_NE(c.error().find("glCreateTextures"), std::string::npos) << "names the missing entry points: " << c.error();
 }
 
+// ContextDesc::occupancyExit needs subgroup ballots: on a driver that lists neither extension (the
+// loader's glGetStringi answers for one that lists only GL_KHR_debug), create() says which are
+// missing and leaves no GL error; without the exit the same driver is fine.
+static const GLubyte* KHRONOS_APIENTRY onlyDebugExtension(GLenum, GLuint) { return reinterpret_cast<const GLubyte*>("GL_KHR_debug"); }
+
+TEST_F(Api, OccupancyExitNeedsSubgroupBallots) {
+  ContextDesc d;
+  d.width = 16;
+  d.height = 16;
+  d.getProcAddress = [](const char* name) -> GLProc {
+    if (std::strcmp(name, "glGetStringi") == 0) return reinterpret_cast<GLProc>(&onlyDebugExtension);
+    return HeadlessContext::getProcAddress()(name);
+  };
+  d.occupancyExit = true;
+  auto c = Context::create(d);
+  ASSERT_FALSE(c);
+  EXPECT_NE(c.error().find("occupancyExit needs GL_ARB_shader_ballot and GL_ARB_gpu_shader_int64"), std::string::npos)
+      << c.error();
+  EXPECT_EQ(sslr::test::glContext()->glErrorCount(), 0);
+  d.occupancyExit = false;
+  EXPECT_TRUE(Context::create(d));
+}
+
 TEST_F(Api, DispatchRejectsEveryBadInputWithAMessage) {
   auto ctx = makeContext();
   Frame f;

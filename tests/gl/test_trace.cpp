@@ -1042,6 +1042,55 @@ INSTANTIATE_TEST_SUITE_P(Scenes, OneBodyTraversal,
                                            PassCase{"thin-objects", false}, PassCase{"mirror-room", true}),
                          passCaseName);
 
+// ContextDesc::occupancyExit: once at most an eighth of a subgroup's lanes (4 of 32; the last of 8
+// on llvmpipe) still walk the traversal, they stop, and adaptive L answers them from where they
+// stopped, as at the step cap. So the exit must cut steps (fewer lane steps than the default's:
+// it ran) and keep most answers: recall within 0.03 of the default's (adaptive L from where a lane
+// stopped does not find every hit the walk would; results.md, "Tests that pin the accuracy"),
+// false hits within 0.5 points, nothing non-finite. A driver without subgroup ballots refuses the
+// shape (Api test); then skip.
+class OccupancyExit : public sslr::test::GlTest, public ::testing::WithParamInterface<const char*> {};
+
+TEST_P(OccupancyExit, StopsTheLastLanesAndAdaptiveLAnswersThem) {
+  auto scene = loadScene(GetParam());
+  ASSERT_TRUE(scene) << GetParam();
+  GBufferOptions o;
+  o.width = 256;
+  o.height = 144;
+  ContextDesc exitShapes;
+  exitShapes.traversalPass = TraversalPass::Inline;
+  exitShapes.occupancyExit = true;
+  if (auto probe = FrameRenderer::create(o, nullptr, exitShapes); !probe)
+    GTEST_SKIP() << "the driver refuses ContextDesc::occupancyExit: " << probe.error();
+  struct Run {
+    HitMetrics m;
+    RayWork work;
+  };
+  auto run = [&](bool exit) {
+    Settings s;
+    s.debug.collectStats = true;
+    ContextDesc shapes;
+    shapes.traversalPass = TraversalPass::Inline;
+    shapes.occupancyExit = exit;
+    const ScoredFrame f = renderScored(scene.value(), *scene.value().camera, o, s, shapes);
+    EXPECT_TRUE(f.renderer);
+    if (!f.renderer) return Run{};
+    return Run{compareHits(f.truth, f.hit), f.renderer->sslr().waitForStats().totalRayWork()};
+  };
+  const Run plain = run(false), exited = run(true);
+  std::printf("%s: default %.4f (false hits %.4f, lane steps %llu), occupancy exit %.4f (%.4f, %llu)\n", GetParam(),
+              plain.m.recall1px, plain.m.falseHitRate, (unsigned long long)plain.work.laneSteps, exited.m.recall1px,
+              exited.m.falseHitRate, (unsigned long long)exited.work.laneSteps);
+  ASSERT_GT(plain.work.laneSteps, 0u);
+  EXPECT_LT(exited.work.laneSteps, plain.work.laneSteps) << "the exit stopped no lane";
+  EXPECT_GE(exited.m.recall1px, plain.m.recall1px - 0.03);
+  EXPECT_LE(exited.m.falseHitRate, plain.m.falseHitRate + 0.005);
+  EXPECT_EQ(exited.m.nonFinite, 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, OccupancyExit, ::testing::Values("mirror-walls", "thin-objects", "grazing-plane"),
+                         sceneParamName);
+
 // TraversalPass::Auto on a software renderer defers the second stage (adaptive L after the
 // traversal), and runs it inline while the last frame had most of its traced tiles' pixels (at
 // half resolution: quads) needing it (mirror-room with a 2-step cap: nearly all of them; then at

@@ -58,6 +58,12 @@ void highVariants(std::vector<BenchConfig>& configs) {
   oneBody.oneBodyTraversal = true;
   oneBody.device = DeviceProfile::Gpu;
   configs.push_back(oneBody);
+  // FidelityFX SSSR's exit at low occupancy, in the Gpu profile's shapes, where the driver offers
+  // subgroup ballots (ContextDesc::occupancyExit; other hits than the default's).
+  BenchConfig occupancyExit{"adaptive-l", "high-gpu-occupancy-exit", Settings::preset(preset), false};
+  occupancyExit.occupancyExit = true;
+  occupancyExit.device = DeviceProfile::Gpu;
+  configs.push_back(occupancyExit);
   for (auto [label, device] : {std::pair{"high-gpu-profile", DeviceProfile::Gpu},
                                std::pair{"high-software-profile", DeviceProfile::Software}}) {
     BenchConfig shaped{"adaptive-l", label, Settings::preset(preset), false};

@@ -45,6 +45,7 @@ json settingsJson(const BenchConfig& c) {
           {"device", c.device == DeviceProfile::Gpu ? "gpu" : c.device == DeviceProfile::Software ? "software" : "auto"},
           {"traversal.hiddenGuess", s.traversal.hiddenGuess},
           {"oneBodyTraversal", c.oneBodyTraversal},
+          {"occupancyExit", c.occupancyExit},
           {"adaptiveL.convergenceEps", s.adaptiveL.convergenceEps},
           {"adaptiveL.initialLengthScreen", s.adaptiveL.initialLengthScreen}, 
           {"blur.maxRadiusPx", s.blur.maxRadiusPx},

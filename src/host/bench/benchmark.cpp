@@ -321,7 +321,7 @@ Expected<RunRecord> qualityRun(const BenchConfig& c, size_t i, const std::string
     r.frameStats = stats;
     r.fetchesPerTracedPixel = stats.tracedPixels ? double(stats.fetches) / stats.tracedPixels : 0.0;
     r.predictedH100Ms =
-        predictedH100FrameMs(frameShapeOf(c.settings, ctx->device(), c.oneBodyTraversal, stats), stats.totalRayWork()).value_or(NAN);
+        predictedH100FrameMs(frameShapeOf(c.settings, ctx->device(), c.shapes(), stats), stats.totalRayWork()).value_or(NAN);
     r.nonFiniteOutputs = countNonFinite(readTexture(ctx->reflectionTexture(), options.width, options.height, 4)) +
                          countNonFinite(readTexture(ctx->resolvedTexture(), options.width, options.height, 4));
     if (c.isDefault) {
@@ -383,6 +383,19 @@ Expected<std::vector<BenchConfig>> configsToRun(const BenchOptions& options) {
   if (!selected) return Status::error(selected.error());
   for (BenchConfig& c : selected.value())
     if (c.device == DeviceProfile::Auto) c.device = options.device;
+  // ContextDesc::occupancyExit needs subgroup ballots: where the driver has none, its
+  // configurations are left out (said on stderr) rather than failing the run.
+  std::vector<BenchConfig>& v = selected.value();
+  if (std::any_of(v.begin(), v.end(), [](const BenchConfig& c) { return c.occupancyExit; })) {
+    ContextDesc probe;
+    probe.width = probe.height = 8;
+    probe.getProcAddress = HeadlessContext::getProcAddress();
+    probe.occupancyExit = true;
+    if (auto ctx = Context::create(probe); !ctx) {
+      std::fprintf(stderr, "sslr-bench: leaving out the occupancy exit's configurations: %s\n", ctx.error().c_str());
+      v.erase(std::remove_if(v.begin(), v.end(), [](const BenchConfig& c) { return c.occupancyExit; }), v.end());
+    }
+  }
   return selected;
 }
 

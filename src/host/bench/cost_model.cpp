@@ -28,13 +28,15 @@ const Fit& fitFor(const FrameShape& shape) {
 
 }  // namespace
 
-FrameShape frameShapeOf(const Settings& settings, DeviceProfile device, bool oneBodyTraversal, const FrameStats& stats) {
-  return {settings.method, settings.traversal.maxSteps > 0, device, settings.halfResolution, stats.traversalDeferred,
-          oneBodyTraversal};
+FrameShape frameShapeOf(const Settings& settings, DeviceProfile device, const ContextDesc& shapes, const FrameStats& stats) {
+  return {settings.method,         settings.traversal.maxSteps > 0, device,
+          settings.halfResolution, stats.traversalDeferred,         shapes.oneBodyTraversal,
+          shapes.occupancyExit};
 }
 
 std::optional<double> predictedH100FrameMs(const FrameShape& shape, const RayWork& work) {
-  if (shape.device != DeviceProfile::Gpu || shape.halfResolution || shape.traversalDeferred || shape.oneBodyTraversal)
+  if (shape.device != DeviceProfile::Gpu || shape.halfResolution || shape.traversalDeferred || shape.oneBodyTraversal ||
+      shape.occupancyExit)
     return std::nullopt;
   const Fit& fit = fitFor(shape);
   return fit.a + fit.perChainStep * double(work.longestChain) + fit.perSimt32Step * double(work.simt32);

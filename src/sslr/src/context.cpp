@@ -2,6 +2,9 @@
 // of a size, resize and the public entry points. A frame is in frame.cpp and passes/*.cpp, the
 // composite in composite.cpp.
 #include <algorithm>
+#include <cstring>
+#include <initializer_list>
+#include <string>
 #include <vector>
 
 #include "context_impl.hpp"
@@ -162,12 +165,29 @@ static Status checkContextDesc(const ContextDesc& desc) {
   return {};
 }
 
+// Those of `names` the current context does not list among its extensions, joined by " and ".
+static std::string missingExtensions(const detail::Gl& gl, std::initializer_list<const char*> names) {
+  GLint count = 0;
+  gl.GetIntegerv(GL_NUM_EXTENSIONS, &count);
+  std::string missing;
+  for (const char* name : names) {
+    bool found = false;
+    for (GLint i = 0; i < count && !found; ++i) {
+      const GLubyte* listed = gl.GetStringi(GL_EXTENSIONS, static_cast<GLuint>(i));
+      found = listed != nullptr && std::strcmp(reinterpret_cast<const char*>(listed), name) == 0;
+    }
+    if (!found) missing += (missing.empty() ? "" : " and ") + std::string(name);
+  }
+  return missing;
+}
+
 Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
   if (Status s = checkContextDesc(desc); !s) return s;
   auto impl = std::make_unique<Impl>();
   impl->log = desc.log;
   impl->traversalPass = desc.traversalPass;
   impl->oneBodyTraversal = desc.oneBodyTraversal;
+  impl->occupancyExit = desc.occupancyExit;
   if (Status s = impl->gl.load(desc.getProcAddress); !s) {
     impl->gl = {};
     return s;
@@ -196,6 +216,13 @@ Expected<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
     impl->gl = {};
     return Status::error(StatusCode::GlUnavailable, "sslr: the GL implementation allows no storage blocks in vertex shaders "
                          "(GL_MAX_VERTEX_SHADER_STORAGE_BLOCKS = 0); composite needs one");
+  }
+  if (desc.occupancyExit) {
+    if (std::string missing = missingExtensions(gl, {"GL_ARB_shader_ballot", "GL_ARB_gpu_shader_int64"}); !missing.empty()) {
+      impl->gl = {};
+      return Status::error(StatusCode::GlUnavailable, "sslr: ContextDesc::occupancyExit needs " + missing +
+                           ", which the GL implementation does not offer");
+    }
   }
   impl->width = desc.width;
   impl->height = desc.height;

@@ -80,6 +80,7 @@ struct Context::Impl {
   bool softwareRenderer = false;  // DeviceProfile::Software (ContextDesc::device, or Auto on a CPU rasterizer)
   TraversalPass traversalPass = TraversalPass::Auto;  // ContextDesc's pass shapes
   bool oneBodyTraversal = false;
+  bool occupancyExit = false;
   int width = 0, height = 0;  // the textures' (inputs and outputs)
   // ContextDesc::views: with more than one, every texture and image is a 2D array of one layer a
   // view, the tile lists hold every view's entries and the full-screen dispatches have z = views.

@@ -346,6 +346,9 @@ Status Context::Impl::buildPrograms(FramePlan& f, const FrameInputs& in, const S
   const std::string curvedDefine = std::string("#define SSLR_CURVED_SOLIDS ") + (f.curvedSolids ? "1\n" : "0\n");
   methodDefines += curvedDefine;
   if (oneBodyTraversal) methodDefines += "#define SSLR_HIZ_ONE_BODY 1\n";
+  if (occupancyExit)
+    methodDefines += "#extension GL_ARB_shader_ballot : require\n#extension GL_ARB_gpu_shader_int64 : require\n"
+                     "#define SSLR_HIZ_OCCUPANCY_EXIT 1\n";
   if (settings.method == Method::PositionBuffer) methodDefines += "#define SSLR_METHOD_POSITION_BUFFER 1\n";
   if (settings.method == Method::ScreenSpaceDDA) methodDefines += "#define SSLR_METHOD_DDA 1\n";
   if (settings.method == Method::FidelityFxSssr) methodDefines += "#define SSLR_METHOD_FFX 1\n";

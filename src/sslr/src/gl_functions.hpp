@@ -20,6 +20,7 @@ namespace sslr::detail {
   X(PFNGLGETINTEGER64I_VPROC, GetInteger64i_v)                                   \
   X(PFNGLGETBOOLEANI_VPROC, GetBooleani_v)                                       \
   X(PFNGLGETSTRINGPROC, GetString)                                               \
+  X(PFNGLGETSTRINGIPROC, GetStringi)                                             \
   X(PFNGLISENABLEDPROC, IsEnabled)                                               \
   X(PFNGLISENABLEDIPROC, IsEnabledi)                                             \
   X(PFNGLENABLEPROC, Enable)                                                     \

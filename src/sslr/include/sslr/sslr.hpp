@@ -426,6 +426,13 @@ struct ContextDesc {
   // reaches a pixel) instead of two phases (results/gpu-h100.md).
   TraversalPass traversalPass = TraversalPass::Auto;
   bool oneBodyTraversal = false;
+  // For timing on a GPU: FidelityFX SSSR's exit at low occupancy. Once the lanes of a subgroup
+  // still walking the traversal are fewer than began it and at most an eighth of the subgroup
+  // (4 of 32), they stop, and adaptive L resumes from there as at the step cap. The answers then
+  // depend on the neighbouring lanes and the subgroup size (8 on llvmpipe), so they differ from
+  // the default's. Needs GL_ARB_shader_ballot and GL_ARB_gpu_shader_int64: create() fails
+  // without them (docs/results/ray-work.md, "An exit at low occupancy").
+  bool occupancyExit = false;
 };
 
 // The commands one pass of a frame recorded for the GPU, counted as dispatch() records them: the

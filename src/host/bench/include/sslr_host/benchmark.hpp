@@ -64,19 +64,23 @@ struct BenchConfig {
   Settings settings;
   bool isDefault = false;  // the method's default configuration (image strips, summary)
   bool backDepth = false;  // hand sslr the back-face depth (FrameInputs::backDepthTexture)
-  // The context's pass shapes (ContextDesc's device, traversalPass, oneBodyTraversal).
+  // The context's pass shapes (ContextDesc's device, traversalPass, oneBodyTraversal, occupancyExit).
   DeviceProfile device = DeviceProfile::Auto;
   TraversalPass traversalPass = TraversalPass::Auto;
   bool oneBodyTraversal = false;
+  bool occupancyExit = false;
   // Those shapes as a ContextDesc (its size and loader for the caller to set).
   ContextDesc shapes() const {
     ContextDesc d;
     d.device = device;
     d.traversalPass = traversalPass;
     d.oneBodyTraversal = oneBodyTraversal;
+    d.occupancyExit = occupancyExit;
     return d;
   }
-  bool ownShapes() const { return device != DeviceProfile::Auto || traversalPass != TraversalPass::Auto || oneBodyTraversal; }
+  bool ownShapes() const {
+    return device != DeviceProfile::Auto || traversalPass != TraversalPass::Auto || oneBodyTraversal || occupancyExit;
+  }
 };
 
 struct RunRecord {

@@ -15,11 +15,12 @@ struct FrameShape {
   bool halfResolution = false;
   bool traversalDeferred = false;  // FrameStats::traversalDeferred
   bool oneBodyTraversal = false;   // ContextDesc::oneBodyTraversal (not in the fitted run)
+  bool occupancyExit = false;      // ContextDesc::occupancyExit (neither)
 };
 
 // The shape of a frame that ran with `settings` on a context of profile `device` (Context::device())
-// and ContextDesc::oneBodyTraversal `oneBodyTraversal`.
-FrameShape frameShapeOf(const Settings& settings, DeviceProfile device, bool oneBodyTraversal, const FrameStats& stats);
+// created with the pass shapes `shapes` (ContextDesc's oneBodyTraversal, occupancyExit).
+FrameShape frameShapeOf(const Settings& settings, DeviceProfile device, const ContextDesc& shapes, const FrameStats& stats);
 
 // The frame's time on an NVIDIA H100 (ms, GL_TIME_ELAPSED), predicted per tracer as
 // a + b x longest chain + c x SIMT work (RayWork::simt32): the least-squares fit to that GPU's
