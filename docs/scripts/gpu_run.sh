@@ -6,6 +6,8 @@
 # tests on the GPU's driver last; each step has its own time limit, so a slow step cannot take
 # the others' results.
 # Results go to $OUT (default gpu-out): one archive of the CSV/JSON/plots and the logs.
+# With a baseline's bundle at .gpu/base.tar.xz (bundle.sh in a checkout of that commit), the run
+# begins with gpu_compare.sh: the new code beside the baseline, the lean trace's GPU targets.
 # Usage: docs/scripts/gpu_run.sh [SECONDS_FOR_ALL]   (default 560; 0.9's run on an H100 used 575)
 set -u
 cd "$(dirname "$0")/../.."
@@ -33,6 +35,18 @@ fi
   nvidia-smi --query-gpu=name,driver_version,clocks.max.sm,memory.total --format=csv 2>&1
   nproc
 } >"$out/machine.txt"
+
+# The lean trace's GPU targets (#57) first, the new commit beside the baseline whose bundle is
+# .gpu/base.tar.xz (gpu_compare.sh; COMPARE_SECONDS of the budget, default 300); the steps below
+# get what is left.
+if [ -f .gpu/base.tar.xz ]; then
+  t0=$(date +%s)
+  OUT=$out docs/scripts/gpu_compare.sh "${COMPARE_SECONDS:-300}" >>"$out/steps.txt" 2>&1
+  if command -v python3 >/dev/null; then
+    python3 docs/scripts/gpu_compare.py "$out/compare.log" >"$out/compare.md" 2>&1
+  fi
+  echo "compare: in $(($(date +%s) - t0)) s" >>"$out/steps.txt"
+fi
 
 bin=build/portable/src/apps
 bench() {  # NAME LIMIT ARGS...: one grid, its log beside its results
