@@ -1,0 +1,66 @@
+#!/usr/bin/env python3
+"""What FidelityFX SSSR's exit at low wave occupancy would save the traversal, from a frame's steps.
+
+Usage: occupancy_exit.py ITERATIONS.exr [--lanes 32] [--keep 4] [--handover 0,8]
+ITERATIONS.exr is `sslr-render --dump --device-profile gpu`'s per-pixel step count (walk steps,
+pixel tests and adaptive-L iterations; 0 where no ray ran), read through `oiiotool --dumpdata`.
+A GPU group of --lanes invocations (8 x 8 work groups, invocations x-fastest: a 32-lane group is
+four rows of a tile, a 64-lane one the whole tile) costs its slowest lane's steps. FFX SSSR stops
+its walk once --keep or fewer lanes of a group still walk; in sslr the lanes stopped there would
+hand their ray to adaptive L (as at the step cap), at --handover more steps each. Per group the
+cost becomes min(slowest, (keep+1)-th slowest + handover) where more than --keep lanes traced.
+Prints, per handover, the groups' summed cost against today's (the SIMT work the cost model
+counts), the longest chain before and after, and the share of lanes the exit would stop."""
+import re
+import subprocess
+import sys
+
+
+def steps_of(path):
+    text = subprocess.run(['oiiotool', '--dumpdata', path], check=True, capture_output=True, text=True).stdout
+    m = re.search(r':\s+(\d+) x\s+(\d+)', text)
+    width, height = int(m.group(1)), int(m.group(2))
+    rows = [[0.0] * width for _ in range(height)]
+    for x, y, v in re.findall(r'Pixel \((\d+), (\d+)\): ([-0-9.e+]+)', text):
+        rows[int(y)][int(x)] = float(v)
+    return width, height, rows
+
+
+def groups(width, height, rows, lanes):
+    """Each group's lanes that traced (steps > 0); images are top row first, GL rows bottom first."""
+    group_rows = lanes // 8
+    for tile_y in range(0, height, 8):
+        for tile_x in range(0, width, 8):
+            for first in range(0, 8, group_rows):
+                g = [rows[height - 1 - y][x]
+                     for y in range(tile_y + first, min(tile_y + first + group_rows, height))
+                     for x in range(tile_x, min(tile_x + 8, width))]
+                g = [s for s in g if s > 0]
+                if g:
+                    yield sorted(g, reverse=True)
+
+
+def main(argv):
+    if not argv or argv[0].startswith('--'):
+        sys.exit(__doc__)
+    opt = {'--lanes': '32', '--keep': '4', '--handover': '0,8'}
+    for i, a in enumerate(argv[1:]):
+        if a in opt:
+            opt[a] = argv[i + 2]
+    lanes, keep = int(opt['--lanes']), int(opt['--keep'])
+    width, height, rows = steps_of(argv[0])
+    gs = list(groups(width, height, rows, lanes))
+    today = sum(g[0] for g in gs)
+    chain = max((g[0] for g in gs), default=0)
+    traced = sum(len(g) for g in gs)
+    for handover in (float(h) for h in opt['--handover'].split(',')):
+        cost = [min(g[0], g[keep] + handover) if len(g) > keep else g[0] for g in gs]
+        stopped = sum(sum(1 for s in g[:keep] if s > g[keep]) for g in gs if len(g) > keep)
+        print(f'{argv[0]}: {lanes}-lane groups {len(gs)}, exit at <= {keep} lanes, handover {handover:g} steps: '
+              f'SIMT work {sum(cost) / today if today else 1:.3f}x today\'s ({today:.0f}), '
+              f'longest chain {chain:.0f} -> {max(cost, default=0):.0f}, '
+              f'lanes stopped {stopped} of {traced} ({100.0 * stopped / max(traced, 1):.1f}%)')
+
+
+if __name__ == '__main__':
+    main(sys.argv[1:])
