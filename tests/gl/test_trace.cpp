@@ -343,28 +343,30 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DefaultAgainstTraversal,
 // 0.9544 / 0.9526.
 class TraversalFirst : public sslr::test::GlTest, public ::testing::WithParamInterface<const char*> {};
 
+// A frame's hits scored against Embree and its ray work, with the second stage inline (the groups
+// as the trace pass runs them) in the pass shapes `shapes`.
+struct ScoredWork {
+  HitMetrics m;
+  RayWork work;
+};
+ScoredWork scoreInline(const Scene& scene, const GBufferOptions& o, Settings s, ContextDesc shapes = {}) {
+  s.debug.collectStats = true;
+  shapes.traversalPass = TraversalPass::Inline;
+  const ScoredFrame f = renderScored(scene, *scene.camera, o, s, shapes);
+  EXPECT_TRUE(f.renderer);
+  if (!f.renderer) return {};
+  return {compareHits(f.truth, f.hit), f.renderer->sslr().waitForStats().totalRayWork()};
+}
+
 TEST_P(TraversalFirst, FindsWhatTheTraversalAloneFinds) {
   auto scene = loadScene(GetParam());
   ASSERT_TRUE(scene) << GetParam();
   GBufferOptions o;
   o.width = 256;
   o.height = 144;
-  struct Run {
-    HitMetrics m;
-    RayWork work;
-  };
-  auto run = [&](Settings s) {
-    s.debug.collectStats = true;
-    ContextDesc inlined;  // the groups as the trace pass runs them
-    inlined.traversalPass = TraversalPass::Inline;
-    const ScoredFrame f = renderScored(scene.value(), *scene.value().camera, o, s, inlined);
-    EXPECT_TRUE(f.renderer);
-    if (!f.renderer) return Run{};
-    return Run{compareHits(f.truth, f.hit), f.renderer->sslr().waitForStats().totalRayWork()};
-  };
   Settings hiz;
   hiz.method = Method::HierarchicalDepth;
-  const Run first = run(Settings{}), alone = run(hiz);
+  const ScoredWork first = scoreInline(scene.value(), o, Settings{}), alone = scoreInline(scene.value(), o, hiz);
   std::printf("%s: traversal first %.4f (false hits %.4f, simt32 %llu), traversal alone %.4f (%.4f, %llu)\n",
               GetParam(), first.m.recall1px, first.m.falseHitRate, (unsigned long long)first.work.simt32,
               alone.m.recall1px, alone.m.falseHitRate, (unsigned long long)alone.work.simt32);
@@ -1062,22 +1064,8 @@ TEST_P(OccupancyExit, StopsTheLastLanesAndAdaptiveLAnswersThem) {
   exitShapes.occupancyExit = true;
   if (auto probe = FrameRenderer::create(o, nullptr, exitShapes); !probe)
     GTEST_SKIP() << "the driver refuses ContextDesc::occupancyExit: " << probe.error();
-  struct Run {
-    HitMetrics m;
-    RayWork work;
-  };
-  auto run = [&](bool exit) {
-    Settings s;
-    s.debug.collectStats = true;
-    ContextDesc shapes;
-    shapes.traversalPass = TraversalPass::Inline;
-    shapes.occupancyExit = exit;
-    const ScoredFrame f = renderScored(scene.value(), *scene.value().camera, o, s, shapes);
-    EXPECT_TRUE(f.renderer);
-    if (!f.renderer) return Run{};
-    return Run{compareHits(f.truth, f.hit), f.renderer->sslr().waitForStats().totalRayWork()};
-  };
-  const Run plain = run(false), exited = run(true);
+  const ScoredWork plain = scoreInline(scene.value(), o, Settings{}),
+                   exited = scoreInline(scene.value(), o, Settings{}, exitShapes);
   std::printf("%s: default %.4f (false hits %.4f, lane steps %llu), occupancy exit %.4f (%.4f, %llu)\n", GetParam(),
               plain.m.recall1px, plain.m.falseHitRate, (unsigned long long)plain.work.laneSteps, exited.m.recall1px,
               exited.m.falseHitRate, (unsigned long long)exited.work.laneSteps);
