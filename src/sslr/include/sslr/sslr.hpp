@@ -428,11 +428,11 @@ struct ContextDesc {
   bool oneBodyTraversal = false;
   // For timing on a GPU: FidelityFX SSSR's exit at low occupancy. Once the lanes of a subgroup
   // still walking the traversal are fewer than began it and at most an eighth of the subgroup
-  // (4 of 32), they stop, and (with the traversal first, the default) adaptive L resumes from
-  // there as at the step cap (Method::HierarchicalDepth ends them as at its step cap). The answers then
-  // depend on the neighbouring lanes and the subgroup size (8 on llvmpipe), so they differ from
-  // the default's. Needs GL_ARB_shader_ballot and GL_ARB_gpu_shader_int64: create() fails
-  // without them (docs/results/ray-work.md, "An exit at low occupancy").
+  // (4 of 32), they stop, and adaptive L resumes from there as at the step cap (the traversal
+  // alone, Method::HierarchicalDepth, ends them as at its step cap). The answers then depend on
+  // the neighbouring lanes and the subgroup size (8 on llvmpipe), so they differ from the
+  // default's. Needs GL_ARB_shader_ballot and GL_ARB_gpu_shader_int64: create() fails without
+  // them (docs/results/ray-work.md, "An exit at low occupancy").
   bool occupancyExit = false;
 };
 
