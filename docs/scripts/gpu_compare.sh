@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The new code beside a baseline commit on one GPU, for the GPU targets of the lean trace (#57):
 # prepare() with a cold driver cache, each pass's GL_TIMESTAMP time and the ray work at 1920x1080
-# and 3840x2160 (both commits' default and FidelityFX SSSR at thickness 0.5; the new half resolution
-# and the new default with ContextDesc::occupancyExit), the two commits interleaved scene by scene. gpu_run.sh runs it first when a baseline bundle is there; alone:
+# and 3840x2160 (both commits' default and FidelityFX SSSR at thickness 0.5; the new half
+# resolution and the new default with ContextDesc::occupancyExit), the two commits interleaved
+# scene by scene. gpu_run.sh runs it first when a baseline bundle is there; alone:
 #   docs/scripts/bundle.sh                                  # this checkout: .gpu/bundle.tar.xz
 #   (cd BASELINE_CHECKOUT && docs/scripts/bundle.sh)        # then copy its archive to .gpu/base.tar.xz
 #   docs/scripts/gpu_compare.sh [SECONDS]                   # default 300
@@ -31,7 +32,7 @@ unpack() {  # ARCHIVE DIR
 }
 unpack .gpu/bundle.tar.xz .gpu/new || exit 1
 unpack .gpu/base.tar.xz .gpu/base || exit 1
-render() {  # WHICH ARGS...: one sslr-render of commit WHICH (new or base), --stats lines only
+render() {  # WHICH ARGS...: one sslr-render of commit WHICH (new or base): its --stats lines, errors
   local dir=.gpu/$1
   shift
   LD_LIBRARY_PATH=$PWD/$dir/build/portable/lib timeout 60 "$dir/build/portable/src/apps/sslr-render" \

@@ -21,7 +21,7 @@ const std::string& glContextError();
 // The textures of the current GL context whose debug label is `label` (sslr labels its own).
 std::vector<GLuint> texturesLabelled(const std::string& label);
 // An sslr context of w x h on the headless context (a failed test and nullptr if none).
-// `shapes`: the pass shapes (ContextDesc's device, traversalPass, oneBodyTraversal).
+// `shapes`: the pass shapes (ContextDesc's device, traversalPass, oneBodyTraversal, occupancyExit).
 std::unique_ptr<sslr::Context> makeSslrContext(int w, int h, const sslr::ContextDesc& shapes = {});
 // `ctx`'s composite (by `options`) into a w x h RGBA32F framebuffer cleared to zero, read back
 // (RGBA). DSA calls only: nothing of the host's GL state is bound or changed.

@@ -17,7 +17,7 @@ namespace sslr::host {
 class ConfigContexts {
  public:
   ConfigContexts(int width, int height) : width_(width), height_(height) {}
-  // `shapes`: the pass shapes (ContextDesc's device, traversalPass, oneBodyTraversal).
+  // `shapes`: the pass shapes (ContextDesc's device, traversalPass, oneBodyTraversal, occupancyExit).
   Expected<Context*> get(size_t config, const ContextDesc& shapes = {}) {
     if (contexts_.size() <= config) contexts_.resize(config + 1);
     if (!contexts_[config]) {

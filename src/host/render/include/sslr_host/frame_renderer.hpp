@@ -12,7 +12,7 @@ namespace sslr::host {
 class FrameRenderer {
  public:
   // `getProcAddress`: the current context's (default: the headless EGL context's); `shapes`:
-  // sslr's pass shapes (ContextDesc's device, traversalPass and oneBodyTraversal; its size,
+  // sslr's pass shapes (ContextDesc's device, traversalPass, oneBodyTraversal and occupancyExit; its size,
   // loader and views are set here).
   static Expected<std::unique_ptr<FrameRenderer>> create(const GBufferOptions& options,
                                                          GetProcAddress getProcAddress = nullptr,
