@@ -268,13 +268,11 @@ SSLR_FN int sslrTestPixel(SslrProjection p, SslrSurface s, SslrTraceParams t, iv
 
 #ifdef SSLR_HIZ_OCCUPANCY_EXIT
 // ContextDesc::occupancyExit (GLSL only, GL_ARB_shader_ballot): the lanes of this invocation's
-// subgroup that are here, and how few of them may go on walking once the others are done
-// (FidelityFX SSSR's 4 of a 32-lane wave; a subgroup's eighth).
+// subgroup that are here.
 uint sslrLanesHere() {
   uvec2 lanes = unpackUint2x32(ballotARB(true));
   return uint(bitCount(lanes.x) + bitCount(lanes.y));
 }
-#define SSLR_OCCUPANCY_EXIT_LANES max(1u, gl_SubGroupSizeARB / 8u)
 #endif
 
 SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTraceParams t, ivec2 pxOrigin,
@@ -289,8 +287,9 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   // masks) the test then runs once for the lanes' pixels together instead of in every step.
   // SSLR_HIZ_ONE_BODY (ContextDesc::oneBodyTraversal) runs the same steps in one loop body
   // instead: a lane tests its pixel as soon as it reaches one, without waiting for the others.
-  // SSLR_HIZ_OCCUPANCY_EXIT stops the walk of the last few lanes of a subgroup once the others
-  // are done (a GPU group costs its slowest lane): as at the step cap, adaptive L resumes there.
+  // SSLR_HIZ_OCCUPANCY_EXIT stops the walk of the lanes of a subgroup still walking once they are
+  // at most an eighth of those that began it (FidelityFX SSSR's 4 of a full 32-lane wave; a GPU
+  // group costs its slowest lane): as at the step cap, adaptive L resumes there.
   bool answered = false;
   bool stoppedShort = false;
 #ifdef SSLR_HIZ_OCCUPANCY_EXIT
@@ -299,7 +298,7 @@ SSLR_FN SslrHit sslrTraceHierarchical(SslrProjection p, SslrSurface s, SslrTrace
   while (w.i < t.maxSteps) {
 #ifdef SSLR_HIZ_OCCUPANCY_EXIT
     uint lanes = sslrLanesHere();
-    if (lanes < lanesStarted && lanes <= SSLR_OCCUPANCY_EXIT_LANES) {
+    if (8u * lanes <= lanesStarted) {
       stoppedShort = true;
       break;
     }

@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """What FidelityFX SSSR's exit at low wave occupancy would save the traversal, from a frame's steps.
 
-Usage: occupancy_exit.py ITERATIONS.exr [--lanes 32] [--keep 4] [--handover 0,8]
+Usage: occupancy_exit.py ITERATIONS.exr [--lanes 32] [--handover 0,8]
 ITERATIONS.exr is `sslr-render --dump --device-profile gpu`'s per-pixel step count (walk steps,
 pixel tests and adaptive-L iterations; 0 where no ray ran), read through `oiiotool --dumpdata`.
 A GPU group of --lanes invocations (8 x 8 work groups, invocations x-fastest: a 32-lane group is
-four rows of a tile, a 64-lane one the whole tile) costs its slowest lane's steps. FFX SSSR stops
-its walk once --keep or fewer lanes of a group still walk; in sslr the lanes stopped there would
-hand their ray to adaptive L (as at the step cap), at --handover more steps each. Per group the
-cost becomes min(slowest, (keep+1)-th slowest + handover) where more than --keep lanes traced.
+four rows of a tile, a 64-lane one the whole tile) costs its slowest lane's steps. The exit
+(ContextDesc::occupancyExit; FidelityFX SSSR's 4 of a full 32-lane wave) stops the lanes still
+walking once they are at most an eighth of the n that traced, k = floor(n / 8); they hand their
+ray to adaptive L (as at the step cap), at --handover more steps each. Per group the cost becomes
+min(slowest, (k+1)-th slowest + handover) where k > 0, else the slowest.
 Prints, per handover, the groups' summed cost against today's (the SIMT work the cost model
 counts), the longest chain before and after, and the share of lanes the exit would stop."""
 import re
@@ -43,20 +44,20 @@ def groups(width, height, rows, lanes):
 def main(argv):
     if not argv or argv[0].startswith('--'):
         sys.exit(__doc__)
-    opt = {'--lanes': '32', '--keep': '4', '--handover': '0,8'}
+    opt = {'--lanes': '32', '--handover': '0,8'}
     for i, a in enumerate(argv[1:]):
         if a in opt:
             opt[a] = argv[i + 2]
-    lanes, keep = int(opt['--lanes']), int(opt['--keep'])
+    lanes = int(opt['--lanes'])
     width, height, rows = steps_of(argv[0])
     gs = list(groups(width, height, rows, lanes))
     today = sum(g[0] for g in gs)
     chain = max((g[0] for g in gs), default=0)
     traced = sum(len(g) for g in gs)
     for handover in (float(h) for h in opt['--handover'].split(',')):
-        cost = [min(g[0], g[keep] + handover) if len(g) > keep else g[0] for g in gs]
-        stopped = sum(sum(1 for s in g[:keep] if s > g[keep]) for g in gs if len(g) > keep)
-        print(f'{argv[0]}: {lanes}-lane groups {len(gs)}, exit at <= {keep} lanes, handover {handover:g} steps: '
+        cost = [min(g[0], g[len(g) // 8] + handover) if len(g) >= 8 else g[0] for g in gs]
+        stopped = sum(sum(1 for s in g[:len(g) // 8] if s > g[len(g) // 8]) for g in gs if len(g) >= 8)
+        print(f'{argv[0]}: {lanes}-lane groups {len(gs)}, exit at an eighth, handover {handover:g} steps: '
               f'SIMT work {sum(cost) / today if today else 1:.3f}x today\'s ({today:.0f}), '
               f'longest chain {chain:.0f} -> {max(cost, default=0):.0f}, '
               f'lanes stopped {stopped} of {traced} ({100.0 * stopped / max(traced, 1):.1f}%)')

@@ -211,8 +211,8 @@ void addTracerOptions(cxxopts::Options& options) {
       ("half-res", "one ray per 2x2 quad, reused by the quad's pixels on the same surface")
       ("one-body-traversal", "the traversal's walk and pixel tests in one loop body (for timing on a GPU; the "
                              "same hits: ContextDesc::oneBodyTraversal)")
-      ("occupancy-exit", "stop the traversal of the last eighth of a subgroup's lanes once the others are done, "
-                         "adaptive L resuming there (for timing on a GPU; other hits: ContextDesc::occupancyExit)")
+      ("occupancy-exit", "stop the traversal of a subgroup's lanes once at most an eighth of those that began still "
+                         "walk, adaptive L resuming there (for timing on a GPU; other hits: ContextDesc::occupancyExit)")
       ("error-k", "classic Fresnel's error term: weight 1 - saturate(L / distance x K) (default 0.15; 0 = off)",
        cxxopts::value<std::string>())
       ("hidden-guess", "a ray that ends without a hit where it went out of sight (behind what the screen shows, "

@@ -1044,9 +1044,9 @@ INSTANTIATE_TEST_SUITE_P(Scenes, OneBodyTraversal,
                                            PassCase{"thin-objects", false}, PassCase{"mirror-room", true}),
                          passCaseName);
 
-// ContextDesc::occupancyExit: once at most an eighth of a subgroup's lanes (4 of 32; the last of 8
-// on llvmpipe) still walk the traversal, they stop, and adaptive L answers them from where they
-// stopped, as at the step cap. So the exit must cut steps (fewer lane steps than the default's:
+// ContextDesc::occupancyExit: once at most an eighth of the lanes of a subgroup that began the
+// traversal still walk it (4 of 32; 1 of 8 on llvmpipe), they stop, and adaptive L answers them
+// from where they stopped, as at the step cap. So the exit must cut steps (fewer lane steps than the default's:
 // it ran) and keep most answers: recall within 0.03 of the default's (adaptive L from where a lane
 // stopped does not find every hit the walk would; results.md, "Tests that pin the accuracy"),
 // false hits within 0.5 points, nothing non-finite. A driver without subgroup ballots refuses the

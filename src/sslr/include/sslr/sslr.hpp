@@ -427,11 +427,11 @@ struct ContextDesc {
   TraversalPass traversalPass = TraversalPass::Auto;
   bool oneBodyTraversal = false;
   // For timing on a GPU: FidelityFX SSSR's exit at low occupancy. Once the lanes of a subgroup
-  // still walking the traversal are fewer than began it and at most an eighth of the subgroup
-  // (4 of 32), they stop, and adaptive L resumes from there as at the step cap (the traversal
-  // alone, Method::HierarchicalDepth, ends them as at its step cap). The answers then depend on
-  // the neighbouring lanes and the subgroup size (8 on llvmpipe), so they differ from the
-  // default's. Needs GL_ARB_shader_ballot and GL_ARB_gpu_shader_int64: create() fails without
+  // still walking the traversal are at most an eighth of those that began it (4 of a full 32-lane
+  // subgroup; none of fewer than 8), they stop, and adaptive L resumes from there as at the step
+  // cap (the traversal alone, Method::HierarchicalDepth, ends them as at its step cap). The
+  // answers then depend on the neighbouring lanes and the subgroup size (8 on llvmpipe), so they
+  // differ from the default's. Needs GL_ARB_shader_ballot and GL_ARB_gpu_shader_int64: create() fails without
   // them (docs/results/ray-work.md, "An exit at low occupancy").
   bool occupancyExit = false;
 };
