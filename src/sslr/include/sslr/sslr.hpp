@@ -431,8 +431,8 @@ struct ContextDesc {
   // subgroup; none of fewer than 8), they stop, and adaptive L resumes from there as at the step
   // cap (the traversal alone, Method::HierarchicalDepth, ends them as at its step cap). The
   // answers then depend on the neighbouring lanes and the subgroup size (8 on llvmpipe), so they
-  // differ from the default's. Needs GL_ARB_shader_ballot and GL_ARB_gpu_shader_int64: create() fails without
-  // them (docs/results/ray-work.md, "An exit at low occupancy").
+  // differ from the default's. Needs GL_ARB_shader_ballot and GL_ARB_gpu_shader_int64: create()
+  // fails without them (docs/results/ray-work.md, "An exit at low occupancy").
   bool occupancyExit = false;
 };
 
