@@ -335,14 +335,6 @@ INSTANTIATE_TEST_SUITE_P(Scenes, DefaultAgainstTraversal,
                                            "objects-on-mirror"),
                          sceneParamName);
 
-// Traversal first (the default) finds at least the traversal alone's hits: adaptive L only answers
-// rays the traversal stopped on screen without a confident hit. Recall at least the traversal
-// alone's minus 0.002 (a pixel or two found a pixel's rounding apart), and at least its SIMT
-// work: FrameStats' ray work, dependent steps summed over 32-lane groups' slowest lanes (counted,
-// not timed). Measured at 256x144 (0.10.3): thin-objects 0.9250 against 0.8986, mirror-walls
-// 0.9544 / 0.9526.
-class TraversalFirst : public sslr::test::GlTest, public ::testing::WithParamInterface<const char*> {};
-
 // A frame's hits scored against Embree and its ray work, with the second stage inline (the groups
 // as the trace pass runs them) in the pass shapes `shapes`.
 struct ScoredWork {
@@ -358,12 +350,18 @@ ScoredWork scoreInline(const Scene& scene, const GBufferOptions& o, Settings s, 
   return {compareHits(f.truth, f.hit), f.renderer->sslr().waitForStats().totalRayWork()};
 }
 
+// Traversal first (the default) finds at least the traversal alone's hits: adaptive L only answers
+// rays the traversal stopped on screen without a confident hit. Recall at least the traversal
+// alone's minus 0.002 (a pixel or two found a pixel's rounding apart), and at least its SIMT
+// work: FrameStats' ray work, dependent steps summed over 32-lane groups' slowest lanes (counted,
+// not timed). Measured at 256x144 (0.10.3): thin-objects 0.9250 against 0.8986, mirror-walls
+// 0.9544 / 0.9526.
+class TraversalFirst : public sslr::test::GlTest, public ::testing::WithParamInterface<const char*> {};
+
 TEST_P(TraversalFirst, FindsWhatTheTraversalAloneFinds) {
   auto scene = loadScene(GetParam());
   ASSERT_TRUE(scene) << GetParam();
-  GBufferOptions o;
-  o.width = 256;
-  o.height = 144;
+  const GBufferOptions o{.width = 256, .height = 144};
   Settings hiz;
   hiz.method = Method::HierarchicalDepth;
   const ScoredWork first = scoreInline(scene.value(), o, Settings{}), alone = scoreInline(scene.value(), o, hiz);
@@ -1046,21 +1044,18 @@ INSTANTIATE_TEST_SUITE_P(Scenes, OneBodyTraversal,
 
 // ContextDesc::occupancyExit: once at most an eighth of the lanes of a subgroup that began the
 // traversal still walk it (4 of 32; 1 of 8 on llvmpipe), they stop, and adaptive L answers them
-// from where they stopped, as at the step cap. So the exit must cut steps (fewer lane steps than the default's:
-// it ran) and keep most answers: recall within 0.03 of the default's (adaptive L from where a lane
-// stopped does not find every hit the walk would; results.md, "Tests that pin the accuracy"),
-// false hits within 0.5 points, nothing non-finite. A driver without subgroup ballots refuses the
-// shape (Api test); then skip.
+// from where they stopped, as at the step cap. So the exit must cut steps (fewer lane steps than
+// the default's: it ran) and keep most answers: recall within 0.03 of the default's (adaptive L
+// from where a lane stopped does not find every hit the walk would; results.md, "Tests that pin
+// the accuracy"), false hits within 0.5 points, nothing non-finite. A driver without subgroup
+// ballots refuses the shape (Api test); then skip.
 class OccupancyExit : public sslr::test::GlTest, public ::testing::WithParamInterface<const char*> {};
 
 TEST_P(OccupancyExit, StopsTheLastLanesAndAdaptiveLAnswersThem) {
   auto scene = loadScene(GetParam());
   ASSERT_TRUE(scene) << GetParam();
-  GBufferOptions o;
-  o.width = 256;
-  o.height = 144;
+  const GBufferOptions o{.width = 256, .height = 144};
   ContextDesc exitShapes;
-  exitShapes.traversalPass = TraversalPass::Inline;
   exitShapes.occupancyExit = true;
   if (auto probe = FrameRenderer::create(o, nullptr, exitShapes); !probe)
     GTEST_SKIP() << "the driver refuses ContextDesc::occupancyExit: " << probe.error();
