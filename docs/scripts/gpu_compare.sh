@@ -9,7 +9,8 @@
 #   docs/scripts/gpu_compare.sh [SECONDS]                   # default 300
 # The log goes to $OUT/compare.log (default gpu-out); docs/scripts/gpu_compare.py turns it into the
 # targets' table. SIZES, SCENES and FRAMES override the sizes, scenes and timed frames (a CPU
-# rasterizer tries the script at small sizes).
+# rasterizer tries the script at small sizes); NEW_DIR names a directory where this commit's
+# bundle is unpacked already (gpu_run.sh's checkout), instead of unpacking it again.
 set -u
 cd "$(dirname "$0")/../.."
 out=${OUT:-gpu-out}
@@ -30,10 +31,12 @@ unpack() {  # ARCHIVE DIR
   echo "gpu_compare.sh: needs .gpu/bundle.tar.xz (this commit) and .gpu/base.tar.xz (the baseline)" >&2
   exit 2
 }
-unpack .gpu/bundle.tar.xz .gpu/new || exit 1
+new_dir=${NEW_DIR:-.gpu/new}
+[ -n "${NEW_DIR:-}" ] || unpack .gpu/bundle.tar.xz "$new_dir" || exit 1
 unpack .gpu/base.tar.xz .gpu/base || exit 1
 render() {  # WHICH ARGS...: one sslr-render of commit WHICH (new or base): its --stats lines, errors
-  local dir=.gpu/$1
+  local dir=.gpu/base
+  [ "$1" = new ] && dir=$new_dir
   shift
   LD_LIBRARY_PATH=$PWD/$dir/build/portable/lib timeout 60 "$dir/build/portable/src/apps/sslr-render" \
     --stats --out "$dir/out" "$@" 2>&1 | grep -E "GL_RENDERER|traced pixels|ray work|pass times|frame times|rror|exist"
@@ -41,7 +44,9 @@ render() {  # WHICH ARGS...: one sslr-render of commit WHICH (new or base): its 
 
 {
   for which in new base; do
-    echo "commit $which: $(sed -n 's/^commit=//p' .gpu/$which/build/portable/bundle-info)"
+    dir=.gpu/base
+    [ "$which" = new ] && dir=$new_dir
+    echo "commit $which: $(sed -n 's/^commit=//p' "$dir/build/portable/bundle-info")"
   done
   # prepare() with the driver's shader caches off (NVIDIA's and Mesa's): what a new user waits.
   for round in 1 2; do

@@ -41,7 +41,7 @@ fi
 # get what is left.
 if [ -f .gpu/base.tar.xz ]; then
   t0=$(date +%s)
-  OUT=$out docs/scripts/gpu_compare.sh "${COMPARE_SECONDS:-300}" >>"$out/steps.txt" 2>&1
+  OUT=$out NEW_DIR=. docs/scripts/gpu_compare.sh "${COMPARE_SECONDS:-300}" >>"$out/steps.txt" 2>&1
   if command -v python3 >/dev/null; then
     python3 docs/scripts/gpu_compare.py "$out/compare.log" >"$out/compare.md" 2>&1
   fi
