@@ -1131,9 +1131,6 @@ TEST_F(Api, SeparateMaterialTextureGivesThePackedResult) {
   glDeleteTextures(1, &materialTex);
 }
 
-// A mask limits where rays start: masked-out pixels get nothing (and no tile is listed for them),
-// the others get exactly what they get without a mask (hits: the blur is not compared). Its edge
-// runs through 2x2 quads and an 8x8 tile, which classification reads a quad at a time.
 // Context::prepare compiles every program a frame with those inputs and settings may use: the
 // frames after it (a traced one, an empty one, the one after it that builds level 1 in a pass of
 // its own, TraversalPass::Auto switching between inline and deferred, both composites) compile
@@ -1181,6 +1178,116 @@ TEST_F(Api, PrepareCompilesEveryProgramFramesUse) {
       glDeleteTextures(1, &target);
     }
   }
+}
+
+// A loader that records, in order, each program link ('L') and each read of a compile or link
+// result ('W': a read waits for a driver that compiles in parallel), and can break one entry's
+// source (its body gains an #error).
+namespace record {
+std::string events;
+const char* breakEntry = nullptr;  // the first comment line of the entry to break, or none
+PFNGLLINKPROGRAMPROC link = nullptr;
+PFNGLGETPROGRAMIVPROC getProgramiv = nullptr;
+PFNGLGETSHADERIVPROC getShaderiv = nullptr;
+PFNGLSHADERSOURCEPROC shaderSource = nullptr;
+void KHRONOS_APIENTRY onLink(GLuint program) {
+  events += 'L';
+  link(program);
+}
+void KHRONOS_APIENTRY onGetProgramiv(GLuint program, GLenum pname, GLint* value) {
+  if (pname == GL_LINK_STATUS) events += 'W';
+  getProgramiv(program, pname, value);
+}
+void KHRONOS_APIENTRY onGetShaderiv(GLuint shader, GLenum pname, GLint* value) {
+  if (pname == GL_COMPILE_STATUS) events += 'W';
+  getShaderiv(shader, pname, value);
+}
+void KHRONOS_APIENTRY onShaderSource(GLuint shader, GLsizei count, const GLchar* const* strings, const GLint* lengths) {
+  std::vector<std::string> texts;
+  std::vector<const GLchar*> pointers;
+  for (GLsizei i = 0; i < count; ++i) {
+    texts.emplace_back(lengths != nullptr && lengths[i] >= 0 ? std::string(strings[i], lengths[i]) : std::string(strings[i]));
+    if (breakEntry != nullptr && texts.back().find(breakEntry) != std::string::npos) texts.back() += "\n#error broken by the test\n";
+  }
+  for (const std::string& t : texts) pointers.push_back(t.c_str());
+  shaderSource(shader, count, pointers.data(), nullptr);
+}
+GLProc getProcAddress(const char* name) {
+  const GLProc real = HeadlessContext::getProcAddress()(name);
+  const std::pair<const char*, GLProc> wrapped[] = {
+      {"glLinkProgram", reinterpret_cast<GLProc>(&onLink)},
+      {"glGetProgramiv", reinterpret_cast<GLProc>(&onGetProgramiv)},
+      {"glGetShaderiv", reinterpret_cast<GLProc>(&onGetShaderiv)},
+      {"glShaderSource", reinterpret_cast<GLProc>(&onShaderSource)}};
+  if (std::strcmp(name, "glLinkProgram") == 0) link = reinterpret_cast<PFNGLLINKPROGRAMPROC>(real);
+  if (std::strcmp(name, "glGetProgramiv") == 0) getProgramiv = reinterpret_cast<PFNGLGETPROGRAMIVPROC>(real);
+  if (std::strcmp(name, "glGetShaderiv") == 0) getShaderiv = reinterpret_cast<PFNGLGETSHADERIVPROC>(real);
+  if (std::strcmp(name, "glShaderSource") == 0) shaderSource = reinterpret_cast<PFNGLSHADERSOURCEPROC>(real);
+  for (const auto& [wrappedName, proc] : wrapped)
+    if (std::strcmp(name, wrappedName) == 0) return proc;
+  return real;
+}
+}  // namespace record
+
+// prepare() hands every program of every variant to the driver before it reads any result, so a
+// driver that compiles in parallel (GL_KHR_parallel_shader_compile) builds them at once: under the
+// software shapes (two traversal variants, the level-1 pass) with both composites, no compile or
+// link result is read before the last link. The frames after it link nothing.
+TEST_F(Api, PrepareHandsEveryProgramOverBeforeWaitingOnAny) {
+  ContextDesc d;
+  d.width = W;
+  d.height = H;
+  d.device = DeviceProfile::Software;
+  d.getProcAddress = &record::getProcAddress;
+  auto ctx = Context::create(d);
+  ASSERT_TRUE(ctx) << ctx.error();
+  Frame f;
+  const FrameInputs in = f.gbuffer->frameInputs();
+  PrepareOptions options;
+  options.composite = true;
+  options.compositeOptions = {CompositeMode::BlendOverFallback, f.gbuffer->fallbackSpecularTexture()};
+  record::events.clear();
+  ASSERT_TRUE(ctx.value()->prepare(in, Settings{}, options));
+  const std::string prepared = record::events;
+  EXPECT_GE(std::count(prepared.begin(), prepared.end(), 'L'), 10) << prepared;
+  ASSERT_NE(prepared.find('W'), std::string::npos) << prepared;
+  EXPECT_LT(prepared.rfind('L'), prepared.find('W')) << "a result was read before the last link: " << prepared;
+  record::events.clear();
+  for (int frame = 0; frame < 3; ++frame) ASSERT_TRUE(ctx.value()->dispatch(in, Settings{}));
+  EXPECT_EQ(record::events.find('L'), std::string::npos) << "a frame linked a program: " << record::events;
+}
+
+// A program that fails to build is named, with the driver's log, by prepare() and by dispatch(),
+// which stay usable: nothing crashes, no GL error is left, and a context whose programs build is
+// unaffected. The trace's entry is broken by the loader (an #error in its body).
+TEST_F(Api, AProgramThatFailsToBuildIsNamed) {
+  ContextDesc d;
+  d.width = W;
+  d.height = H;
+  d.getProcAddress = &record::getProcAddress;
+  std::vector<std::string> errors;
+  d.log = [&](LogLevel level, const std::string& text) {
+    if (level == LogLevel::Error) errors.push_back(text);
+  };
+  auto ctx = Context::create(d);
+  ASSERT_TRUE(ctx) << ctx.error();
+  Frame f;
+  const FrameInputs in = f.gbuffer->frameInputs();
+  record::breakEntry = "// Pass 3, the trace";
+  const Status prepared = ctx.value()->prepare(in, Settings{});
+  const Status dispatched = ctx.value()->dispatch(in, Settings{});
+  record::breakEntry = nullptr;
+  for (const Status* st : {&prepared, &dispatched}) {
+    ASSERT_FALSE(*st);
+    EXPECT_EQ(st->code(), StatusCode::ShaderBuild);
+    EXPECT_NE(st->message().find("sslr: compiling 3_trace.comp failed"), std::string::npos) << st->message();
+    EXPECT_NE(st->message().find("broken by the test"), std::string::npos) << "the driver's log: " << st->message();
+  }
+  EXPECT_FALSE(errors.empty()) << "logged as an error";
+  EXPECT_EQ(sslr::test::glContext()->glErrorCount(), 0);
+  sslr::test::glContext()->resetGlErrorCount();  // the driver's own high-severity report of the #error
+  auto healthy = makeContext();
+  ASSERT_TRUE(healthy->dispatch(in, Settings{}));
 }
 
 // The retrace (deferred traversal, half resolution) is the whole tracer's program in its retrace
@@ -1521,6 +1628,9 @@ TEST_F(Api, BadBackDepthTextureIsNamed) {
   glDeleteTextures(1, &colour);
 }
 
+// A mask limits where rays start: masked-out pixels get nothing (and no tile is listed for them),
+// the others get exactly what they get without a mask (hits: the blur is not compared). Its edge
+// runs through 2x2 quads and an 8x8 tile, which classification reads a quad at a time.
 TEST_F(Api, MaskTextureLimitsWhereRaysStart) {
   auto ctx = makeContext();
   Frame f;

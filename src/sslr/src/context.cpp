@@ -138,6 +138,11 @@ void Context::Impl::destroy() {
   gl.DeleteVertexArrays(1, &vao);
   for (auto& [key, program] : programs) gl.DeleteProgram(program);
   programs.clear();
+  for (auto& [key, pending] : pendingPrograms) {
+    for (const auto& [shader, entry] : pending.shaders) gl.DeleteShader(shader);
+    gl.DeleteProgram(pending.program);
+  }
+  pendingPrograms.clear();
   frameUbo = nearestSampler = linearSampler = vao = 0;
 }
 

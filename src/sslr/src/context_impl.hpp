@@ -181,6 +181,15 @@ struct Context::Impl {
   mutable FrameStats stats;        // the newest harvested
   GLuint nearestSampler = 0, linearSampler = 0, vao = 0;
   std::map<std::string, GLuint> programs;  // key: entry files + defines
+  // Programs handed to the driver and not yet waited on (prepare()'s first phase: a driver that
+  // compiles in parallel, GL_KHR_parallel_shader_compile, works on all of them at once). Their
+  // shaders stay attached until program() reads the result.
+  struct PendingProgram {
+    GLuint program = 0;
+    std::vector<std::pair<GLuint, const char*>> shaders;  // shader, its entry file
+  };
+  std::map<std::string, PendingProgram> pendingPrograms;  // key: as `programs`
+  bool issueProgramsOnly = false;  // program() hands a new program over without waiting on it
   // The current dispatch's optional inputs as #defines, prefixed to every compute program
   // (SSLR_HAS_MASK, SSLR_SEPARATE_MATERIAL: common/gbuffer.glsl).
   std::string inputDefines;
@@ -211,10 +220,13 @@ struct Context::Impl {
   // create() or resize(), keeping every GL name (after prepare's warm-up frames).
   void resetFrameState(std::uint64_t dispatchesBefore, int frameIndexBefore);
   std::vector<GLuint> initialTileList() const;
-  // programs.cpp: compiles one stage from an embedded entry with #defines prepended (logs name
-  // the file); returns a linked program from the cache, building it on first use.
+  // programs.cpp: hands one stage from an embedded entry with #defines prepended to the compiler;
+  // returns a linked program from the cache, building it on first use (or, while
+  // issueProgramsOnly, only handing it over: pendingPrograms); checks a handed-over program's
+  // compile and link, its logs naming the files.
   Expected<GLuint> compileStage(GLenum stage, const char* entry, const std::string& defines) const;
   Expected<GLuint> program(const std::vector<std::pair<GLenum, const char*>>& stages, const std::string& defines);
+  Expected<GLuint> finishProgram(const std::string& key, const PendingProgram& pending);
   Expected<GLuint> computeProgram(const char* entry, const std::string& defines = {});
   // inputs.cpp
   // `perView`: one of the frame's inputs, a 2D array of a layer a view when views > 1 (else a 2D

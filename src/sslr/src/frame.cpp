@@ -185,6 +185,7 @@ Status Context::Impl::prepare(std::span<const FrameInputs> inputs, const Setting
     int frameIndex;
     ~Reset() { impl.resetFrameState(dispatches, frameIndex); }
   } reset{*this, dispatchesBefore, frameIndexBefore};
+  std::vector<FramePlan> variants;
   for (bool level1Pass : {false, true}) {
     for (bool defer : {false, true}) {
       if ((level1Pass && !base.pyramid) || (defer != base.deferTraversal && !base.feedback)) continue;
@@ -196,11 +197,21 @@ Status Context::Impl::prepare(std::span<const FrameInputs> inputs, const Setting
       f.quadRetracePass = f.halfResolution && defer;
       f.feedbackWritten = false;
       f.useHistory = false;
-      if (Status s = buildPrograms(f, in, settings); !s) return s;
-      warmUp(f, in);
-      if (options.composite && !level1Pass && defer == base.deferTraversal)
-        if (Status s = warmUpComposite(options); !s) return s;
+      variants.push_back(f);
     }
+  }
+  // First every program of every variant is handed to the driver, then each is waited on: a
+  // driver that compiles in parallel (GL_KHR_parallel_shader_compile) builds them at once. A
+  // failure shows when the second round asks for the program.
+  issueProgramsOnly = true;
+  for (FramePlan f : variants) (void)buildPrograms(f, in, settings);
+  for (bool overFallback : {false, true}) (void)compositeProgram(overFallback);
+  issueProgramsOnly = false;
+  for (FramePlan& f : variants) {
+    if (Status s = buildPrograms(f, in, settings); !s) return s;
+    warmUp(f, in);
+    if (options.composite && !f.level1Pass && f.deferTraversal == base.deferTraversal)
+      if (Status s = warmUpComposite(options); !s) return s;
   }
   for (bool overFallback : {false, true})
     if (auto p = compositeProgram(overFallback); !p) return p.status();

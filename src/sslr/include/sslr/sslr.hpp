@@ -562,9 +562,10 @@ class Context {
   // the textures bound then: no frame pays for a compile (on llvmpipe 1-4 s; on a GPU driver tens
   // of ms). Call it at load time, with the inputs as they will be dispatched: their projection and
   // layout are validated, and which optional textures are non-zero decides what is compiled in
-  // (their contents do not matter). Afterwards the context is as after create(): outputs cleared,
-  // no temporal history, no frame to composite. Optional: dispatch compiles what it needs on first
-  // use.
+  // (their contents do not matter). Every program is handed to the driver before any is waited
+  // on: a driver that compiles in parallel (GL_KHR_parallel_shader_compile) builds them at once.
+  // Afterwards the context is as after create(): outputs cleared, no temporal history, no frame to
+  // composite. Optional: dispatch compiles what it needs on first use.
   Status prepare(const FrameInputs& inputs, const Settings& settings, const PrepareOptions& options = {});
   Status prepare(std::span<const FrameInputs> views, const Settings& settings, const PrepareOptions& options = {});
 
