@@ -44,7 +44,7 @@ Expected<GLuint> Context::Impl::program(const std::vector<std::pair<GLenum, cons
   if (auto it = programs.find(key); it != programs.end()) return it->second;
   if (auto it = pendingPrograms.find(key); it != pendingPrograms.end()) {
     if (issueProgramsOnly) return it->second.program;  // handed over already; not waited on yet
-    const PendingProgram pending = it->second;
+    const PendingProgram pending = std::move(it->second);
     pendingPrograms.erase(it);
     return finishProgram(key, pending);
   }
