@@ -559,13 +559,14 @@ class Context {
   // Compiles every program dispatch() and composite() may use with these inputs and settings
   // (each variant a frame can choose: after an empty frame, with the traversal inline or in a pass
   // of its own) and runs each once on the inputs, since drivers finish compiling at first use for
-  // the textures bound then: no frame pays for a compile (on llvmpipe 1-4 s; on a GPU driver tens
-  // of ms). Call it at load time, with the inputs as they will be dispatched: their projection and
-  // layout are validated, and which optional textures are non-zero decides what is compiled in
-  // (their contents do not matter). Every program is handed to the driver before any is waited
-  // on: a driver that compiles in parallel (GL_KHR_parallel_shader_compile) builds them at once.
-  // Afterwards the context is as after create(): outputs cleared, no temporal history, no frame to
-  // composite. Optional: dispatch compiles what it needs on first use.
+  // the textures bound then: no frame pays for a compile (seconds with a cold driver cache, tens
+  // of ms with a warm one: docs/integration.md). Call it at load time, with the inputs as they
+  // will be dispatched: their projection and layout are validated, and which optional textures
+  // are non-zero decides what is compiled in (their contents do not matter). Every program is
+  // handed to the driver before any is waited on: a driver that compiles in parallel
+  // (GL_KHR_parallel_shader_compile) builds them at once. Afterwards the context is as after
+  // create(): outputs cleared, no temporal history, no frame to composite. Optional: dispatch
+  // compiles what it needs on first use.
   Status prepare(const FrameInputs& inputs, const Settings& settings, const PrepareOptions& options = {});
   Status prepare(std::span<const FrameInputs> views, const Settings& settings, const PrepareOptions& options = {});
 
