@@ -24,20 +24,21 @@ ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
 
 
 def dump_programs(render, args):
-    """{path: source} of the compute shaders one sslr-render run compiled."""
-    dump = tempfile.mkdtemp(prefix='sslr-shaders-')
-    out = tempfile.mkdtemp(prefix='sslr-out-')
-    env = dict(os.environ, MESA_SHADER_DUMP_PATH=dump)
-    run = subprocess.run([render, '--out', out] + args, env=env, capture_output=True, text=True)
-    if run.returncode != 0:
-        print(f'compiled_lines.py: {render} {" ".join(args)} failed:\n{run.stderr}', file=sys.stderr)
-        # As the GL tests: without a GL context, skipped (ctest's SKIP_RETURN_CODE) unless required.
-        sys.exit(1 if os.environ.get('SSLR_REQUIRE_GL') == '1' else 77)
-    sources = {}
-    for name in sorted(os.listdir(dump)):
-        if name.startswith('CS_'):
-            with open(os.path.join(dump, name), encoding='utf-8') as f:
-                sources[name] = f.read()
+    """{file name: source} of the compute shaders one sslr-render run compiled (its dump and its
+    images in temporary directories, removed afterwards)."""
+    with tempfile.TemporaryDirectory(prefix='sslr-shaders-') as dump, \
+         tempfile.TemporaryDirectory(prefix='sslr-out-') as out:
+        env = dict(os.environ, MESA_SHADER_DUMP_PATH=dump)
+        run = subprocess.run([render, '--out', out] + args, env=env, capture_output=True, text=True)
+        if run.returncode != 0:
+            print(f'compiled_lines.py: {render} {" ".join(args)} failed:\n{run.stderr}', file=sys.stderr)
+            # As the GL tests: without a GL context, skipped (ctest's SKIP_RETURN_CODE) unless required.
+            sys.exit(1 if os.environ.get('SSLR_REQUIRE_GL') == '1' else 77)
+        sources = {}
+        for name in sorted(os.listdir(dump)):
+            if name.startswith('CS_'):
+                with open(os.path.join(dump, name), encoding='utf-8') as f:
+                    sources[name] = f.read()
     if not sources:
         sys.exit('compiled_lines.py: the driver wrote no shader (MESA_SHADER_DUMP_PATH needs Mesa)')
     return sources
