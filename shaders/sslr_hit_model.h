@@ -13,10 +13,11 @@
 //     deeper behind a convex curved surface, or as measured by a back-face depth: level 0's extra
 //     depth, shared/thickness.h): within the hit tolerance it goes on (pixel snapping), inside the
 //     solid the walk ends, deeper it passes behind (sslrJudgePixel);
-//   - a ray that ended inside a solid met, in this order: the side of an object narrower than a
-//     pixel just past its outline (sslrCornerHit), a curved surface where it entered it
-//     (sslrCurvedEntryHit), a thin object's hidden side (sslrMetThinObject: a thin object is
-//     about as deep as it is wide); else it is hidden (measured) or a guess (sslrJudgeInside);
+//   - a ray that ended inside a solid met, in this order: the surface where it went in, as the
+//     shape given to the sample there reaches it (sslrEntryHit: a curved surface between two
+//     samples, the side of a face narrower than a pixel, a curved surface's rim), a thin object's
+//     hidden side (sslrMetThinObject: a thin object is about as deep as it is wide); else it is
+//     hidden (measured) or a guess (sslrJudgeInside);
 //   - a ray that ends without a hit where it went out of sight takes the colour there at the
 //     guesses' confidence (sslrHiddenGuess, sslrSlabGuess).
 //
@@ -91,65 +92,6 @@ SSLR_FN vec3 sslrPlaneAtWindow(SslrProjection p, SslrSurface s, vec2 w, vec3 vsO
   return a + dir * (abs(dn) > 1e-6f ? dot(vsOnPlane - a, vsN) / dn : 0.0f);
 }
 
-// A ray that crosses an object's outline into its pixel a little behind the face the pixel shows
-// met the object's side: a face the depth buffer holds no sample of where it is narrower than a
-// pixel (a box's top seen from just above it, a pillar's side seen nearly along it). The side is
-// taken to meet the shown face at a right angle along the outline (the corner outline thinning
-// assumes). It is a hit when the side faces the camera, the ray meets it from outside no deeper
-// than the slab behind the edge, and the hit projects between the outline and the outer pixel's
-// centre (had the side reached that centre, the outer pixel would show it). A side within ~6
-// degrees of edge-on (cos <= 0.1) is not trusted: rays from many pixels converge on such a
-// sliver, and most of them would be wrong (docs/design-notes.md). wEntry: where the ray entered the pixel
-// (window space, just past the boundary), d: the ray's window-space direction.
-SSLR_FN bool sslrCornerHit(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 wEntry, vec3 d, vec3 vsP,
-                           vec3 vsR, SSLR_OUT(float) L) {
-  L = 0.0f;
-  ivec2 px = ivec2(floor(vec2(wEntry.x, wEntry.y)));
-  vec2 f = vec2(wEntry.x, wEntry.y) - vec2(px);
-  float ex = d.x > 0.0f ? f.x : 1.0f - f.x;  // distance from the boundary the ray came through
-  float ey = d.y > 0.0f ? f.y : 1.0f - f.y;
-  bool acrossX = ex <= ey;
-  if (min(ex, ey) > 0.02f) return false;  // it did not cross a boundary here (it was moved on inside)
-  ivec2 outward = acrossX ? ivec2(d.x > 0.0f ? -1 : 1, 0) : ivec2(0, d.y > 0.0f ? -1 : 1);
-  ivec2 npx = px + outward;
-  if (npx.x < 0 || npx.y < 0 || npx.x >= s.width || npx.y >= s.height) return false;
-  float keySign = sslrReversedZ(s) ? -1.0f : 1.0f;
-  float depthOut = sslrLoadDepth(npx);
-  // An outline: the outer pixel shows something beyond the ray, or nothing.
-  if (sslrIsGeometryDepth(s, depthOut) && !(keySign * depthOut > wEntry.z)) return false;
-  vec3 vsSurface;
-  vec3 vsN;
-  if (!sslrLoadSurface(px, vsSurface) || !sslrDecodeNormal(s, sslrLoadNormal(px), vsN)) return false;
-  // A curved surface is no corner (its solid is the sphere of its curvature).
-  if (sslrCurvedSolids(t) && sslrLoadPyramidTexel(0, px).y > 0.0f) return false;
-  float slab = t.objectDepthRelative * -vsSurface.z;
-  if (sslrBackDepth(s)) {  // measured (0: nothing measured there, the slab assumed)
-    float measured = sslrLoadPyramidTexel(0, px).y;
-    if (measured != 0.0f) slab = max(slab + measured, 0.0f);
-  }
-  // The outline on the shown face's plane, and the side's outward normal.
-  vec2 wEdge = acrossX ? vec2(float(px.x) + (outward.x > 0 ? 1.0f : 0.0f), wEntry.y)
-                       : vec2(wEntry.x, float(px.y) + (outward.y > 0 ? 1.0f : 0.0f));
-  vec2 along = acrossX ? vec2(0.0f, 1.0f) : vec2(1.0f, 0.0f);
-  vec3 vsEdge = sslrPlaneAtWindow(p, s, wEdge, vsSurface, vsN);
-  vec3 vsEdge1 = sslrPlaneAtWindow(p, s, wEdge + along, vsSurface, vsN);
-  vec3 vsOut = sslrPlaneAtWindow(p, s, wEdge + 0.5f * vec2(outward), vsSurface, vsN);
-  vec3 side = cross(vsEdge1 - vsEdge, vsN);
-  if (!(dot(side, side) > 0.0f)) return false;
-  side = normalize(side);
-  if (dot(side, vsOut - vsEdge) < 0.0f) side = -side;
-  if (!(dot(side, -sslrViewDirection(p, vsEdge)) > 0.1f)) return false;  // hidden, or nearly edge-on
-  float denom = dot(vsR, side);
-  if (!(denom < 0.0f)) return false;  // the ray does not come at the side from outside
-  L = dot(vsEdge - vsP, side) / denom;
-  vec3 vsQ = vsP + vsR * L;
-  float depthBehind = dot(vsEdge - vsQ, vsN);
-  if (!(L > 0.0f) || !(depthBehind >= 0.0f) || depthBehind > slab || sslrClipW(p, vsQ) <= 0.0f) return false;
-  vec3 wQ = sslrWindowFromView(p, vec2(s.width, s.height), keySign, vsQ);
-  float outside = acrossX ? (wQ.x - wEdge.x) * float(outward.x) : (wQ.y - wEdge.y) * float(outward.y);
-  return outside >= -0.05f && outside <= 0.5f;
-}
-
 // How many pixels the face that pixel px shows reaches along `axis`, each way (offsets 1, 2, 4, 8
 // and 16: it stops at the first that leaves the face), plus px itself; once that exceeds
 // maxWidth the face is not thin and the count stops. A pixel is on the face while its
@@ -197,43 +139,65 @@ SSLR_FN bool sslrMetThinObject(SslrProjection p, SslrSurface s, ivec2 px, vec3 v
   return width <= maxWidth && entryBehind < SSLR_THIN_DEPTH_PER_WIDTH * width * footprint;
 }
 
-// sslrCurvedEntryHit's branch for a pixel px with no curved extra depth, on a curved surface near
-// an object's outline (where the radius estimate gives none): the ray crossed into px from npx
-// (keyIn: px's depth key, depthOut: npx's raw depth) and went behind px's sample there. It met the
-// surface where it went behind:
-// - across a crease: npx is the same surface with its sample beyond the ray (the crossing lies
-//   between the two samples, where neither pixel's tangent plane holds it);
+// The side of the face pixel px shows, where a ray crossed its outline into px from npx (window
+// point wEntry, just past the boundary; d: the ray's window direction): a face the depth buffer
+// holds no sample of where it is narrower than a pixel (a box's top seen from just above it, a
+// pillar's side seen nearly along it). The side is taken to meet the shown face (vsSurface, vsN)
+// at a right angle along the outline (the corner outline thinning assumes). It is a hit when the
+// side faces the camera, the ray meets it from outside no deeper than `slab` behind the edge, and
+// the hit projects between the outline and npx's centre (had the side reached that centre, npx
+// would show it). A side within ~6 degrees of edge-on (cos <= 0.1) is not trusted: rays from many
+// pixels converge on such a sliver, and most of them would be wrong (docs/design-notes.md).
+SSLR_FN bool sslrCornerHit(SslrProjection p, SslrSurface s, vec3 wEntry, vec3 vsP, vec3 vsR, ivec2 px, ivec2 npx,
+                           vec3 vsSurface, vec3 vsN, float slab, SSLR_OUT(float) L) {
+  L = 0.0f;
+  // Crossed in along x where it moved between columns (a crossing through a corner: along x).
+  ivec2 outward = npx.x != px.x ? ivec2(npx.x - px.x, 0) : ivec2(0, npx.y - px.y);
+  bool acrossX = outward.x != 0;
+  // The outline on the shown face's plane, and the side's outward normal.
+  vec2 wEdge = acrossX ? vec2(float(px.x) + (outward.x > 0 ? 1.0f : 0.0f), wEntry.y)
+                       : vec2(wEntry.x, float(px.y) + (outward.y > 0 ? 1.0f : 0.0f));
+  vec2 along = acrossX ? vec2(0.0f, 1.0f) : vec2(1.0f, 0.0f);
+  vec3 vsEdge = sslrPlaneAtWindow(p, s, wEdge, vsSurface, vsN);
+  vec3 vsEdge1 = sslrPlaneAtWindow(p, s, wEdge + along, vsSurface, vsN);
+  vec3 vsOut = sslrPlaneAtWindow(p, s, wEdge + 0.5f * vec2(outward), vsSurface, vsN);
+  vec3 side = cross(vsEdge1 - vsEdge, vsN);
+  if (!(dot(side, side) > 0.0f)) return false;
+  side = normalize(side);
+  if (dot(side, vsOut - vsEdge) < 0.0f) side = -side;
+  if (!(dot(side, -sslrViewDirection(p, vsEdge)) > 0.1f)) return false;  // hidden, or nearly edge-on
+  float denom = dot(vsR, side);
+  if (!(denom < 0.0f)) return false;  // the ray does not come at the side from outside
+  L = dot(vsEdge - vsP, side) / denom;
+  vec3 vsQ = vsP + vsR * L;
+  float depthBehind = dot(vsEdge - vsQ, vsN);
+  if (!(L > 0.0f) || !(depthBehind >= 0.0f) || depthBehind > slab || sslrClipW(p, vsQ) <= 0.0f) return false;
+  float keySign = sslrReversedZ(s) ? -1.0f : 1.0f;
+  vec3 wQ = sslrWindowFromView(p, vec2(s.width, s.height), keySign, vsQ);
+  float outside = acrossX ? (wQ.x - wEdge.x) * float(outward.x) : (wQ.y - wEdge.y) * float(outward.y);
+  return outside >= -0.05f && outside <= 0.5f;
+}
+
+// A curved surface near its outline, where the radius estimate gives no extra depth: a ray that
+// crossed into px from npx (wEntry, d as above) behind px's sample (keyIn: its depth key, distIn:
+// its view depth) met the surface there
+// - across a crease: npx is the same surface with its sample beyond the ray (`crease`: the crossing
+//   lies between the two samples, where neither pixel's tangent plane holds it);
 // - at the rim: it came from beyond the outline and is behind the rim's sample by less than the
-//   surface recedes from the pixel inwards to the rim (the part that turns away within the pixel).
-// Curved: the two pixels' shading normals turn as on one curved surface (sslrNormalsTurnAsCurved),
-// not as on a flat face (one normal), which ends at its outline, or at an edge between two faces.
-SSLR_FN bool sslrRimEntryHit(SslrProjection p, SslrSurface s, vec3 wEntry, vec3 d, vec3 vsP,
-                             vec3 vsR, ivec2 px, ivec2 npx, float keyIn, float depthOut, SSLR_OUT(float) L) {
+//   surface recedes from the pixel inwards (on the screen: sslrEntryHit checked it) to the rim (the
+//   part that turns away within the pixel). A rim hit is reported halfway to where the ray leaves
+//   the rim pixel: its colour, not a blend with what lies beyond the outline.
+SSLR_FN bool sslrRimHit(SslrProjection p, SslrSurface s, vec3 wEntry, vec3 d, vec3 vsP, vec3 vsR, ivec2 px,
+                        ivec2 npx, float keyIn, float distIn, bool crease, SSLR_OUT(float) L) {
   L = 0.0f;
   float keySign = sslrReversedZ(s) ? -1.0f : 1.0f;
-  bool outGeometry = sslrIsGeometryDepth(s, depthOut);
-  if (outGeometry && !(wEntry.z <= keySign * depthOut)) return false;
-  float distIn = sslrViewDepthFromDepth(p, keySign * keyIn);
-  float tolerance = sslrHitTolerance(p, s, distIn, 16.0f);
-  bool crease = outGeometry && abs(sslrViewDepthFromDepth(p, depthOut) - distIn) <= tolerance;
-  ivec2 other = npx;
-  if (!crease) {  // the rim: the pixel inwards, the same surface and nearer
-    other = px + (px - npx);
-    if (min(other.x, other.y) < 0 || other.x >= s.width || other.y >= s.height) return false;
-    float keyInward = keySign * sslrLoadDepth(other);
+  float tIn = 0.0f;
+  if (!crease) {  // the rim: the pixel inwards is the same surface, nearer by more than the ray is behind
+    float keyInward = keySign * sslrLoadDepth(px + (px - npx));
     if (!sslrIsGeometryDepth(s, keySign * keyInward) || !(keyInward < keyIn) ||
-        !(abs(sslrViewDepthFromDepth(p, keySign * keyInward) - distIn) <= tolerance) ||
+        !(abs(sslrViewDepthFromDepth(p, keySign * keyInward) - distIn) <= sslrHitTolerance(p, s, distIn, 16.0f)) ||
         !(wEntry.z - keyIn <= keyIn - keyInward))
       return false;
-  }
-  vec3 nIn, nOther;
-  if (!sslrDecodeNormal(s, sslrLoadNormal(px), nIn) || !sslrDecodeNormal(s, sslrLoadNormal(other), nOther) ||
-      !sslrNormalsTurnAsCurved(s, nIn, nOther))
-    return false;
-  // A rim hit is reported halfway to where the ray leaves the rim pixel: its colour, not a blend
-  // with what lies beyond the outline.
-  float tIn = 0.0f;
-  if (!crease) {
     vec2 stepOut = vec2(d.x >= 0.0f ? 1.0f : 0.0f, d.y >= 0.0f ? 1.0f : 0.0f);
     vec2 tOut = (vec2(px) + stepOut - vec2(wEntry.x, wEntry.y)) /
                 vec2(abs(d.x) > 1e-12f ? d.x : 1e-12f, abs(d.y) > 1e-12f ? d.y : 1e-12f);
@@ -243,51 +207,61 @@ SSLR_FN bool sslrRimEntryHit(SslrProjection p, SslrSurface s, vec3 wEntry, vec3 
   return L > 0.0f;
 }
 
-// Where a ray that ended inside a curved surface's solid entered it (window space wEntry: where
-// the run of pixels it has been behind began; the pixel there is px): a hit if it entered through the surface the pixel shows. A faceted mesh
-// with interpolated normals holds flat facets in depth while its shading normals tilt away from
-// them, so the pixel tests' tangent planes refuse such crossings, and a crease between facets,
-// seen at an angle, steps in depth from one pixel to the next. Where px has a curved extra depth,
-// two cases:
-// - the ray crossed into px from a neighbour whose surface lies beyond it there, and is behind
-//   px's: it crossed the surface between the two samples, at the boundary, if the two are one
-//   surface (their depths differ by no more than the steepest slope's hit tolerance; an outline
-//   steps further);
-// - otherwise it went behind inside px: a hit where it did, if that point lies on px's surface
-//   within the hit tolerance (adaptive L's convergence test).
-// Where it has none (near an outline), sslrRimEntryHit. With the back-face depth, level 0 holds
-// the measured extra depth instead, and the same two rules run on it: a measured solid thicker
-// than the slab, or the rim where it is thinner (a ray that ended inside it entered somewhere).
-SSLR_FN bool sslrCurvedEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 wEntry, vec3 d, vec3 vsP,
-                                vec3 vsR, SSLR_OUT(float) L) {
+// What a ray that ended inside a solid met where it went in: window point wEntry, where the run of
+// pixels it has been behind began (just past the boundary it crossed into pixel px, unless the walk
+// moved it on inside px), d its window-space direction. A hit (at length L) where the shape the
+// model gives px's sample reaches the ray there:
+// - px has extra depth (level 0: a curved surface's, or a measured solid thicker than the slab):
+//   a faceted mesh with interpolated normals holds flat facets in depth while its shading normals
+//   tilt away from them, so the pixel tests' tangent planes refuse its crossings.
+//   - Crossed in from npx, whose sample of the same surface (within the steepest slope's hit
+//     tolerance; an outline steps further) lies beyond the ray: it crossed the surface between the
+//     two samples, at the boundary (a crease between facets, seen at an angle).
+//   - Moved on inside px: where it lies on px's surface within the hit tolerance (adaptive L's test).
+// - Else, crossed in from npx showing something beyond the ray there, or nothing (an outline, or a
+//   crease), by the shape of px's surface: curved where px's shading normal and the next sample's
+//   turn as on one curved surface (sslrNormalsTurnAsCurved), not as on a flat face (one normal) or
+//   at an edge between two faces: its crease or rim (sslrRimHit); flat: the side of a face
+//   narrower than a pixel (sslrCornerHit), as deep as the slab behind px (with a back-face depth:
+//   plus the measured difference).
+SSLR_FN bool sslrEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 wEntry, vec3 d, vec3 vsP,
+                          vec3 vsR, SSLR_OUT(float) L) {
   L = 0.0f;
-  if (!sslrCurvedSolids(t) && !sslrBackDepth(s)) return false;
   ivec2 px = ivec2(floor(vec2(wEntry.x, wEntry.y)));
   float keySign = sslrReversedZ(s) ? -1.0f : 1.0f;
+  vec3 vsSurface, vsN;
+  if (!sslrLoadSurface(px, vsSurface) || !sslrDecodeNormal(s, sslrLoadNormal(px), vsN)) return false;
   float keyIn = keySign * sslrLoadDepth(px);
+  float distIn = -vsSurface.z;  // view depth, as sslrViewDepthFromDepth measures it
+  float extra = sslrLoadPyramidTexel(0, px).y;
   // The pixel the ray came from: just before the boundary it crossed (2 nudges back along the
   // major axis; a corner's other boundary, crossed earlier, stays crossed).
   ivec2 npx = ivec2(floor(vec2(wEntry.x, wEntry.y) - vec2(d.x, d.y) * (2.0f * SSLR_HIZ_NUDGE)));
   bool crossedIn = (npx.x != px.x || npx.y != px.y) && wEntry.z > keyIn && npx.x >= 0 && npx.y >= 0 &&
                    npx.x < s.width && npx.y < s.height;
-  bool curvedPixel = sslrLoadPyramidTexel(0, px).y > 0.0f;
-  if (!curvedPixel && crossedIn)
-    return sslrRimEntryHit(p, s, wEntry, d, vsP, vsR, px, npx, keyIn, sslrLoadDepth(npx), L);
-  vec3 vsSurface;
-  if (!sslrLoadSurface(px, vsSurface)) return false;
-  L = sslrRayLengthAt(p, vec2(s.width, s.height), keySign, wEntry, d, 0.0f, vsP, vsR);
-  if (!(L > 0.0f)) return false;
   if (!crossedIn) {
-    vec3 vsQ = vsP + vsR * L;
-    float distS = sslrOrthographic(p) ? abs(vsSurface.z) : -vsSurface.z;
-    return curvedPixel && length(vsQ - vsSurface) <= sslrHitTolerance(p, s, distS, 0.0f);
+    L = sslrRayLengthAt(p, vec2(s.width, s.height), keySign, wEntry, d, 0.0f, vsP, vsR);
+    return extra > 0.0f && L > 0.0f &&
+           length(vsP + vsR * L - vsSurface) <= sslrHitTolerance(p, s, distIn, 0.0f);
   }
   float depthOut = sslrLoadDepth(npx);
-  if (!sslrIsGeometryDepth(s, depthOut) || !(wEntry.z <= keySign * depthOut)) return false;
-  float distIn = sslrViewDepthFromDepth(p, keySign * keyIn);
-  return abs(sslrViewDepthFromDepth(p, depthOut) - distIn) <= sslrHitTolerance(p, s, distIn, 16.0f);
+  bool outGeometry = sslrIsGeometryDepth(s, depthOut);
+  if (outGeometry && !(wEntry.z <= keySign * depthOut)) return false;  // npx is nearer: no outline
+  bool sameSurface =
+      outGeometry && abs(sslrViewDepthFromDepth(p, depthOut) - distIn) <= sslrHitTolerance(p, s, distIn, 16.0f);
+  if (extra > 0.0f) {
+    L = sslrRayLengthAt(p, vec2(s.width, s.height), keySign, wEntry, d, 0.0f, vsP, vsR);
+    return sameSurface && L > 0.0f;
+  }
+  float slab = max(t.objectDepthRelative * distIn + (sslrBackDepth(s) ? extra : 0.0f), 0.0f);
+  // The next sample of px's surface: npx across a crease, else the pixel inwards.
+  ivec2 other = sameSurface ? npx : px + (px - npx);
+  vec3 nOther;
+  bool curvedShape = min(other.x, other.y) >= 0 && other.x < s.width && other.y < s.height &&
+                     sslrDecodeNormal(s, sslrLoadNormal(other), nOther) && sslrNormalsTurnAsCurved(s, vsN, nOther);
+  return curvedShape ? sslrRimHit(p, s, wEntry, d, vsP, vsR, px, npx, keyIn, distIn, sameSurface, L)
+                     : sslrCornerHit(p, s, wEntry, vsP, vsR, px, npx, vsSurface, vsN, slab, L);
 }
-
 
 // ---- The verdict at a pixel -------------------------------------------------------------------
 
@@ -408,16 +382,14 @@ struct SslrInside {
   SslrVerdict verdict;
 };
 
-// The answer for a ray that ended inside a solid (`hit`: the walk's record so far): the side of an
-// object just past its outline, a curved surface where it entered it, a thin object's hidden side
+// The answer for a ray that ended inside a solid (`hit`: the walk's record so far): the surface
+// where it went in (sslrEntryHit), a thin object's hidden side
 // (a guess: half resolution's other pixels do not reuse it); else hidden where it entered (a
 // measured solid) or the slab guess's length there (sslrSlabGuess).
 SSLR_FN SslrHit sslrJudgeInside(SslrProjection p, SslrSurface s, SslrTraceParams t, vec3 vsP, vec3 vsR, SslrHit hit,
                                 SslrInside entered) {
   float Lc = 0.0f;
-  if (sslrCornerHit(p, s, t, entered.wEntry, entered.d, vsP, vsR, Lc) && Lc <= t.maxDistance)
-    return sslrFinishHit(p, hit, vsP, vsR, Lc, 1.0f);
-  if (sslrCurvedEntryHit(p, s, t, entered.wEntry, entered.d, vsP, vsR, Lc) && Lc <= t.maxDistance)
+  if (sslrEntryHit(p, s, t, entered.wEntry, entered.d, vsP, vsR, Lc) && Lc <= t.maxDistance)
     return sslrFinishHit(p, hit, vsP, vsR, Lc, 1.0f);
   vec3 vsSlab, vsSlabNormal;
   if (entered.verdict.thinCandidate && sslrLoadSurface(entered.px, vsSlab) &&

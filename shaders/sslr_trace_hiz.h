@@ -46,7 +46,7 @@ struct SslrWalk {
   int i;              // steps taken
   // Where the ray entered the first pixel of the pixels it has been behind since it was last in
   // front of (or deeper than the slab behind) what the screen shows: the outline it may have
-  // crossed onto an object's side (sslrCornerHit, tried once, if the ray ends in the slab).
+  // crossed onto an object's side (sslrEntryHit, tried once, if the ray ends in the slab).
   float tRun;
   bool inSlab;        // the walk ended inside what pixel slabPx shows, with the verdict `slab`
   ivec2 slabPx;

@@ -1,16 +1,16 @@
 // The hit model (sslr_hit_model.h) on a synthetic depth buffer. Its verdict at a pixel
 // (sslrJudgePixel: in front, near, inside, behind, a hit) and its answer inside a solid
-// (sslrJudgeInside), then its rules one by one. The corner hit (sslrCornerHit): a box
-// whose front face ends at a pixel boundary, seen against a far wall. A ray from the right that
-// crosses the outline a little behind the front face meets the box's side there, exactly where a
-// right-angled corner puts it. Every condition of the rule has a case that must refuse the hit:
-// a hidden side, a side seen nearly edge-on, a hit the outer pixel would have shown, a hit deeper
-// than the slab, no outline, and a ray that did not cross the outline there. On the same buffer,
-// with the far surface moved close behind the front one and level 0 holding curved solids' extra
-// depth, the curved entry hit (sslrCurvedEntryHit): a crease between two samples of one curved
-// surface, and the cases it must refuse. With the box's samples receding and its normals turning
-// towards the edge and no extra depth, the rim entry hit (sslrRimEntryHit): the rim and a crease
-// of a curved surface near its outline, and the flat faces and box edges it must refuse. And
+// (sslrJudgeInside), then its rules one by one. Where a ray inside a solid went in (sslrEntryHit),
+// first on a box whose front face ends at a pixel boundary, seen against a far wall: a ray from the
+// right that crosses the outline a little behind the front face meets the box's side there,
+// exactly where a right-angled corner puts it (sslrCornerHit). Every condition of the side has a
+// case that must refuse the hit: a hidden side, a side seen nearly edge-on, a hit the outer pixel
+// would have shown, a hit deeper than the slab, no outline, and a ray that did not cross the
+// outline there. On the same buffer, with the far surface moved close behind the front one and
+// level 0 holding curved solids' extra depth: a crease between two samples of one curved surface,
+// and the cases it must refuse. With the box's samples receding and its normals turning towards
+// the edge and no extra depth: the rim and a crease of a curved surface near its outline
+// (sslrRimHit), and the flat faces and box edges that meet their side instead. And
 // sslrPlaneHit's contact line, whose plane must come from a pixel touching the mirror pixel, and
 // whose colour comes from the pixel beside it (sslrColorUv); a hit beside an outline lies off the
 // nearer face's plane (sslrGapToTexelPlane, which lobe rays read their colour by). The walk's
@@ -63,7 +63,7 @@ vec4 sslrLoadNormal(ivec2 px) {
   return vec4(e.x, e.y, 0.0f, 0.0f);
 }
 bool sslrLoadSurface(ivec2 px, vec3& vsPos) { return sslrSurfaceFromDepth(gProj, gSurf, px, sslrLoadDepth(px), vsPos); }
-// sslrCornerHit, sslrCurvedEntryHit and sslrRimEntryHit read level 0 alone; sslrSlabNearOutline
+// sslrEntryHit reads level 0 alone; sslrSlabNearOutline
 // (gCoarseLevels) reads the levels above it, each cell the (min, max) of its pixels' depths.
 bool gCoarseLevels = false;
 int gFetchesOutside = 0;  // pyramid texels read outside their level's cells (none may be)
@@ -157,7 +157,7 @@ class CornerHit : public ::testing::Test {
     const vec3 vsR = normalize(vsTarget - vsP);
     const Entry e = entryAt(vsP, vsR, gEdgePx, 1.0f / 256.0f);
     EXPECT_EQ(int(std::floor(e.wEntry.x)), gBoxOnLeft ? int(gEdgePx) - 1 : int(gEdgePx)) << "the box's outline pixel";
-    return sslrCornerHit(gProj, gSurf, params(slab), e.wEntry, e.d, vsP, vsR, L);
+    return sslrEntryHit(gProj, gSurf, params(slab), e.wEntry, e.d, vsP, vsR, L);
   }
 
   static SslrTraceParams params(float slab) {
@@ -217,7 +217,7 @@ TEST_F(CornerHit, RefusesWithoutAnOutline) {
   const Entry e = entryAt(vsP, vsR, 130.0f, 1.0f / 256.0f);
   ASSERT_EQ(int(std::floor(e.wEntry.x)), 129);
   float L = 0.0f;
-  EXPECT_FALSE(sslrCornerHit(gProj, gSurf, params(0.75f), e.wEntry, e.d, vsP, vsR, L));
+  EXPECT_FALSE(sslrEntryHit(gProj, gSurf, params(0.75f), e.wEntry, e.d, vsP, vsR, L));
 }
 
 TEST_F(CornerHit, RefusesARayThatDidNotEnterThroughTheOutline) {
@@ -229,7 +229,7 @@ TEST_F(CornerHit, RefusesARayThatDidNotEnterThroughTheOutline) {
   const Entry e = entryAt(vsP, vsR, gEdgePx - 0.5f, 0.0f);
   ASSERT_EQ(int(std::floor(e.wEntry.x)), int(gEdgePx) - 1);
   float L = 0.0f;
-  EXPECT_FALSE(sslrCornerHit(gProj, gSurf, params(0.75f), e.wEntry, e.d, vsP, vsR, L));
+  EXPECT_FALSE(sslrEntryHit(gProj, gSurf, params(0.75f), e.wEntry, e.d, vsP, vsR, L));
 }
 
 TEST_F(CornerHit, RefusesASideSeenNearlyEdgeOn) {
@@ -326,6 +326,13 @@ class CurvedEntryHit : public CornerHit {
     gWallZ = kFrontZ - 0.05f;
     gCurvedExtra = 0.5f;
   }
+  // Whether vsHit lies on the box's side, the plane x = the edge's x on the front face (window x
+  // of vsQ differs by ~0.004 view units between that plane and the crossing of the samples: the
+  // tolerance keeps 8x of it apart, and is ~50x float rounding at this distance).
+  static bool onTheSide(vec3 vsHit) {
+    const vec3 wHit = sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsHit);
+    return std::abs(vsHit.x - viewAt(gEdgePx, wHit.y, kFrontZ).x) <= 5e-4f;
+  }
   static SslrTraceParams curvedParams() {
     SslrTraceParams t = params(0.75f);
     t.curvedSolids = 1;
@@ -337,7 +344,7 @@ class CurvedEntryHit : public CornerHit {
     const vec3 vsR = normalize(vsTarget - vsP);
     const Entry e = entryAt(vsP, vsR, gEdgePx - inside, 1.0f / 256.0f);
     EXPECT_EQ(int(std::floor(e.wEntry.x)), int(gEdgePx) - 1);
-    return sslrCurvedEntryHit(gProj, gSurf, curvedParams(), e.wEntry, e.d, vsP, vsR, L);
+    return sslrEntryHit(gProj, gSurf, curvedParams(), e.wEntry, e.d, vsP, vsR, L);
   }
 };
 
@@ -358,11 +365,16 @@ TEST_F(CurvedEntryHit, RefusesAnOutline) {
   EXPECT_FALSE(entryHit(vsQ + vec3(4.0f, 0.3f, 1.5f), vsQ, L));
 }
 
-TEST_F(CurvedEntryHit, LeavesFlatSurfacesToTheirPlanes) {
+// Without extra depth and with one normal, the pixel shows a flat face: a ray that crosses its
+// outline just behind it meets the face's side (the corner's right angle: the plane through the
+// edge along the view depth), not the surface between the two samples.
+TEST_F(CurvedEntryHit, AFlatPixelMeetsItsFacesSide) {
   gCurvedExtra = 0.0f;
   const vec3 vsQ = viewAt(gEdgePx, 90.5f, kFrontZ - 0.02f);
+  const vec3 vsP = vsQ + vec3(4.0f, 0.3f, 1.5f);
   float L = 0.0f;
-  EXPECT_FALSE(entryHit(vsQ + vec3(4.0f, 0.3f, 1.5f), vsQ, L));
+  ASSERT_TRUE(entryHit(vsP, vsQ, L));
+  EXPECT_TRUE(onTheSide(vsP + normalize(vsQ - vsP) * L));
 }
 
 TEST_F(CurvedEntryHit, RefusesARayBehindBothSamples) {
@@ -382,7 +394,7 @@ TEST_F(CurvedEntryHit, InsideAPixelHitsOnlyOnItsSurface) {
   EXPECT_FALSE(entryHit(vsFar + vec3(4.0f, 0.3f, 1.5f), vsFar, L, 0.3f));
 }
 
-// sslrCurvedEntryHit's branch without curved extra depth (sslrRimEntryHit): the box is a curved
+// Without curved extra depth (sslrRimHit): the box is a curved
 // surface near its outline, and level 0 holds no extra depth. Its columns recede by 0.05 a column towards the edge and the normals turn by 3
 // degrees a column. A ray from the right crosses the edge from the far wall (the rim) or, with the
 // wall moved close behind, from a sample of the same surface (a crease).
@@ -399,7 +411,7 @@ class RimEntryHit : public CurvedEntryHit {
     const vec3 vsR = normalize(vsTarget - vsP);
     const Entry e = entryAt(vsP, vsR, gEdgePx, 1.0f / 256.0f);
     EXPECT_EQ(int(std::floor(e.wEntry.x)), int(gEdgePx) - 1);
-    const bool hit = sslrCurvedEntryHit(gProj, gSurf, curvedParams(), e.wEntry, e.d, vsP, vsR, L);
+    const bool hit = sslrEntryHit(gProj, gSurf, curvedParams(), e.wEntry, e.d, vsP, vsR, L);
     wHit = sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsP + vsR * L);
     return hit;
   }
@@ -424,13 +436,20 @@ TEST_F(RimEntryHit, RefusesARayBehindTheRimByMoreThanItRecedes) {
   EXPECT_FALSE(rimHit(rayFrom(vsQ), vsQ, L, wHit));
 }
 
-TEST_F(RimEntryHit, RefusesAFlatFacesEdgeAndASurfaceNotReceding) {
+TEST_F(RimEntryHit, AFlatFaceEndsInItsSideNotARim) {
   const vec3 vsQ = viewAt(gEdgePx, 90.5f, kFrontZ - 0.03f);
   float L = 0.0f;
   vec3 wHit;
-  gNormalTurn = 0.0f;  // one normal: a flat face ends at its outline
-  EXPECT_FALSE(rimHit(rayFrom(vsQ), vsQ, L, wHit));
-  gNormalTurn = 3.0f * 3.14159265f / 180.0f;
+  gNormalTurn = 0.0f;  // one normal: a flat face, whose side meets it at its outline
+  ASSERT_TRUE(rimHit(rayFrom(vsQ), vsQ, L, wHit));
+  EXPECT_TRUE(onTheSide(rayFrom(vsQ) + normalize(vsQ - rayFrom(vsQ)) * L));
+  EXPECT_GT(wHit.x, gEdgePx - 0.1f) << "not halfway across the rim pixel";
+}
+
+TEST_F(RimEntryHit, RefusesASurfaceNotReceding) {
+  const vec3 vsQ = viewAt(gEdgePx, 90.5f, kFrontZ - 0.03f);
+  float L = 0.0f;
+  vec3 wHit;
   gRimRecede = -0.05f;  // nearer towards the edge: no rim turning away
   EXPECT_FALSE(rimHit(rayFrom(vsQ), vsQ, L, wHit));
 }
@@ -444,7 +463,7 @@ TEST_F(RimEntryHit, LeavesCurvedPixelsToTheCurvedEntryRule) {
   EXPECT_FALSE(rimHit(rayFrom(vsQ), vsQ, L, wHit));
 }
 
-TEST_F(RimEntryHit, HitsACreaseOfOneCurvedSurfaceButNotABoxsEdge) {
+TEST_F(RimEntryHit, HitsACreaseOfOneCurvedSurfaceAndABoxsEdgeAtItsSide) {
   // The wall 0.05 behind the rim's sample: the same surface, its normal turned 3 degrees further.
   gWallZ = kFrontZ - 0.05f;
   const vec3 vsQ = viewAt(gEdgePx, 90.5f, kFrontZ - 0.02f);
@@ -452,9 +471,11 @@ TEST_F(RimEntryHit, HitsACreaseOfOneCurvedSurfaceButNotABoxsEdge) {
   vec3 wHit;
   ASSERT_TRUE(rimHit(rayFrom(vsQ), vsQ, L, wHit));
   EXPECT_NEAR(L, length(vsQ - rayFrom(vsQ)), 2e-3f * length(vsQ - rayFrom(vsQ)));  // at the edge
-  // Normals 60 degrees apart: two faces meeting at an edge, not one curved surface.
+  // Normals 60 degrees apart: two faces meeting at an edge, not one curved surface. The ray meets
+  // the side of the face the outline pixel shows.
   gNormalTurn = 60.0f * 3.14159265f / 180.0f;
-  EXPECT_FALSE(rimHit(rayFrom(vsQ), vsQ, L, wHit));
+  ASSERT_TRUE(rimHit(rayFrom(vsQ), vsQ, L, wHit));
+  EXPECT_TRUE(onTheSide(rayFrom(vsQ) + normalize(vsQ - rayFrom(vsQ)) * L));
 }
 
 // sslrPlaneHit's contact line: a ray from a mirror pixel meets the plane of the surface standing on

@@ -809,7 +809,7 @@ TEST_F(HitDistanceOfGuesses, AreNegative) {
 // and the blur spreads it). The depth shows flat facets while the shading normal's plane tilts away
 // from them, so the pixel tests refused such crossings, and crossings at the creases between
 // facets, where the depth steps from pixel to pixel: a ray that ends inside a curved surface's
-// solid now hits where it entered it through the surface (sslrCurvedEntryHit). Counted on the GPU
+// solid now hits where it entered it through the surface (sslrEntryHit). Counted on the GPU
 // pass at 256x144: 24 -> 2 at 32 segments, 2 -> 2 at 128 (results/curved-objects.md has 320x180
 // to 960x540).
 int isolatedRejections(const GroundTruth& truth, const Image& hit) {
@@ -828,7 +828,7 @@ int isolatedRejections(const GroundTruth& truth, const Image& hit) {
 }
 
 // With the back-face depth given (FrameInputs::backDepthTexture) the solids are measured instead of
-// estimated, and the same entry rules apply (sslrCurvedEntryHit, sslrRimEntryHit): until 0.9 they
+// estimated, and the same entry rules apply (sslrEntryHit): until 0.9 they
 // were off there, and a host that gave the better input got more sparkles: 14 and 2 isolated
 // rejections at 256x144, 113 and 83 at 960x540 (now 2 and 2, and 11 and 14).
 class IsolatedRejections : public sslr::test::GlTest,
