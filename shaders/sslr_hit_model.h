@@ -126,7 +126,7 @@ SSLR_FN bool sslrThinEntryShallow(float footprint, float entryBehind) {
 // assumed slab of what pixel px shows met that object's hidden side rather than passing behind it.
 // Without a thickness the depth buffer cannot tell; the prior is that a thin object (a bar, a rail,
 // a leg: at most 16 px and a 30th of the screen height across, its narrower extent around px) is
-// about as deep as it is wide, so a ray less deep behind it than twice its width (and than
+// about as deep as it is wide, so a ray less deep behind it than its width (and than
 // SSLR_THIN_MAX_DEPTH_FOOTPRINTS pixel footprints) met it. Wider objects keep the slab's answers:
 // there a ray this close behind the outline mostly passes a corner (results/composite.md, "0.9.2").
 SSLR_FN bool sslrMetThinObject(SslrProjection p, SslrSurface s, ivec2 px, vec3 vsSurface, vec3 vsN, float tolerance,

@@ -41,7 +41,7 @@ namespace sslr::shared {
 // SSLR_THIN_MAX_DEPTH_FOOTPRINTS pixel footprints (sslrMetThinObject; docs/algorithm.md, "Thin objects").
 #define SSLR_THIN_MAX_WIDTH_PX 16
 #define SSLR_THIN_MAX_WIDTH_SCREEN (1.0f / 30.0f)
-#define SSLR_THIN_DEPTH_PER_WIDTH 2.0f
+#define SSLR_THIN_DEPTH_PER_WIDTH 1.0f
 #define SSLR_THIN_MAX_DEPTH_FOOTPRINTS 6.0f
 
 // SslrTraceParams::stochasticFrom when no pixel draws its ray from its lobe: above every roughness.

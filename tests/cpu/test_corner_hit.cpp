@@ -247,10 +247,11 @@ namespace {
 
 // Thin objects (sslrMetThinObject): a ray that went into the assumed slab of what a pixel shows met
 // the object's hidden side when the object is at most 16 px and a 30th of the screen height (here
-// 6 px) across around that pixel, and the ray went in less deep than twice its width and than 6
-// pixel footprints. The width is counted in steps of 1, 2, 4, 8 and 16 px each way from the pixel.
-// A 4-column bar seen square on: 3 footprints deep is a hit, 7 is not (past 6), and neither is 3
-// behind a 12-column bar (counted 10 wide from its second column) or the wide box.
+// 6 px) across around that pixel, and the ray went in less deep than its width and than 6 pixel
+// footprints. The width is counted in steps of 1, 2, 4, 8 and 16 px each way from the pixel. A
+// 4-column bar seen square on: 3 footprints deep is a hit, 5 is not (deeper than the bar is wide),
+// nor 7 (past 6), and neither is 3 behind a 12-column bar (counted 10 wide from its second column)
+// or the wide box.
 TEST_F(CornerHit, ThinObjectsAreAsDeepAsTheyAreWide) {
   const ivec2 px(int(gEdgePx) - 2, 90);
   const vec3 vsN(0.0f, 0.0f, 1.0f);
@@ -263,6 +264,7 @@ TEST_F(CornerHit, ThinObjectsAreAsDeepAsTheyAreWide) {
   };
   gBarWidthPx = 4.0f;
   EXPECT_TRUE(met(3.0f));
+  EXPECT_FALSE(met(5.0f));
   EXPECT_FALSE(met(7.0f));
   gBarWidthPx = 12.0f;
   EXPECT_FALSE(met(3.0f));
