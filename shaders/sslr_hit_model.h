@@ -140,7 +140,7 @@ SSLR_FN bool sslrMetThinObject(SslrProjection p, SslrSurface s, ivec2 px, vec3 v
 }
 
 // The side of the face pixel px shows, where a ray crossed its outline into px from npx (window
-// point wEntry, just past the boundary; d: the ray's window direction): a face the depth buffer
+// point wEntry, just past the boundary): a face the depth buffer
 // holds no sample of where it is narrower than a pixel (a box's top seen from just above it, a
 // pillar's side seen nearly along it). The side is taken to meet the shown face (vsSurface, vsN)
 // at a right angle along the outline (the corner outline thinning assumes). It is a hit when the

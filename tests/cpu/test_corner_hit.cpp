@@ -63,8 +63,8 @@ vec4 sslrLoadNormal(ivec2 px) {
   return vec4(e.x, e.y, 0.0f, 0.0f);
 }
 bool sslrLoadSurface(ivec2 px, vec3& vsPos) { return sslrSurfaceFromDepth(gProj, gSurf, px, sslrLoadDepth(px), vsPos); }
-// sslrEntryHit reads level 0 alone; sslrSlabNearOutline
-// (gCoarseLevels) reads the levels above it, each cell the (min, max) of its pixels' depths.
+// sslrEntryHit reads level 0 alone; sslrSlabNearOutline (gCoarseLevels) reads the levels above
+// it, each cell the (min, max) of its pixels' depths.
 bool gCoarseLevels = false;
 int gFetchesOutside = 0;  // pyramid texels read outside their level's cells (none may be)
 vec2 sslrLoadPyramidTexel(int level, ivec2 cell) {
@@ -328,9 +328,10 @@ class CurvedEntryHit : public CornerHit {
     gWallZ = kFrontZ - 0.05f;
     gCurvedExtra = 0.5f;
   }
-  // Whether vsHit lies on the box's side, the plane x = the edge's x on the front face (window x
-  // of vsQ differs by ~0.004 view units between that plane and the crossing of the samples: the
-  // tolerance keeps 8x of it apart, and is ~50x float rounding at this distance).
+  // Whether vsHit lies on the box's side: the plane x = the edge's x on the front face. A point at
+  // the edge's window x 0.02-0.03 behind the front face lies 0.004-0.006 view units off it (the
+  // answer across the two samples); the tolerance is a tenth of that and ~50x the unprojection's
+  // float rounding here.
   static bool onTheSide(vec3 vsHit) {
     const vec3 wHit = sslrWindowFromView(gProj, vec2(kWidth, kHeight), -1.0f, vsHit);
     return std::abs(vsHit.x - viewAt(gEdgePx, wHit.y, kFrontZ).x) <= 5e-4f;
@@ -396,10 +397,10 @@ TEST_F(CurvedEntryHit, InsideAPixelHitsOnlyOnItsSurface) {
   EXPECT_FALSE(entryHit(vsFar + vec3(4.0f, 0.3f, 1.5f), vsFar, L, 0.3f));
 }
 
-// Without curved extra depth (sslrRimHit): the box is a curved
-// surface near its outline, and level 0 holds no extra depth. Its columns recede by 0.05 a column towards the edge and the normals turn by 3
-// degrees a column. A ray from the right crosses the edge from the far wall (the rim) or, with the
-// wall moved close behind, from a sample of the same surface (a crease).
+// Without curved extra depth (sslrRimHit): the box is a curved surface near its outline, and level
+// 0 holds no extra depth. Its columns recede by 0.05 a column towards the edge and the normals
+// turn by 3 degrees a column. A ray from the right crosses the edge from the far wall (the rim)
+// or, with the wall moved close behind, from a sample of the same surface (a crease).
 class RimEntryHit : public CurvedEntryHit {
  protected:
   void SetUp() override {
