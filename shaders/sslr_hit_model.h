@@ -434,11 +434,11 @@ SSLR_FN SslrHit sslrHiddenGuess(SslrTraceParams t, SslrHit answer) {
   return answer;
 }
 
-// A ray the traversal stopped inside an object's assumed slab, past which adaptive L found nothing,
-// passed behind the object (a miss: the fallback) or met its hidden side (the slab's colour): the
-// answer is where it went into the slab, at the guesses' confidence (Settings::traversal.
-// hiddenGuess). It runs after sslrHiddenGuess, whose guess (where the ray first went behind
-// something) takes precedence.
+// A ray the traversal stopped inside an object's assumed slab, past which adaptive L found nothing
+// (or which it did not probe: a ray towards the camera, sslrTraversalOnly), passed behind the
+// object (a miss: the fallback) or met its hidden side (the slab's colour): the answer is where it
+// went into the slab, at the guesses' confidence (Settings::traversal.hiddenGuess). It runs after
+// sslrHiddenGuess, whose guess (where the ray first went behind something) takes precedence.
 SSLR_FN SslrHit sslrSlabGuess(SslrProjection p, SslrTraceParams t, vec3 vsP, vec3 vsR, SslrHit answer) {
   if (answer.status == SSLR_STATUS_HIT || !(answer.LSlab > 0.0f) || !(t.hiddenGuess > 0.0f) ||
       !(answer.LSlab <= t.maxDistance))

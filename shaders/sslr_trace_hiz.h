@@ -422,7 +422,8 @@ SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTracePa
     if (walked.endedInside != 0) return walked;  // not answered here (sslrTraceHierarchical)
 #endif
     needsTraversal = sslrWalkedNeedsProbes(p, vsP, vsR, walked);
-    return needsTraversal ? walked : sslrHiddenGuess(t, walked);
+    // Answered by the walk alone: its guesses, as after the second stage.
+    return needsTraversal ? walked : sslrSlabGuess(p, t, vsP, vsR, sslrHiddenGuess(t, walked));
   }
 #endif
   if (needsTraversal) return sslrNoHit(SSLR_STATUS_MISS);
