@@ -746,6 +746,32 @@ TEST_F(HitModel, TheHiddenGuessIsWhereTheRayLastWentOutOfSight) {
   EXPECT_EQ(past.LGuess, 0.0f) << "in front of the wall again past the bar";
 }
 
+// A ray in front of the box's face that runs nearly along the image plane (the traversal's answer
+// is final for it: sslrTraversalOnly) and grazes into the face, too flat for the tangent plane's
+// hit (dot(R, N) > -0.05), ends inside the face's slab. The walk alone answers it, with the
+// guesses the second stage gives: the slab's colour where it went in, at the guesses' confidence.
+TEST_F(HitModel, ARayTheWalkAloneAnswersGetsTheSlabGuess) {
+  SslrTraceParams t = modelParams();
+  t.hizMode = SSLR_HIZ_TRAVERSAL_FIRST;
+  t.maxSteps = 200;
+  t.hiddenGuess = 0.5f;
+  const vec3 vsP = viewAt(128.5f, 90.5f, kFrontZ + 0.05f);
+  const vec3 vsR = normalize(vec3(-1.0f, 0.0f, -0.045f));
+  ASSERT_TRUE(sslrTraversalOnly(gProj, vsP, vsR));
+  const SslrHit walked = sslrTraceHierarchical(gProj, gSurf, t, ivec2(128, 90), vsP, vsR);
+  ASSERT_EQ(walked.endedInside, 1);
+  ASSERT_NE(walked.status, SSLR_STATUS_HIT);
+  ASSERT_GT(walked.LSlab, 0.0f);
+  ASSERT_EQ(walked.LGuess, 0.0f) << "never out of sight: no hidden guess";
+  bool needsTraversal = true;
+  const SslrHit answer = sslrTraceFirstStage(gProj, gSurf, t, ivec2(128, 90), vsP, vsR, needsTraversal);
+  EXPECT_FALSE(needsTraversal);
+  EXPECT_EQ(answer.status, SSLR_STATUS_HIT);
+  EXPECT_EQ(answer.guessed, 1);
+  EXPECT_EQ(answer.confidence, 0.5f);
+  EXPECT_FLOAT_EQ(answer.L, walked.LSlab);
+}
+
 // A ray the walk follows to the screen's edge, or out of the depth range (towards the camera),
 // ends there off the screen without reading a pyramid texel past the
 // screen: from next to each edge and from the middle, along the edge and across it, in front of
