@@ -63,8 +63,9 @@ Expected<GLuint> Context::Impl::program(const std::vector<std::pair<GLenum, cons
   }
   gl.LinkProgram(pending.program);
   if (issueProgramsOnly) {
-    pendingPrograms.emplace(key, pending);
-    return pending.program;
+    const GLuint handedOver = pending.program;
+    pendingPrograms.emplace(key, std::move(pending));
+    return handedOver;
   }
   return finishProgram(key, pending);
 }
