@@ -232,7 +232,7 @@ SSLR_FN bool sslrEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t, ve
   vec3 vsSurface, vsN;
   if (!sslrLoadSurface(px, vsSurface) || !sslrDecodeNormal(s, sslrLoadNormal(px), vsN)) return false;
   float keyIn = keySign * sslrLoadDepth(px);
-  float distIn = -vsSurface.z;  // view depth, as sslrViewDepthFromDepth measures it
+  float distIn = sslrViewDepthFromDepth(p, keySign * keyIn);  // from the depth buffer, as npx's
   float extra = sslrLoadPyramidTexel(0, px).y;
   // The pixel the ray came from: just before the boundary it crossed (2 nudges back along the
   // major axis; a corner's other boundary, crossed earlier, stays crossed).
@@ -446,6 +446,12 @@ SSLR_FN SslrHit sslrSlabGuess(SslrProjection p, SslrTraceParams t, vec3 vsP, vec
   SslrHit guess = sslrFinishHit(p, answer, vsP, vsR, answer.LSlab, t.hiddenGuess);
   guess.guessed = 1;
   return guess.status == SSLR_STATUS_HIT ? guess : answer;
+}
+
+// The guesses for a traversal-first answer without a hit, in their order: where the ray went out of
+// sight, else where it went into a slab. Whichever stage answers the ray applies them.
+SSLR_FN SslrHit sslrGuess(SslrProjection p, SslrTraceParams t, vec3 vsP, vec3 vsR, SslrHit answer) {
+  return sslrSlabGuess(p, t, vsP, vsR, sslrHiddenGuess(t, answer));
 }
 
 

@@ -422,8 +422,7 @@ SSLR_FN SslrHit sslrTraceFirstStage(SslrProjection p, SslrSurface s, SslrTracePa
     if (walked.endedInside != 0) return walked;  // not answered here (sslrTraceHierarchical)
 #endif
     needsTraversal = sslrWalkedNeedsProbes(p, vsP, vsR, walked);
-    // Answered by the walk alone: its guesses, as after the second stage.
-    return needsTraversal ? walked : sslrSlabGuess(p, t, vsP, vsR, sslrHiddenGuess(t, walked));
+    return needsTraversal ? walked : sslrGuess(p, t, vsP, vsR, walked);
   }
 #endif
   if (needsTraversal) return sslrNoHit(SSLR_STATUS_MISS);
@@ -449,7 +448,7 @@ SSLR_FN SslrHit sslrTraceSecondStage(SslrProjection p, SslrSurface s, SslrTraceP
                                      vec3 vsR, SslrHit first) {
 #if SSLR_HIZ_MODE_MAY_BE(SSLR_HIZ_TRAVERSAL_FIRST)
   if (sslrHiZMode(t) == SSLR_HIZ_TRAVERSAL_FIRST)
-    return sslrSlabGuess(p, t, vsP, vsR, sslrHiddenGuess(t, sslrProbeAfterWalk(p, s, t, pxOrigin, vsP, vsR, first)));
+    return sslrGuess(p, t, vsP, vsR, sslrProbeAfterWalk(p, s, t, pxOrigin, vsP, vsR, first));
 #endif
 #if SSLR_HIZ_MODE_MAY_BE(SSLR_HIZ_ONLY)
   return sslrHiddenGuess(t, sslrTraceHierarchical(p, s, t, pxOrigin, vsP, vsR));
