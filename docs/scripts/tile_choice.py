@@ -66,7 +66,7 @@ def same_answer(a, b, width, height):
             abs(a[1] - b[1]) * height <= 1.0)
 
 
-def adaptive_l_holds(hits, traced, width, jump):
+def adaptive_l_holds(hits, traced, jump):
     """Adaptive L first's test of a tile from its own hits: every traced pixel a confident hit, and no
     two neighbouring ones whose lengths differ by more than `jump` of the shorter."""
     if any(hits[p][2] <= 0.5 for p in traced):
@@ -122,7 +122,7 @@ def tile_choice(width, height, hit_default, steps_default, hit_alone, steps_alon
             else:
                 take('oracle', c * simt_default, chain_default)
             hits = {p: at(hit_alone, p) for p in traced}
-            if adaptive_l_holds(hits, traced, width, jump):
+            if adaptive_l_holds(hits, traced, jump):
                 alone_tiles['first'] += 1
                 differ['first'] += differing
                 take('first', c_alone * simt_alone, chain_alone)
