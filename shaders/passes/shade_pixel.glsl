@@ -6,6 +6,7 @@
 // handed to a later pass, which writes its outputs. `ranTracer`: whether a ray was traced here.
 bool sslrPixelHit(ivec2 px, SslrPixel q, out SslrHit hit, out bool ranTracer);
 
+#ifdef SSLR_STOCHASTIC  // only a ray drawn from the lobe reads it (the mirror ray: a bilinear read)
 // The colour at a hit vsQ, read at uvColor from the texels whose surface holds it. A plain
 // bilinear read also mixes in whatever lies across a silhouette within half a pixel. Where the four
 // texels around uvColor are geometry within 2% of vsQ's depth of each other, nothing does: that read.
@@ -40,6 +41,7 @@ vec3 sslrSurfaceColor(vec2 uvColor, vec3 vsQ) {
   }
   return weightSum > 1e-4f ? sum / weightSum : blended;
 }
+#endif
 
 // Returns the dependent steps of the tracer run here (0 where none ran: FrameStats' ray work).
 uint sslrShadePixel(ivec2 px) {
@@ -66,8 +68,10 @@ uint sslrShadePixel(ivec2 px) {
       // ray's answer stands alone: the bilinear read, whose blend across a silhouette hedges a
       // hit that lands on the wrong side of it (docs/design-notes.md, "A surface-aware colour read at
       // the hit").
-      vec3 color = q.stochastic ? sslrSurfaceColor(uvColor, q.vsP + q.vsR * hit.L)
-                                : textureLod(uColor, sslrTextureUv(uvColor), 0.0f).rgb;
+      vec3 color = textureLod(uColor, sslrTextureUv(uvColor), 0.0f).rgb;
+#ifdef SSLR_STOCHASTIC
+      if (q.stochastic) color = sslrSurfaceColor(uvColor, q.vsP + q.vsR * hit.L);
+#endif
       // Poisoned colour must not spread through the blur: NaN/Inf become 0, and the value is
       // kept inside RGBA16F's range.
       if (any(isnan(color)) || any(isinf(color))) color = vec3(0.0f);

@@ -121,9 +121,11 @@ bool sslrPixelToTrace(ivec2 px, out SslrPixel q) {
   return true;
 }
 
+#ifdef SSLR_STOCHASTIC
 // Whether pixel q's ray was drawn from its lobe in a frame with temporal history: it takes no guess
 // (sslrRayParams).
 bool sslrStochasticWithHistory(SslrPixel q) { return q.stochastic && frame.temporal.history != 0; }
+#endif
 
 // Whether pixel q's value skips the blur: such a ray, with the blur on (SSLR_STOCHASTIC_FILTER),
 // which the temporal blend filters over its neighbours instead (sslrStochasticNeighbourhood in
@@ -143,9 +145,11 @@ bool sslrFilteredByTemporalBlend(SslrPixel q) {
 // reset) keeps the guess: its one ray is all the pixel shows (docs/results/glossy.md, "0.9.1").
 SslrTraceParams sslrRayParams(SslrPixel q) {
   SslrTraceParams t = frame.trace;
+#ifdef SSLR_STOCHASTIC
   if (sslrStochasticWithHistory(q)) {
     t.hiddenGuess = 0.0f;
     t.thinObjectHits = 0;
   }
+#endif
   return t;
 }
