@@ -68,9 +68,11 @@ uint sslrShadePixel(ivec2 px) {
       // ray's answer stands alone: the bilinear read, whose blend across a silhouette hedges a
       // hit that lands on the wrong side of it (docs/design-notes.md, "A surface-aware colour read at
       // the hit").
-      vec3 color = textureLod(uColor, sslrTextureUv(uvColor), 0.0f).rgb;
 #ifdef SSLR_STOCHASTIC
-      if (q.stochastic) color = sslrSurfaceColor(uvColor, q.vsP + q.vsR * hit.L);
+      vec3 color = q.stochastic ? sslrSurfaceColor(uvColor, q.vsP + q.vsR * hit.L)
+                                : textureLod(uColor, sslrTextureUv(uvColor), 0.0f).rgb;
+#else
+      vec3 color = textureLod(uColor, sslrTextureUv(uvColor), 0.0f).rgb;
 #endif
       // Poisoned colour must not spread through the blur: NaN/Inf become 0, and the value is
       // kept inside RGBA16F's range.
