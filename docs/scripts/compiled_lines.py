@@ -20,7 +20,7 @@ fails, it exits 77 (ctest: skipped, as the GL tests skip without a GL context) u
 SSLR_REQUIRE_GL=1, then 1."""
 import argparse, os, re, subprocess, sys, tempfile
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
+from render_io import DEFAULT_RENDER, run_render
 
 
 def dump_programs(render, args):
@@ -28,12 +28,7 @@ def dump_programs(render, args):
     images in temporary directories, removed afterwards)."""
     with tempfile.TemporaryDirectory(prefix='sslr-shaders-') as dump, \
          tempfile.TemporaryDirectory(prefix='sslr-out-') as out:
-        env = dict(os.environ, MESA_SHADER_DUMP_PATH=dump)
-        run = subprocess.run([render, '--out', out] + args, env=env, capture_output=True, text=True)
-        if run.returncode != 0:
-            print(f'compiled_lines.py: {render} {" ".join(args)} failed:\n{run.stderr}', file=sys.stderr)
-            # As the GL tests: without a GL context, skipped (ctest's SKIP_RETURN_CODE) unless required.
-            sys.exit(1 if os.environ.get('SSLR_REQUIRE_GL') == '1' else 77)
+        run_render('compiled_lines.py', render, ['--out', out] + args, dict(os.environ, MESA_SHADER_DUMP_PATH=dump))
         sources = {}
         for name in sorted(os.listdir(dump)):
             if name.startswith('CS_'):
@@ -152,7 +147,7 @@ def main():
     if sys.argv[1:] == ['--self-test']:
         return self_test()
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
-    ap.add_argument('--render', default=os.path.join(ROOT, 'build', 'release', 'src', 'apps', 'sslr-render'))
+    ap.add_argument('--render', default=DEFAULT_RENDER)
     ap.add_argument('--size', default='160x90')
     ap.add_argument('extra', nargs='*', help='more sslr-render arguments (after --)')
     a = ap.parse_args()

@@ -12,19 +12,14 @@ ray to adaptive L (as at the step cap), at --handover more steps each. Per group
 min(slowest, (k+1)-th slowest + handover) where k > 0, else the slowest.
 Prints, per handover, the groups' summed cost against today's (the SIMT work the cost model
 counts), the longest chain before and after, and the share of lanes the exit would stop."""
-import re
-import subprocess
 import sys
+
+from render_io import read_image
 
 
 def steps_of(path):
-    text = subprocess.run(['oiiotool', '--dumpdata', path], check=True, capture_output=True, text=True).stdout
-    m = re.search(r':\s+(\d+) x\s+(\d+)', text)
-    width, height = int(m.group(1)), int(m.group(2))
-    rows = [[0.0] * width for _ in range(height)]
-    for x, y, v in re.findall(r'Pixel \((\d+), (\d+)\): ([-0-9.e+]+)', text):
-        rows[int(y)][int(x)] = float(v)
-    return width, height, rows
+    width, height, rows = read_image(path)
+    return width, height, [[v[0] if v else 0.0 for v in row] for row in rows]
 
 
 def groups(width, height, rows, lanes):

@@ -26,11 +26,11 @@ import argparse
 import os
 import re
 import statistics
-import subprocess
 import sys
 import tempfile
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..')
+from render_io import DEFAULT_RENDER, ROOT, read_image, run_render
+
 
 
 def cost_model():
@@ -47,15 +47,10 @@ def cost_model():
     return fits
 
 
-def read_image(path):
+def read_gl_rows(path):
     """(width, height, rows): rows[y][x] a tuple of the channels, GL rows (bottom first)."""
-    text = subprocess.run(['oiiotool', '--dumpdata', path], check=True, capture_output=True, text=True).stdout
-    m = re.search(r':\s+(\d+) x\s+(\d+)', text)
-    width, height = int(m.group(1)), int(m.group(2))
-    rows = [[()] * width for _ in range(height)]
-    for x, y, values in re.findall(r'Pixel \((\d+), (\d+)\):([-0-9.e+ ]+)', text):
-        rows[height - 1 - int(y)][int(x)] = tuple(float(v) for v in values.split())
-    return width, height, rows
+    width, height, rows = read_image(path)
+    return width, height, rows[::-1]
 
 
 def same_answer(a, b, width, height):
@@ -141,12 +136,8 @@ def render_dumps(render, scene, size, out):
     dirs = {}
     for name, extra in (('default', []), ('alone', ['--hiz-steps', '0'])):
         d = os.path.join(out, f'{scene}-{name}')
-        run = subprocess.run([render, '--scene', scene, '--size', size, '--dump', '--device-profile', 'gpu',
-                              '--out', d] + extra, capture_output=True, text=True)
-        if run.returncode != 0:
-            print(f'tile_choice.py: {render} --scene {scene} failed:\n{run.stderr}', file=sys.stderr)
-            # As the GL tests: without a GL context, skipped (ctest's SKIP_RETURN_CODE) unless required.
-            sys.exit(1 if os.environ.get('SSLR_REQUIRE_GL') == '1' else 77)
+        run_render('tile_choice.py', render,
+                   ['--scene', scene, '--size', size, '--dump', '--device-profile', 'gpu', '--out', d] + extra)
         dirs[name] = d
     return dirs
 
@@ -181,7 +172,7 @@ def main():
     if sys.argv[1:] == ['--self-test']:
         return self_test()
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
-    ap.add_argument('--render', default=os.path.join(ROOT, 'build', 'release', 'src', 'apps', 'sslr-render'))
+    ap.add_argument('--render', default=DEFAULT_RENDER)
     ap.add_argument('--size', default='960x540')
     ap.add_argument('--jump', type=float, default=0.1)
     ap.add_argument('scenes', nargs='+')
@@ -194,8 +185,8 @@ def main():
             dirs = render_dumps(args.render, scene, args.size, out)
             images = []
             for name in ('default', 'alone'):
-                w, h, hits = read_image(os.path.join(dirs[name], 'hit.exr'))
-                _, _, steps = read_image(os.path.join(dirs[name], 'iterations.exr'))
+                w, h, hits = read_gl_rows(os.path.join(dirs[name], 'hit.exr'))
+                _, _, steps = read_gl_rows(os.path.join(dirs[name], 'iterations.exr'))
                 images += [hits, steps]
             if f'{w}x{h}' != args.size:
                 sys.exit(f'tile_choice.py: {scene}: the dumps are {w}x{h}, not --size {args.size}')
