@@ -239,19 +239,18 @@ SSLR_FN bool sslrEntryHit(SslrProjection p, SslrSurface s, SslrTraceParams t, ve
   ivec2 npx = ivec2(floor(vec2(wEntry.x, wEntry.y) - vec2(d.x, d.y) * (2.0f * SSLR_HIZ_NUDGE)));
   bool crossedIn = (npx.x != px.x || npx.y != px.y) && wEntry.z > keyIn && npx.x >= 0 && npx.y >= 0 &&
                    npx.x < s.width && npx.y < s.height;
-  if (!crossedIn) {
-    L = sslrRayLengthAt(p, vec2(s.width, s.height), keySign, wEntry, d, 0.0f, vsP, vsR);
-    return extra > 0.0f && L > 0.0f &&
-           length(vsP + vsR * L - vsSurface) <= sslrHitTolerance(p, s, distIn, 0.0f);
+  bool sameSurface = false;
+  if (crossedIn) {
+    float depthOut = sslrLoadDepth(npx);
+    bool outGeometry = sslrIsGeometryDepth(s, depthOut);
+    if (outGeometry && !(wEntry.z <= keySign * depthOut)) return false;  // npx is nearer: no outline
+    sameSurface =
+        outGeometry && abs(sslrViewDepthFromDepth(p, depthOut) - distIn) <= sslrHitTolerance(p, s, distIn, 16.0f);
   }
-  float depthOut = sslrLoadDepth(npx);
-  bool outGeometry = sslrIsGeometryDepth(s, depthOut);
-  if (outGeometry && !(wEntry.z <= keySign * depthOut)) return false;  // npx is nearer: no outline
-  bool sameSurface =
-      outGeometry && abs(sslrViewDepthFromDepth(p, depthOut) - distIn) <= sslrHitTolerance(p, s, distIn, 16.0f);
-  if (extra > 0.0f) {
+  if (extra > 0.0f || !crossedIn) {  // px's own surface where the ray reached it
     L = sslrRayLengthAt(p, vec2(s.width, s.height), keySign, wEntry, d, 0.0f, vsP, vsR);
-    return sameSurface && L > 0.0f;
+    if (!(extra > 0.0f && L > 0.0f)) return false;
+    return crossedIn ? sameSurface : length(vsP + vsR * L - vsSurface) <= sslrHitTolerance(p, s, distIn, 0.0f);
   }
   float slab = max(t.objectDepthRelative * distIn + (sslrBackDepth(s) ? extra : 0.0f), 0.0f);
   // The next sample of px's surface: npx across a crease, else the pixel inwards.
